@@ -1,0 +1,239 @@
+/*
+ * structmd.h - the public C ABI of structmd, a GPU molecular dynamics engine.
+ *
+ * A host program (C, C++, Fortran through iso_c_binding, Python through ctypes or cffi) creates an
+ * opaque handle, loads a simulation described in the UAMMD-structured JSON format, steps it, reads
+ * forces and energies, sets positions, velocities or extra forces, steps again and destroys it.
+ *
+ * Rules that hold for every function below:
+ * - Every function that can fail returns a structmd_status (0 = STRUCTMD_OK). No C++ exception,
+ *   exit, abort or signal ever leaves the library. After a failure, structmd_last_error(sim) says
+ *   what went wrong, where (JSON path, argument name, particle id and step) and what was expected.
+ *   A failed call leaves the handle usable and its previous state intact, unless the message says
+ *   the state was lost.
+ * - No global mutable state: two handles in one process are independent. One thread at a time per
+ *   handle; different handles may be driven from different threads at once.
+ * - Arrays are owned by the caller. Vector quantities are double[3*n] (x0,y0,z0,x1,...), scalars
+ *   double[n], always in ascending particle-id order whatever order the engine keeps internally.
+ *   n must equal the number of particles, otherwise STRUCTMD_ERR_ARGUMENT and nothing is written.
+ * - Values returned are consistent with the current state: a getter evaluates what is stale (forces
+ *   after positions changed, say) and nothing more. Energies and virials are computed only when
+ *   someone asks for them.
+ * - Units are those of the loaded input (global.units); the API does not convert.
+ */
+#ifndef STRUCTMD_H
+#define STRUCTMD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifndef STRUCTMD_API
+#if defined(_WIN32)
+#define STRUCTMD_API __declspec(dllimport)
+#else
+#define STRUCTMD_API __attribute__((visibility("default")))
+#endif
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Version of the binary interface; raised whenever a name or a meaning below changes. */
+#define STRUCTMD_ABI_VERSION 1
+
+/* Status codes: the values are fixed. */
+#define STRUCTMD_OK 0               /* success */
+#define STRUCTMD_ERR_ARGUMENT 1     /* null pointer, wrong array length, unknown name, bad option */
+#define STRUCTMD_ERR_INPUT 2        /* the JSON input is malformed or inconsistent (message names the path) */
+#define STRUCTMD_ERR_STATE 3        /* call not valid now (for example step before load) */
+#define STRUCTMD_ERR_NUMERICAL 4    /* NaN, Inf or blow-up detected (message names particle id and step) */
+#define STRUCTMD_ERR_IO 5           /* a file could not be read or written */
+#define STRUCTMD_ERR_DEVICE 6       /* GPU error, or a GPU was demanded and none is usable */
+#define STRUCTMD_ERR_MEMORY 7       /* out of host or device memory */
+#define STRUCTMD_ERR_UNSUPPORTED 8  /* a valid request this build or backend cannot do */
+#define STRUCTMD_ERR_INTERNAL 9     /* a bug: please report */
+
+/* Compute flags for structmd_compute, combined with bitwise or. */
+#define STRUCTMD_FORCES 1u
+#define STRUCTMD_ENERGY 2u
+#define STRUCTMD_VIRIAL 4u
+
+/** A status code, one of the STRUCTMD_OK / STRUCTMD_ERR_* values. */
+typedef int32_t structmd_status;
+
+/** The opaque simulation handle. Create with structmd_create, release with structmd_destroy. */
+typedef struct structmd_sim structmd_sim;
+
+/**
+ * @return STRUCTMD_ABI_VERSION of the library actually loaded; a host compares it with the value of
+ *         the header it was compiled against.
+ */
+STRUCTMD_API int structmd_abi_version(void);
+
+/** @return the library version, "MAJOR.MINOR.PATCH"; a static string, never freed. */
+STRUCTMD_API const char* structmd_version(void);
+
+/**
+ * Creates a handle holding no simulation yet.
+ *
+ * @param options_json  NULL, "" or a JSON object with the optional keys
+ *                      "backend": "auto" (default: CUDA if a usable GPU exists, else CPU) | "cpu" | "cuda";
+ *                      "device": GPU ordinal (default 0);
+ *                      "precision": "single" (default) | "double";
+ *                      "threads": CPU threads (default: all the OpenMP runtime offers);
+ *                      "log": "quiet" | "warning" (default) | "info" | "debug";
+ *                      "log_file": path (default: standard error).
+ *                      An unknown key or a bad value is STRUCTMD_ERR_ARGUMENT.
+ * @param[out] out      receives the new handle; set to NULL on failure.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for bad options or out == NULL; STRUCTMD_ERR_DEVICE when
+ *         "cuda" is demanded and no GPU is usable; STRUCTMD_ERR_UNSUPPORTED when "cuda" is demanded
+ *         from a CPU-only build. On failure structmd_last_error(NULL) says why, on this thread.
+ */
+STRUCTMD_API structmd_status structmd_create(const char* options_json, structmd_sim** out);
+
+/** Releases the handle and everything it owns (host and device memory, open files). NULL is fine. */
+STRUCTMD_API void structmd_destroy(structmd_sim* sim);
+
+/**
+ * @param sim  a handle, or NULL for the last failed structmd_create on the calling thread.
+ * @return the message of the last failed call on this handle, "" if none. The string is owned by the
+ *         library and stays valid until the next call on the same handle (or, for NULL, the next
+ *         structmd_create on this thread).
+ */
+STRUCTMD_API const char* structmd_last_error(const structmd_sim* sim);
+
+/**
+ * Builds the simulation from a whole input document (UAMMD-structured JSON, comments allowed) and
+ * puts it at its initial state (step and time from global.fundamental, else 0). Loading again
+ * replaces the previous simulation. On failure the handle holds no simulation and says why.
+ *
+ * @param path  a file path.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_IO if the file cannot be read; STRUCTMD_ERR_INPUT if the document
+ *         is malformed (line and column) or inconsistent (JSON path and what was expected);
+ *         STRUCTMD_ERR_MEMORY if the system does not fit.
+ */
+STRUCTMD_API structmd_status structmd_load_file(structmd_sim* sim, const char* path);
+
+/** As structmd_load_file, from a NUL-terminated JSON string. */
+STRUCTMD_API structmd_status structmd_load_string(structmd_sim* sim, const char* json);
+
+/**
+ * Advances nsteps integration steps along integrator.schedule, switching integrators where the
+ * schedule says, firing each simulationStep at its interval.
+ *
+ * @param nsteps  number of steps, >= 0.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load, or when the schedule ends before nsteps
+ *         (no step is taken then); STRUCTMD_ERR_ARGUMENT for nsteps < 0; STRUCTMD_ERR_IO when an
+ *         output cannot be written.
+ */
+STRUCTMD_API structmd_status structmd_step(structmd_sim* sim, int64_t nsteps);
+
+/** Advances until the schedule ends. Same statuses as structmd_step. */
+STRUCTMD_API structmd_status structmd_run(structmd_sim* sim);
+
+/**
+ * Evaluates now, without advancing time, what flags asks for (STRUCTMD_FORCES, STRUCTMD_ENERGY,
+ * STRUCTMD_VIRIAL), unless it is already current. Getters do this themselves; this call lets a host
+ * choose when the work happens.
+ *
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for unknown bits; STRUCTMD_ERR_STATE before a load.
+ */
+STRUCTMD_API structmd_status structmd_compute(structmd_sim* sim, uint32_t flags);
+
+/** @param[out] n  number of particles of the loaded simulation. */
+STRUCTMD_API structmd_status structmd_get_num_particles(const structmd_sim* sim, int64_t* n);
+
+/** @param[out] ids  int64_t[n], the particle ids in ascending order (0..n-1). */
+STRUCTMD_API structmd_status structmd_get_ids(structmd_sim* sim, int64_t* ids, int64_t n);
+
+/** @param[out] xyz  double[3n], positions wrapped into the box [-L/2, L/2). */
+STRUCTMD_API structmd_status structmd_get_positions(structmd_sim* sim, double* xyz, int64_t n);
+
+/** @param[out] v  double[3n], velocities. */
+STRUCTMD_API structmd_status structmd_get_velocities(structmd_sim* sim, double* v, int64_t n);
+
+/** @param[out] f  double[3n], the total force on each particle, external forces included. */
+STRUCTMD_API structmd_status structmd_get_forces(structmd_sim* sim, double* f, int64_t n);
+
+/**
+ * @param[out] e  double[n], potential energy per particle: each interaction's energy is split equally
+ *                among the particles it involves, so the values sum to the potential energy.
+ */
+STRUCTMD_API structmd_status structmd_get_particle_energies(structmd_sim* sim, double* e, int64_t n);
+
+/** @param[out] m  double[n], masses. */
+STRUCTMD_API structmd_status structmd_get_masses(structmd_sim* sim, double* m, int64_t n);
+
+/** @param[out] type_index  int32_t[n], each particle's row in global.types (0-based). */
+STRUCTMD_API structmd_status structmd_get_types(structmd_sim* sim, int32_t* type_index, int64_t n);
+
+/**
+ * @param term      "potential", "kinetic", "total", or the name of a topology.forceField entry (its
+ *                  share of the potential energy).
+ * @param[out] value  the energy, in the input's energy unit.
+ * @return STRUCTMD_ERR_ARGUMENT for an unknown term.
+ */
+STRUCTMD_API structmd_status structmd_get_energy(structmd_sim* sim, const char* term, double* value);
+
+/**
+ * @param[out] w  the virial tensor W = sum over pair terms of (r_i - r_j) (x) F_ij (minimum image;
+ *                multi-body terms add sum_k d_k (x) F_k), row-major 3x3: the convention of LAMMPS's
+ *                pressure virial.
+ */
+STRUCTMD_API structmd_status structmd_get_virial(structmd_sim* sim, double w[9]);
+
+/** @param[out] p  pressure P = (2K + trace W) / (3V), K the kinetic energy, V the box volume. */
+STRUCTMD_API structmd_status structmd_get_pressure(structmd_sim* sim, double* p);
+
+/** @param[out] lengths  box edge lengths Lx, Ly, Lz; the box spans [-L/2, L/2). */
+STRUCTMD_API structmd_status structmd_get_box(structmd_sim* sim, double lengths[3]);
+
+/** @param[out] step  the current step number. */
+STRUCTMD_API structmd_status structmd_get_step(const structmd_sim* sim, int64_t* step);
+
+/** @param[out] t  the current simulation time. */
+STRUCTMD_API structmd_status structmd_get_time(const structmd_sim* sim, double* t);
+
+/**
+ * Replaces all positions (wrapped into the box) and marks forces, energies and the neighbour list
+ * stale. Nothing is changed if any value is not finite (STRUCTMD_ERR_ARGUMENT).
+ */
+STRUCTMD_API structmd_status structmd_set_positions(structmd_sim* sim, const double* xyz, int64_t n);
+
+/** Replaces all velocities. Nothing is changed if any value is not finite. */
+STRUCTMD_API structmd_status structmd_set_velocities(structmd_sim* sim, const double* v, int64_t n);
+
+/**
+ * Sets the box edge lengths, keeping fractional coordinates (particles are scaled with the box).
+ * @return STRUCTMD_ERR_ARGUMENT if a length is not positive, or if a cutoff would exceed half the box.
+ */
+STRUCTMD_API structmd_status structmd_set_box(structmd_sim* sim, const double lengths[3]);
+
+/**
+ * Adds f (double[3n]) to each particle's force at every force evaluation until replaced; NULL with
+ * n = 0 clears it. This is how a coupled code applies its field. The energy of this field is the
+ * host's business: it is not part of any energy term.
+ */
+STRUCTMD_API structmd_status structmd_set_external_forces(structmd_sim* sim, const double* f, int64_t n);
+
+/* ---- structmd additions to the contract ---- */
+
+/**
+ * Describes the handle as a JSON object written into buffer (NUL-terminated):
+ * {"backend": "cpu"|"cuda", "precision": "single"|"double", "device": name, "threads": n,
+ *  "loaded": bool, "particles": n, "final_step": step at which the schedule ends (-1 if none)}.
+ *
+ * @param buffer       receives the text; may be NULL when size is 0.
+ * @param size         capacity of buffer in bytes.
+ * @param[out] needed  optional (may be NULL): bytes the text needs, NUL included.
+ * @return STRUCTMD_ERR_ARGUMENT if buffer is too small (nothing useful is written then).
+ */
+STRUCTMD_API structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t size,
+                                               size_t* needed);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* STRUCTMD_H */

@@ -1,0 +1,98 @@
+#pragma once
+// A read-only view of one JSON value that knows its path in the document and records what was
+// read. Reading a key marks it used; check_all_used() then finds the keys nobody read (a misspelt
+// parameter, an unknown section) and names them, with a suggestion among the keys that were asked.
+#include <array>
+#include <cstdint>
+#include <initializer_list>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace structmd::input {
+
+// Shared by every node of one document.
+struct TrackingState {
+    std::set<std::string> used;                          // paths read (a subtree counts once its root is used)
+    std::map<std::string, std::set<std::string>> asked;  // object path -> keys looked up, present or not
+};
+
+class TrackedNode {
+public:
+    TrackedNode() = default;
+    TrackedNode(std::shared_ptr<TrackingState> state, const nlohmann::json* value, std::string path);
+
+    const std::string& path() const { return path_; }
+    const nlohmann::json& json() const { return *value_; }
+    bool valid() const { return value_ != nullptr; }
+
+    bool is_object() const;
+    bool is_array() const;
+    bool is_number() const;
+    bool is_string() const;
+
+    // Object access. has() and find() record the key as asked; at() throws
+    // "<path>.<key>: missing required entry" when absent. All of them mark the returned node used.
+    bool has(const std::string& key) const;
+    std::optional<TrackedNode> find(const std::string& key) const;
+    TrackedNode at(const std::string& key) const;
+    std::vector<std::string> keys() const;  // throws "<path>: expected an object" if not one
+
+    // Array access; throws "<path>: expected an array" if not one.
+    size_t size() const;
+    TrackedNode at(size_t index) const;
+
+    // Typed reads. Throw "<path>: expected <what>, got <json text>" on a type mismatch.
+    // Supported T: double, int64_t, int32_t, uint64_t, bool, std::string, std::array<double,3>,
+    // std::vector<double>, std::vector<int64_t>.
+    template <class T> T as() const;
+    template <class T> T get(const std::string& key) const { return at(key).as<T>(); }
+    template <class T> T get_or(const std::string& key, T fallback) const {
+        auto node = find(key);
+        return node ? node->as<T>() : fallback;
+    }
+
+    // Marks this node and everything below it as used.
+    void mark_used() const;
+    // Throws Error(STRUCTMD_ERR_INPUT) for the first key under this node that nobody used:
+    // "<path>.<key>: unknown entry (did you mean <closest asked key>?)".
+    void check_all_used() const;
+
+private:
+    std::shared_ptr<TrackingState> state_;
+    const nlohmann::json* value_ = nullptr;
+    std::string path_;
+};
+
+// The labels/data table of a component entry: {"labels": [...], "data": [[...], ...]}.
+// read_table checks that every label is known (required or optional), that every required label is
+// present, that no label repeats, and that every row has as many cells as there are labels; each
+// failure names its path ("<entry>.labels[2]: unknown label 'x' (expected one of a, b)",
+// "<entry>.data[5]: row has 3 cells, labels has 4").
+class Table {
+public:
+    Table() = default;
+    Table(TrackedNode entry, std::vector<std::string> labels, TrackedNode data);
+
+    size_t rows() const;
+    bool has(const std::string& label) const;
+    // The cell of a row under a label; the label must be present (has()).
+    TrackedNode cell(size_t row, const std::string& label) const;
+    const std::string& path() const { return entry_.path(); }
+    TrackedNode row(size_t row) const;
+
+private:
+    TrackedNode entry_;
+    std::vector<std::string> labels_;
+    TrackedNode data_;
+};
+
+Table read_table(const TrackedNode& entry, std::initializer_list<std::string> required,
+                 std::initializer_list<std::string> optional = {});
+
+}  // namespace structmd::input
