@@ -16,9 +16,14 @@
 
 namespace structmd::input {
 
-// Shared by every node of one document.
+// Shared by every node of one document; owning the document here keeps it alive as long as any node.
 struct TrackingState {
-    std::set<std::string> used;                          // paths read (a subtree counts once its root is used)
+    nlohmann::json document;
+    // Object path -> its keys in the order the text gives them (nlohmann::json keeps keys sorted).
+    std::map<std::string, std::vector<std::string>> keyOrder;
+    // Paths of object members read. Array elements need no mark: only object members can be unknown,
+    // so check_all_used looks inside a read member only for objects.
+    std::set<std::string> used;
     std::map<std::string, std::set<std::string>> asked;  // object path -> keys looked up, present or not
 };
 
@@ -60,7 +65,8 @@ public:
     // Marks this node and everything below it as used.
     void mark_used() const;
     // Throws Error(STRUCTMD_ERR_INPUT) for the first key under this node that nobody used:
-    // "<path>.<key>: unknown entry (did you mean <closest asked key>?)".
+    // "<path>.<key>: unknown entry (did you mean <closest asked key>?)", or "unknown parameter" when
+    // the key sits in a "parameters" object.
     void check_all_used() const;
 
 private:
@@ -92,7 +98,7 @@ private:
     TrackedNode data_;
 };
 
-Table read_table(const TrackedNode& entry, std::initializer_list<std::string> required,
-                 std::initializer_list<std::string> optional = {});
+Table read_table(const TrackedNode& entry, const std::vector<std::string>& required,
+                 const std::vector<std::string>& optional = {});
 
 }  // namespace structmd::input

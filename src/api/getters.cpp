@@ -1,0 +1,114 @@
+// Reading the state: per-particle arrays in id order, energies, virial, box, step and time.
+#include "api/handle.hpp"
+
+using namespace structmd;
+using namespace structmd::api;
+
+extern "C" {
+
+structmd_status structmd_get_num_particles(const structmd_sim* sim, int64_t* n) {
+    return with_handle(sim, [&](const structmd_sim& s) {
+        require_pointer(n, "n");
+        *n = loaded(s).particle_count();
+    });
+}
+
+structmd_status structmd_get_ids(structmd_sim* sim, int64_t* ids, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, ids, "ids");
+        for (int64_t i = 0; i < n; ++i) ids[i] = i;
+    });
+}
+
+structmd_status structmd_get_positions(structmd_sim* sim, double* xyz, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, xyz, "xyz");
+        s.simulation->get_positions(xyz);
+    });
+}
+
+structmd_status structmd_get_velocities(structmd_sim* sim, double* v, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, v, "v");
+        s.simulation->get_velocities(v);
+    });
+}
+
+structmd_status structmd_get_forces(structmd_sim* sim, double* f, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, f, "f");
+        s.simulation->get_forces(f);
+    });
+}
+
+structmd_status structmd_get_particle_energies(structmd_sim* sim, double* e, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, e, "e");
+        s.simulation->get_particle_energies(e);
+    });
+}
+
+structmd_status structmd_get_masses(structmd_sim* sim, double* m, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, m, "m");
+        s.simulation->get_masses(m);
+    });
+}
+
+structmd_status structmd_get_types(structmd_sim* sim, int32_t* type_index, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, type_index, "type_index");
+        s.simulation->get_types(type_index);
+    });
+}
+
+structmd_status structmd_get_energy(structmd_sim* sim, const char* term, double* value) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        Simulation& simulation = loaded(s);
+        require_pointer(term, "term");
+        require_pointer(value, "value");
+        *value = simulation.energy(term);
+    });
+}
+
+structmd_status structmd_get_virial(structmd_sim* sim, double w[9]) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        Simulation& simulation = loaded(s);
+        require_pointer(w, "w");
+        const std::array<double, 9> virial = simulation.virial();
+        std::copy(virial.begin(), virial.end(), w);
+    });
+}
+
+structmd_status structmd_get_pressure(structmd_sim* sim, double* p) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        Simulation& simulation = loaded(s);
+        require_pointer(p, "p");
+        *p = simulation.pressure();
+    });
+}
+
+structmd_status structmd_get_box(structmd_sim* sim, double lengths[3]) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        Simulation& simulation = loaded(s);
+        require_pointer(lengths, "lengths");
+        const std::array<double, 3> box = simulation.box();
+        std::copy(box.begin(), box.end(), lengths);
+    });
+}
+
+structmd_status structmd_get_step(const structmd_sim* sim, int64_t* step) {
+    return with_handle(sim, [&](const structmd_sim& s) {
+        require_pointer(step, "step");
+        *step = loaded(s).current_step();
+    });
+}
+
+structmd_status structmd_get_time(const structmd_sim* sim, double* t) {
+    return with_handle(sim, [&](const structmd_sim& s) {
+        require_pointer(t, "t");
+        *t = loaded(s).current_time();
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,80 @@
+#pragma once
+// What a structmd_sim handle holds, and the exception barrier every exported function goes through:
+// the only place that catches, mapping each failure to a status and a per-handle message.
+#include <cstdio>
+#include <memory>
+#include <new>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/logger.hpp"
+#include "simulation/engine_options.hpp"
+#include "simulation/simulation.hpp"
+#include "structmd.h"
+
+struct structmd_sim {
+    structmd::EngineOptions options;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> logFile{nullptr, &std::fclose};
+    structmd::Logger log;
+    std::unique_ptr<structmd::Simulation> simulation;
+    std::string lastError;
+};
+
+namespace structmd::api {
+
+// Message of the last failure on this thread that had no handle to hold it (a failed create, a
+// NULL handle).
+std::string& thread_error();
+
+template <class Body>
+structmd_status guarded(std::string& message, Body&& body) noexcept {
+    try {
+        body();
+        return STRUCTMD_OK;
+    } catch (const Error& e) {
+        message = e.what();
+        return e.status();
+    } catch (const std::bad_alloc&) {
+        message = "out of host memory";
+        return STRUCTMD_ERR_MEMORY;
+    } catch (const std::exception& e) {
+        message = std::string("internal error, please report: ") + e.what();
+        return STRUCTMD_ERR_INTERNAL;
+    } catch (...) {
+        message = "internal error, please report: unknown exception";
+        return STRUCTMD_ERR_INTERNAL;
+    }
+}
+
+// Runs body(handle) behind the barrier; a NULL handle is STRUCTMD_ERR_ARGUMENT.
+template <class Handle, class Body>
+structmd_status with_handle(Handle* sim, Body&& body) noexcept {
+    if (!sim) {
+        thread_error() = "sim: NULL handle";
+        return STRUCTMD_ERR_ARGUMENT;
+    }
+    return guarded(const_cast<structmd_sim*>(sim)->lastError, [&] { body(*sim); });
+}
+
+// The loaded simulation, or ERR_STATE.
+template <class Handle>
+auto& loaded(Handle& sim) {
+    if (!sim.simulation)
+        throw Error(STRUCTMD_ERR_STATE,
+                    "no simulation is loaded (call structmd_load_file or structmd_load_string first)");
+    return *sim.simulation;
+}
+
+inline void require_pointer(const void* pointer, const char* name) {
+    if (!pointer) throw Error(STRUCTMD_ERR_ARGUMENT, std::string(name) + ": NULL pointer");
+}
+
+// An array argument of n entries per particle: n must equal the particle count.
+inline void require_count(const Simulation& simulation, int64_t n, const void* pointer, const char* name) {
+    if (n != simulation.particle_count())
+        throw Error(STRUCTMD_ERR_ARGUMENT, "n: expected " + std::to_string(simulation.particle_count()) +
+                                               " (the number of particles), got " + std::to_string(n));
+    require_pointer(pointer, name);
+}
+
+}  // namespace structmd::api

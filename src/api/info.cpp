@@ -1,0 +1,39 @@
+// structmd_get_info: the handle described as JSON.
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "api/handle.hpp"
+
+using namespace structmd;
+using namespace structmd::api;
+
+extern "C" {
+
+structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t size, size_t* needed) {
+    return with_handle(sim, [&](const structmd_sim& s) {
+        nlohmann::json info;
+        info["version"] = STRUCTMD_VERSION_STRING;
+        info["backend"] = s.options.backend;
+        info["precision"] = s.options.doublePrecision ? "double" : "single";
+        info["loaded"] = static_cast<bool>(s.simulation);
+        if (s.simulation) {
+            info["device"] = s.simulation->device_name();
+            info["threads"] = s.simulation->threads();
+            info["particles"] = s.simulation->particle_count();
+            info["final_step"] = s.simulation->final_step();
+        } else {
+            info["particles"] = 0;
+            info["final_step"] = -1;
+        }
+        const std::string text = info.dump();
+        if (needed) *needed = text.size() + 1;
+        if (size < text.size() + 1)
+            throw Error(STRUCTMD_ERR_ARGUMENT, "size: the buffer needs " + std::to_string(text.size() + 1) +
+                                                   " bytes, got " + std::to_string(size));
+        require_pointer(buffer, "buffer");
+        std::memcpy(buffer, text.c_str(), text.size() + 1);
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,102 @@
+// Version queries, handle creation and destruction, errors and loading.
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "api/handle.hpp"
+#include "backends/backend_engines.hpp"
+#include "simulation/read_simulation.hpp"
+
+namespace structmd::api {
+
+std::string& thread_error() {
+    thread_local std::string message;
+    return message;
+}
+
+namespace {
+
+std::unique_ptr<Simulation> make_engine(const structmd_sim& sim, SimulationSpec spec) {
+    const EngineOptions& o = sim.options;
+    if (o.backend == "cuda") {
+#ifdef STRUCTMD_HAVE_CUDA
+        return make_cuda_engine(o.doublePrecision, o.device, std::move(spec), sim.log);
+#else
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, "this build of structmd has no CUDA backend");
+#endif
+    }
+    return make_cpu_engine(o.doublePrecision, o.threads, std::move(spec), sim.log);
+}
+
+void load_text(structmd_sim& sim, const std::string& text) {
+    sim.simulation.reset();  // a failed load leaves no simulation, and the old one's memory is freed first
+    SimulationSpec spec = read_simulation(text, sim.log);
+    sim.simulation = make_engine(sim, std::move(spec));
+    sim.log.info("loaded " + std::to_string(sim.simulation->particle_count()) + " particles on " +
+                 sim.simulation->backend_name() + " (" + sim.simulation->device_name() + "), " +
+                 sim.simulation->precision_name() + " precision");
+}
+
+}  // namespace
+}  // namespace structmd::api
+
+using namespace structmd;
+using namespace structmd::api;
+
+extern "C" {
+
+int structmd_abi_version(void) { return STRUCTMD_ABI_VERSION; }
+
+const char* structmd_version(void) { return STRUCTMD_VERSION_STRING; }
+
+structmd_status structmd_create(const char* options_json, structmd_sim** out) {
+    return guarded(thread_error(), [&] {
+        require_pointer(out, "out");
+        *out = nullptr;
+        auto sim = std::make_unique<structmd_sim>();
+        sim->options = parse_engine_options(options_json);
+        std::FILE* sink = stderr;
+        if (!sim->options.logFile.empty()) {
+            sim->logFile.reset(std::fopen(sim->options.logFile.c_str(), "a"));
+            if (!sim->logFile)
+                throw Error(STRUCTMD_ERR_IO, "option \"log_file\": cannot open '" + sim->options.logFile +
+                                                 "': " + std::strerror(errno));
+            sink = sim->logFile.get();
+        }
+        sim->log = Logger(sim->options.logLevel, sink);
+        *out = sim.release();
+    });
+}
+
+void structmd_destroy(structmd_sim* sim) {
+    // Destructors release device memory; a failing CUDA call there must not escape either.
+    guarded(thread_error(), [&] { delete sim; });
+}
+
+const char* structmd_last_error(const structmd_sim* sim) {
+    return sim ? sim->lastError.c_str() : thread_error().c_str();
+}
+
+structmd_status structmd_load_file(structmd_sim* sim, const char* path) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_pointer(path, "path");
+        std::ifstream file(path, std::ios::binary);
+        if (!file) {
+            s.simulation.reset();
+            throw Error(STRUCTMD_ERR_IO, std::string("cannot open '") + path + "': " + std::strerror(errno));
+        }
+        std::ostringstream text;
+        text << file.rdbuf();
+        load_text(s, text.str());
+    });
+}
+
+structmd_status structmd_load_string(structmd_sim* sim, const char* json) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_pointer(json, "json");
+        load_text(s, json);
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,18 @@
+#pragma once
+// Entry points of the compiled backends: each instantiates Engine<Backend, float|double> in its own
+// translation unit (the CUDA one compiled by nvcc), so nothing else includes backend headers.
+#include <memory>
+
+#include "core/logger.hpp"
+#include "simulation/simulation.hpp"
+#include "simulation/simulation_spec.hpp"
+
+namespace structmd {
+
+std::unique_ptr<Simulation> make_cpu_engine(bool doublePrecision, int threads, SimulationSpec spec, const Logger& log);
+
+// Present only in builds with the CUDA backend (STRUCTMD_HAVE_CUDA).
+std::unique_ptr<Simulation> make_cuda_engine(bool doublePrecision, int device, SimulationSpec spec, const Logger& log);
+int cuda_device_count();
+
+}  // namespace structmd

@@ -1,0 +1,102 @@
+#pragma once
+// CPU backend: buffers in host memory and loops over OpenMP threads. It runs the very functors the
+// CUDA backend launches as kernels.
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace structmd {
+
+template <class T>
+class HostBuffer {
+public:
+    HostBuffer() = default;
+    explicit HostBuffer(size_t n) : data_(n) {}
+
+    T* data() { return data_.data(); }
+    const T* data() const { return data_.data(); }
+    size_t size() const { return data_.size(); }
+    bool empty() const { return data_.empty(); }
+    // Contents are unspecified after a resize, as for a device buffer.
+    void resize(size_t n) { data_.resize(n); }
+    void release() { std::vector<T>().swap(data_); }
+
+private:
+    std::vector<T> data_;
+};
+
+class CpuBackend {
+public:
+    template <class T>
+    using Buffer = HostBuffer<T>;
+
+    static constexpr const char* name = "cpu";
+
+    explicit CpuBackend(int threads) : threads_(threads > 0 ? threads : omp_get_max_threads()) {}
+
+    int threads() const { return threads_; }
+    std::string device_name() const { return "host CPU"; }
+    void activate() const {}
+    void synchronize() const {}
+
+    template <class F>
+    void for_each(int64_t n, const F& f) const {
+#pragma omp parallel for num_threads(threads_) schedule(static)
+        for (int64_t i = 0; i < n; ++i) f(i);
+    }
+
+    // Sum of f(i) over i < n. Partial sums over fixed blocks make the result independent of the
+    // thread count, so a run is reproducible bit for bit on any number of threads.
+    template <class T, class F>
+    T reduce(int64_t n, const F& f, T zero) const {
+        constexpr int64_t block = 4096;
+        const int64_t blocks = (n + block - 1) / block;
+        std::vector<T> partial(static_cast<size_t>(blocks), zero);
+#pragma omp parallel for num_threads(threads_) schedule(static)
+        for (int64_t b = 0; b < blocks; ++b) {
+            T sum = zero;
+            const int64_t end = std::min(n, (b + 1) * block);
+            for (int64_t i = b * block; i < end; ++i) sum = sum + f(i);
+            partial[b] = sum;
+        }
+        T total = zero;
+        for (const T& p : partial) total = total + p;
+        return total;
+    }
+
+    template <class T>
+    void fill(Buffer<T>& buffer, const T& value) const {
+        T* data = buffer.data();
+        for_each(static_cast<int64_t>(buffer.size()), [=](int64_t i) { data[i] = value; });
+    }
+
+    template <class T>
+    void upload(Buffer<T>& buffer, const T* host, size_t n) const {
+        buffer.resize(n);
+        std::copy(host, host + n, buffer.data());
+    }
+
+    template <class T>
+    void download(const Buffer<T>& buffer, T* host, size_t n) const {
+        std::copy(buffer.data(), buffer.data() + n, host);
+    }
+
+    template <class T>
+    T read(const Buffer<T>& buffer, size_t index) const {
+        return buffer.data()[index];
+    }
+
+    template <class T>
+    void write(Buffer<T>& buffer, size_t index, const T& value) const {
+        buffer.data()[index] = value;
+    }
+
+private:
+    int threads_;
+};
+
+}  // namespace structmd

@@ -1,0 +1,55 @@
+#pragma once
+// The force field of an engine: its neighbour lists and interactors, evaluated together.
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "forcefield/interactor.hpp"
+#include "neighbour/verlet_list.hpp"
+
+namespace structmd {
+
+template <class B, class R>
+class ForceField {
+public:
+    void add(std::unique_ptr<Interactor<B, R>> interactor) { interactors_.push_back(std::move(interactor)); }
+    void add_list(std::shared_ptr<VerletList<B, R>> list) { lists_.push_back(std::move(list)); }
+    const std::vector<std::shared_ptr<VerletList<B, R>>>& lists() const { return lists_; }
+
+    int find(const std::string& name) const {
+        for (size_t k = 0; k < interactors_.size(); ++k)
+            if (interactors_[k]->name() == name) return static_cast<int>(k);
+        return -1;
+    }
+    std::vector<std::string> names() const {
+        std::vector<std::string> all;
+        for (const auto& it : interactors_) all.push_back(it->name());
+        return all;
+    }
+    double largest_cutoff() const {
+        double largest = 0.0;
+        for (const auto& list : lists_) largest = std::max(largest, list->cutoff());
+        return largest;
+    }
+
+    void update_lists(Particles<B, R>& p) {
+        for (auto& list : lists_) list->update(p.pos, p.count, p.box);
+    }
+    void invalidate_lists() {
+        for (auto& list : lists_) list->invalidate();
+    }
+    void adapt() {
+        for (auto& list : lists_) list->adapt();
+    }
+    void compute_all(Particles<B, R>& p, const ForceOutputs<R>& out) {
+        for (auto& it : interactors_) it->compute(p, out);
+    }
+    void compute_one(int index, Particles<B, R>& p, const ForceOutputs<R>& out) { interactors_[index]->compute(p, out); }
+
+private:
+    std::vector<std::shared_ptr<VerletList<B, R>>> lists_;
+    std::vector<std::unique_ptr<Interactor<B, R>>> interactors_;
+};
+
+}  // namespace structmd

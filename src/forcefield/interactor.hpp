@@ -1,0 +1,56 @@
+#pragma once
+// An interaction term of the force field. compute() adds the term's contribution to whichever
+// outputs are requested (a null pointer means "not wanted"), so energies and virials cost nothing on
+// steps where nobody reads them.
+#include <cstdint>
+#include <string>
+#include <type_traits>
+
+#include "core/vec.hpp"
+#include "simulation/particles.hpp"
+
+namespace structmd {
+
+template <class R>
+struct ForceOutputs {
+    Real4<R>* force = nullptr;
+    R* energy = nullptr;
+    Tensor3<R>* virial = nullptr;
+};
+
+// Calls launch(want_force, want_energy, want_virial) with std::bool_constant arguments, so a kernel
+// can be instantiated with the unwanted outputs compiled out.
+template <class R, class Launch>
+void dispatch_outputs(const ForceOutputs<R>& out, Launch&& launch) {
+    using T = std::true_type;
+    using F = std::false_type;
+    const int mask = (out.force ? 1 : 0) | (out.energy ? 2 : 0) | (out.virial ? 4 : 0);
+    switch (mask) {
+        case 1: launch(T{}, F{}, F{}); break;
+        case 2: launch(F{}, T{}, F{}); break;
+        case 3: launch(T{}, T{}, F{}); break;
+        case 4: launch(F{}, F{}, T{}); break;
+        case 5: launch(T{}, F{}, T{}); break;
+        case 6: launch(F{}, T{}, T{}); break;
+        case 7: launch(T{}, T{}, T{}); break;
+        default: break;
+    }
+}
+
+template <class B, class R>
+class Interactor {
+public:
+    explicit Interactor(std::string name) : name_(std::move(name)) {}
+    virtual ~Interactor() = default;
+    Interactor(const Interactor&) = delete;
+    Interactor& operator=(const Interactor&) = delete;
+
+    // The forceField entry name; also the energy term's name.
+    const std::string& name() const { return name_; }
+    virtual void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) = 0;
+
+private:
+    std::string name_;
+};
+
+}  // namespace structmd

@@ -1,0 +1,13 @@
+#pragma once
+#include "core/logger.hpp"
+#include "forcefield/forcefield_spec.hpp"
+#include "input/description.hpp"
+
+namespace structmd {
+
+// Reads every topology.forceField entry through the component registry. Throws Error(ERR_INPUT)
+// naming the path for an unknown component, a bad parameter, a bond to a missing particle or a
+// cutoff longer than half the box.
+ForceFieldSpec read_forcefield(const input::SystemDescription& system, const Logger& log);
+
+}  // namespace structmd

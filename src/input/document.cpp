@@ -1,0 +1,507 @@
+// parse_document: JSON text -> SystemDescription, validating the sections every simulation shares
+// (system, global, state, topology.structure, the integrator schedule). Components are left in
+// ComponentEntry nodes for their own readers.
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <utility>
+
+#include "core/error.hpp"
+#include "input/description.hpp"
+
+namespace structmd::input {
+namespace {
+
+using nlohmann::json;
+
+// Without a seed in system, runs stay reproducible: this fixed value (not the clock, as the
+// reference does) seeds every random stream.
+constexpr uint64_t kDefaultSeed = 0x5EED;
+
+std::string member_path(const std::string& parent, const std::string& key) {
+    return parent.empty() ? key : parent + "." + key;
+}
+
+std::string join(const std::vector<std::string>& words) {
+    std::string text;
+    for (const std::string& word : words) text += (text.empty() ? "" : ", ") + word;
+    return text;
+}
+
+// "line L, column C" of the character at a byte offset; columns count UTF-8 characters, as editors do.
+std::string text_position(const std::string& text, size_t offset) {
+    offset = std::min(offset, text.size());
+    size_t line = 1, lineStart = 0;
+    for (size_t i = 0; i < offset; ++i)
+        if (text[i] == '\n') {
+            ++line;
+            lineStart = i + 1;
+        }
+    size_t column = 1;
+    for (size_t i = lineStart; i < offset; ++i)
+        if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) ++column;
+    return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// nlohmann's message without its "[json.exception.x.n] parse error at line L, column C: " prefix,
+// since the position is given once, in our own form.
+std::string parse_reason(const std::string& what) {
+    std::string reason = what;
+    const size_t idEnd = reason.find("] ");
+    if (reason.rfind("[json.exception.", 0) == 0 && idEnd != std::string::npos) reason.erase(0, idEnd + 2);
+    const size_t positionEnd = reason.find(": ");
+    if (reason.rfind("parse error", 0) == 0 && positionEnd != std::string::npos) reason.erase(0, positionEnd + 2);
+    return reason;
+}
+
+// Builds the document like nlohmann's own parser, and also records each object's key order
+// (nlohmann::json keeps keys sorted) and rejects a key given twice in one object (nlohmann::json
+// would keep the last one silently).
+class DocumentBuilder : public nlohmann::json_sax<json> {
+public:
+    DocumentBuilder(const std::string& text, TrackingState& tracking) : text_(text), tracking_(tracking) {}
+
+    bool null() override { return add(json(nullptr)); }
+    bool boolean(bool value) override { return add(json(value)); }
+    bool number_integer(number_integer_t value) override { return add(json(value)); }
+    bool number_unsigned(number_unsigned_t value) override { return add(json(value)); }
+    bool number_float(number_float_t value, const string_t&) override { return add(json(value)); }
+    bool string(string_t& value) override { return add(json(std::move(value))); }
+    bool binary(binary_t& value) override { return add(json::binary(std::move(value))); }
+
+    bool start_object(std::size_t) override {
+        json& object = place(json::object());
+        open_.push_back({&object, open_path(), {}});
+        return true;
+    }
+    bool key(string_t& name) override {
+        Open& object = open_.back();
+        if (object.value->contains(name))
+            throw input_error(member_path(object.path, name), "given twice in the same object");
+        tracking_.keyOrder[object.path].push_back(name);
+        object.key = std::move(name);
+        return true;
+    }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override {
+        open_.push_back({&place(json::array()), {}, {}});
+        return true;
+    }
+    bool end_array() override { return close(); }
+
+    bool parse_error(std::size_t position, const std::string&, const json::exception& error) override {
+        // position counts the characters read, the offending one included.
+        throw Error(STRUCTMD_ERR_INPUT,
+                    text_position(text_, position > 0 ? position - 1 : 0) + ": " + parse_reason(error.what()));
+    }
+
+private:
+    struct Open {
+        json* value;
+        std::string path;  // objects only
+        std::string key;   // objects only: the key whose value comes next
+    };
+
+    bool add(json&& value) {
+        place(std::move(value));
+        return true;
+    }
+    bool close() {
+        open_.pop_back();
+        return true;
+    }
+
+    json& place(json&& value) {
+        if (open_.empty()) return tracking_.document = std::move(value);
+        Open& parent = open_.back();
+        if (parent.value->is_array()) {
+            parent.value->push_back(std::move(value));
+            return parent.value->back();
+        }
+        return (*parent.value)[parent.key] = std::move(value);
+    }
+
+    // Path of the value placed last: every open container holds it, or its ancestor, last.
+    std::string open_path() const {
+        std::string path;
+        for (const Open& container : open_) {
+            if (container.value->is_array())
+                path += "[" + std::to_string(container.value->size() - 1) + "]";
+            else
+                path = member_path(path, container.key);
+        }
+        return path;
+    }
+
+    const std::string& text_;
+    TrackingState& tracking_;
+    std::vector<Open> open_;
+};
+
+struct ComponentType {
+    std::string cls;
+    std::string subclass;
+};
+
+ComponentType read_type(const TrackedNode& entry) {
+    const TrackedNode type = entry.at("type");
+    const json& value = type.json();
+    if (!value.is_array() || value.size() != 2 || !value[0].is_string() || !value[1].is_string())
+        throw input_error(type.path(), "expected [Class, SubClass] (two strings), got " + value.dump());
+    return {value[0].get<std::string>(), value[1].get<std::string>()};
+}
+
+Error unknown_component(const TrackedNode& entry, const ComponentType& type) {
+    return input_error(entry.path() + ".type", "unknown component [" + type.cls + ", " + type.subclass + "]");
+}
+
+std::vector<ComponentEntry> read_components(const TrackedNode& section) {
+    std::vector<ComponentEntry> entries;
+    for (const std::string& name : section.keys()) {
+        TrackedNode entry = section.at(name);
+        ComponentType type = read_type(entry);
+        entries.push_back({name, std::move(type.cls), std::move(type.subclass), std::move(entry)});
+    }
+    return entries;
+}
+
+// Finds the entry of each class in a section whose entries are told apart by type, not by key name.
+class EntriesByClass {
+public:
+    explicit EntriesByClass(const TrackedNode& section) : section_(section) {
+        for (ComponentEntry& entry : read_components(section)) {
+            auto [existing, inserted] = byClass_.emplace(entry.cls, entry);
+            if (!inserted)
+                throw input_error(entry.node.path(), "a second " + entry.cls + " entry in " + section.path() +
+                                                         " (the first is " + existing->second.node.path() + ")");
+        }
+    }
+    const ComponentEntry* find(const std::string& cls) const {
+        auto entry = byClass_.find(cls);
+        return entry == byClass_.end() ? nullptr : &entry->second;
+    }
+    const ComponentEntry& at(const std::string& cls, const std::string& subclass) const {
+        const ComponentEntry* entry = find(cls);
+        if (!entry)
+            throw input_error(section_.path(), "missing the [" + cls + ", " + subclass + "] entry");
+        return *entry;
+    }
+    std::vector<const ComponentEntry*> all() const {
+        std::vector<const ComponentEntry*> entries;
+        for (const auto& item : byClass_) entries.push_back(&item.second);
+        return entries;
+    }
+
+private:
+    TrackedNode section_;
+    std::map<std::string, ComponentEntry> byClass_;
+};
+
+void require_subclass(const ComponentEntry& entry, const std::string& subclass) {
+    if (entry.subclass != subclass) throw unknown_component(entry.node, {entry.cls, entry.subclass});
+}
+
+double read_at_least(const TrackedNode& node, double lowest, const std::string& quantity) {
+    const double value = node.as<double>();
+    if (value < lowest)
+        throw input_error(node.path(), quantity + " must be >= " + json(lowest).dump() + ", got " + node.json().dump());
+    return value;
+}
+
+void read_system(const TrackedNode& system, SystemDescription& description) {
+    std::optional<ComponentEntry> information;
+    for (ComponentEntry& entry : read_components(system)) {
+        if (entry.cls != "Simulation" || entry.subclass != "Information")
+            throw unknown_component(entry.node, {entry.cls, entry.subclass});
+        if (information)
+            throw input_error(entry.node.path(), "a second [Simulation, Information] entry (the first is " +
+                                                     information->node.path() + ")");
+        information = std::move(entry);
+    }
+    if (!information) throw input_error(system.path(), "missing the [Simulation, Information] entry");
+    const TrackedNode parameters = information->node.at("parameters");
+    description.name = parameters.get<std::string>("name");
+    description.seed = parameters.get_or<uint64_t>("seed", kDefaultSeed);
+}
+
+void read_units(const ComponentEntry& entry, Units& units) {
+    units.name = entry.subclass;
+    if (entry.subclass == "None") {
+        units.boltzmann = 1.0;
+        units.electricConversion = 1.0;
+    } else if (entry.subclass == "KcalMol_A") {
+        units.boltzmann = 1.987191e-3;         // kcal/(mol K)
+        units.electricConversion = 332.0716;  // kcal A/(mol e^2)
+    } else {
+        throw unknown_component(entry.node, {entry.cls, entry.subclass});
+    }
+}
+
+void read_types(const ComponentEntry& entry, std::vector<ParticleType>& types) {
+    require_subclass(entry, "Basic");
+    const Table table = read_table(entry.node, {"name", "mass", "radius", "charge"});
+    for (size_t row = 0; row < table.rows(); ++row) {
+        const TrackedNode nameCell = table.cell(row, "name");
+        ParticleType type;
+        type.name = nameCell.as<std::string>();
+        for (size_t earlier = 0; earlier < types.size(); ++earlier)
+            if (types[earlier].name == type.name)
+                throw input_error(nameCell.path(), "type '" + type.name + "' appears twice (first at " +
+                                                       table.cell(earlier, "name").path() + ")");
+        type.mass = read_at_least(table.cell(row, "mass"), 0.0, "mass");
+        type.radius = read_at_least(table.cell(row, "radius"), 0.0, "radius");
+        type.charge = table.cell(row, "charge").as<double>();
+        types.push_back(std::move(type));
+    }
+}
+
+void read_ensemble(const ComponentEntry& entry, SystemDescription& description) {
+    require_subclass(entry, "NVT");
+    const Table table = read_table(entry.node, {"box", "temperature"});
+    if (table.rows() != 1)
+        throw input_error(entry.node.path() + ".data", "expected exactly one row, got " + std::to_string(table.rows()));
+    const TrackedNode boxCell = table.cell(0, "box");
+    description.box = boxCell.as<Vec3d>();
+    for (size_t axis = 0; axis < 3; ++axis)
+        if (!(description.box[axis] > 0.0))
+            throw input_error(boxCell.at(axis).path(), "box length must be > 0, got " + boxCell.at(axis).json().dump());
+    description.temperature = read_at_least(table.cell(0, "temperature"), 0.0, "temperature");
+}
+
+void read_fundamental(const ComponentEntry& entry, SystemDescription& description) {
+    require_subclass(entry, "Time");
+    const auto parameters = entry.node.find("parameters");
+    if (!parameters) return;
+    if (const auto step = parameters->find("currentStep")) {
+        description.currentStep = step->as<int64_t>();
+        if (description.currentStep < 0)
+            throw input_error(step->path(), "currentStep must be >= 0, got " + step->json().dump());
+    }
+    description.simulationTime = parameters->get_or<double>("simulationTime", 0.0);
+    if (const auto timeStep = parameters->find("timeStep")) {
+        description.timeStep = timeStep->as<double>();
+        if (!(*description.timeStep > 0.0))
+            throw input_error(timeStep->path(), "timeStep must be > 0, got " + timeStep->json().dump());
+    }
+}
+
+void read_global(const TrackedNode& global, SystemDescription& description) {
+    const EntriesByClass entries(global);
+    for (const ComponentEntry* entry : entries.all()) {
+        const std::string& cls = entry->cls;
+        if (cls != "Units" && cls != "Types" && cls != "Ensemble" && cls != "Fundamental")
+            throw unknown_component(entry->node, {entry->cls, entry->subclass});
+    }
+    if (const ComponentEntry* units = entries.find("Units")) read_units(*units, description.units);
+    read_types(entries.at("Types", "Basic"), description.types);
+    read_ensemble(entries.at("Ensemble", "NVT"), description);
+    if (const ComponentEntry* fundamental = entries.find("Fundamental")) read_fundamental(*fundamental, description);
+}
+
+// Reads a table whose rows are particles; returns the particle id of each row, checking that the
+// ids are integers in 0..N-1, each given once.
+std::vector<int64_t> read_row_ids(const Table& table, int64_t particleCount, const std::string& idRange) {
+    std::vector<int64_t> idOfRow(table.rows());
+    std::vector<int64_t> rowOfId(static_cast<size_t>(particleCount), -1);
+    for (size_t row = 0; row < table.rows(); ++row) {
+        const TrackedNode idCell = table.cell(row, "id");
+        const int64_t id = idCell.as<int64_t>();
+        if (id < 0 || id >= particleCount)
+            throw input_error(idCell.path(), "particle id " + std::to_string(id) + " is outside " + idRange);
+        int64_t& firstRow = rowOfId[static_cast<size_t>(id)];
+        if (firstRow >= 0)
+            throw input_error(idCell.path(), "particle id " + std::to_string(id) + " appears twice (first at " +
+                                                 table.row(static_cast<size_t>(firstRow)).path() + ")");
+        firstRow = static_cast<int64_t>(row);
+        idOfRow[row] = id;
+    }
+    return idOfRow;
+}
+
+// The state table with the particle id of each row; its mass, radius and charge columns wait until
+// the structure has given each particle its type.
+struct StateTable {
+    Table table;
+    std::vector<int64_t> idOfRow;
+};
+
+StateTable read_state(const TrackedNode& state, SystemDescription& description) {
+    Table table = read_table(state, {"id", "position"}, {"velocity", "mass", "radius", "charge"});
+    const size_t count = table.rows();
+    const auto particleCount = static_cast<int64_t>(count);
+    std::vector<int64_t> idOfRow =
+        read_row_ids(table, particleCount,
+                     "0.." + std::to_string(particleCount - 1) + " (ids must cover 0..N-1, N = " +
+                         std::to_string(particleCount) + " rows)");
+    // JSON cannot hold an infinite or NaN number (the parser rejects overflowing literals), so every
+    // coordinate read here is finite.
+    description.positions.resize(count);
+    if (table.has("velocity")) description.velocities.resize(count);
+    for (size_t row = 0; row < count; ++row) {
+        const auto id = static_cast<size_t>(idOfRow[row]);
+        description.positions[id] = table.cell(row, "position").as<Vec3d>();
+        if (table.has("velocity")) description.velocities[id] = table.cell(row, "velocity").as<Vec3d>();
+    }
+    return {std::move(table), std::move(idOfRow)};
+}
+
+// Applies the state's per-particle mass, radius and charge over the values of each particle's type.
+void apply_state_overrides(const StateTable& state, SystemDescription& description) {
+    const Table& table = state.table;
+    for (size_t row = 0; row < table.rows(); ++row) {
+        const auto id = static_cast<size_t>(state.idOfRow[row]);
+        if (table.has("mass")) description.mass[id] = read_at_least(table.cell(row, "mass"), 0.0, "mass");
+        if (table.has("radius")) description.radius[id] = read_at_least(table.cell(row, "radius"), 0.0, "radius");
+        if (table.has("charge")) description.charge[id] = table.cell(row, "charge").as<double>();
+    }
+}
+
+std::string type_names(const std::vector<ParticleType>& types) {
+    std::vector<std::string> names;
+    for (const ParticleType& type : types) names.push_back(type.name);
+    return names.empty() ? "none" : join(names);
+}
+
+void read_structure(const TrackedNode& structure, SystemDescription& description) {
+    const Table table = read_table(structure, {"id", "type"}, {"resId", "chainId", "modelId", "batchId"});
+    const int64_t count = description.numParticles();
+    const std::vector<int64_t> idOfRow =
+        read_row_ids(table, count, "the state's ids 0.." + std::to_string(count - 1));
+    const auto n = static_cast<size_t>(count);
+    if (table.rows() < n) {
+        std::vector<bool> seen(n, false);
+        for (int64_t id : idOfRow) seen[static_cast<size_t>(id)] = true;
+        const auto missing = static_cast<size_t>(std::find(seen.begin(), seen.end(), false) - seen.begin());
+        throw input_error(structure.path() + ".data",
+                          "particle id " + std::to_string(missing) + " has no row (every state id needs exactly one)");
+    }
+    description.typeIndex.assign(n, 0);
+    description.mass.assign(n, 0.0);
+    description.radius.assign(n, 0.0);
+    description.charge.assign(n, 0.0);
+    description.resId.assign(n, 0);
+    description.chainId.assign(n, 0);
+    description.modelId.assign(n, 0);
+    description.batchId.assign(n, 0);
+    const std::pair<const char*, std::vector<int32_t>*> groupings[] = {{"resId", &description.resId},
+                                                                       {"chainId", &description.chainId},
+                                                                       {"modelId", &description.modelId},
+                                                                       {"batchId", &description.batchId}};
+    for (size_t row = 0; row < table.rows(); ++row) {
+        const auto id = static_cast<size_t>(idOfRow[row]);
+        const TrackedNode typeCell = table.cell(row, "type");
+        const std::string typeName = typeCell.as<std::string>();
+        const int32_t type = description.typeId(typeName);
+        if (type < 0)
+            throw input_error(typeCell.path(),
+                              "unknown type '" + typeName + "' (types are " + type_names(description.types) + ")");
+        description.typeIndex[id] = type;
+        description.mass[id] = description.types[static_cast<size_t>(type)].mass;
+        description.radius[id] = description.types[static_cast<size_t>(type)].radius;
+        description.charge[id] = description.types[static_cast<size_t>(type)].charge;
+        for (const auto& [label, values] : groupings)
+            if (table.has(label)) (*values)[id] = table.cell(row, label).as<int32_t>();
+    }
+}
+
+// The [Schedule, Integrator] table: which integrator runs, in which order, for how many steps.
+void read_schedule(const ComponentEntry& entry, SystemDescription& description) {
+    require_subclass(entry, "Integrator");
+    description.schedulePath = entry.node.path();
+    const Table table = read_table(entry.node, {"order", "integrator", "steps"});
+    const size_t count = table.rows();
+    std::vector<std::string> integratorNames;
+    for (const ComponentEntry& integrator : description.integrators) integratorNames.push_back(integrator.name);
+
+    std::vector<int64_t> rowOfOrder(count + 1, -1);
+    std::vector<bool> scheduled(description.integrators.size(), false);
+    for (size_t row = 0; row < count; ++row) {
+        ScheduleRow scheduleRow;
+        const TrackedNode orderCell = table.cell(row, "order");
+        const int64_t order = orderCell.as<int64_t>();
+        if (order < 1 || order > static_cast<int64_t>(count))
+            throw input_error(orderCell.path(), "order " + std::to_string(order) + " is outside 1.." +
+                                                    std::to_string(count) + " (orders run 1, 2, 3, ... without gaps)");
+        int64_t& firstRow = rowOfOrder[static_cast<size_t>(order)];
+        if (firstRow >= 0)
+            throw input_error(orderCell.path(), "order " + std::to_string(order) + " appears twice (first at " +
+                                                    table.row(static_cast<size_t>(firstRow)).path() + ")");
+        firstRow = static_cast<int64_t>(row);
+        scheduleRow.order = static_cast<int>(order);
+
+        const TrackedNode nameCell = table.cell(row, "integrator");
+        scheduleRow.integrator = nameCell.as<std::string>();
+        const auto named = std::find(integratorNames.begin(), integratorNames.end(), scheduleRow.integrator);
+        if (named == integratorNames.end())
+            throw input_error(nameCell.path(), "unknown integrator '" + scheduleRow.integrator + "' (integrators are " +
+                                                   (integratorNames.empty() ? "none" : join(integratorNames)) + ")");
+        scheduled[static_cast<size_t>(named - integratorNames.begin())] = true;
+
+        const TrackedNode stepsCell = table.cell(row, "steps");
+        scheduleRow.steps = stepsCell.as<int64_t>();
+        if (scheduleRow.steps < 0)
+            throw input_error(stepsCell.path(), "steps must be >= 0, got " + std::to_string(scheduleRow.steps));
+        description.schedule.push_back(std::move(scheduleRow));
+    }
+    for (size_t i = 0; i < scheduled.size(); ++i)
+        if (!scheduled[i])
+            throw input_error(description.integrators[i].node.path(),
+                              "integrator not in the schedule " + description.schedulePath);
+    std::sort(description.schedule.begin(), description.schedule.end(),
+              [](const ScheduleRow& a, const ScheduleRow& b) { return a.order < b.order; });
+}
+
+void read_integrators(const TrackedNode& section, SystemDescription& description) {
+    std::optional<ComponentEntry> schedule;
+    for (ComponentEntry& entry : read_components(section)) {
+        if (entry.cls != "Schedule") {
+            description.integrators.push_back(std::move(entry));
+        } else if (schedule) {
+            throw input_error(entry.node.path(),
+                              "a second schedule (the first is " + schedule->node.path() + "); exactly one is allowed");
+        } else {
+            schedule = std::move(entry);
+        }
+    }
+    if (!schedule) throw input_error(section.path(), "missing the [Schedule, Integrator] entry");
+    read_schedule(*schedule, description);
+    schedule->node.check_all_used();
+}
+
+}  // namespace
+
+ParsedDocument parse_document(const std::string& text) {
+    ParsedDocument parsed;
+    parsed.tracking = std::make_shared<TrackingState>();
+    DocumentBuilder builder(text, *parsed.tracking);
+    json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true, /*ignore_comments=*/true);
+    parsed.root = TrackedNode(parsed.tracking, &parsed.tracking->document, "");
+    const TrackedNode& root = parsed.root;
+    if (!root.is_object())
+        throw input_error("", "expected an object with the sections system, global, state, topology, ...");
+
+    SystemDescription& description = parsed.system;
+    const TrackedNode system = root.at("system");
+    read_system(system, description);
+    const TrackedNode global = root.at("global");
+    read_global(global, description);
+    const TrackedNode state = root.at("state");
+    const StateTable stateTable = read_state(state, description);
+    const TrackedNode topology = root.at("topology");
+    const TrackedNode structure = topology.at("structure");
+    read_structure(structure, description);
+    apply_state_overrides(stateTable, description);
+    if (const auto forceField = topology.find("forceField")) description.forceField = read_components(*forceField);
+    if (const auto integrator = root.find("integrator")) read_integrators(*integrator, description);
+    if (const auto steps = root.find("simulationStep")) description.simulationSteps = read_components(*steps);
+
+    // The sections read whole here are checked now; components and the rest are checked by the
+    // caller's root.check_all_used() once every component has read its entry.
+    system.check_all_used();
+    global.check_all_used();
+    state.check_all_used();
+    structure.check_all_used();
+    return parsed;
+}
+
+}  // namespace structmd::input

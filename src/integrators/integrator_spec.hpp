@@ -1,0 +1,22 @@
+#pragma once
+// Integrators and their schedule as read from the integrator section: plain data.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace structmd {
+
+struct IntegratorSpec {
+    std::string name;
+    std::string path;
+    std::string kind;  // "VelocityVerlet"
+    double timeStep = 0.0;
+    double temperature = 0.0;  // k_B T, in energy units
+};
+
+struct ScheduleStage {
+    int integrator = 0;  // index into the integrator list
+    int64_t steps = 0;
+};
+
+}  // namespace structmd

@@ -1,0 +1,62 @@
+#pragma once
+// ["Verlet","VelocityVerlet"], NVE: v += dt/2 F/m; x += dt v; F = F(x); v += dt/2 F/m.
+#include "integrators/integrator.hpp"
+
+namespace structmd {
+
+// Half a kick: v += dt/2 F/m (the mass rides in v.w).
+template <class R>
+SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {
+    const R halfDtOverM = R(0.5) * dt / v.w;
+    v.x += halfDtOverM * f.x;
+    v.y += halfDtOverM * f.y;
+    v.z += halfDtOverM * f.z;
+    return v;
+}
+
+template <class R>
+struct VerletKickDrift {
+    Real4<R>* pos;
+    Real4<R>* vel;
+    const Real4<R>* force;
+    Box<R> box;
+    R dt;
+    SMD_HD void operator()(int64_t i) const {
+        const Real4<R> v = half_kick(vel[i], force[i], dt);
+        vel[i] = v;
+        Real4<R> p = pos[i];
+        const Vec3<R> r = box.wrap(Vec3<R>{p.x + dt * v.x, p.y + dt * v.y, p.z + dt * v.z});
+        p.x = r.x;
+        p.y = r.y;
+        p.z = r.z;
+        pos[i] = p;
+    }
+};
+
+template <class R>
+struct VerletKick {
+    Real4<R>* vel;
+    const Real4<R>* force;
+    R dt;
+    SMD_HD void operator()(int64_t i) const { vel[i] = half_kick(vel[i], force[i], dt); }
+};
+
+template <class B, class R>
+class VelocityVerlet : public Integrator<B, R> {
+public:
+    VelocityVerlet(const B& backend, double timeStep) : Integrator<B, R>(timeStep), backend_(backend) {}
+
+    void step(Particles<B, R>& p, ForceSource& forces) override {
+        const R dt = R(this->time_step());
+        forces.update_forces();
+        backend_.for_each(p.count, VerletKickDrift<R>{p.pos.data(), p.vel.data(), p.force.data(), p.box, dt});
+        forces.positions_moved();
+        forces.update_forces();
+        backend_.for_each(p.count, VerletKick<R>{p.vel.data(), p.force.data(), dt});
+    }
+
+private:
+    const B& backend_;
+};
+
+}  // namespace structmd

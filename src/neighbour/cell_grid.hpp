@@ -1,0 +1,66 @@
+#pragma once
+// Division of the periodic box into cells at least as wide as the list radius, so that every
+// neighbour of a particle lies in its own cell or an adjacent one.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "core/box.hpp"
+
+namespace structmd {
+
+template <class R>
+struct CellGrid {
+    int nx = 1, ny = 1, nz = 1;
+    Vec3<R> cellsPerLength{1, 1, 1};  // cells per unit length along each axis
+
+    int count() const { return nx * ny * nz; }
+
+    // Cells no narrower than minWidth, and not many more cells than about twice the particles so a
+    // dilute system in a large box does not allocate a huge grid.
+    static CellGrid make(const Box<R>& box, double minWidth, int64_t particles) {
+        CellGrid grid;
+        double n[3] = {std::floor(box.length.x / minWidth), std::floor(box.length.y / minWidth),
+                       std::floor(box.length.z / minWidth)};
+        for (double& v : n) v = std::max(1.0, v);
+        const double limit = std::max<double>(64.0, 2.0 * static_cast<double>(particles));
+        while (n[0] * n[1] * n[2] > limit) {
+            for (double& v : n) v = std::max(1.0, std::floor(v * 0.8));
+        }
+        grid.nx = static_cast<int>(n[0]);
+        grid.ny = static_cast<int>(n[1]);
+        grid.nz = static_cast<int>(n[2]);
+        grid.cellsPerLength = {R(grid.nx / static_cast<double>(box.length.x)),
+                               R(grid.ny / static_cast<double>(box.length.y)),
+                               R(grid.nz / static_cast<double>(box.length.z))};
+        return grid;
+    }
+
+    static SMD_HD SMD_INLINE int clamp_index(int c, int n) { return c < 0 ? 0 : (c >= n ? n - 1 : c); }
+
+    // Cell coordinates of a wrapped position (r in [-L/2, L/2)).
+    SMD_HD SMD_INLINE void coordinates(Vec3<R> r, const Box<R>& box, int& cx, int& cy, int& cz) const {
+        cx = clamp_index(static_cast<int>(floor((r.x + R(0.5) * box.length.x) * cellsPerLength.x)), nx);
+        cy = clamp_index(static_cast<int>(floor((r.y + R(0.5) * box.length.y) * cellsPerLength.y)), ny);
+        cz = clamp_index(static_cast<int>(floor((r.z + R(0.5) * box.length.z) * cellsPerLength.z)), nz);
+    }
+
+    SMD_HD SMD_INLINE int index(int cx, int cy, int cz) const { return (cz * ny + cy) * nx + cx; }
+
+    // First and last offset to scan along an axis of n cells: with fewer than three cells the
+    // offsets -1 and +1 would name the same cell twice, so fewer are scanned.
+    static SMD_HD SMD_INLINE int last_offset(int n) { return n >= 3 ? 1 : 0; }
+    static SMD_HD SMD_INLINE int first_offset(int n) { return n >= 2 ? -1 : 0; }
+    static SMD_HD SMD_INLINE int periodic(int c, int n) { return c < 0 ? c + n : (c >= n ? c - n : c); }
+
+    // Calls visit(cell) once for each distinct cell in the 3x3x3 block around (cx, cy, cz).
+    template <class Visit>
+    SMD_HD SMD_INLINE void for_each_adjacent(int cx, int cy, int cz, Visit&& visit) const {
+        for (int dz = first_offset(nz); dz <= last_offset(nz); ++dz)
+            for (int dy = first_offset(ny); dy <= last_offset(ny); ++dy)
+                for (int dx = first_offset(nx); dx <= last_offset(nx); ++dx)
+                    visit(index(periodic(cx + dx, nx), periodic(cy + dy, ny), periodic(cz + dz, nz)));
+    }
+};
+
+}  // namespace structmd

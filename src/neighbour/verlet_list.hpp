@@ -1,0 +1,130 @@
+#pragma once
+// Cell list feeding a Verlet list with a skin. The list is rebuilt only when some particle has moved
+// more than half the skin since the last build; that test and the rebuild run on the backend
+// without a host round trip. Capacities adapt at API boundaries (adapt()), never inside the step.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "neighbour/verlet_list_kernels.hpp"
+
+namespace structmd {
+
+template <class B, class R>
+class VerletList {
+public:
+    VerletList(const B& backend, std::string name, double cutoff, double verletFactor)
+        : backend_(backend), name_(std::move(name)), cutoff_(cutoff), listRadius_(cutoff * verletFactor) {
+        control_.resize(kControlSlots);
+        backend_.fill(control_, 0);
+    }
+
+    const std::string& name() const { return name_; }
+    double cutoff() const { return cutoff_; }
+    double list_radius() const { return listRadius_; }
+
+    // Brings the list up to date for the positions in pos (wrapped, n particles).
+    void update(const typename B::template Buffer<Real4<R>>& pos, int64_t n, const Box<R>& box) {
+        if (needsLayout_ || n != particles_ || !same_box(box)) layout(n, box);
+        backend_.write(control_, kRebuild, forceRebuild_ ? 1 : 0);
+        if (!forceRebuild_) {
+            const R halfSkin = R(0.5 * (listRadius_ - cutoff_));
+            backend_.for_each(n, CheckDisplacement<R>{pos.data(), reference_.data(), box, halfSkin * halfSkin,
+                                                      control_.data()});
+        }
+        forceRebuild_ = false;
+        NeighbourView<R> v = view();
+        backend_.for_each(grid_.count(), ClearCells{control_.data(), cellCount_.data(), overflowCount()});
+        backend_.for_each(n, BinParticles<R>{pos.data(), reference_.data(), v, control_.data()});
+        backend_.for_each(grid_.count(), SortCells<R>{v, control_.data()});
+        backend_.for_each(n, BuildLists<R>{pos.data(), v, R(listRadius_ * listRadius_), control_.data()});
+    }
+
+    // Reads what the last builds needed (one small copy to the host) and enlarges the capacities
+    // that were exceeded, so later builds store every neighbour in the list again.
+    void adapt() {
+        if (particles_ == 0) return;
+        int control[kControlSlots];
+        backend_.download(control_, control, kControlSlots);
+        builds_ = control[kBuilds];
+        if (control[kMaxCellFill] > cellCapacity_) {
+            cellCapacity_ = control[kMaxCellFill] + control[kMaxCellFill] / 4 + 4;
+            needsLayout_ = true;
+        }
+        if (control[kMaxNeighbours] > capacity_) {
+            capacity_ = control[kMaxNeighbours] + control[kMaxNeighbours] / 4 + 8;
+            needsLayout_ = true;
+        }
+    }
+
+    void invalidate() { forceRebuild_ = true; }
+    int64_t builds() const { return builds_; }
+
+    NeighbourView<R> view() {
+        NeighbourView<R> v;
+        v.list = list_.data();
+        v.count = count_.data();
+        v.capacity = capacity_;
+        v.stride = static_cast<int>(particles_);
+        v.cellCount = cellCount_.data();
+        v.cellParticles = cellParticles_.data();
+        v.cellCapacity = cellCapacity_;
+        v.overflow = overflow_.data();
+        v.overflowCount = overflowCount();
+        v.grid = grid_;
+        v.box = box_;
+        return v;
+    }
+
+private:
+    bool same_box(const Box<R>& box) const {
+        return box.length.x == box_.length.x && box.length.y == box_.length.y && box.length.z == box_.length.z;
+    }
+
+    int* overflowCount() { return overflow_.data() + particles_; }
+
+    // Sizes every buffer for n particles in this box and schedules a full rebuild.
+    void layout(int64_t n, const Box<R>& box) {
+        box_ = box;
+        grid_ = CellGrid<R>::make(box, listRadius_, n);
+        const double volume = static_cast<double>(box.length.x) * box.length.y * box.length.z;
+        const double density = n / volume;
+        if (capacity_ == 0) {
+            const double expected = 4.18879 * listRadius_ * listRadius_ * listRadius_ * density;
+            capacity_ = static_cast<int>(std::ceil(1.3 * expected)) + 16;
+        }
+        if (cellCapacity_ == 0 || n != particles_) {
+            const double perCell = static_cast<double>(n) / grid_.count();
+            cellCapacity_ = std::max(cellCapacity_, static_cast<int>(std::ceil(2.0 * perCell)) + 8);
+        }
+        particles_ = n;
+        list_.resize(static_cast<size_t>(capacity_) * n);
+        count_.resize(n);
+        reference_.resize(n);
+        cellCount_.resize(grid_.count());
+        cellParticles_.resize(static_cast<size_t>(cellCapacity_) * grid_.count());
+        overflow_.resize(n + 1);  // the last slot holds the overflow count
+        backend_.fill(overflow_, 0);
+        needsLayout_ = false;
+        forceRebuild_ = true;
+    }
+
+    const B& backend_;
+    std::string name_;
+    double cutoff_;
+    double listRadius_;
+    int64_t particles_ = 0;
+    Box<R> box_{};
+    CellGrid<R> grid_;
+    int capacity_ = 0;
+    int cellCapacity_ = 0;
+    bool needsLayout_ = true;
+    bool forceRebuild_ = true;
+    int64_t builds_ = 0;
+    typename B::template Buffer<int> control_;
+    typename B::template Buffer<int> list_, count_, cellCount_, cellParticles_, overflow_;
+    typename B::template Buffer<Real4<R>> reference_;
+};
+
+}  // namespace structmd

@@ -1,0 +1,120 @@
+#pragma once
+// Functors of the Verlet list build. Each runs on both backends; every one after the displacement
+// check returns at once unless the device-side rebuild flag is set, so deciding whether to rebuild
+// needs no trip to the host.
+#include <cstdint>
+
+#include "core/atomic.hpp"
+#include "core/vec.hpp"
+#include "neighbour/neighbour_view.hpp"
+
+namespace structmd {
+
+// Slots of the list's small control buffer.
+enum ListControl : int {
+    kRebuild = 0,        // 1 while a rebuild is under way this step
+    kBuilds = 1,         // number of builds since load
+    kMaxCellFill = 2,    // the fullest cell seen at a build
+    kMaxNeighbours = 3,  // the longest list seen at a build
+    kControlSlots = 4
+};
+
+template <class R>
+struct CheckDisplacement {
+    const Real4<R>* pos;
+    const Real4<R>* reference;
+    Box<R> box;
+    R halfSkin2;
+    int* control;
+    SMD_HD void operator()(int64_t i) const {
+        const Vec3<R> d = box.minimum_image(xyz(pos[i]) - xyz(reference[i]));
+        if (dot(d, d) > halfSkin2) atomic_max(control + kRebuild, 1);
+    }
+};
+
+struct ClearCells {
+    int* control;
+    int* cellCount;
+    int* overflowCount;
+    SMD_HD void operator()(int64_t c) const {
+        if (!control[kRebuild]) return;
+        cellCount[c] = 0;
+        if (c == 0) {
+            *overflowCount = 0;
+            control[kBuilds] += 1;
+        }
+    }
+};
+
+template <class R>
+struct BinParticles {
+    const Real4<R>* pos;
+    Real4<R>* reference;
+    NeighbourView<R> view;
+    int* control;
+    SMD_HD void operator()(int64_t i) const {
+        if (!control[kRebuild]) return;
+        const Real4<R> p = pos[i];
+        reference[i] = p;
+        int cx, cy, cz;
+        view.grid.coordinates(xyz(p), view.box, cx, cy, cz);
+        const int c = view.grid.index(cx, cy, cz);
+        const int slot = atomic_add(view.cellCount + c, 1);
+        if (slot < view.cellCapacity)
+            view.cellParticles[static_cast<int64_t>(c) * view.cellCapacity + slot] = static_cast<int>(i);
+        else
+            view.overflow[atomic_add(view.overflowCount, 1)] = static_cast<int>(i);
+        atomic_max(control + kMaxCellFill, slot + 1);
+    }
+};
+
+SMD_HD SMD_INLINE void insertion_sort(int* a, int n) {
+    for (int k = 1; k < n; ++k) {
+        const int v = a[k];
+        int m = k - 1;
+        while (m >= 0 && a[m] > v) {
+            a[m + 1] = a[m];
+            --m;
+        }
+        a[m + 1] = v;
+    }
+}
+
+// Binning order depends on thread timing; sorting each cell makes the lists, and so the order of
+// force sums, the same on every run and every thread count.
+template <class R>
+struct SortCells {
+    NeighbourView<R> view;
+    int* control;
+    SMD_HD void operator()(int64_t c) const {
+        if (!control[kRebuild]) return;
+        const int m = view.cellCount[c] < view.cellCapacity ? view.cellCount[c] : view.cellCapacity;
+        insertion_sort(view.cellParticles + c * view.cellCapacity, m);
+        if (c == 0) insertion_sort(view.overflow, *view.overflowCount);
+    }
+};
+
+template <class R>
+struct BuildLists {
+    const Real4<R>* pos;
+    NeighbourView<R> view;
+    R listRadius2;
+    int* control;
+    SMD_HD void operator()(int64_t i) const {
+        if (!control[kRebuild]) return;
+        const Vec3<R> ri = xyz(pos[i]);
+        int n = 0;
+        const NeighbourView<R>& v = view;
+        view.scan_cells(static_cast<int>(i), ri, [&](int j) {
+            const Vec3<R> d = v.box.minimum_image(xyz(pos[j]) - ri);
+            if (dot(d, d) < listRadius2) {
+                if (n < v.capacity) v.list[static_cast<int64_t>(n) * v.stride + i] = j;
+                ++n;
+            }
+        });
+        view.count[i] = n;
+        atomic_max(control + kMaxNeighbours, n);
+    }
+};
+
+}  // namespace structmd

@@ -1,0 +1,330 @@
+#pragma once
+// Engine<Backend, Real>: particles, force field, integrators and simulation steps on one backend in
+// one precision. It keeps track of what is current (forces, energies, virial at which positions),
+// so nothing is computed twice and energies and virials only when someone asks.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/logger.hpp"
+#include "core/random.hpp"
+#include "forcefield/make_interactors.hpp"
+#include "integrators/velocity_verlet.hpp"
+#include "simulation/engine_functors.hpp"
+#include "simulation/simulation.hpp"
+#include "simulation/simulation_spec.hpp"
+
+namespace structmd {
+
+template <class R>
+struct PrecisionName;
+template <>
+struct PrecisionName<float> {
+    static constexpr const char* value = "single";
+};
+template <>
+struct PrecisionName<double> {
+    static constexpr const char* value = "double";
+};
+
+template <class B, class R>
+class Engine final : public Simulation, private ForceSource {
+public:
+    template <class... BackendArgs>
+    Engine(SimulationSpec spec, const Logger& log, BackendArgs&&... backendArgs)
+        : backend_(std::forward<BackendArgs>(backendArgs)...), log_(log) {
+        backend_.activate();
+        boltzmann_ = spec.boltzmann;
+        step_ = spec.currentStep;
+        firstStep_ = spec.currentStep;
+        time_ = spec.simulationTime;
+        schedule_ = spec.schedule;
+        steps_ = std::move(spec.steps);
+        typeIndex_ = spec.typeIndex;
+        masses_ = spec.mass;
+        p_.count = static_cast<int64_t>(spec.positions.size());
+        boxLengths_ = spec.box;
+        p_.box = Box<R>::make(spec.box[0], spec.box[1], spec.box[2]);
+
+        upload_positions(flatten(spec.positions).data());
+        if (spec.velocities.empty())
+            upload_velocities(maxwell_boltzmann(spec).data());
+        else
+            upload_velocities(flatten(spec.velocities).data());
+        p_.force.resize(p_.count);
+        std::vector<R> radius(spec.radius.begin(), spec.radius.end());
+        std::vector<R> charge(spec.charge.begin(), spec.charge.end());
+        backend_.upload(p_.radius, radius.data(), radius.size());
+        backend_.upload(p_.charge, charge.data(), charge.size());
+
+        forceField_ = make_interactors<B, R>(backend_, spec.forceField, spec.typeNames.size(), p_.count);
+        for (const IntegratorSpec& integrator : spec.integrators)
+            integrators_.push_back(std::make_unique<VelocityVerlet<B, R>>(backend_, integrator.timeStep));
+        backend_.synchronize();
+    }
+
+    int64_t particle_count() const override { return p_.count; }
+    int64_t current_step() const override { return step_; }
+    double current_time() const override { return time_; }
+    double boltzmann() const override { return boltzmann_; }
+    std::array<double, 3> box() const override { return boxLengths_; }
+    double volume() const override { return boxLengths_[0] * boxLengths_[1] * boxLengths_[2]; }
+    int64_t final_step() const override {
+        int64_t last = firstStep_;
+        for (const ScheduleStage& stage : schedule_) last += stage.steps;
+        return last;
+    }
+
+    void advance(int64_t n) override {
+        if (n < 0) throw Error(STRUCTMD_ERR_ARGUMENT, "nsteps: expected a count >= 0, got " + std::to_string(n));
+        const int64_t last = final_step();
+        if (step_ + n > last)
+            throw Error(STRUCTMD_ERR_STATE, "cannot advance " + std::to_string(n) + " steps from step " +
+                                                std::to_string(step_) + ": the schedule ends at step " +
+                                                std::to_string(last));
+        backend_.activate();
+        for (int64_t k = 0; k < n; ++k) {
+            fire_steps(false);
+            Integrator<B, R>& integrator = current_integrator();
+            integrator.step(p_, *this);
+            ++step_;
+            time_ += integrator.time_step();
+        }
+        if (n > 0 && step_ == last) fire_steps(true);
+        forceField_.adapt();
+    }
+
+    void compute(unsigned flags) override {
+        backend_.activate();
+        evaluate(flags);
+    }
+
+    void get_positions(double* xyz) override { download_vectors(p_.pos, xyz); }
+    void get_velocities(double* v) override { download_vectors(p_.vel, v); }
+    void get_forces(double* f) override {
+        compute(kForces);
+        download_vectors(p_.force, f);
+    }
+    void get_particle_energies(double* e) override {
+        compute(kEnergy);
+        std::vector<R> values(p_.count);
+        backend_.download(p_.energy, values.data(), values.size());
+        std::copy(values.begin(), values.end(), e);
+    }
+    void get_masses(double* m) override { std::copy(masses_.begin(), masses_.end(), m); }
+    void get_types(int32_t* types) override { std::copy(typeIndex_.begin(), typeIndex_.end(), types); }
+
+    double energy(const std::string& term) override {
+        backend_.activate();
+        if (term == "kinetic") return kinetic_energy();
+        if (term == "potential") return potential_energy();
+        if (term == "total") return kinetic_energy() + potential_energy();
+        const int index = forceField_.find(term);
+        if (index < 0) {
+            std::string known = "potential, kinetic, total";
+            for (const std::string& name : forceField_.names()) known += ", " + name;
+            throw Error(STRUCTMD_ERR_ARGUMENT, "energy term '" + term + "' does not exist (terms: " + known + ")");
+        }
+        forceField_.update_lists(p_);
+        p_.energy.resize(p_.count);
+        backend_.fill(p_.energy, R(0));
+        ForceOutputs<R> out;
+        out.energy = p_.energy.data();
+        forceField_.compute_one(index, p_, out);
+        energyVersion_ = -1;  // the buffer now holds one term only
+        return sum_energy();
+    }
+    std::vector<std::string> energy_terms() const override { return forceField_.names(); }
+
+    std::array<double, 9> virial() override {
+        compute(kVirial);
+        const Tensor3<double> w =
+            backend_.reduce(p_.count, SumVirial<R>{p_.virial.data()}, zero_tensor<double>());
+        return {w.xx, w.xy, w.xz, w.yx, w.yy, w.yz, w.zx, w.zy, w.zz};
+    }
+
+    void set_positions(const double* xyz) override {
+        backend_.activate();
+        upload_positions(xyz);
+        positions_moved();
+        forceField_.invalidate_lists();
+    }
+    void set_velocities(const double* v) override {
+        backend_.activate();
+        upload_velocities(v);
+    }
+    void set_box(const double lengths[3]) override {
+        backend_.activate();
+        const double halfBox = 0.5 * std::min({lengths[0], lengths[1], lengths[2]});
+        if (forceField_.largest_cutoff() >= halfBox)
+            throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the largest cutoff (" +
+                                                   std::to_string(forceField_.largest_cutoff()) +
+                                                   ") must be shorter than half the box (" +
+                                                   std::to_string(halfBox) + ")");
+        std::vector<double> xyz(3 * p_.count);
+        get_positions(xyz.data());
+        for (int64_t i = 0; i < p_.count; ++i)
+            for (int d = 0; d < 3; ++d) xyz[3 * i + d] *= lengths[d] / boxLengths_[d];
+        boxLengths_ = {lengths[0], lengths[1], lengths[2]};
+        p_.box = Box<R>::make(lengths[0], lengths[1], lengths[2]);
+        set_positions(xyz.data());
+    }
+    void set_external_forces(const double* f) override {
+        backend_.activate();
+        if (f == nullptr) {
+            p_.externalForce.release();
+        } else {
+            std::vector<Real4<R>> values(p_.count);
+            for (int64_t i = 0; i < p_.count; ++i)
+                values[i] = {R(f[3 * i]), R(f[3 * i + 1]), R(f[3 * i + 2]), R(0)};
+            backend_.upload(p_.externalForce, values.data(), values.size());
+        }
+        forcesVersion_ = -1;
+    }
+
+    std::string backend_name() const override { return B::name; }
+    std::string precision_name() const override { return PrecisionName<R>::value; }
+    std::string device_name() const override { return backend_.device_name(); }
+    int threads() const override { return backend_.threads(); }
+
+private:
+    // ForceSource
+    void update_forces() override { evaluate(kForces); }
+    void positions_moved() override { ++positionsVersion_; }
+
+    // Evaluates, in one pass over the force field, whichever of forces, energies and virial asked
+    // for in flags are stale.
+    void evaluate(unsigned flags) {
+        ForceOutputs<R> out;
+        if ((flags & kForces) && forcesVersion_ != positionsVersion_) {
+            backend_.for_each(p_.count, InitForces<R>{p_.force.data(), p_.externalForce.empty()
+                                                                          ? nullptr
+                                                                          : p_.externalForce.data()});
+            out.force = p_.force.data();
+        }
+        if ((flags & kEnergy) && energyVersion_ != positionsVersion_) {
+            p_.energy.resize(p_.count);
+            backend_.fill(p_.energy, R(0));
+            out.energy = p_.energy.data();
+        }
+        if ((flags & kVirial) && virialVersion_ != positionsVersion_) {
+            p_.virial.resize(p_.count);
+            backend_.fill(p_.virial, zero_tensor<R>());
+            out.virial = p_.virial.data();
+        }
+        if (!out.force && !out.energy && !out.virial) return;
+        forceField_.update_lists(p_);
+        forceField_.compute_all(p_, out);
+        if (out.force) forcesVersion_ = positionsVersion_;
+        if (out.energy) energyVersion_ = positionsVersion_;
+        if (out.virial) virialVersion_ = positionsVersion_;
+    }
+
+    double sum_energy() { return backend_.reduce(p_.count, SumEnergy<R>{p_.energy.data()}, 0.0); }
+    double potential_energy() {
+        evaluate(kEnergy);
+        return sum_energy();
+    }
+    double kinetic_energy() { return backend_.reduce(p_.count, KineticEnergy<R>{p_.vel.data()}, 0.0); }
+
+    Integrator<B, R>& current_integrator() {
+        int64_t offset = step_ - firstStep_;
+        for (const ScheduleStage& stage : schedule_) {
+            if (offset < stage.steps) return *integrators_[stage.integrator];
+            offset -= stage.steps;
+        }
+        throw Error(STRUCTMD_ERR_INTERNAL, "no integrator scheduled at step " + std::to_string(step_));
+    }
+
+    // Simulation steps see the state before the step is taken; the final state of the schedule
+    // is given to every step.
+    void fire_steps(bool final) {
+        for (auto& s : steps_)
+            if (final || s->due(step_)) s->fire(*this);
+    }
+
+    static std::vector<double> flatten(const std::vector<std::array<double, 3>>& vectors) {
+        std::vector<double> flat;
+        flat.reserve(3 * vectors.size());
+        for (const auto& v : vectors) flat.insert(flat.end(), v.begin(), v.end());
+        return flat;
+    }
+
+    // Maxwell-Boltzmann velocities at the ensemble temperature, keyed by (seed, particle id), with
+    // the centre-of-mass momentum removed so the system does not drift.
+    std::vector<double> maxwell_boltzmann(const SimulationSpec& spec) const {
+        const double kT = spec.boltzmann * spec.temperature;
+        std::vector<double> v(3 * p_.count);
+        double momentum[3] = {0, 0, 0};
+        double totalMass = 0;
+        for (int64_t i = 0; i < p_.count; ++i) {
+            double normal[4];
+            normal4(spec.seed, static_cast<uint64_t>(i), 0, normal);
+            const double sigma = std::sqrt(kT / spec.mass[i]);
+            for (int d = 0; d < 3; ++d) {
+                v[3 * i + d] = sigma * normal[d];
+                momentum[d] += spec.mass[i] * v[3 * i + d];
+            }
+            totalMass += spec.mass[i];
+        }
+        if (p_.count > 1)
+            for (int64_t i = 0; i < p_.count; ++i)
+                for (int d = 0; d < 3; ++d) v[3 * i + d] -= momentum[d] / totalMass;
+        return v;
+    }
+
+    void upload_positions(const double* xyz) {
+        const Box<double> box = Box<double>::make(boxLengths_[0], boxLengths_[1], boxLengths_[2]);
+        std::vector<Real4<R>> values(p_.count);
+        for (int64_t i = 0; i < p_.count; ++i) {
+            const Vec3<double> r = box.wrap({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+            values[i] = {R(r.x), R(r.y), R(r.z), R(typeIndex_[i])};
+        }
+        backend_.upload(p_.pos, values.data(), values.size());
+    }
+
+    void upload_velocities(const double* v) {
+        std::vector<Real4<R>> values(p_.count);
+        for (int64_t i = 0; i < p_.count; ++i)
+            values[i] = {R(v[3 * i]), R(v[3 * i + 1]), R(v[3 * i + 2]), R(masses_[i])};
+        backend_.upload(p_.vel, values.data(), values.size());
+    }
+
+    void download_vectors(const typename B::template Buffer<Real4<R>>& buffer, double* out) {
+        backend_.activate();
+        std::vector<Real4<R>> values(p_.count);
+        backend_.download(buffer, values.data(), values.size());
+        for (int64_t i = 0; i < p_.count; ++i) {
+            out[3 * i] = values[i].x;
+            out[3 * i + 1] = values[i].y;
+            out[3 * i + 2] = values[i].z;
+        }
+    }
+
+    B backend_;
+    Logger log_;
+    Particles<B, R> p_;
+    ForceField<B, R> forceField_;
+    std::vector<std::unique_ptr<Integrator<B, R>>> integrators_;
+    std::vector<ScheduleStage> schedule_;
+    std::vector<std::unique_ptr<SimulationStep>> steps_;
+    std::vector<int32_t> typeIndex_;
+    std::vector<double> masses_;
+    std::array<double, 3> boxLengths_{};
+    double boltzmann_ = 1.0;
+    int64_t step_ = 0;
+    int64_t firstStep_ = 0;
+    double time_ = 0.0;
+    // Versions: what each cached quantity was computed at (-1: never or invalid).
+    int64_t positionsVersion_ = 0;
+    int64_t forcesVersion_ = -1;
+    int64_t energyVersion_ = -1;
+    int64_t virialVersion_ = -1;
+};
+
+}  // namespace structmd

@@ -1,0 +1,44 @@
+#pragma once
+// Small per-particle functors of the engine: clearing forces and the sums behind energies and the
+// virial. Sums are taken in double whatever the working precision.
+#include <cstdint>
+
+#include "core/vec.hpp"
+
+namespace structmd {
+
+template <class R>
+struct InitForces {
+    Real4<R>* force;
+    const Real4<R>* external;  // null when the host set no external forces
+    SMD_HD void operator()(int64_t i) const {
+        force[i] = external ? external[i] : Real4<R>{R(0), R(0), R(0), R(0)};
+    }
+};
+
+template <class R>
+struct SumEnergy {
+    const R* energy;
+    SMD_HD double operator()(int64_t i) const { return static_cast<double>(energy[i]); }
+};
+
+template <class R>
+struct KineticEnergy {
+    const Real4<R>* vel;
+    SMD_HD double operator()(int64_t i) const {
+        const Real4<R> v = vel[i];
+        return 0.5 * static_cast<double>(v.w) *
+               (static_cast<double>(v.x) * v.x + static_cast<double>(v.y) * v.y + static_cast<double>(v.z) * v.z);
+    }
+};
+
+template <class R>
+struct SumVirial {
+    const Tensor3<R>* virial;
+    SMD_HD Tensor3<double> operator()(int64_t i) const {
+        const Tensor3<R>& w = virial[i];
+        return {w.xx, w.xy, w.xz, w.yx, w.yy, w.yz, w.zx, w.zy, w.zz};
+    }
+};
+
+}  // namespace structmd

@@ -1,0 +1,101 @@
+#include "simulation/engine_options.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "backends/backend_engines.hpp"
+#include "core/error.hpp"
+
+namespace structmd {
+
+bool cuda_backend_compiled() {
+#ifdef STRUCTMD_HAVE_CUDA
+    return true;
+#else
+    return false;
+#endif
+}
+
+int usable_gpu_count() {
+#ifdef STRUCTMD_HAVE_CUDA
+    return cuda_device_count();
+#else
+    return 0;
+#endif
+}
+
+namespace {
+
+Error option_error(const std::string& key, const std::string& what) {
+    return Error(STRUCTMD_ERR_ARGUMENT, "option \"" + key + "\": " + what);
+}
+
+std::string string_option(const nlohmann::json& value, const std::string& key) {
+    if (!value.is_string()) throw option_error(key, "expected a string, got " + value.dump());
+    return value.get<std::string>();
+}
+
+int int_option(const nlohmann::json& value, const std::string& key, int minimum) {
+    if (!value.is_number_integer() || value.get<long long>() < minimum)
+        throw option_error(key, "expected an integer >= " + std::to_string(minimum) + ", got " + value.dump());
+    return value.get<int>();
+}
+
+}  // namespace
+
+EngineOptions parse_engine_options(const char* text) {
+    EngineOptions options;
+    std::string backend = "auto";
+    if (text && *text) {
+        nlohmann::json doc;
+        try {
+            doc = nlohmann::json::parse(text);
+        } catch (const nlohmann::json::parse_error& e) {
+            throw Error(STRUCTMD_ERR_ARGUMENT, std::string("options: not valid JSON: ") + e.what());
+        }
+        if (!doc.is_object()) throw Error(STRUCTMD_ERR_ARGUMENT, "options: expected a JSON object");
+        for (const auto& [key, value] : doc.items()) {
+            if (key == "backend") {
+                backend = string_option(value, key);
+                if (backend != "auto" && backend != "cpu" && backend != "cuda")
+                    throw option_error(key, "expected \"auto\", \"cpu\" or \"cuda\", got \"" + backend + "\"");
+            } else if (key == "device") {
+                options.device = int_option(value, key, 0);
+            } else if (key == "precision") {
+                const std::string precision = string_option(value, key);
+                if (precision != "single" && precision != "double")
+                    throw option_error(key, "expected \"single\" or \"double\", got \"" + precision + "\"");
+                options.doublePrecision = precision == "double";
+            } else if (key == "threads") {
+                options.threads = int_option(value, key, 1);
+            } else if (key == "log") {
+                const std::string level = string_option(value, key);
+                if (level == "quiet") options.logLevel = LogLevel::quiet;
+                else if (level == "warning") options.logLevel = LogLevel::warning;
+                else if (level == "info") options.logLevel = LogLevel::info;
+                else if (level == "debug") options.logLevel = LogLevel::debug;
+                else throw option_error(key, "expected \"quiet\", \"warning\", \"info\" or \"debug\", got \"" + level + "\"");
+            } else if (key == "log_file") {
+                options.logFile = string_option(value, key);
+            } else {
+                throw option_error(key, "unknown option (known: backend, device, precision, threads, log, log_file)");
+            }
+        }
+    }
+    if (backend == "auto") {
+        options.backend = usable_gpu_count() > 0 ? "cuda" : "cpu";
+    } else if (backend == "cuda") {
+        if (!cuda_backend_compiled())
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, "option \"backend\": this build of structmd has no CUDA backend");
+        const int gpus = usable_gpu_count();
+        if (gpus == 0) throw Error(STRUCTMD_ERR_DEVICE, "option \"backend\": \"cuda\" was asked for but no usable GPU was found");
+        if (options.device >= gpus)
+            throw option_error("device", "GPU " + std::to_string(options.device) + " does not exist (found " +
+                                             std::to_string(gpus) + ")");
+        options.backend = "cuda";
+    } else {
+        options.backend = "cpu";
+    }
+    return options;
+}
+
+}  // namespace structmd

@@ -1,0 +1,27 @@
+#pragma once
+// Options of structmd_create, validated: the backend and precision every load of a handle uses.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "core/logger.hpp"
+
+namespace structmd {
+
+struct EngineOptions {
+    std::string backend = "cpu";  // resolved: "cpu" or "cuda"
+    int device = 0;
+    bool doublePrecision = false;
+    int threads = 0;  // 0: all the OpenMP runtime offers
+    LogLevel logLevel = LogLevel::warning;
+    std::string logFile;  // empty: standard error
+};
+
+// Parses the options JSON (NULL or "" for defaults) and resolves "auto". Throws Error(ERR_ARGUMENT)
+// for unknown keys or bad values, ERR_DEVICE / ERR_UNSUPPORTED when "cuda" cannot be had.
+EngineOptions parse_engine_options(const char* json);
+
+bool cuda_backend_compiled();
+int usable_gpu_count();
+
+}  // namespace structmd

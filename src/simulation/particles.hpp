@@ -1,0 +1,29 @@
+#pragma once
+// Particle data resident on the backend, as structure of arrays. Internal index i is particle id i;
+// host transfers go through the engine's getters and setters only, so a later reordering (along a
+// space-filling curve) changes nothing outside the engine.
+#include <cstdint>
+
+#include "core/box.hpp"
+#include "core/vec.hpp"
+
+namespace structmd {
+
+template <class B, class R>
+struct Particles {
+    template <class T>
+    using Buffer = typename B::template Buffer<T>;
+
+    int64_t count = 0;
+    Box<R> box{};
+    Buffer<Real4<R>> pos;    // w: type index
+    Buffer<Real4<R>> vel;    // w: mass
+    Buffer<Real4<R>> force;  // w: unused
+    Buffer<R> energy;        // per-particle potential energy, sized when first asked for
+    Buffer<Tensor3<R>> virial;
+    Buffer<Real4<R>> externalForce;  // empty when the host set none
+    Buffer<R> radius;
+    Buffer<R> charge;
+};
+
+}  // namespace structmd

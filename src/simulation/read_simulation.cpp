@@ -1,0 +1,36 @@
+#include "simulation/read_simulation.hpp"
+
+#include "forcefield/read_forcefield.hpp"
+#include "input/description.hpp"
+#include "integrators/read_integrators.hpp"
+#include "steps/read_simulation_steps.hpp"
+
+namespace structmd {
+
+SimulationSpec read_simulation(const std::string& text, const Logger& log) {
+    input::ParsedDocument doc = input::parse_document(text);
+    const input::SystemDescription& system = doc.system;
+
+    SimulationSpec spec;
+    spec.forceField = read_forcefield(system, log);
+    spec.integrators = read_integrators(system, spec.schedule);
+    spec.steps = read_simulation_steps(system);
+    doc.root.check_all_used();
+
+    spec.seed = system.seed;
+    spec.boltzmann = system.units.boltzmann;
+    spec.temperature = system.temperature;
+    spec.box = system.box;
+    spec.currentStep = system.currentStep;
+    spec.simulationTime = system.simulationTime;
+    for (const input::ParticleType& type : system.types) spec.typeNames.push_back(type.name);
+    spec.positions = system.positions;
+    spec.velocities = system.velocities;
+    spec.typeIndex = system.typeIndex;
+    spec.mass = system.mass;
+    spec.radius = system.radius;
+    spec.charge = system.charge;
+    return spec;
+}
+
+}  // namespace structmd

@@ -1,0 +1,60 @@
+#pragma once
+// The simulation as the API layer and the simulation steps see it: one interface, whatever the
+// backend and precision behind it (Engine<Backend, Real> implements it). Vectors are 3n doubles in
+// particle-id order.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace structmd {
+
+enum ComputeFlags : unsigned { kForces = 1u, kEnergy = 2u, kVirial = 4u };
+
+class Simulation {
+public:
+    virtual ~Simulation() = default;
+
+    virtual int64_t particle_count() const = 0;
+    virtual int64_t current_step() const = 0;
+    virtual double current_time() const = 0;
+    virtual int64_t final_step() const = 0;  // where the schedule ends
+    virtual double boltzmann() const = 0;
+    virtual std::array<double, 3> box() const = 0;
+    virtual double volume() const = 0;
+
+    // Advances n steps along the schedule, firing the simulation steps; throws ERR_STATE when the
+    // schedule ends first (then no step is taken).
+    virtual void advance(int64_t n) = 0;
+    virtual void compute(unsigned flags) = 0;
+
+    virtual void get_positions(double* xyz) = 0;
+    virtual void get_velocities(double* v) = 0;
+    virtual void get_forces(double* f) = 0;
+    virtual void get_particle_energies(double* e) = 0;
+    virtual void get_masses(double* m) = 0;
+    virtual void get_types(int32_t* types) = 0;
+
+    // Energy terms: "potential", "kinetic", "total", or a forceField entry name; an unknown term
+    // throws ERR_ARGUMENT.
+    virtual double energy(const std::string& term) = 0;
+    virtual std::vector<std::string> energy_terms() const = 0;  // the forceField entry names
+    virtual std::array<double, 9> virial() = 0;
+
+    virtual void set_positions(const double* xyz) = 0;
+    virtual void set_velocities(const double* v) = 0;
+    virtual void set_box(const double lengths[3]) = 0;
+    virtual void set_external_forces(const double* f) = 0;  // nullptr clears
+
+    virtual std::string backend_name() const = 0;
+    virtual std::string precision_name() const = 0;
+    virtual std::string device_name() const = 0;
+    virtual int threads() const = 0;
+
+    double pressure() {
+        const std::array<double, 9> w = virial();
+        return (2.0 * energy("kinetic") + w[0] + w[4] + w[8]) / (3.0 * volume());
+    }
+};
+
+}  // namespace structmd

@@ -1,0 +1,36 @@
+#pragma once
+// Everything an engine needs to start, as plain host data: no JSON, so that backend code (compiled
+// by nvcc too) never sees the input layer.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "forcefield/forcefield_spec.hpp"
+#include "integrators/integrator_spec.hpp"
+#include "steps/simulation_step.hpp"
+
+namespace structmd {
+
+struct SimulationSpec {
+    uint64_t seed = 0;
+    double boltzmann = 1.0;
+    double temperature = 0.0;  // of the ensemble, in kelvin-like units
+    std::array<double, 3> box{0, 0, 0};
+    int64_t currentStep = 0;
+    double simulationTime = 0.0;
+
+    std::vector<std::string> typeNames;
+    std::vector<std::array<double, 3>> positions;   // by particle id
+    std::vector<std::array<double, 3>> velocities;  // empty: draw from Maxwell-Boltzmann
+    std::vector<int32_t> typeIndex;
+    std::vector<double> mass, radius, charge;
+
+    ForceFieldSpec forceField;
+    std::vector<IntegratorSpec> integrators;
+    std::vector<ScheduleStage> schedule;
+    std::vector<std::unique_ptr<SimulationStep>> steps;
+};
+
+}  // namespace structmd

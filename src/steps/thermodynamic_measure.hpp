@@ -1,0 +1,26 @@
+#pragma once
+// ["ThermodynamicMeasure","ThermodynamicQuantityMeasure"]: one line per firing with step, particle
+// number, volume, the energy of each forceField entry (alphabetical), kinetic, potential and total
+// energy, temperature T = 2K / (3 N k_B), the virial trace and the pressure.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "steps/simulation_step.hpp"
+
+namespace structmd {
+
+class ThermodynamicMeasure : public SimulationStep {
+public:
+    ThermodynamicMeasure(std::string name, int64_t interval, int64_t start, int64_t end, std::string outputPath);
+
+protected:
+    void run(Simulation& sim) override;
+
+private:
+    std::string outputPath_;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
+    bool headerWritten_ = false;
+};
+
+}  // namespace structmd
