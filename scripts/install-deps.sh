@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs what building and testing structmd needs on a Debian machine (idempotent). CUDA is used
+# when nvcc is already installed; without it the build is CPU-only.
+set -euo pipefail
+
+packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev googletest
+          lammps python3 python3-pip)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+if ! python3 -c "import numpy, cffi, pytest" >/dev/null 2>&1; then
+  python3 -m pip install -q numpy cffi pytest 2>/dev/null \
+    || python3 -m pip install -q --break-system-packages numpy cffi pytest
+fi

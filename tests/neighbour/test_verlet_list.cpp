@@ -1,0 +1,149 @@
+// The Verlet list against an all-pairs search: every pair within the cutoff must be visited, after
+// builds, after moves that stay under the rebuild threshold, when the list or the cells overflow
+// their capacity, and in boxes with fewer than three cells per side.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+#include <vector>
+
+#include "backends/cpu/cpu_backend.hpp"
+#include "neighbour/verlet_list.hpp"
+
+namespace structmd {
+namespace {
+
+using List = VerletList<CpuBackend, double>;
+
+struct System {
+    CpuBackend backend{2};
+    Box<double> box;
+    HostBuffer<Real4<double>> pos;
+    int64_t n = 0;
+
+    System(int64_t count, double lx, double ly, double lz, unsigned seed) : box(Box<double>::make(lx, ly, lz)), n(count) {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<double> u(-0.5, 0.5);
+        pos.resize(n);
+        for (int64_t i = 0; i < n; ++i) pos.data()[i] = {u(rng) * lx, u(rng) * ly, u(rng) * lz, 0.0};
+    }
+
+    // Moves every particle by a random displacement of length `step` and wraps it.
+    void jiggle(double step, unsigned seed) {
+        std::mt19937 rng(seed);
+        std::normal_distribution<double> g(0.0, 1.0);
+        for (int64_t i = 0; i < n; ++i) {
+            Vec3<double> d{g(rng), g(rng), g(rng)};
+            d = (step / std::sqrt(dot(d, d))) * d;
+            Real4<double>& p = pos.data()[i];
+            const Vec3<double> r = box.wrap(xyz(p) + d);
+            p = {r.x, r.y, r.z, p.w};
+        }
+    }
+
+    std::set<std::pair<int, int>> pairs_within(double cutoff) const {
+        std::set<std::pair<int, int>> pairs;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                if (i == j) continue;
+                const Vec3<double> d = box.minimum_image(xyz(pos.data()[j]) - xyz(pos.data()[i]));
+                if (dot(d, d) < cutoff * cutoff) pairs.insert({i, j});
+            }
+        return pairs;
+    }
+
+    std::set<std::pair<int, int>> visited(List& list) {
+        list.update(pos, n, box);
+        const NeighbourView<double> view = list.view();
+        std::set<std::pair<int, int>> seen;
+        for (int i = 0; i < n; ++i)
+            view.for_each_neighbour(i, xyz(pos.data()[i]), [&](int j) {
+                EXPECT_NE(i, j) << "a particle was offered as its own neighbour";
+                EXPECT_TRUE(seen.insert({i, j}).second) << "pair (" << i << ", " << j << ") visited twice";
+            });
+        return seen;
+    }
+};
+
+// Every pair within the cutoff is among the visited candidates.
+void expect_complete(const std::set<std::pair<int, int>>& wanted, const std::set<std::pair<int, int>>& seen) {
+    int missing = 0;
+    for (const auto& p : wanted)
+        if (!seen.count(p)) ++missing;
+    EXPECT_EQ(missing, 0) << "of " << wanted.size() << " pairs within the cutoff";
+}
+
+TEST(VerletList, FindsEveryPairAfterABuild) {
+    System s(800, 12.0, 13.0, 14.0, 1);
+    List list(s.backend, "all", 2.5, 1.12);
+    expect_complete(s.pairs_within(2.5), s.visited(list));
+    list.adapt();
+    EXPECT_EQ(list.builds(), 1);
+}
+
+TEST(VerletList, StillCompleteAfterMovesBelowHalfTheSkin) {
+    System s(800, 12.0, 12.0, 12.0, 2);
+    List list(s.backend, "all", 2.5, 1.12);  // skin 0.3
+    s.visited(list);
+    for (int k = 0; k < 5; ++k) {
+        s.jiggle(0.029, 10 + k);  // five moves of 0.029: at most 0.145 < 0.15, no rebuild
+        expect_complete(s.pairs_within(2.5), s.visited(list));
+    }
+    list.adapt();
+    EXPECT_EQ(list.builds(), 1) << "moves under half the skin must not trigger a rebuild";
+}
+
+TEST(VerletList, RebuildsOnceAParticleMovesPastHalfTheSkin) {
+    System s(500, 12.0, 12.0, 12.0, 3);
+    List list(s.backend, "all", 2.5, 1.12);
+    s.visited(list);
+    s.jiggle(0.16, 7);
+    expect_complete(s.pairs_within(2.5), s.visited(list));
+    list.adapt();
+    EXPECT_EQ(list.builds(), 2);
+}
+
+TEST(VerletList, ForcedRebuildAfterInvalidate) {
+    System s(300, 10.0, 10.0, 10.0, 4);
+    List list(s.backend, "all", 2.0, 1.2);
+    s.visited(list);
+    list.invalidate();
+    s.visited(list);
+    list.adapt();
+    EXPECT_EQ(list.builds(), 2);
+}
+
+TEST(VerletList, CompleteWhenEveryParticleSitsInOneCell) {
+    // All particles within a small blob: cells and lists overflow their first capacity guesses, and
+    // the fallback paths must still find every pair; the next build fits in the enlarged capacity.
+    System s(400, 20.0, 20.0, 20.0, 5);
+    for (int64_t i = 0; i < s.n; ++i) {
+        Real4<double>& p = s.pos.data()[i];
+        p = {0.05 * p.x, 0.05 * p.y, 0.05 * p.z, 0.0};
+    }
+    List list(s.backend, "all", 2.5, 1.1);
+    expect_complete(s.pairs_within(2.5), s.visited(list));
+    list.adapt();
+    list.invalidate();
+    expect_complete(s.pairs_within(2.5), s.visited(list));
+}
+
+TEST(VerletList, SmallBoxesWithOneOrTwoCellsPerSide) {
+    // 5.2 / (2.5 * 1.02) gives 2 cells per side; 3.0 gives 1 along z.
+    System s(120, 5.2, 5.2, 3.0, 6);
+    List list(s.backend, "all", 1.4, 1.02);
+    expect_complete(s.pairs_within(1.4), s.visited(list));
+    System t(60, 5.2, 5.2, 5.2, 7);
+    List wide(t.backend, "all", 2.5, 1.02);
+    expect_complete(t.pairs_within(2.5), t.visited(wide));
+}
+
+TEST(VerletList, DiluteSystemInALargeBoxKeepsTheGridSmall) {
+    System s(50, 400.0, 400.0, 400.0, 8);
+    for (int64_t i = 0; i < 10; ++i) s.pos.data()[i] = {0.3 * i, 0.0, 0.0, 0.0};  // a close cluster
+    List list(s.backend, "all", 2.5, 1.1);
+    expect_complete(s.pairs_within(2.5), s.visited(list));
+}
+
+}  // namespace
+}  // namespace structmd
