@@ -15,11 +15,12 @@ struct Box {
         return {{R(lx), R(ly), R(lz)}, {R(1.0 / lx), R(1.0 / ly), R(1.0 / lz)}};
     }
 
-    // The image of d closest to the origin.
+    // The image of d closest to the origin, for d the difference of two wrapped positions (so
+    // |d| < L along each axis): one compare per axis instead of a rounding call.
     SMD_HD SMD_INLINE Vec3<R> minimum_image(Vec3<R> d) const {
-        d.x -= length.x * rint(d.x * inverse.x);
-        d.y -= length.y * rint(d.y * inverse.y);
-        d.z -= length.z * rint(d.z * inverse.z);
+        d.x = fold(d.x, length.x);
+        d.y = fold(d.y, length.y);
+        d.z = fold(d.z, length.z);
         return d;
     }
 
@@ -33,6 +34,12 @@ struct Box {
         if (r.y >= R(0.5) * length.y) r.y -= length.y;
         if (r.z >= R(0.5) * length.z) r.z -= length.z;
         return r;
+    }
+
+    static SMD_HD SMD_INLINE R fold(R d, R length) {
+        if (d >= R(0.5) * length) return d - length;
+        if (d < R(-0.5) * length) return d + length;
+        return d;
     }
 
     R volume() const { return length.x * length.y * length.z; }

@@ -55,6 +55,11 @@ __global__ void for_each_kernel(int64_t n, F f) {
 }
 
 template <class T>
+struct ReducePlus {
+    __host__ __device__ T operator()(const T& a, const T& b) const { return a + b; }
+};
+
+template <class T>
 struct FillFunctor {
     T* data;
     T value;
@@ -105,7 +110,7 @@ public:
     T reduce(int64_t n, const F& f, T zero) const {
         if (n <= 0) return zero;
         return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
-                                        thrust::counting_iterator<int64_t>(n), f, zero, Plus<T>());
+                                        thrust::counting_iterator<int64_t>(n), f, zero, ReducePlus<T>());
     }
 
     template <class T>
@@ -147,11 +152,6 @@ public:
     }
 
 private:
-    template <class T>
-    struct Plus {
-        __host__ __device__ T operator()(const T& a, const T& b) const { return a + b; }
-    };
-
     int device_;
     std::string deviceName_;
     cudaStream_t stream_ = nullptr;
