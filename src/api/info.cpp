@@ -17,9 +17,9 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
         info["backend"] = s.options.backend;
         info["precision"] = s.options.doublePrecision ? "double" : "single";
         info["loaded"] = static_cast<bool>(s.simulation);
+        info["device"] = device_description(s.options);
+        info["threads"] = s.options.backend == "cpu" ? cpu_thread_count(s.options) : 0;
         if (s.simulation) {
-            info["device"] = s.simulation->device_name();
-            info["threads"] = s.simulation->threads();
             info["particles"] = s.simulation->particle_count();
             info["final_step"] = s.simulation->final_step();
         } else {

@@ -2,6 +2,7 @@
 // Entry points of the compiled backends: each instantiates Engine<Backend, float|double> in its own
 // translation unit (the CUDA one compiled by nvcc), so nothing else includes backend headers.
 #include <memory>
+#include <string>
 
 #include "core/logger.hpp"
 #include "simulation/simulation.hpp"
@@ -10,9 +11,11 @@
 namespace structmd {
 
 std::unique_ptr<Simulation> make_cpu_engine(bool doublePrecision, int threads, SimulationSpec spec, const Logger& log);
+int cpu_default_threads();
 
 // Present only in builds with the CUDA backend (STRUCTMD_HAVE_CUDA).
 std::unique_ptr<Simulation> make_cuda_engine(bool doublePrecision, int device, SimulationSpec spec, const Logger& log);
 int cuda_device_count();
+std::string cuda_device_name(int device);
 
 }  // namespace structmd

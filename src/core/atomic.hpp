@@ -23,4 +23,15 @@ SMD_HD SMD_INLINE void atomic_max(int* address, int value) {
 #endif
 }
 
+SMD_HD SMD_INLINE void atomic_min(unsigned long long* address, unsigned long long value) {
+#if defined(__CUDA_ARCH__)
+    atomicMin(address, value);
+#else
+    unsigned long long seen = __atomic_load_n(address, __ATOMIC_RELAXED);
+    while (value < seen &&
+           !__atomic_compare_exchange_n(address, &seen, value, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+    }
+#endif
+}
+
 }  // namespace structmd

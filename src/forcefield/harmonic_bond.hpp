@@ -5,8 +5,6 @@
 namespace structmd {
 
 struct HarmonicBond {
-    static constexpr int parameter_count = 2;  // K, r0
-
     template <class R>
     struct Params {
         R K;

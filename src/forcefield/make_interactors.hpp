@@ -10,6 +10,7 @@
 #include "forcefield/bond2_interaction.hpp"
 #include "forcefield/force_field.hpp"
 #include "forcefield/forcefield_spec.hpp"
+#include "forcefield/fene_bond.hpp"
 #include "forcefield/harmonic_bond.hpp"
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/pair_interaction.hpp"
@@ -69,8 +70,10 @@ ForceField<B, R> make_interactors(const B& backend, const ForceFieldSpec& spec, 
                 throw Error(STRUCTMD_ERR_INTERNAL, pair.path + ": pair potential without an implementation");
         } else if (nextBond < spec.bonds.size() && spec.bonds[nextBond].name == name) {
             const BondSpec& bond = spec.bonds[nextBond++];
-            if (bond.potential == "Harmonic" || bond.potential == "HarmonicCommon_K_r0")
+            if (bond.potential.rfind("Harmonic", 0) == 0)
                 ff.add(make_bond2<B, R, HarmonicBond>(backend, bond, particles));
+            else if (bond.potential.rfind("Fene", 0) == 0)
+                ff.add(make_bond2<B, R, FeneBond>(backend, bond, particles));
             else
                 throw Error(STRUCTMD_ERR_INTERNAL, bond.path + ": bond potential without an implementation");
         }

@@ -123,24 +123,28 @@ void read_pair(const ComponentEntry& entry, const SystemDescription& system, For
     ff.pairs.push_back(pair);
 }
 
-// A bond table: particle-id columns then per-bond parameter columns, or parameters shared by all
-// bonds from "parameters" (the Common_ variants).
+// A bond table: particle-id columns, then a column for each parameter not shared by all bonds;
+// the shared ones (the Common_ variants) come from "parameters". Values are stored per bond in the
+// order of `parameters`, which is the order the potential's make_params expects.
 void read_bonds(const ComponentEntry& entry, const SystemDescription& system, ForceFieldSpec& ff,
-                const std::vector<std::string>& perBond, const std::vector<std::string>& common) {
+                const std::vector<std::string>& parameters, const std::vector<std::string>& common) {
     static const char* const idLabels[] = {"id_i", "id_j", "id_k", "id_l"};
     BondSpec bonds;
     bonds.name = entry.name;
     bonds.path = entry.node.path();
     bonds.potential = entry.subclass;
     bonds.arity = 2;
-    bonds.parameterCount = static_cast<int>(perBond.size() + common.size());
+    bonds.parameterCount = static_cast<int>(parameters.size());
 
-    std::vector<double> shared;
-    for (const std::string& key : common) shared.push_back(parameter<double>(entry, key));
-
-    std::vector<std::string> required(idLabels, idLabels + bonds.arity);
-    required.insert(required.end(), perBond.begin(), perBond.end());
-    input::Table table = input::read_table(entry.node, required);
+    std::vector<std::string> columns(idLabels, idLabels + bonds.arity);
+    std::vector<double> shared(parameters.size(), 0.0);
+    std::vector<bool> isShared(parameters.size(), false);
+    for (size_t k = 0; k < parameters.size(); ++k) {
+        isShared[k] = std::find(common.begin(), common.end(), parameters[k]) != common.end();
+        if (isShared[k]) shared[k] = parameter<double>(entry, parameters[k]);
+        else columns.push_back(parameters[k]);
+    }
+    input::Table table = input::read_table(entry.node, columns);
     for (size_t r = 0; r < table.rows(); ++r) {
         for (int k = 0; k < bonds.arity; ++k) {
             const TrackedNode cell = table.cell(r, idLabels[k]);
@@ -152,31 +156,37 @@ void read_bonds(const ComponentEntry& entry, const SystemDescription& system, Fo
                     throw input_error(cell.path(), "particle id " + std::to_string(id) + " appears twice in one bond");
             bonds.ends.push_back(static_cast<int>(id));
         }
-        for (const std::string& label : perBond) {
-            const TrackedNode cell = table.cell(r, label);
+        for (size_t k = 0; k < parameters.size(); ++k) {
+            if (isShared[k]) {
+                bonds.params.push_back(shared[k]);
+                continue;
+            }
+            const TrackedNode cell = table.cell(r, parameters[k]);
             const double value = cell.as<double>();
             if (!std::isfinite(value)) throw input_error(cell.path(), "expected a finite number");
             bonds.params.push_back(value);
         }
-        bonds.params.insert(bonds.params.end(), shared.begin(), shared.end());
     }
     ff.bonds.push_back(bonds);
 }
 
 using Reader = std::function<void(const ComponentEntry&, const SystemDescription&, ForceFieldSpec&)>;
 
-// Parameters of the Harmonic family are always stored as (K, r0), whichever come from the table.
+Reader bond_reader(std::vector<std::string> parameters, std::vector<std::string> common) {
+    return [parameters, common](const ComponentEntry& e, const SystemDescription& s, ForceFieldSpec& ff) {
+        read_bonds(e, s, ff, parameters, common);
+    };
+}
+
 const std::map<std::pair<std::string, std::string>, Reader>& registry() {
     static const std::map<std::pair<std::string, std::string>, Reader> readers = {
         {{"NonBonded", "LennardJonesType1"}, read_pair},
-        {{"Bond2", "Harmonic"},
-         [](const ComponentEntry& e, const SystemDescription& s, ForceFieldSpec& ff) {
-             read_bonds(e, s, ff, {"K", "r0"}, {});
-         }},
-        {{"Bond2", "HarmonicCommon_K_r0"},
-         [](const ComponentEntry& e, const SystemDescription& s, ForceFieldSpec& ff) {
-             read_bonds(e, s, ff, {}, {"K", "r0"});
-         }},
+        {{"Bond2", "Harmonic"}, bond_reader({"K", "r0"}, {})},
+        {{"Bond2", "HarmonicCommon_K"}, bond_reader({"K", "r0"}, {"K"})},
+        {{"Bond2", "HarmonicCommon_K_r0"}, bond_reader({"K", "r0"}, {"K", "r0"})},
+        {{"Bond2", "Fene"}, bond_reader({"r0", "K", "R0"}, {})},
+        {{"Bond2", "FeneCommon_K_R0"}, bond_reader({"r0", "K", "R0"}, {"K", "R0"})},
+        {{"Bond2", "FeneCommon_r0_K_R0"}, bond_reader({"r0", "K", "R0"}, {"r0", "K", "R0"})},
     };
     return readers;
 }

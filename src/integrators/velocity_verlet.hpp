@@ -33,12 +33,21 @@ struct VerletKickDrift {
     }
 };
 
+// The closing half kick also checks the particle's new state, so a blow-up is recorded in the
+// step that produced it at no extra pass over memory.
 template <class R>
 struct VerletKick {
+    const Real4<R>* pos;
     Real4<R>* vel;
     const Real4<R>* force;
     R dt;
-    SMD_HD void operator()(int64_t i) const { vel[i] = half_kick(vel[i], force[i], dt); }
+    FaultSlot fault;
+    SMD_HD void operator()(int64_t i) const {
+        const Real4<R> f = force[i];
+        const Real4<R> v = half_kick(vel[i], f, dt);
+        vel[i] = v;
+        if (!(finite(v) && finite(f) && finite(pos[i]))) fault.report(i);
+    }
 };
 
 template <class B, class R>
@@ -52,7 +61,7 @@ public:
         backend_.for_each(p.count, VerletKickDrift<R>{p.pos.data(), p.vel.data(), p.force.data(), p.box, dt});
         forces.positions_moved();
         forces.update_forces();
-        backend_.for_each(p.count, VerletKick<R>{p.vel.data(), p.force.data(), dt});
+        backend_.for_each(p.count, VerletKick<R>{p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});
     }
 
 private:

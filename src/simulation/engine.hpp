@@ -57,6 +57,8 @@ public:
         else
             upload_velocities(flatten(spec.velocities).data());
         p_.force.resize(p_.count);
+        p_.fault.resize(1);
+        backend_.fill(p_.fault, kNoFault);
         std::vector<R> radius(spec.radius.begin(), spec.radius.end());
         std::vector<R> charge(spec.charge.begin(), spec.charge.end());
         backend_.upload(p_.radius, radius.data(), radius.size());
@@ -91,10 +93,12 @@ public:
         for (int64_t k = 0; k < n; ++k) {
             fire_steps(false);
             Integrator<B, R>& integrator = current_integrator();
+            p_.step = step_;
             integrator.step(p_, *this);
             ++step_;
             time_ += integrator.time_step();
         }
+        check_fault();
         if (n > 0 && step_ == last) fire_steps(true);
         forceField_.adapt();
     }
@@ -109,6 +113,11 @@ public:
     void get_forces(double* f) override {
         compute(kForces);
         download_vectors(p_.force, f);
+        for (int64_t k = 0; k < 3 * p_.count; ++k)
+            if (!std::isfinite(f[k]))
+                throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(step_) + ", particle id " +
+                                                        std::to_string(k / 3) +
+                                                        ": the force is not finite (overlapping particles?)");
     }
     void get_particle_energies(double* e) override {
         compute(kEnergy);
@@ -223,6 +232,29 @@ private:
         if (out.force) forcesVersion_ = positionsVersion_;
         if (out.energy) energyVersion_ = positionsVersion_;
         if (out.virial) virialVersion_ = positionsVersion_;
+    }
+
+    // Reports a fault recorded on the backend during the last steps, naming the first step and
+    // particle, then clears it so the host can repair the state (set_positions, reload).
+    void check_fault() {
+        const unsigned long long word = backend_.read(p_.fault, 0);
+        if (word == kNoFault) return;
+        backend_.fill(p_.fault, kNoFault);
+        const int64_t step = FaultSlot::step_of(word);
+        const int64_t id = FaultSlot::particle_of(word);
+        std::vector<double> values(3 * p_.count);
+        std::string quantity = "force";
+        download_vectors(p_.pos, values.data());
+        if (!(std::isfinite(values[3 * id]) && std::isfinite(values[3 * id + 1]) && std::isfinite(values[3 * id + 2])))
+            quantity = "position";
+        download_vectors(p_.vel, values.data());
+        if (!(std::isfinite(values[3 * id]) && std::isfinite(values[3 * id + 1]) && std::isfinite(values[3 * id + 2])))
+            quantity = "velocity";
+        throw Error(STRUCTMD_ERR_NUMERICAL,
+                    "step " + std::to_string(step) + ", particle id " + std::to_string(id) + ": the " + quantity +
+                        " is not finite: the simulation blew up (time step too large, or overlapping particles); "
+                        "the state is now at step " + std::to_string(step_) +
+                        " and must be repaired with structmd_set_positions / structmd_set_velocities or a reload");
     }
 
     double sum_energy() { return backend_.reduce(p_.count, SumEnergy<R>{p_.energy.data()}, 0.0); }

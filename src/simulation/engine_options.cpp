@@ -23,6 +23,18 @@ int usable_gpu_count() {
 #endif
 }
 
+std::string device_description(const EngineOptions& options) {
+#ifdef STRUCTMD_HAVE_CUDA
+    if (options.backend == "cuda") return cuda_device_name(options.device);
+#endif
+    (void)options;
+    return "host CPU";
+}
+
+int cpu_thread_count(const EngineOptions& options) {
+    return options.threads > 0 ? options.threads : cpu_default_threads();
+}
+
 namespace {
 
 Error option_error(const std::string& key, const std::string& what) {

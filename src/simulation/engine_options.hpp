@@ -24,4 +24,8 @@ EngineOptions parse_engine_options(const char* json);
 bool cuda_backend_compiled();
 int usable_gpu_count();
 
+// What the options run on, before any simulation is loaded.
+std::string device_description(const EngineOptions& options);
+int cpu_thread_count(const EngineOptions& options);
+
 }  // namespace structmd

@@ -6,6 +6,7 @@
 
 #include "core/box.hpp"
 #include "core/vec.hpp"
+#include "simulation/fault.hpp"
 
 namespace structmd {
 
@@ -24,6 +25,10 @@ struct Particles {
     Buffer<Real4<R>> externalForce;  // empty when the host set none
     Buffer<R> radius;
     Buffer<R> charge;
+    Buffer<unsigned long long> fault;  // one word, kNoFault when all is well
+    int64_t step = 0;                  // the step being computed, for fault reports
+
+    FaultSlot fault_slot() { return {fault.data(), step}; }
 };
 
 }  // namespace structmd

@@ -10,4 +10,6 @@ std::unique_ptr<Simulation> make_cpu_engine(bool doublePrecision, int threads, S
     return std::make_unique<Engine<CpuBackend, float>>(std::move(spec), log, threads);
 }
 
+int cpu_default_threads() { return omp_get_max_threads(); }
+
 }  // namespace structmd

@@ -19,4 +19,10 @@ int cuda_device_count() {
     return count;
 }
 
+std::string cuda_device_name(int device) {
+    cudaDeviceProp prop{};
+    cuda_check(cudaGetDeviceProperties(&prop, device), "reading device properties");
+    return prop.name;
+}
+
 }  // namespace structmd
