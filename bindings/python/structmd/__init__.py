@@ -1,0 +1,41 @@
+"""structmd: Python host of the structmd molecular dynamics engine, over its C ABI through ctypes.
+
+    import structmd
+    with structmd.Simulation({"backend": "cpu"}) as sim:
+        sim.load("input.json")
+        sim.step(100)
+        f = sim.forces              # (n, 3) numpy array
+        sim.external_forces = -0.1 * sim.positions
+        sim.step(100)
+
+The shared library is found through the environment variable STRUCTMD_LIBRARY, else next to this
+package, else on the system's library path; importing fails with ImportError if its ABI version is
+not ABI_VERSION.
+"""
+
+from ._library import lib as _lib
+from ._library import library_path
+from .constants import ABI_VERSION, COMPUTE_FLAGS, STATUS
+from .errors import (ArgumentError, DeviceError, InputError, InternalError, NumericalError, StateError,
+                     StructmdError, StructmdIOError, StructmdMemoryError, UnsupportedError,
+                     error_for_status)
+from .simulation import Simulation
+
+
+def abi_version():
+    """STRUCTMD_ABI_VERSION of the library actually loaded."""
+    return _lib.structmd_abi_version()
+
+
+def version():
+    """The library version, "MAJOR.MINOR.PATCH"."""
+    return _lib.structmd_version().decode()
+
+
+__version__ = version()
+
+__all__ = [
+    "ABI_VERSION", "COMPUTE_FLAGS", "STATUS", "Simulation", "abi_version", "version", "library_path",
+    "StructmdError", "ArgumentError", "InputError", "StateError", "NumericalError", "StructmdIOError",
+    "DeviceError", "StructmdMemoryError", "UnsupportedError", "InternalError", "error_for_status",
+]

@@ -1,0 +1,321 @@
+"""The Simulation class: one structmd handle, driven through the C ABI."""
+
+import json
+import operator
+import os
+from collections.abc import Mapping
+from ctypes import POINTER, byref, c_double, c_int32, c_int64, c_size_t, c_void_p, create_string_buffer
+
+from ._library import lib
+from .constants import COMPUTE_FLAGS, STATUS
+from .errors import ArgumentError, StateError, StructmdError, error_for_status
+
+try:
+    import numpy as _np
+except ImportError:
+    _np = None
+
+_INFO_FIRST_GUESS = 512  # bytes; structmd_get_info says how much it needs if this is short
+
+
+def _decode(text):
+    return text.decode("utf-8", errors="replace") if text else ""
+
+
+def _looks_like_json(text):
+    # An input document is a JSON object, possibly preceded by comments; a path never starts so.
+    return text.lstrip().startswith(("{", "//", "/*"))
+
+
+def _raise_for(status, message):
+    if status != STATUS["STRUCTMD_OK"]:
+        raise error_for_status(status, message)
+
+
+class Simulation:
+    """A structmd simulation: create, load an input, step, read and set particle data, close.
+
+    Arrays come back as numpy arrays when numpy is installed: (n, 3) for vector quantities, (n,) for
+    scalars, always in ascending particle-id order. Without numpy they come back as lists of tuples
+    (vectors) or lists (scalars). Every failure raises the StructmdError subclass of its status.
+
+    options: None (all defaults), a dict or a JSON string with the keys of structmd_create
+    ("backend", "device", "precision", "threads", "log", "log_file").
+    """
+
+    def __init__(self, options=None):
+        if options is None:
+            encoded = None
+        elif isinstance(options, Mapping):
+            encoded = json.dumps(dict(options)).encode()
+        elif isinstance(options, str):
+            encoded = options.encode()
+        else:
+            raise TypeError(f"options must be a dict, a JSON string or None, not {type(options).__name__}")
+        self._handle = None
+        self._external_forces = None
+        handle = c_void_p()
+        status = lib.structmd_create(encoded, byref(handle))
+        _raise_for(status, _decode(lib.structmd_last_error(None)))
+        self._handle = handle
+
+    # ---- lifetime ----------------------------------------------------------------------------
+
+    def close(self):
+        """Releases the handle and everything it owns; later calls raise StateError. Idempotent."""
+        if self._handle is not None:
+            lib.structmd_destroy(self._handle)
+            self._handle = None
+
+    @property
+    def closed(self):
+        return self._handle is None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        self.close()
+
+    def __del__(self):
+        # At interpreter shutdown the module globals may already be gone; nothing to do then.
+        if getattr(self, "_handle", None) is not None and lib is not None:
+            self.close()
+
+    def __repr__(self):
+        if self.closed:
+            return "<structmd.Simulation closed>"
+        try:
+            return f"<structmd.Simulation {self.info!r}>"
+        except StructmdError as error:
+            return f"<structmd.Simulation ({error})>"
+
+    def _checked_handle(self):
+        if self._handle is None:
+            raise StateError(STATUS["STRUCTMD_ERR_STATE"], "this Simulation is closed")
+        return self._handle
+
+    def _call(self, function, *args):
+        handle = self._checked_handle()
+        status = function(handle, *args)
+        if status != STATUS["STRUCTMD_OK"]:
+            raise error_for_status(status, _decode(lib.structmd_last_error(handle)))
+
+    @property
+    def last_error(self):
+        """The message of the last failed call on this handle, "" if none."""
+        return _decode(lib.structmd_last_error(self._checked_handle()))
+
+    # ---- loading and advancing ---------------------------------------------------------------
+
+    def load_file(self, path):
+        """Builds the simulation from an input file (UAMMD-structured JSON). Returns self."""
+        self._call(lib.structmd_load_file, os.fsencode(path))
+        self._external_forces = None
+        return self
+
+    def load_string(self, document):
+        """Builds the simulation from a JSON document given as a string. Returns self."""
+        self._call(lib.structmd_load_string, document.encode())
+        self._external_forces = None
+        return self
+
+    def load(self, source):
+        """Loads from a dict, a JSON document string, or a file path (str or path-like). Returns self.
+
+        A string whose first non-blank characters are "{", "//" or "/*" is a document; any other
+        string is a path.
+        """
+        if isinstance(source, Mapping):
+            return self.load_string(json.dumps(source))
+        if isinstance(source, str) and _looks_like_json(source):
+            return self.load_string(source)
+        if isinstance(source, (str, bytes, os.PathLike)):
+            return self.load_file(source)
+        raise TypeError(f"cannot load from a {type(source).__name__}: give a dict, a JSON string or a path")
+
+    def step(self, n=1):
+        """Advances n integration steps along the integrator schedule."""
+        self._call(lib.structmd_step, operator.index(n))
+
+    def run(self):
+        """Advances until the integrator schedule ends."""
+        self._call(lib.structmd_run)
+
+    def compute(self, forces=True, energy=False, virial=False):
+        """Evaluates now what is asked for (unless already current), without advancing time."""
+        flags = ((COMPUTE_FLAGS["STRUCTMD_FORCES"] if forces else 0)
+                 | (COMPUTE_FLAGS["STRUCTMD_ENERGY"] if energy else 0)
+                 | (COMPUTE_FLAGS["STRUCTMD_VIRIAL"] if virial else 0))
+        self._call(lib.structmd_compute, flags)
+
+    # ---- particle data -----------------------------------------------------------------------
+
+    @property
+    def num_particles(self):
+        n = c_int64()
+        self._call(lib.structmd_get_num_particles, byref(n))
+        return n.value
+
+    def _get_array(self, function, ctype, numpy_dtype, components):
+        n = self.num_particles
+        if _np is not None:
+            shape = (n, components) if components > 1 else (n,)
+            out = _np.empty(shape, dtype=numpy_dtype)
+            self._call(function, out.ctypes.data_as(POINTER(ctype)), n)
+            return out
+        buffer = (ctype * (components * n))()
+        self._call(function, buffer, n)
+        if components == 1:
+            return list(buffer)
+        return [tuple(buffer[components * i:components * (i + 1)]) for i in range(n)]
+
+    def _vectors_argument(self, values, name):
+        """(a C double[3n] the library can read, n), checking the shape against the particle count."""
+        n = self.num_particles
+        if _np is not None:
+            array = _np.ascontiguousarray(values, dtype=_np.float64)
+            if array.shape not in ((n, 3), (3 * n,)):
+                raise ArgumentError(STATUS["STRUCTMD_ERR_ARGUMENT"],
+                                    f"{name}: expected shape ({n}, 3) or ({3 * n},), got {array.shape}")
+            return array, n
+        rows = [tuple(row) for row in values]
+        flat = [float(component) for row in rows for component in row]
+        if len(rows) != n or any(len(row) != 3 for row in rows):
+            raise ArgumentError(STATUS["STRUCTMD_ERR_ARGUMENT"],
+                                f"{name}: expected {n} rows of 3 values")
+        return (c_double * (3 * n))(*flat), n
+
+    def _set_vectors(self, function, values, name):
+        buffer, n = self._vectors_argument(values, name)
+        pointer = buffer.ctypes.data_as(POINTER(c_double)) if _np is not None else buffer
+        self._call(function, pointer, n)
+        return buffer
+
+    @property
+    def ids(self):
+        """Particle ids, ascending (0..n-1)."""
+        return self._get_array(lib.structmd_get_ids, c_int64, "int64", 1)
+
+    @property
+    def positions(self):
+        """Positions, wrapped into the box [-L/2, L/2); setting them wraps them too."""
+        return self._get_array(lib.structmd_get_positions, c_double, "float64", 3)
+
+    @positions.setter
+    def positions(self, values):
+        self._set_vectors(lib.structmd_set_positions, values, "positions")
+
+    @property
+    def velocities(self):
+        return self._get_array(lib.structmd_get_velocities, c_double, "float64", 3)
+
+    @velocities.setter
+    def velocities(self, values):
+        self._set_vectors(lib.structmd_set_velocities, values, "velocities")
+
+    @property
+    def forces(self):
+        """The total force on each particle, external forces included."""
+        return self._get_array(lib.structmd_get_forces, c_double, "float64", 3)
+
+    @property
+    def external_forces(self):
+        """The external force field last set since the last load (a copy), or None when there is none.
+
+        Setting it adds that force to each particle at every force evaluation; None clears it.
+        """
+        if self._external_forces is None:
+            return None
+        if _np is not None:
+            return self._external_forces.reshape(-1, 3).copy()
+        values = list(self._external_forces)
+        return [tuple(values[3 * i:3 * i + 3]) for i in range(len(values) // 3)]
+
+    @external_forces.setter
+    def external_forces(self, values):
+        if values is None:
+            self._call(lib.structmd_set_external_forces, None, 0)
+            self._external_forces = None
+            return
+        buffer = self._set_vectors(lib.structmd_set_external_forces, values, "external_forces")
+        self._external_forces = buffer.copy() if _np is not None else buffer
+
+    @property
+    def particle_energies(self):
+        """Potential energy per particle; the values sum to the potential energy."""
+        return self._get_array(lib.structmd_get_particle_energies, c_double, "float64", 1)
+
+    @property
+    def masses(self):
+        return self._get_array(lib.structmd_get_masses, c_double, "float64", 1)
+
+    @property
+    def types(self):
+        """Each particle's row in global.types (0-based)."""
+        return self._get_array(lib.structmd_get_types, c_int32, "int32", 1)
+
+    # ---- global quantities -------------------------------------------------------------------
+
+    def energy(self, term="potential"):
+        """"potential", "kinetic", "total", or a topology.forceField entry's name (its share)."""
+        value = c_double()
+        self._call(lib.structmd_get_energy, term.encode(), byref(value))
+        return value.value
+
+    @property
+    def virial(self):
+        """The virial tensor W (3x3, LAMMPS's pressure-virial convention)."""
+        w = (c_double * 9)()
+        self._call(lib.structmd_get_virial, w)
+        if _np is not None:
+            return _np.array(w[:], dtype=_np.float64).reshape(3, 3)
+        return [tuple(w[3 * row:3 * row + 3]) for row in range(3)]
+
+    @property
+    def pressure(self):
+        p = c_double()
+        self._call(lib.structmd_get_pressure, byref(p))
+        return p.value
+
+    @property
+    def box(self):
+        """Box edge lengths (Lx, Ly, Lz); setting them scales the particles with the box."""
+        lengths = (c_double * 3)()
+        self._call(lib.structmd_get_box, lengths)
+        return _np.array(lengths[:], dtype=_np.float64) if _np is not None else tuple(lengths)
+
+    @box.setter
+    def box(self, lengths):
+        values = [float(length) for length in lengths]
+        if len(values) != 3:
+            raise ArgumentError(STATUS["STRUCTMD_ERR_ARGUMENT"], f"box: expected 3 lengths, got {len(values)}")
+        self._call(lib.structmd_set_box, (c_double * 3)(*values))
+
+    @property
+    def step_number(self):
+        step = c_int64()
+        self._call(lib.structmd_get_step, byref(step))
+        return step.value
+
+    @property
+    def time(self):
+        t = c_double()
+        self._call(lib.structmd_get_time, byref(t))
+        return t.value
+
+    @property
+    def info(self):
+        """A dict describing the handle: backend, precision, device, threads, loaded, particles,
+        final_step."""
+        size = _INFO_FIRST_GUESS
+        while True:
+            buffer = create_string_buffer(size)
+            needed = c_size_t()
+            handle = self._checked_handle()
+            status = lib.structmd_get_info(handle, buffer, size, byref(needed))
+            if status == STATUS["STRUCTMD_OK"]:
+                return json.loads(buffer.value.decode("utf-8"))
+            if needed.value <= size:
+                _raise_for(status, _decode(lib.structmd_last_error(handle)))
+            size = needed.value

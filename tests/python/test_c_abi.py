@@ -1,0 +1,829 @@
+"""The C ABI of libstructmd, called through cffi in ABI mode with declarations generated from
+include/structmd.h at test time. Covers every function of the header (checked by the last test), every
+status a host can provoke, and the rule that a failed call leaves the handle usable."""
+
+import json
+import math
+import os
+import re
+import threading
+
+import cffi
+import numpy as np
+import pytest
+
+import structmd_header
+import systems
+from conftest import engine_options, library_path
+
+DEFINES = structmd_header.header_defines()
+PROTOTYPES = structmd_header.function_prototypes()
+OK = DEFINES["STRUCTMD_OK"]
+ARGUMENT = DEFINES["STRUCTMD_ERR_ARGUMENT"]
+INPUT = DEFINES["STRUCTMD_ERR_INPUT"]
+STATE = DEFINES["STRUCTMD_ERR_STATE"]
+NUMERICAL = DEFINES["STRUCTMD_ERR_NUMERICAL"]
+IO = DEFINES["STRUCTMD_ERR_IO"]
+DEVICE = DEFINES["STRUCTMD_ERR_DEVICE"]
+UNSUPPORTED = DEFINES["STRUCTMD_ERR_UNSUPPORTED"]
+ALL_FLAGS = DEFINES["STRUCTMD_FORCES"] | DEFINES["STRUCTMD_ENERGY"] | DEFINES["STRUCTMD_VIRIAL"]
+INFO_KEYS = {"backend", "precision", "device", "threads", "loaded", "particles", "final_step"}
+NAMES = {value: name for name, value in DEFINES.items() if name.startswith(("STRUCTMD_OK", "STRUCTMD_ERR_"))}
+
+ffi = cffi.FFI()
+ffi.cdef(structmd_header.preprocessed_declarations())
+
+_called = set()
+
+
+class _RecordingLibrary:
+    """The cffi library, remembering which functions the tests called."""
+
+    def __init__(self, library):
+        self._library = library
+
+    def __getattr__(self, name):
+        _called.add(name)
+        return getattr(self._library, name)
+
+
+lib = _RecordingLibrary(ffi.dlopen(library_path()))
+
+
+# ---- helpers -----------------------------------------------------------------------------------
+
+def message(sim):
+    return ffi.string(lib.structmd_last_error(sim)).decode()
+
+
+def create_message():
+    return message(ffi.NULL)
+
+
+def expect(sim, status, expected):
+    """Asserts a status, showing both names and the library's message when it differs."""
+    detail = message(sim) if sim != ffi.NULL else ""
+    assert status == expected, f"got {NAMES.get(status, status)}, expected {NAMES[expected]}: {detail}"
+
+
+def check(sim, status):
+    expect(sim, status, OK)
+
+
+def create(options):
+    out = ffi.new("structmd_sim**")
+    status = lib.structmd_create(json.dumps(options).encode(), out)
+    assert status == OK, f"create({options}) failed: {create_message()}"
+    assert out[0] != ffi.NULL
+    return out[0]
+
+
+def load(sim, doc):
+    check(sim, lib.structmd_load_string(sim, json.dumps(doc).encode()))
+
+
+def num_particles(sim):
+    n = ffi.new("int64_t*")
+    check(sim, lib.structmd_get_num_particles(sim, n))
+    return n[0]
+
+
+def get_array(sim, function, ctype="double", components=3):
+    n = num_particles(sim)
+    buffer = ffi.new(f"{ctype}[]", max(1, components * n))
+    check(sim, getattr(lib, function)(sim, buffer, n))
+    values = np.array(ffi.unpack(buffer, components * n))
+    return values.reshape(n, components) if components > 1 else values
+
+
+def set_vectors(sim, function, values):
+    flat = np.ascontiguousarray(values, dtype=np.float64).ravel()
+    return getattr(lib, function)(sim, ffi.new("double[]", flat.tolist()), flat.size // 3)
+
+
+def get_scalar(sim, function, ctype):
+    out = ffi.new(f"{ctype}*")
+    check(sim, getattr(lib, function)(sim, out))
+    return out[0]
+
+
+def get_fixed(sim, function, count):
+    out = ffi.new("double[]", count)
+    check(sim, getattr(lib, function)(sim, out))
+    return np.array(ffi.unpack(out, count))
+
+
+def energy(sim, term="potential"):
+    out = ffi.new("double*")
+    check(sim, lib.structmd_get_energy(sim, term.encode(), out))
+    return out[0]
+
+
+def info(sim):
+    needed = ffi.new("size_t*")
+    lib.structmd_get_info(sim, ffi.NULL, 0, needed)
+    buffer = ffi.new("char[]", needed[0])
+    check(sim, lib.structmd_get_info(sim, buffer, needed[0], ffi.NULL))
+    return json.loads(ffi.string(buffer).decode())
+
+
+def snapshot(sim):
+    """What a failed call must leave unchanged."""
+    return {
+        "step": get_scalar(sim, "structmd_get_step", "int64_t"),
+        "time": get_scalar(sim, "structmd_get_time", "double"),
+        "positions": get_array(sim, "structmd_get_positions"),
+        "velocities": get_array(sim, "structmd_get_velocities"),
+        "box": get_fixed(sim, "structmd_get_box", 3),
+    }
+
+
+def assert_same_state(before, after):
+    assert before["step"] == after["step"]
+    assert before["time"] == after["time"]
+    for key in ("positions", "velocities", "box"):
+        np.testing.assert_array_equal(before[key], after[key], err_msg=key)
+
+
+def assert_usable(sim):
+    """The handle accepts a good input afterwards and steps."""
+    load(sim, systems.lj_bond_system())
+    check(sim, lib.structmd_step(sim, 3))
+    assert get_scalar(sim, "structmd_get_step", "int64_t") == 3
+
+
+def minimum_image(d, box):
+    return d - box * np.round(d / box)
+
+
+@pytest.fixture
+def new_handle():
+    handles = []
+
+    def make(options=None):
+        handles.append(create(engine_options() if options is None else options))
+        return handles[-1]
+
+    yield make
+    for handle in handles:
+        lib.structmd_destroy(handle)
+
+
+@pytest.fixture
+def sim(new_handle):
+    return new_handle()
+
+
+@pytest.fixture
+def loaded(sim):
+    load(sim, systems.lj_bond_system())
+    return sim
+
+
+@pytest.fixture
+def good_input_file(tmp_path):
+    path = tmp_path / "good.json"
+    path.write_text("// comments are allowed\n" + json.dumps(systems.lj_bond_system(), indent=1))
+    return path
+
+
+def valid_arguments(sim, prototype, n, good_input_file):
+    """Arguments for a call that would succeed on a loaded handle with n particles."""
+    by_name = {
+        "term": lambda: ffi.new("char[]", b"potential"),
+        "path": lambda: ffi.new("char[]", str(good_input_file).encode()),
+        "json": lambda: ffi.new("char[]", json.dumps(systems.lj_bond_system()).encode()),
+        "buffer": lambda: ffi.new("char[]", 4096),
+        "lengths": lambda: ffi.new("double[]", [systems.BASE_BOX] * 3),
+        "xyz": lambda: ffi.new("double[]", np.ravel(systems.BASE_POSITIONS).tolist()),
+        "v": lambda: ffi.new("double[]", np.ravel(systems.BASE_VELOCITIES).tolist()),
+    }
+    by_type = {
+        "structmd_sim*": lambda: sim,
+        "int64_t": lambda: n,
+        "uint32_t": lambda: DEFINES["STRUCTMD_FORCES"],
+        "size_t": lambda: 4096,
+        "double*": lambda: ffi.new("double[]", 64),
+        "int64_t*": lambda: ffi.new("int64_t[]", 64),
+        "int32_t*": lambda: ffi.new("int32_t[]", 64),
+        "size_t*": lambda: ffi.new("size_t*"),
+    }
+    return [by_name[name]() if name in by_name else by_type[c_type]() for c_type, name in prototype[1]]
+
+
+HANDLE_FUNCTIONS = sorted(name for name, (_, params) in PROTOTYPES.items()
+                          if params and params[0][0] == "structmd_sim*"
+                          and name not in ("structmd_destroy", "structmd_last_error"))
+NEEDS_LOADED = sorted(set(HANDLE_FUNCTIONS) - {"structmd_load_file", "structmd_load_string", "structmd_get_info"})
+NULLABLE = {("structmd_get_info", "needed")}  # optional pointers
+POINTER_ARGUMENTS = sorted((name, index, param_name)
+                           for name in HANDLE_FUNCTIONS
+                           for index, (c_type, param_name) in enumerate(PROTOTYPES[name][1])
+                           if index > 0 and c_type.endswith("*") and (name, param_name) not in NULLABLE)
+COUNTED_ARRAYS = sorted(name for name in HANDLE_FUNCTIONS
+                        if [t for t, _ in PROTOTYPES[name][1]][-1:] == ["int64_t"]
+                        and PROTOTYPES[name][1][1][0].endswith("*"))
+
+
+# ---- versions and creation ---------------------------------------------------------------------
+
+def test_abi_version_is_the_headers():
+    assert lib.structmd_abi_version() == DEFINES["STRUCTMD_ABI_VERSION"]
+
+
+def test_version_is_major_minor_patch():
+    text = ffi.string(lib.structmd_version()).decode()
+    assert re.fullmatch(r"\d+\.\d+\.\d+", text)
+    expected = os.environ.get("STRUCTMD_EXPECTED_VERSION")
+    if expected:
+        assert text == expected
+
+
+@pytest.mark.parametrize("options", [None, b"", b"{}"])
+def test_create_with_default_options(options):
+    out = ffi.new("structmd_sim**")
+    status = lib.structmd_create(ffi.NULL if options is None else options, out)
+    assert status == OK, create_message()
+    try:
+        assert message(out[0]) == ""
+        assert info(out[0])["backend"] in ("cpu", "cuda")
+    finally:
+        lib.structmd_destroy(out[0])
+
+
+@pytest.mark.parametrize("options, culprit", [
+    ({"bogus": 1}, "bogus"),
+    ({"precision": "quad"}, "precision"),
+    ({"backend": "opencl"}, "backend"),
+    ({"log": "loud"}, "log"),
+    ({"device": "first"}, "device"),
+    ({"threads": "many"}, "threads"),
+])
+def test_create_rejects_bad_options(options, culprit):
+    out = ffi.new("structmd_sim**")
+    out[0] = ffi.cast("structmd_sim*", 0x1)  # must be reset to NULL on failure
+    assert lib.structmd_create(json.dumps(options).encode(), out) == ARGUMENT
+    assert out[0] == ffi.NULL
+    assert culprit in create_message()
+
+
+@pytest.mark.parametrize("options", [b"not json", b"[1, 2]", b'{"backend": '])
+def test_create_rejects_options_that_are_not_a_json_object(options):
+    out = ffi.new("structmd_sim**")
+    assert lib.structmd_create(options, out) == ARGUMENT
+    assert out[0] == ffi.NULL
+    assert create_message() != ""
+
+
+def test_create_without_out_pointer_is_an_argument_error():
+    assert lib.structmd_create(ffi.NULL, ffi.NULL) == ARGUMENT
+    assert "out" in create_message()
+
+
+def test_last_error_of_null_follows_the_latest_create():
+    out = ffi.new("structmd_sim**")
+    assert lib.structmd_create(b'{"bogus": 1}', out) == ARGUMENT
+    assert "bogus" in create_message()
+    assert lib.structmd_create(b'{"log": "loud"}', out) == ARGUMENT
+    assert "loud" in create_message() or "log" in create_message()
+
+
+def test_cuda_backend_either_works_or_says_why():
+    out = ffi.new("structmd_sim**")
+    status = lib.structmd_create(b'{"backend": "cuda", "log": "quiet"}', out)
+    if status == OK:
+        try:
+            assert info(out[0])["backend"] == "cuda"
+        finally:
+            lib.structmd_destroy(out[0])
+        return
+    assert status in (DEVICE, UNSUPPORTED), NAMES.get(status, status)
+    assert out[0] == ffi.NULL
+    reason = create_message()
+    assert re.search(r"cuda|gpu", reason, re.IGNORECASE), reason
+    assert len(reason) > len("cuda backend"), f"no reason given: {reason!r}"
+
+
+def test_destroy_accepts_null():
+    lib.structmd_destroy(ffi.NULL)
+
+
+def test_fresh_handle_has_no_error_and_is_not_loaded(sim):
+    assert message(sim) == ""
+    description = info(sim)
+    assert set(description) >= INFO_KEYS
+    assert description["loaded"] is False
+    assert description["particles"] == 0
+    assert description["final_step"] == -1
+    assert description["backend"] in ("cpu", "cuda")
+
+
+# ---- argument errors ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("function", HANDLE_FUNCTIONS)
+def test_null_handle_is_an_argument_error(function, good_input_file):
+    arguments = valid_arguments(ffi.NULL, PROTOTYPES[function], 4, good_input_file)
+    assert getattr(lib, function)(*arguments) == ARGUMENT
+
+
+@pytest.mark.parametrize("function, index, param_name", POINTER_ARGUMENTS)
+def test_null_pointer_argument_is_an_argument_error(loaded, function, index, param_name, good_input_file):
+    before = snapshot(loaded)
+    arguments = valid_arguments(loaded, PROTOTYPES[function], num_particles(loaded), good_input_file)
+    arguments[index] = ffi.NULL
+    expect(loaded, getattr(lib, function)(*arguments), ARGUMENT)
+    assert param_name in message(loaded), f"the message should name the argument {param_name}"
+    if function not in ("structmd_load_file", "structmd_load_string"):
+        assert_same_state(before, snapshot(loaded))
+    assert_usable(loaded)
+
+
+@pytest.mark.parametrize("function", COUNTED_ARRAYS)
+@pytest.mark.parametrize("offset", [-1, +1, "zero", "negative"])
+def test_wrong_array_length_is_an_argument_error_and_writes_nothing(loaded, function, offset, good_input_file):
+    n = num_particles(loaded)
+    wrong_n = {"zero": 0, "negative": -1}.get(offset, n + offset if isinstance(offset, int) else None)
+    before = snapshot(loaded)
+    arguments = valid_arguments(loaded, PROTOTYPES[function], wrong_n, good_input_file)
+    array_type = PROTOTYPES[function][1][1][0]
+    sentinel = 12345
+    if function.startswith("structmd_get_"):
+        arguments[1] = ffi.new(array_type.replace("*", "[]"), [sentinel] * 64)
+    expect(loaded, getattr(lib, function)(*arguments), ARGUMENT)
+    assert message(loaded) != ""
+    if function.startswith("structmd_get_"):
+        assert ffi.unpack(arguments[1], 64) == [sentinel] * 64
+    assert_same_state(before, snapshot(loaded))
+    assert_usable(loaded)
+
+
+@pytest.mark.parametrize("term", ["nonexistent", "", "Potential"])
+def test_unknown_energy_term_is_an_argument_error(loaded, term):
+    value = ffi.new("double*", 7.0)
+    expect(loaded, lib.structmd_get_energy(loaded, term.encode(), value), ARGUMENT)
+    assert value[0] == 7.0
+    assert f"{term}" in message(loaded)
+    assert_usable(loaded)
+
+
+@pytest.mark.parametrize("flags", [8, 16, 1 << 31, 0xFFFFFFFF, ALL_FLAGS | 8])
+def test_unknown_compute_flags_are_an_argument_error(loaded, flags):
+    expect(loaded, lib.structmd_compute(loaded, flags), ARGUMENT)
+    assert message(loaded) != ""
+    assert_usable(loaded)
+
+
+@pytest.mark.parametrize("flags", range(ALL_FLAGS + 1))
+def test_every_combination_of_known_compute_flags_works(loaded, flags):
+    before = snapshot(loaded)
+    check(loaded, lib.structmd_compute(loaded, flags))
+    assert_same_state(before, snapshot(loaded))
+
+
+@pytest.mark.parametrize("nsteps", [-1, -(2**63)])
+def test_negative_step_count_is_an_argument_error(loaded, nsteps):
+    before = snapshot(loaded)
+    expect(loaded, lib.structmd_step(loaded, nsteps), ARGUMENT)
+    assert "nsteps" in message(loaded)
+    assert_same_state(before, snapshot(loaded))
+    assert_usable(loaded)
+
+
+def test_non_finite_positions_and_velocities_are_rejected_and_change_nothing(loaded):
+    for function, values in (("structmd_set_positions", systems.BASE_POSITIONS),
+                             ("structmd_set_velocities", systems.BASE_VELOCITIES)):
+        for bad in (math.nan, math.inf, -math.inf):
+            corrupted = np.array(values, dtype=float) * 0.5
+            corrupted[2, 1] = bad
+            before = snapshot(loaded)
+            expect(loaded, set_vectors(loaded, function, corrupted), ARGUMENT)
+            assert_same_state(before, snapshot(loaded))
+    assert_usable(loaded)
+
+
+@pytest.mark.parametrize("lengths", [[0.0, 10.0, 10.0], [10.0, -10.0, 10.0], [10.0, 10.0, math.nan],
+                                     [4.0, 10.0, 10.0]])
+def test_set_box_rejects_bad_lengths_and_cutoffs_over_half_the_box(loaded, lengths):
+    # [4, 10, 10]: the LJ cutoff 2.5 sigma would exceed half of Lx.
+    before = snapshot(loaded)
+    expect(loaded, lib.structmd_set_box(loaded, ffi.new("double[]", lengths)), ARGUMENT)
+    assert message(loaded) != ""
+    assert_same_state(before, snapshot(loaded))
+    assert_usable(loaded)
+
+
+# ---- state errors ------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("function", NEEDS_LOADED)
+def test_calls_before_a_load_are_state_errors(sim, function, good_input_file):
+    arguments = valid_arguments(sim, PROTOTYPES[function], 0, good_input_file)
+    expect(sim, getattr(lib, function)(*arguments), STATE)
+    assert message(sim) != ""
+    assert_usable(sim)
+
+
+def test_stepping_past_the_schedule_end_is_a_state_error_and_takes_no_step(sim):
+    load(sim, systems.lj_bond_system(steps=20))
+    assert info(sim)["final_step"] == 20
+    before = snapshot(sim)
+    expect(sim, lib.structmd_step(sim, 21), STATE)
+    assert message(sim) != ""
+    assert_same_state(before, snapshot(sim))
+    check(sim, lib.structmd_step(sim, 20))
+    assert get_scalar(sim, "structmd_get_step", "int64_t") == 20
+    at_end = snapshot(sim)
+    expect(sim, lib.structmd_step(sim, 1), STATE)
+    assert_same_state(at_end, snapshot(sim))
+    assert_usable(sim)
+
+
+def test_run_goes_through_every_schedule_row(sim):
+    doc = systems.lj_bond_system()
+    doc["integrator"]["fine"] = {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 0.001}}
+    doc["integrator"]["schedule"]["data"] = [[1, "vv", 10], [2, "fine", 15]]
+    load(sim, doc)
+    assert info(sim)["final_step"] == 25
+    check(sim, lib.structmd_run(sim))
+    assert get_scalar(sim, "structmd_get_step", "int64_t") == 25
+    expected_time = 10 * systems.BASE_TIME_STEP + 15 * 0.001
+    assert get_scalar(sim, "structmd_get_time", "double") == pytest.approx(expected_time, rel=1e-12)
+    expect(sim, lib.structmd_step(sim, 1), STATE)
+
+
+def test_initial_step_and_time_come_from_the_fundamental(sim):
+    doc = systems.lj_bond_system()
+    doc["global"]["fundamental"]["parameters"].update({"currentStep": 7, "simulationTime": 1.5})
+    load(sim, doc)
+    assert get_scalar(sim, "structmd_get_step", "int64_t") == 7
+    assert get_scalar(sim, "structmd_get_time", "double") == 1.5
+    check(sim, lib.structmd_step(sim, 3))
+    assert get_scalar(sim, "structmd_get_step", "int64_t") == 10
+    assert get_scalar(sim, "structmd_get_time", "double") == pytest.approx(1.5 + 3 * systems.BASE_TIME_STEP)
+
+
+def test_step_zero_changes_nothing(loaded):
+    before = snapshot(loaded)
+    check(loaded, lib.structmd_step(loaded, 0))
+    assert_same_state(before, snapshot(loaded))
+
+
+# ---- input and IO errors -----------------------------------------------------------------------
+
+def _edit(path, value):
+    """An edit of the base document: set (or, for value None, delete) the key at path."""
+    def apply(doc):
+        node = doc
+        for key in path[:-1]:
+            node = node[key]
+        if value is None:
+            del node[path[-1]]
+        else:
+            node[path[-1]] = value
+        return doc
+    return apply
+
+
+def _duplicate_id(doc):
+    doc["state"]["data"][3][0] = 0
+    return doc
+
+
+def _id_gap(doc):
+    doc["state"]["data"][3][0] = 9
+    doc["topology"]["structure"]["data"][3][0] = 9
+    return doc
+
+
+def _short_row(doc):
+    doc["state"]["data"][1] = doc["state"]["data"][1][:2]
+    return doc
+
+
+BAD_INPUTS = {
+    "missing state": (_edit(["state"], None), ["state"]),
+    "unknown type name": (_edit(["topology", "structure", "data", 2, 1], "Z"), ["topology.structure"]),
+    "duplicate id": (_duplicate_id, ["state"]),
+    "ids not covering 0..N-1": (_id_gap, ["state", "topology.structure"]),
+    "bond to a missing id": (_edit(["topology", "forceField", "bonds", "data", 0, 1], 99),
+                             ["topology.forceField.bonds"]),
+    "negative box": (_edit(["global", "ensemble", "data", 0, 0], [-10.0, 10.0, 10.0]), ["global.ensemble"]),
+    "cutoff over half the box": (_edit(["global", "ensemble", "data", 0, 0], [4.0, 10.0, 10.0]),
+                                 ["topology.forceField.lj", "global.ensemble"]),
+    "unknown component type": (_edit(["topology", "forceField", "lj", "type"], ["NonBonded", "NoSuchPotential"]),
+                               ["topology.forceField.lj"]),
+    "unused parameter": (_edit(["topology", "forceField", "lj", "parameters", "cutoffFactor"], 2.5),
+                         ["topology.forceField.lj.parameters.cutoffFactor"]),
+    "unknown section": (_edit(["postprocessing"], {}), ["postprocessing"]),
+    "unknown state label": (_edit(["state", "labels"], ["id", "position", "colour"]), ["state"]),
+    "row of the wrong length": (_short_row, ["state"]),
+    "schedule naming no integrator": (_edit(["integrator", "schedule", "data"], [[1, "nosuch", 10]]),
+                                      ["integrator"]),
+    "component without type": (_edit(["topology", "forceField", "bonds", "type"], None),
+                               ["topology.forceField.bonds"]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_INPUTS))
+def test_inconsistent_input_is_an_input_error_naming_its_path(loaded, case):
+    edit, paths = BAD_INPUTS[case]
+    document = json.dumps(edit(systems.lj_bond_system()))
+    expect(loaded, lib.structmd_load_string(loaded, document.encode()), INPUT)
+    text = message(loaded)
+    assert any(path in text for path in paths), f"{text!r} names none of {paths}"
+    # A failed load leaves no simulation behind.
+    expect(loaded, lib.structmd_get_num_particles(loaded, ffi.new("int64_t*")), STATE)
+    assert_usable(loaded)
+
+
+def test_malformed_json_reports_line_and_column(sim):
+    document = '{\n  "system": {},\n  "global": [1, 2,, 3]\n}\n'
+    expect(sim, lib.structmd_load_string(sim, document.encode()), INPUT)
+    text = message(sim)
+    line = re.search(r"line\D{0,3}(\d+)", text, re.IGNORECASE)
+    column = re.search(r"col(?:umn)?\D{0,3}(\d+)", text, re.IGNORECASE)
+    assert line and int(line.group(1)) == 3, text
+    assert column and 15 <= int(column.group(1)) <= 20, text
+    assert_usable(sim)
+
+
+def test_missing_file_is_an_io_error_naming_the_file(sim, tmp_path):
+    missing = tmp_path / "no-such-input.json"
+    expect(sim, lib.structmd_load_file(sim, str(missing).encode()), IO)
+    assert "no-such-input.json" in message(sim)
+    assert_usable(sim)
+
+
+def test_unwritable_output_is_an_io_error(sim, tmp_path):
+    doc = systems.lj_bond_system()
+    output = tmp_path / "no-such-folder" / "trajectory"
+    doc["simulationStep"] = {"thermo": {"type": ["ThermodynamicMeasure", "ThermodynamicQuantityMeasure"],
+                                        "parameters": {"intervalStep": 1, "outputFilePath": str(output)}}}
+    status = lib.structmd_load_string(sim, json.dumps(doc).encode())
+    if status == OK:  # the engine may open its outputs lazily, at the first write
+        status = lib.structmd_step(sim, 2)
+    expect(sim, status, IO)
+    assert "no-such-folder" in message(sim)
+    assert_usable(sim)
+
+
+def test_coincident_particles_are_a_numerical_error_not_nan(loaded):
+    positions = get_array(loaded, "structmd_get_positions")
+    positions[3] = positions[2]  # a Lennard-Jones pair at r = 0
+    check(loaded, set_vectors(loaded, "structmd_set_positions", positions))
+    n = num_particles(loaded)
+    forces = ffi.new("double[]", 3 * n)
+    status = lib.structmd_get_forces(loaded, forces, n)
+    if status == OK:  # a non-finite force may instead be reported by the step that meets it
+        assert all(math.isfinite(value) for value in ffi.unpack(forces, 3 * n))
+        status = lib.structmd_step(loaded, 1)
+    expect(loaded, status, NUMERICAL)
+    text = message(loaded)
+    assert re.search(r"step", text, re.IGNORECASE) and re.search(r"\b[23]\b", text), text
+    assert_usable(loaded)
+
+
+def test_overstretched_fene_bond_is_a_numerical_error(sim):
+    fene = ("Fene", ["r0", "K", "R0"], [0.0, 30.0, 1.5])
+    load(sim, systems.dimer_system(separation=1.0, bond=fene))
+    good = get_array(sim, "structmd_get_positions")
+    check(sim, set_vectors(sim, "structmd_set_positions", good * 2.0))
+    n = num_particles(sim)
+    expect(sim, lib.structmd_get_forces(sim, ffi.new("double[]", 3 * n), n), NUMERICAL)
+    text = message(sim)
+    assert re.search(r"step", text, re.IGNORECASE) and re.search(r"\b[01]\b", text), text
+    check(sim, set_vectors(sim, "structmd_set_positions", good))
+    assert np.all(np.isfinite(get_array(sim, "structmd_get_forces")))
+    assert_usable(sim)
+
+
+# ---- successful loads and getters --------------------------------------------------------------
+
+def test_load_file_accepts_comments(sim, good_input_file):
+    check(sim, lib.structmd_load_file(sim, str(good_input_file).encode()))
+    assert num_particles(sim) == len(systems.BASE_POSITIONS)
+    assert info(sim)["loaded"] is True
+
+
+def test_loading_again_replaces_the_simulation(loaded):
+    check(loaded, lib.structmd_step(loaded, 5))
+    load(loaded, systems.dimer_system())
+    assert num_particles(loaded) == 2
+    assert get_scalar(loaded, "structmd_get_step", "int64_t") == 0
+    np.testing.assert_allclose(get_fixed(loaded, "structmd_get_box", 3), [8.0] * 3)
+
+
+def test_getters_return_the_loaded_state(loaded):
+    n = len(systems.BASE_POSITIONS)
+    assert num_particles(loaded) == n
+    np.testing.assert_array_equal(get_array(loaded, "structmd_get_ids", "int64_t", 1), np.arange(n))
+    np.testing.assert_allclose(get_array(loaded, "structmd_get_positions"), systems.BASE_POSITIONS, atol=1e-12)
+    np.testing.assert_allclose(get_array(loaded, "structmd_get_velocities"), systems.BASE_VELOCITIES, atol=1e-12)
+    type_rows = {row[0]: i for i, row in enumerate(systems.TYPE_TABLE)}
+    expected_types = [type_rows[name] for name in systems.BASE_TYPES]
+    np.testing.assert_array_equal(get_array(loaded, "structmd_get_types", "int32_t", 1), expected_types)
+    masses = {row[0]: row[1] for row in systems.TYPE_TABLE}
+    np.testing.assert_allclose(get_array(loaded, "structmd_get_masses", "double", 1),
+                               [masses[name] for name in systems.BASE_TYPES])
+    np.testing.assert_allclose(get_fixed(loaded, "structmd_get_box", 3), [systems.BASE_BOX] * 3)
+    description = info(loaded)
+    assert description["particles"] == n
+    assert description["precision"] == "double"
+    assert description["final_step"] == 1000
+
+
+def test_state_mass_column_overrides_the_type_mass(sim):
+    doc = systems.lj_bond_system()
+    doc["state"]["labels"].append("mass")
+    for row, mass in zip(doc["state"]["data"], [1.5, 2.5, 3.5, 4.5]):
+        row.append(mass)
+    load(sim, doc)
+    np.testing.assert_allclose(get_array(sim, "structmd_get_masses", "double", 1), [1.5, 2.5, 3.5, 4.5])
+
+
+def test_energies_virial_and_pressure_agree_with_each_other(loaded):
+    check(loaded, lib.structmd_step(loaded, 10))
+    masses = get_array(loaded, "structmd_get_masses", "double", 1)
+    velocities = get_array(loaded, "structmd_get_velocities")
+    kinetic = 0.5 * np.sum(masses[:, None] * velocities**2)
+    potential = energy(loaded, "potential")
+    assert energy(loaded, "kinetic") == pytest.approx(kinetic, rel=1e-12)
+    assert energy(loaded, "total") == pytest.approx(potential + kinetic, rel=1e-12)
+    assert energy(loaded, "lj") + energy(loaded, "bonds") == pytest.approx(potential, rel=1e-12)
+    assert np.sum(get_array(loaded, "structmd_get_particle_energies", "double", 1)) == pytest.approx(potential, rel=1e-12)
+    virial = get_fixed(loaded, "structmd_get_virial", 9).reshape(3, 3)
+    np.testing.assert_allclose(virial, virial.T, rtol=1e-10, atol=1e-12)  # central forces only
+    volume = np.prod(get_fixed(loaded, "structmd_get_box", 3))
+    pressure = get_scalar(loaded, "structmd_get_pressure", "double")
+    assert pressure == pytest.approx((2 * kinetic + np.trace(virial)) / (3 * volume), rel=1e-10)
+
+
+def test_harmonic_bond_force_energy_and_virial(sim):
+    separation = 1.3
+    load(sim, systems.dimer_system(separation=separation))
+    positions = get_array(sim, "structmd_get_positions")
+    forces = get_array(sim, "structmd_get_forces")
+    d = positions[1] - positions[0]
+    stretch = np.linalg.norm(d) - systems.BOND_R0
+    expected_on_0 = systems.BOND_K * stretch * d / np.linalg.norm(d)  # pulled toward particle 1
+    np.testing.assert_allclose(forces[0], expected_on_0, rtol=1e-12)
+    np.testing.assert_allclose(forces[1], -expected_on_0, rtol=1e-12)
+    assert energy(sim) == pytest.approx(0.5 * systems.BOND_K * stretch**2, rel=1e-12)
+    np.testing.assert_allclose(get_array(sim, "structmd_get_particle_energies", "double", 1),
+                               [0.25 * systems.BOND_K * stretch**2] * 2, rtol=1e-12)
+    virial = get_fixed(sim, "structmd_get_virial", 9).reshape(3, 3)
+    np.testing.assert_allclose(virial, np.outer(-d, expected_on_0), rtol=1e-12, atol=1e-14)
+
+
+# ---- setters -----------------------------------------------------------------------------------
+
+def test_set_positions_wraps_into_the_box(loaded):
+    box = systems.BASE_BOX
+    outside = np.array(systems.BASE_POSITIONS) + np.array([[box, 0, 0], [-2 * box, box, 0],
+                                                           [0, 0, 3 * box], [-box, -box, -box]])
+    outside[0] = [0.5 * box + 0.3, -0.5 * box - 0.2, 0.1]  # just past the faces
+    check(loaded, set_vectors(loaded, "structmd_set_positions", outside))
+    wrapped = get_array(loaded, "structmd_get_positions")
+    assert np.all(wrapped >= -box / 2) and np.all(wrapped < box / 2)
+    np.testing.assert_allclose(minimum_image(wrapped - outside, box), 0.0, atol=1e-12)
+
+
+def test_set_positions_makes_forces_and_energies_current(new_handle):
+    moved = np.array(systems.BASE_POSITIONS) + [[0.05, 0.0, 0.0], [0.0, -0.04, 0.0],
+                                                 [0.0, 0.0, 0.03], [-0.02, 0.02, 0.0]]
+    updated = new_handle()
+    load(updated, systems.lj_bond_system())
+    get_array(updated, "structmd_get_forces")
+    energy(updated)
+    check(updated, set_vectors(updated, "structmd_set_positions", moved))
+    reference = new_handle()
+    load(reference, systems.lj_bond_system(positions=moved.tolist()))
+    np.testing.assert_allclose(get_array(updated, "structmd_get_forces"),
+                               get_array(reference, "structmd_get_forces"), rtol=1e-12, atol=1e-12)
+    assert energy(updated) == pytest.approx(energy(reference), rel=1e-12)
+    np.testing.assert_allclose(get_fixed(updated, "structmd_get_virial", 9),
+                               get_fixed(reference, "structmd_get_virial", 9), rtol=1e-12, atol=1e-12)
+
+
+def test_set_velocities_round_trips_and_changes_kinetic_energy(loaded):
+    new_velocities = -2.0 * np.array(systems.BASE_VELOCITIES)
+    kinetic_before = energy(loaded, "kinetic")
+    check(loaded, set_vectors(loaded, "structmd_set_velocities", new_velocities))
+    np.testing.assert_allclose(get_array(loaded, "structmd_get_velocities"), new_velocities, rtol=1e-15)
+    assert energy(loaded, "kinetic") == pytest.approx(4.0 * kinetic_before, rel=1e-12)
+
+
+def test_set_box_keeps_fractional_coordinates(loaded):
+    before = get_array(loaded, "structmd_get_positions")
+    new_box = [12.0, 11.0, 10.5]
+    check(loaded, lib.structmd_set_box(loaded, ffi.new("double[]", new_box)))
+    np.testing.assert_allclose(get_fixed(loaded, "structmd_get_box", 3), new_box)
+    scaled = before / systems.BASE_BOX * np.array(new_box)
+    np.testing.assert_allclose(get_array(loaded, "structmd_get_positions"), scaled, rtol=1e-12, atol=1e-12)
+
+
+def test_external_forces_add_to_the_total_force_until_cleared(loaded):
+    n = num_particles(loaded)
+    rng = np.random.default_rng(3)
+    external = rng.uniform(-2.0, 2.0, size=(n, 3))
+    for _ in range(2):  # once at the start and once after steps: the field persists
+        internal = get_array(loaded, "structmd_get_forces")
+        potential = energy(loaded)
+        check(loaded, set_vectors(loaded, "structmd_set_external_forces", external))
+        total = get_array(loaded, "structmd_get_forces")
+        np.testing.assert_allclose(total - internal, external, rtol=1e-12, atol=1e-12)
+        assert energy(loaded) == potential  # the field's energy is the host's business
+        check(loaded, lib.structmd_step(loaded, 5))
+        with_field = get_array(loaded, "structmd_get_forces")
+        check(loaded, lib.structmd_set_external_forces(loaded, ffi.NULL, 0))
+        np.testing.assert_allclose(with_field - get_array(loaded, "structmd_get_forces"), external,
+                                   rtol=1e-12, atol=1e-12)
+
+
+def test_external_forces_change_the_trajectory(new_handle):
+    pushed, free = new_handle(), new_handle()
+    for handle in (pushed, free):
+        load(handle, systems.lj_bond_system())
+    push = np.zeros((len(systems.BASE_POSITIONS), 3))
+    push[2] = [0.0, 0.0, 5.0]
+    check(pushed, set_vectors(pushed, "structmd_set_external_forces", push))
+    for handle in (pushed, free):
+        check(handle, lib.structmd_step(handle, 10))
+    dv = get_array(pushed, "structmd_get_velocities") - get_array(free, "structmd_get_velocities")
+    assert dv[2, 2] > 0.0
+
+
+# ---- get_info ----------------------------------------------------------------------------------
+
+def test_get_info_reports_the_size_it_needs(loaded):
+    needed = ffi.new("size_t*")
+    expect(loaded, lib.structmd_get_info(loaded, ffi.NULL, 0, needed), ARGUMENT)
+    size = needed[0]
+    assert size > 2
+    short = ffi.new("char[]", size)
+    expect(loaded, lib.structmd_get_info(loaded, short, size - 1, needed), ARGUMENT)
+    assert needed[0] == size
+    check(loaded, lib.structmd_get_info(loaded, short, size, needed))
+    text = ffi.string(short).decode()
+    assert len(text.encode()) + 1 == size
+    description = json.loads(text)
+    assert set(description) >= INFO_KEYS
+    assert description["backend"] in ("cpu", "cuda")
+    assert description["precision"] in ("single", "double")
+
+
+@pytest.mark.parametrize("precision", ["single", "double"])
+def test_get_info_reports_the_requested_precision(new_handle, precision):
+    handle = new_handle({**engine_options(), "precision": precision})
+    assert info(handle)["precision"] == precision
+
+
+# ---- several handles ---------------------------------------------------------------------------
+
+def test_two_handles_are_independent(new_handle):
+    first, second = new_handle(), new_handle()
+    load(first, systems.lj_bond_system())
+    load(second, systems.dimer_system())
+    second_before = snapshot(second)
+    check(first, lib.structmd_step(first, 10))
+    check(first, set_vectors(first, "structmd_set_external_forces", np.ones((4, 3))))
+    check(first, lib.structmd_set_box(first, ffi.new("double[]", [11.0, 11.0, 11.0])))
+    expect(first, lib.structmd_step(first, -1), ARGUMENT)
+    assert_same_state(second_before, snapshot(second))
+    assert message(second) == ""
+    assert get_scalar(first, "structmd_get_step", "int64_t") == 10
+    assert num_particles(first) == 4 and num_particles(second) == 2
+    np.testing.assert_allclose(get_array(second, "structmd_get_forces").sum(axis=0), 0.0, atol=1e-12)
+
+
+def test_handles_can_be_driven_from_different_threads_at_once(new_handle):
+    options = {**engine_options(), "threads": 1}
+    reference = new_handle(options)
+    load(reference, systems.lj_bond_system())
+    check(reference, lib.structmd_step(reference, 200))
+    expected = get_array(reference, "structmd_get_positions")
+
+    workers = [new_handle(options) for _ in range(2)]
+    statuses = []
+
+    def drive(handle):
+        statuses.append(lib.structmd_load_string(handle, json.dumps(systems.lj_bond_system()).encode()))
+        statuses.append(lib.structmd_step(handle, 200))
+
+    threads = [threading.Thread(target=drive, args=(handle,)) for handle in workers]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert statuses == [OK] * 4
+    for handle in workers:
+        np.testing.assert_allclose(get_array(handle, "structmd_get_positions"), expected, rtol=1e-9, atol=1e-9)
+
+
+# ---- coverage of the header --------------------------------------------------------------------
+
+def test_every_header_function_was_called(request):
+    selected = {item.originalname for item in request.session.items if item.module is request.module}
+    defined = {name for name in dir(request.module) if name.startswith("test_")}
+    if selected != defined:
+        pytest.skip("only meaningful when the whole module runs")
+    assert set(PROTOTYPES) - _called == set()
