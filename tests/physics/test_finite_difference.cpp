@@ -1,0 +1,215 @@
+// Checks F = -dU/dx: the engine's forces against a five-point central difference of its own potential
+// energy, on small random systems whose interactions cross the periodic boundary.
+#include "physics_support.hpp"
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace structmd_physics {
+namespace {
+
+// Five-point stencil: truncation error h^4 U^(5) / 30, about 1e-16 x 1e6 for LJ at r ~ 1; roundoff
+// about 1.5 eps |U| / h, near 1e-10 here. Both are far below the 1e-6 tolerance of the brief, which
+// a wrong sign, factor or missing image term exceeds by orders of magnitude.
+constexpr double kStep = 1e-4;
+constexpr double kTolerance = 1e-6;
+
+struct SmallSystem {
+    double box_length;
+    std::vector<Vec3> positions;
+    std::vector<std::string> types;
+    std::string force_field;
+};
+
+const std::string kTwoTypeLennardJones =
+    "\"nl\": {\"type\": [\"VerletConditionalListSet\", \"all\"], \"parameters\": {\"cutOffVerletFactor\": 1.1}},\n"
+    "\"lj\": {\"type\": [\"NonBonded\", \"LennardJonesType1\"], \"parameters\": {\"cutOffFactor\": 2.5, \"condition\": \"all\"},\n"
+    "       \"labels\": [\"name_i\", \"name_j\", \"epsilon\", \"sigma\"],\n"
+    "       \"data\": [[\"A\", \"A\", 1.0, 1.0], [\"A\", \"B\", 0.85, 1.1], [\"B\", \"B\", 0.7, 1.2]]}";
+
+double sigma_of(const std::string& a, const std::string& b) {
+    if (a != b) return 1.1;
+    return a == "A" ? 1.0 : 1.2;
+}
+
+Vec3 wrapped(Vec3 r, double box_length) {
+    for (double& x : r) x = minimum_image(x, box_length);
+    return r;
+}
+
+double distance(const Vec3& a, const Vec3& b, double box_length) {
+    double s = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double d = minimum_image(b[k] - a[k], box_length);
+        s += d * d;
+    }
+    return std::sqrt(s);
+}
+
+// No pair closer than 0.95 sigma_ij, and none within 0.01 of its cutoff: the unshifted energy jumps
+// there and a stencil straddling it would measure the jump, not the force.
+bool acceptable(const SmallSystem& s, const Vec3& r, const std::string& type) {
+    for (std::size_t j = 0; j < s.positions.size(); ++j) {
+        const double sigma = sigma_of(type, s.types[j]);
+        const double d = distance(r, s.positions[j], s.box_length);
+        if (d < 0.95 * sigma || std::abs(d - 2.5 * sigma) < 0.01) return false;
+    }
+    return true;
+}
+
+// Pairs placed across each face and across a corner, then random particles.
+SmallSystem lennard_jones_system() {
+    SmallSystem s{7.0, {}, {}, kTwoTypeLennardJones};
+    const std::vector<std::pair<Vec3, std::string>> across_boundary = {
+        {{3.2, 0.3, -1.0}, "A"},  {{-2.9, 0.7, -0.6}, "B"},   // x face
+        {{0.5, 3.3, 1.5}, "A"},   {{1.0, -2.9, 1.9}, "A"},    // y face
+        {{-1.5, -1.2, 3.4}, "B"}, {{-1.2, -0.6, -2.6}, "B"},  // z face
+        {{3.3, 3.2, 3.1}, "A"},   {{-3.0, -3.1, -3.2}, "B"},  // corner
+    };
+    for (const auto& [r, type] : across_boundary) {
+        s.positions.push_back(r);
+        s.types.push_back(type);
+    }
+    SplitMix64 rng(1234);
+    while (s.positions.size() < 20) {
+        const Vec3 r{rng.uniform(-3.5, 3.5), rng.uniform(-3.5, 3.5), rng.uniform(-3.5, 3.5)};
+        const std::string type = rng.uniform(0.0, 1.0) < 0.5 ? "A" : "B";
+        if (!acceptable(s, r, type)) continue;
+        s.positions.push_back(r);
+        s.types.push_back(type);
+    }
+    return s;
+}
+
+// Non-bonded neighbours of a new chain bead stay apart and off the LJ cutoff (see acceptable()).
+bool clear_of_chain(const std::vector<Vec3>& chain, const Vec3& r, double box_length) {
+    for (std::size_t j = 0; j + 1 < chain.size(); ++j) {
+        const double d = distance(r, chain[j], box_length);
+        if (d < 0.8 || std::abs(d - 2.5) < 0.01) return false;
+    }
+    return true;
+}
+
+// A random chain starting near a corner so that several bonds cross the boundary. Even bonds carry
+// their own K and r0 (Bond2 Harmonic), odd bonds share them (HarmonicCommon_K_r0).
+std::pair<std::vector<Vec3>, std::string> random_chain(std::size_t n, double box_length, std::uint64_t seed) {
+    SplitMix64 rng(seed);
+    std::vector<Vec3> positions{{3.0, 2.9, 2.8}};
+    std::string per_bond, common;
+    while (positions.size() < n) {
+        Vec3 direction{rng.normal(), rng.normal(), rng.normal()};
+        const double norm = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+        const double length = rng.uniform(0.7, 1.4);
+        Vec3 next = positions.back();
+        for (int k = 0; k < 3; ++k) next[k] += length * direction[k] / norm;
+        next = wrapped(next, box_length);
+        if (!clear_of_chain(positions, next, box_length)) continue;
+        positions.push_back(next);
+        const std::string ids = std::to_string(positions.size() - 2) + ", " + std::to_string(positions.size() - 1);
+        if (positions.size() % 2 == 0) {
+            per_bond += std::string(per_bond.empty() ? "" : ", ") + "[" + ids + ", " + number(rng.uniform(50.0, 150.0)) +
+                        ", " + number(rng.uniform(0.8, 1.2)) + "]";
+        } else {
+            common += std::string(common.empty() ? "" : ", ") + "[" + ids + "]";
+        }
+    }
+    const std::string bonds =
+        "\"bonds\": {\"type\": [\"Bond2\", \"Harmonic\"], \"labels\": [\"id_i\", \"id_j\", \"K\", \"r0\"], \"data\": [" +
+        per_bond + "]},\n"
+        "\"bondsCommon\": {\"type\": [\"Bond2\", \"HarmonicCommon_K_r0\"], \"parameters\": {\"K\": 80.0, \"r0\": 1.05},\n"
+        "                \"labels\": [\"id_i\", \"id_j\"], \"data\": [" + common + "]}";
+    return {positions, bonds};
+}
+
+SmallSystem harmonic_bond_system() {
+    auto [positions, bonds] = random_chain(12, 6.0, 99);
+    return SmallSystem{6.0, positions, std::vector<std::string>(positions.size(), "A"), bonds};
+}
+
+// Chain plus Lennard-Jones between all pairs, bonded ones included.
+SmallSystem bonded_lennard_jones_system() {
+    auto [positions, bonds] = random_chain(12, 7.0, 7);
+    SmallSystem s{7.0, positions, std::vector<std::string>(positions.size(), "A"), kTwoTypeLennardJones + ",\n" + bonds};
+    return s;
+}
+
+bool crosses_boundary(const Vec3& a, const Vec3& b, double box_length) {
+    for (int k = 0; k < 3; ++k)
+        if (std::abs(b[k] - a[k]) > 0.5 * box_length) return true;
+    return false;
+}
+
+void check_forces_by_finite_differences(const std::string& label, const SmallSystem& s) {
+    structmd_sim* raw = nullptr;
+    ASSERT_EQ(structmd_create(create_options("cpu", "double").c_str(), &raw), STRUCTMD_OK) << structmd_last_error(nullptr);
+    SimHandle handle(raw);
+    structmd_sim* sim = handle.get();
+    const std::string document = input_document(s.box_length, s.positions, s.types, {}, s.force_field, 0.005);
+    ASSERT_STRUCTMD_OK(sim, structmd_load_string(sim, document.c_str()));
+
+    const auto n = static_cast<std::int64_t>(s.positions.size());
+    std::vector<double> xyz(3 * n), forces(3 * n), numerical(3 * n);
+    ASSERT_STRUCTMD_OK(sim, structmd_get_positions(sim, xyz.data(), n));
+    ASSERT_STRUCTMD_OK(sim, structmd_get_forces(sim, forces.data(), n));
+
+    const double weights[4] = {1.0, -8.0, 8.0, -1.0};
+    const double offsets[4] = {-2.0, -1.0, 1.0, 2.0};
+    for (std::size_t c = 0; c < xyz.size(); ++c) {
+        const double original = xyz[c];
+        double derivative = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            xyz[c] = original + offsets[k] * kStep;
+            ASSERT_STRUCTMD_OK(sim, structmd_set_positions(sim, xyz.data(), n));
+            double energy = 0.0;
+            ASSERT_STRUCTMD_OK(sim, structmd_get_energy(sim, "potential", &energy));
+            derivative += weights[k] * energy;
+        }
+        xyz[c] = original;
+        numerical[c] = -derivative / (12.0 * kStep);
+    }
+    const double deviation = max_relative_deviation(forces, numerical);
+    std::printf("[ deviation ] finite differences %s: %.3e (max |F| %.3g, tolerance %.0e)\n", label.c_str(), deviation,
+                max_abs(numerical), kTolerance);
+    EXPECT_GT(max_abs(numerical), 1.0) << "the configuration exerts almost no force: the check would be empty";
+    EXPECT_LT(deviation, kTolerance);
+}
+
+TEST(FiniteDifference, LennardJonesTwoTypesAcrossBoundary) {
+    const SmallSystem s = lennard_jones_system();
+    int interacting_across = 0;
+    for (std::size_t i = 0; i < s.positions.size(); ++i)
+        for (std::size_t j = i + 1; j < s.positions.size(); ++j)
+            if (crosses_boundary(s.positions[i], s.positions[j], s.box_length) &&
+                distance(s.positions[i], s.positions[j], s.box_length) < 2.5 * sigma_of(s.types[i], s.types[j]))
+                ++interacting_across;
+    ASSERT_GE(interacting_across, 4);
+    check_forces_by_finite_differences("lj two types", s);
+}
+
+TEST(FiniteDifference, HarmonicBondsAcrossBoundary) {
+    const SmallSystem s = harmonic_bond_system();
+    int bonds_across = 0;
+    for (std::size_t i = 0; i + 1 < s.positions.size(); ++i)
+        bonds_across += crosses_boundary(s.positions[i], s.positions[i + 1], s.box_length) ? 1 : 0;
+    ASSERT_GE(bonds_across, 1);
+    check_forces_by_finite_differences("harmonic bonds", s);
+}
+
+TEST(FiniteDifference, BondedLennardJonesChain) {
+    const SmallSystem s = bonded_lennard_jones_system();
+    int bonds_across = 0;
+    for (std::size_t i = 0; i + 1 < s.positions.size(); ++i)
+        bonds_across += crosses_boundary(s.positions[i], s.positions[i + 1], s.box_length) ? 1 : 0;
+    ASSERT_GE(bonds_across, 1);
+    for (std::size_t i = 0; i < s.positions.size(); ++i)
+        for (std::size_t j = i + 1; j < s.positions.size(); ++j) {
+            const double d = distance(s.positions[i], s.positions[j], s.box_length);
+            ASSERT_GT(std::abs(d - 2.5), 0.01) << "pair " << i << "-" << j << " sits on the cutoff";
+            ASSERT_GT(d, 0.65) << "pair " << i << "-" << j << " overlaps";
+        }
+    check_forces_by_finite_differences("lj + bonds", s);
+}
+
+}  // namespace
+}  // namespace structmd_physics
