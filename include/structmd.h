@@ -213,7 +213,7 @@ STRUCTMD_API structmd_status structmd_set_box(structmd_sim* sim, const double le
 /**
  * Adds f (double[3n]) to each particle's force at every force evaluation until replaced; NULL with
  * n = 0 clears it. This is how a coupled code applies its field. The energy of this field is the
- * host's business: it is not part of any energy term.
+ * host's business: it is not part of any energy term, nor of the virial.
  */
 STRUCTMD_API structmd_status structmd_set_external_forces(structmd_sim* sim, const double* f, int64_t n);
 
