@@ -287,10 +287,11 @@ private:
         return flat;
     }
 
-    // Maxwell-Boltzmann velocities at the ensemble temperature, keyed by (seed, particle id), with
-    // the centre-of-mass momentum removed so the system does not drift.
+    // Maxwell-Boltzmann velocities at the first integrator's temperature (by default the ensemble's),
+    // keyed by (seed, particle id), with the centre-of-mass momentum removed so the system does not
+    // drift.
     std::vector<double> maxwell_boltzmann(const SimulationSpec& spec) const {
-        const double kT = spec.boltzmann * spec.temperature;
+        const double kT = spec.velocityKT;
         std::vector<double> v(3 * p_.count);
         double momentum[3] = {0, 0, 0};
         double totalMass = 0;

@@ -19,7 +19,8 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log) {
 
     spec.seed = system.seed;
     spec.boltzmann = system.units.boltzmann;
-    spec.temperature = system.temperature;
+    spec.velocityKT = spec.schedule.empty() ? system.units.boltzmann * system.temperature
+                                            : spec.integrators[spec.schedule.front().integrator].temperature;
     spec.box = system.box;
     spec.currentStep = system.currentStep;
     spec.simulationTime = system.simulationTime;

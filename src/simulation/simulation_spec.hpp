@@ -16,7 +16,7 @@ namespace structmd {
 struct SimulationSpec {
     uint64_t seed = 0;
     double boltzmann = 1.0;
-    double temperature = 0.0;  // of the ensemble, in kelvin-like units
+    double velocityKT = 0.0;  // k_B T of drawn velocities: the first scheduled integrator's temperature
     std::array<double, 3> box{0, 0, 0};
     int64_t currentStep = 0;
     double simulationTime = 0.0;

@@ -12,20 +12,20 @@ ThermodynamicMeasure::ThermodynamicMeasure(std::string name, int64_t interval, i
                                            std::string outputPath)
     : SimulationStep(std::move(name), interval, start, end),
       outputPath_(std::move(outputPath)),
-      file_(std::fopen(outputPath_.c_str(), "w"), &std::fclose) {
-    if (!file_)
-        throw Error(STRUCTMD_ERR_IO, "simulationStep." + this->name() + ": cannot open '" + outputPath_ +
-                                         "' for writing: " + std::strerror(errno));
-}
+      file_(nullptr, &std::fclose) {}
 
 void ThermodynamicMeasure::run(Simulation& sim) {
     std::vector<std::string> terms = sim.energy_terms();
     std::sort(terms.begin(), terms.end());
-    if (!headerWritten_) {
+    // Opened at the first firing, not at load, so a load that fails later leaves an old file alone.
+    if (!file_) {
+        file_.reset(std::fopen(outputPath_.c_str(), "w"));
+        if (!file_)
+            throw Error(STRUCTMD_ERR_IO, "simulationStep." + name() + ": cannot open '" + outputPath_ +
+                                             "' for writing: " + std::strerror(errno));
         std::fprintf(file_.get(), "#step particles volume");
         for (const std::string& term : terms) std::fprintf(file_.get(), " %s", term.c_str());
         std::fprintf(file_.get(), " kinetic potential total temperature virial pressure\n");
-        headerWritten_ = true;
     }
     std::fprintf(file_.get(), "%lld %lld %.10g", static_cast<long long>(sim.current_step()),
                  static_cast<long long>(sim.particle_count()), sim.volume());

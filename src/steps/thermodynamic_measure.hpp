@@ -20,7 +20,6 @@ protected:
 private:
     std::string outputPath_;
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
-    bool headerWritten_ = false;
 };
 
 }  // namespace structmd
