@@ -37,6 +37,20 @@ void dispatch_outputs(const ForceOutputs<R>& out, Launch&& launch) {
     }
 }
 
+// Adds one particle's sums to the requested outputs; each particle is written by one thread only.
+template <bool WantForce, bool WantEnergy, bool WantVirial, class R>
+SMD_HD SMD_INLINE void add_to_outputs(const ForceOutputs<R>& out, int64_t i, const Vec3<R>& f, R e,
+                                      const Tensor3<R>& w) {
+    if (WantForce) {
+        Real4<R>& fi = out.force[i];
+        fi.x += f.x;
+        fi.y += f.y;
+        fi.z += f.z;
+    }
+    if (WantEnergy) out.energy[i] += e;
+    if (WantVirial) out.virial[i] += w;
+}
+
 template <class B, class R>
 class Interactor {
 public:

@@ -39,14 +39,7 @@ struct PairKernel {
             if (WantEnergy) e += R(0.5) * t.energy;
             if (WantVirial) w += (R(-0.5) * t.dudr_over_r) * outer(rij, rij);
         });
-        if (WantForce) {
-            Real4<R>& fi = out.force[i];
-            fi.x += f.x;
-            fi.y += f.y;
-            fi.z += f.z;
-        }
-        if (WantEnergy) out.energy[i] += e;
-        if (WantVirial) out.virial[i] += w;
+        add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
     }
 };
 

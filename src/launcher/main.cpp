@@ -18,9 +18,13 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "structmd.h"
+#include "structmd.hpp"
 
 namespace {
+
+using structmd::host::check;
+using structmd::host::Failure;
+using structmd::host::Handle;
 
 using Clock = std::chrono::steady_clock;
 
@@ -36,33 +40,6 @@ struct RunOptions {
     bool quiet = false;
 };
 
-// A failed engine call: which call, its status and the engine's message.
-struct EngineFailure {
-    std::string call;
-    structmd_status status;
-    std::string message;
-};
-
-void check(structmd_status status, const structmd_sim* sim, const char* call) {
-    if (status != STRUCTMD_OK) throw EngineFailure{call, status, structmd_last_error(sim)};
-}
-
-// Owns the handle so every exit path destroys it (closing output files the engine holds).
-class Simulation {
-public:
-    explicit Simulation(const std::string& options_json) {
-        check(structmd_create(options_json.c_str(), &sim_), nullptr, "structmd_create");
-    }
-    ~Simulation() { structmd_destroy(sim_); }
-    Simulation(const Simulation&) = delete;
-    Simulation& operator=(const Simulation&) = delete;
-
-    structmd_sim* get() const { return sim_; }
-
-private:
-    structmd_sim* sim_ = nullptr;
-};
-
 // The fields of structmd_get_info the launcher reports.
 struct EngineInfo {
     std::string backend;
@@ -74,18 +51,7 @@ struct EngineInfo {
 };
 
 EngineInfo read_info(const structmd_sim* sim) {
-    // A buffer too small is STRUCTMD_ERR_ARGUMENT with the needed size reported: retry once.
-    std::string text(1024, '\0');
-    size_t needed = 0;
-    structmd_status status = structmd_get_info(sim, text.data(), text.size(), &needed);
-    if (status != STRUCTMD_OK && needed > text.size()) {
-        text.assign(needed, '\0');
-        status = structmd_get_info(sim, text.data(), text.size(), &needed);
-    }
-    check(status, sim, "structmd_get_info");
-    text.resize(text.find('\0'));
-
-    const auto info = nlohmann::json::parse(text);
+    const auto info = nlohmann::json::parse(structmd::host::info(sim));
     EngineInfo out;
     out.backend = info.at("backend").get<std::string>();
     out.precision = info.at("precision").get<std::string>();
@@ -231,7 +197,7 @@ void print_summary(const RunOptions& options, const EngineInfo& info, int64_t st
 
 int run_command(const RunOptions& options) {
     try {
-        Simulation simulation(create_options(options));
+        Handle simulation(create_options(options));
         structmd_sim* sim = simulation.get();
         check(structmd_load_file(sim, options.input.c_str()), sim, "structmd_load_file");
 
@@ -245,11 +211,10 @@ int run_command(const RunOptions& options) {
 
         if (!options.quiet) print_summary(options, info, current_step(sim) - first_step, wall);
         return 0;
-    } catch (const EngineFailure& failure) {
+    } catch (const Failure& failure) {
         std::fflush(stdout);
-        std::fprintf(stderr, "structmd: %s failed (status %d): %s\n", failure.call.c_str(),
-                     static_cast<int>(failure.status), failure.message.c_str());
-        return failure.status;
+        std::fprintf(stderr, "structmd: %s (status %d)\n", failure.what(), static_cast<int>(failure.status()));
+        return failure.status();
     } catch (const nlohmann::json::exception& error) {
         std::fprintf(stderr, "structmd: unexpected structmd_get_info output: %s\n", error.what());
         return STRUCTMD_ERR_INTERNAL;

@@ -20,9 +20,13 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "structmd.h"
+#include "structmd.hpp"
 
 namespace {
+
+using structmd::host::check;
+using structmd::host::Failure;
+using structmd::host::Handle;
 
 constexpr double kDensity = 0.8442;
 constexpr double kTemperature = 1.44;
@@ -108,43 +112,7 @@ std::string lj_liquid_input(int64_t cells, int64_t total_steps) {
     return json;
 }
 
-struct EngineFailure {
-    std::string call;
-    structmd_status status;
-    std::string message;
-};
-
-void check(structmd_status status, const structmd_sim* sim, const char* call) {
-    if (status != STRUCTMD_OK) throw EngineFailure{call, status, structmd_last_error(sim)};
-}
-
-class Simulation {
-public:
-    explicit Simulation(const std::string& options_json) {
-        check(structmd_create(options_json.c_str(), &sim_), nullptr, "structmd_create");
-    }
-    ~Simulation() { structmd_destroy(sim_); }
-    Simulation(const Simulation&) = delete;
-    Simulation& operator=(const Simulation&) = delete;
-    structmd_sim* get() const { return sim_; }
-
-private:
-    structmd_sim* sim_ = nullptr;
-};
-
-nlohmann::json engine_info(const structmd_sim* sim) {
-    // A buffer too small is STRUCTMD_ERR_ARGUMENT with the needed size reported: retry once.
-    std::string text(1024, '\0');
-    size_t needed = 0;
-    structmd_status status = structmd_get_info(sim, text.data(), text.size(), &needed);
-    if (status != STRUCTMD_OK && needed > text.size()) {
-        text.assign(needed, '\0');
-        status = structmd_get_info(sim, text.data(), text.size(), &needed);
-    }
-    check(status, sim, "structmd_get_info");
-    text.resize(text.find('\0'));
-    return nlohmann::json::parse(text);
-}
+nlohmann::json engine_info(const structmd_sim* sim) { return nlohmann::json::parse(structmd::host::info(sim)); }
 
 double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
@@ -163,7 +131,7 @@ Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::
             const std::string& precision) {
     nlohmann::json create = {{"backend", backend}, {"precision", precision}, {"log", "warning"}};
     if (options.threads > 0) create["threads"] = options.threads;
-    Simulation simulation(create.dump());
+    Handle simulation(create.dump());
     structmd_sim* sim = simulation.get();
 
     const int64_t cells = cells_per_edge(requested_size);
@@ -227,11 +195,10 @@ int main(int argc, char** argv) {
                     std::printf("%10lld  %-8s  %-9s  %12.5g  %16.5g\n", static_cast<long long>(row.particles),
                                 row.backend.c_str(), row.precision.c_str(), row.steps_per_second,
                                 row.steps_per_second * static_cast<double>(row.particles));
-                } catch (const EngineFailure& failure) {
+                } catch (const Failure& failure) {
                     ++failures;
-                    std::printf("%10lld  %-8s  %-9s  failed: %s (status %d): %s\n", static_cast<long long>(size),
-                                backend.c_str(), precision.c_str(), failure.call.c_str(),
-                                static_cast<int>(failure.status), failure.message.c_str());
+                    std::printf("%10lld  %-8s  %-9s  failed: %s (status %d)\n", static_cast<long long>(size),
+                                backend.c_str(), precision.c_str(), failure.what(), static_cast<int>(failure.status()));
                 } catch (const std::exception& error) {
                     ++failures;
                     std::printf("%10lld  %-8s  %-9s  failed: %s\n", static_cast<long long>(size), backend.c_str(),
