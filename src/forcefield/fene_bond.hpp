@@ -16,8 +16,9 @@ struct FeneBond {
         R R0;
     };
 
+    // values: r0, K, R0
     template <class R>
-    static Params<R> make_params(const double* values) {
+    static Params<R> make_bond_params(const double* values, const Constants&) {
         return {R(values[0]), R(values[1]), R(values[2])};
     }
 

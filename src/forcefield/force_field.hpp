@@ -1,6 +1,8 @@
 #pragma once
 // The force field of an engine: its neighbour lists and interactors, evaluated together.
 #include <algorithm>
+#include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +16,12 @@ template <class B, class R>
 class ForceField {
 public:
     void add(std::unique_ptr<Interactor<B, R>> interactor) { interactors_.push_back(std::move(interactor)); }
+    // A group's membership bytes on the backend, shared by every interactor acting on it.
+    void add_group(const B& backend, const std::vector<uint8_t>& members) {
+        groups_.emplace_back();
+        backend.upload(groups_.back(), members.data(), members.size());
+    }
+    const uint8_t* group(int index) const { return groups_[index].data(); }
     void add_list(std::shared_ptr<VerletList<B, R>> list) { lists_.push_back(std::move(list)); }
     const std::vector<std::shared_ptr<VerletList<B, R>>>& lists() const { return lists_; }
 
@@ -33,8 +41,10 @@ public:
         return largest;
     }
 
-    void update_lists(Particles<B, R>& p) {
-        for (auto& list : lists_) list->update(p.pos, p.count, p.box);
+    // Prepares the terms active now: only their neighbour lists are kept up to date.
+    void prepare(Particles<B, R>& p) {
+        for (auto& it : interactors_)
+            if (it->active(p.step)) it->prepare(p);
     }
     void invalidate_lists() {
         for (auto& list : lists_) list->invalidate();
@@ -42,14 +52,22 @@ public:
     void adapt() {
         for (auto& list : lists_) list->adapt();
     }
+    // Adds the terms active at the particles' step; an inactive term costs nothing.
     void compute_all(Particles<B, R>& p, const ForceOutputs<R>& out) {
-        for (auto& it : interactors_) it->compute(p, out);
+        for (auto& it : interactors_)
+            if (it->active(p.step)) it->compute(p, out);
     }
-    void compute_one(int index, Particles<B, R>& p, const ForceOutputs<R>& out) { interactors_[index]->compute(p, out); }
+    void compute_one(int index, Particles<B, R>& p, const ForceOutputs<R>& out) {
+        Interactor<B, R>& it = *interactors_[index];
+        if (!it.active(p.step)) return;
+        it.prepare(p);
+        it.compute(p, out);
+    }
 
 private:
     std::vector<std::shared_ptr<VerletList<B, R>>> lists_;
     std::vector<std::unique_ptr<Interactor<B, R>>> interactors_;
+    std::deque<typename B::template Buffer<uint8_t>> groups_;  // deque: buffers never move once made
 };
 
 }  // namespace structmd

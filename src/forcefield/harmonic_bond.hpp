@@ -11,8 +11,9 @@ struct HarmonicBond {
         R r0;
     };
 
+    // values: K, r0
     template <class R>
-    static Params<R> make_params(const double* values) {
+    static Params<R> make_bond_params(const double* values, const Constants&) {
         return {R(values[0]), R(values[1])};
     }
 

@@ -51,20 +51,33 @@ SMD_HD SMD_INLINE void add_to_outputs(const ForceOutputs<R>& out, int64_t i, con
     if (WantVirial) out.virial[i] += w;
 }
 
+// Where and when an interactor acts: active for startStep <= step < endStep, on the particles whose
+// group byte is 1 (no mask: all particles).
+struct InteractorScope {
+    std::string name;
+    int64_t startStep = 0;
+    int64_t endStep = INT64_MAX;
+    const uint8_t* group = nullptr;  // backend array by particle
+};
+
 template <class B, class R>
 class Interactor {
 public:
-    explicit Interactor(std::string name) : name_(std::move(name)) {}
+    explicit Interactor(InteractorScope scope) : scope_(std::move(scope)) {}
     virtual ~Interactor() = default;
     Interactor(const Interactor&) = delete;
     Interactor& operator=(const Interactor&) = delete;
 
     // The forceField entry name; also the energy term's name.
-    const std::string& name() const { return name_; }
+    const std::string& name() const { return scope_.name; }
+    bool active(int64_t step) const { return step >= scope_.startStep && step < scope_.endStep; }
+    const uint8_t* group() const { return scope_.group; }
+    // Brings what compute() needs up to date for the present positions (a neighbour list).
+    virtual void prepare(Particles<B, R>&) {}
     virtual void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) = 0;
 
 private:
-    std::string name_;
+    InteractorScope scope_;
 };
 
 }  // namespace structmd

@@ -1,37 +1,115 @@
 #pragma once
-// Lennard-Jones pair potential of type 1: U(r) = 4 eps [(s/r)^12 - (s/r)^6] for r <= r_c, else 0.
-// The energy jumps at r_c unless shift is set, which subtracts U(r_c) (structmd extension).
+// The Lennard-Jones family. Every member is U(r) = eps shape(s/r) + offset inside its cutoff and 0
+// beyond, with one of three shapes, each of minimum -1:
+//   type 1: 4 [(s/r)^12 - (s/r)^6]     minimum at r = 2^(1/6) s
+//   type 2: (s/r)^12 - 2 (s/r)^6       minimum at r = s
+//   type 3: 5 (s/r)^12 - 6 (s/r)^10    minimum at r = s
+// This file holds the shapes, the shared Params and evaluation, and LennardJonesTypeK: the NonBonded
+// form cut at r_c (the energy jumps there unless shifted, which subtracts U(r_c)) and the Bond2 form,
+// which has no cutoff. The WCA and general forms are in lennard_jones_wca.hpp and
+// lennard_jones_general.hpp.
+#include <limits>
+
 #include "forcefield/pair_potential.hpp"
 
 namespace structmd {
 
-struct LennardJonesType1 {
-    template <class R>
-    struct Params {
-        R epsilon;
-        R sigma2;
-        R cutoff2;  // 0 for a type pair that does not interact
-        R shift;    // U(r_c) when shifted, else 0
-    };
+// A shape's value and r d(shape)/dr, from (s/r)^2.
+template <class R>
+struct LennardJonesShapeTerm {
+    R radial_derivative;
+    R value;
+};
+
+struct LennardJonesShape1 {
+    static double minimum(double sigma) { return std::pow(2.0, 1.0 / 6.0) * sigma; }
 
     template <class R>
-    static Params<R> make_params(double epsilon, double sigma, double cutoff, bool shifted) {
-        const double sr6 = std::pow(sigma / cutoff, 6);
-        const double shift = shifted ? 4.0 * epsilon * (sr6 * sr6 - sr6) : 0.0;
-        return {R(epsilon), R(sigma * sigma), R(cutoff * cutoff), R(shift)};
+    static SMD_HD SMD_INLINE LennardJonesShapeTerm<R> at(R sr2) {
+        const R sr6 = sr2 * sr2 * sr2;
+        const R sr12 = sr6 * sr6;
+        return {R(24) * (sr6 - R(2) * sr12), R(4) * (sr12 - sr6)};
+    }
+};
+
+struct LennardJonesShape2 {
+    static double minimum(double sigma) { return sigma; }
+
+    template <class R>
+    static SMD_HD SMD_INLINE LennardJonesShapeTerm<R> at(R sr2) {
+        const R sr6 = sr2 * sr2 * sr2;
+        const R sr12 = sr6 * sr6;
+        return {R(12) * (sr6 - sr12), sr12 - R(2) * sr6};
+    }
+};
+
+struct LennardJonesShape3 {
+    static double minimum(double sigma) { return sigma; }
+
+    template <class R>
+    static SMD_HD SMD_INLINE LennardJonesShapeTerm<R> at(R sr2) {
+        const R sr4 = sr2 * sr2;
+        const R sr10 = sr4 * sr4 * sr2;
+        const R sr12 = sr10 * sr2;
+        return {R(60) * (sr10 - sr12), R(5) * sr12 - R(6) * sr10};
+    }
+};
+
+template <class R>
+struct LennardJonesParams {
+    R epsilon;
+    R sigma2;
+    R cutoff2;  // 0 for a type pair that does not interact, +infinity for a bond
+    R offset;   // added inside the cutoff: +eps for WCA, minus the value at r_c when shifted
+};
+
+template <class Shape, class R>
+SMD_HD SMD_INLINE PairTerm<R> evaluate_lennard_jones(R r2, const LennardJonesParams<R>& p) {
+    PairTerm<R> term{R(0), R(0)};
+    if (!(r2 < p.cutoff2)) return term;
+    const R inv_r2 = R(1) / r2;
+    const LennardJonesShapeTerm<R> s = Shape::at(p.sigma2 * inv_r2);
+    term.dudr_over_r = p.epsilon * s.radial_derivative * inv_r2;
+    term.energy = p.epsilon * s.value + p.offset;
+    return term;
+}
+
+// U = eps shape + constant for r < cutoff; shifted, the value at the cutoff is subtracted so that U
+// reaches 0 there. A cutoff that is not positive gives a pair that does not interact.
+template <class Shape, class R>
+LennardJonesParams<R> make_cut_lennard_jones(double epsilon, double sigma, double cutoff, double constant,
+                                             bool shifted) {
+    if (!(cutoff > 0.0)) return {R(0), R(0), R(0), R(0)};
+    const double sigma2 = sigma * sigma;
+    const double cutoff2 = cutoff * cutoff;
+    const double offset = shifted ? -epsilon * Shape::template at<double>(sigma2 / cutoff2).value : constant;
+    return {R(epsilon), R(sigma2), R(cutoff2), R(offset)};
+}
+
+template <class Shape>
+struct LennardJones {
+    template <class R>
+    using Params = LennardJonesParams<R>;
+
+    template <class R>
+    static Params<R> make_pair_params(double epsilon, double sigma, double cutoff, bool shifted) {
+        return make_cut_lennard_jones<Shape, R>(epsilon, sigma, cutoff, 0.0, shifted);
+    }
+
+    // values: epsilon, sigma
+    template <class R>
+    static Params<R> make_bond_params(const double* values, const Constants&) {
+        return {R(values[0]), R(values[1] * values[1]), std::numeric_limits<R>::infinity(), R(0)};
     }
 
     template <class R>
     static SMD_HD SMD_INLINE PairTerm<R> evaluate(R r2, const Params<R>& p) {
-        const R inv_r2 = R(1) / r2;
-        const R sr2 = p.sigma2 * inv_r2;
-        const R sr6 = sr2 * sr2 * sr2;
-        PairTerm<R> term;
-        // U'(r)/r = (24 eps / r^2) [(s/r)^6 - 2 (s/r)^12]
-        term.dudr_over_r = R(24) * p.epsilon * inv_r2 * (sr6 - R(2) * sr6 * sr6);
-        term.energy = R(4) * p.epsilon * (sr6 * sr6 - sr6) - p.shift;
-        return term;
+        return evaluate_lennard_jones<Shape>(r2, p);
     }
 };
+
+using LennardJonesType1 = LennardJones<LennardJonesShape1>;
+using LennardJonesType2 = LennardJones<LennardJonesShape2>;
+using LennardJonesType3 = LennardJones<LennardJonesShape3>;
 
 }  // namespace structmd

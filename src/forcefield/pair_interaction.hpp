@@ -4,6 +4,7 @@
 // summation order fixed by the list. Energy and virial of a pair are split equally between the two.
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "forcefield/interactor.hpp"
@@ -11,16 +12,34 @@
 
 namespace structmd {
 
+// Potentials of charges (Debye-Hueckel) declare `static constexpr bool uses_charges = true`.
+template <class Potential, class = void>
+struct UsesCharges : std::false_type {};
+template <class Potential>
+struct UsesCharges<Potential, std::void_t<decltype(Potential::uses_charges)>>
+    : std::bool_constant<Potential::uses_charges> {};
+
+template <class Potential, class R>
+SMD_HD SMD_INLINE PairTerm<R> evaluate_pair(R r2, const typename Potential::template Params<R>& p, R chargeProduct) {
+    if constexpr (UsesCharges<Potential>::value)
+        return Potential::evaluate(r2, p, chargeProduct);
+    else
+        return Potential::evaluate(r2, p);
+}
+
 template <class Potential, class R, bool WantForce, bool WantEnergy, bool WantVirial>
 struct PairKernel {
     using Params = typename Potential::template Params<R>;
     const Real4<R>* pos;
+    const R* charge;       // read only by potentials of charges
+    const uint8_t* group;  // null: every particle takes part
     NeighbourView<R> neighbours;
     const Params* table;  // ntypes x ntypes
     int ntypes;
     ForceOutputs<R> out;
 
     SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
         const Real4<R> pi = pos[i];
         const Vec3<R> ri = xyz(pi);
         const Params* row = table + static_cast<int>(pi.w) * ntypes;
@@ -33,8 +52,9 @@ struct PairKernel {
             const Vec3<R> rij = box.minimum_image(xyz(pj) - ri);
             const R r2 = dot(rij, rij);
             const Params& p = row[static_cast<int>(pj.w)];
-            if (!(r2 < p.cutoff2)) return;
-            const PairTerm<R> t = Potential::evaluate(r2, p);
+            if (!(r2 < p.cutoff2) || (group && !group[j])) return;
+            const PairTerm<R> t =
+                evaluate_pair<Potential>(r2, p, UsesCharges<Potential>::value ? charge[i] * charge[j] : R(0));
             if (WantForce) f += t.dudr_over_r * rij;
             if (WantEnergy) e += R(0.5) * t.energy;
             if (WantVirial) w += (R(-0.5) * t.dudr_over_r) * outer(rij, rij);
@@ -48,20 +68,22 @@ class PairInteraction : public Interactor<B, R> {
 public:
     using Params = typename Potential::template Params<R>;
 
-    PairInteraction(const B& backend, std::string name, std::shared_ptr<VerletList<B, R>> list,
+    PairInteraction(const B& backend, InteractorScope scope, std::shared_ptr<VerletList<B, R>> list,
                     const std::vector<Params>& table, int ntypes)
-        : Interactor<B, R>(std::move(name)), backend_(backend), list_(std::move(list)), ntypes_(ntypes) {
+        : Interactor<B, R>(std::move(scope)), backend_(backend), list_(std::move(list)), ntypes_(ntypes) {
         backend_.upload(table_, table.data(), table.size());
     }
 
+    void prepare(Particles<B, R>& p) override { list_->update(p.pos, p.count, p.box, p.version); }
+
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
-        if (!list_) return;  // no type pair interacts
         const NeighbourView<R> view = list_->view();
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
             backend_.for_each(particles.count,
                               PairKernel<Potential, R, decltype(force)::value, decltype(energy)::value,
-                                         decltype(virial)::value>{particles.pos.data(), view, table_.data(),
-                                                                  ntypes_, out});
+                                         decltype(virial)::value>{particles.pos.data(), particles.charge.data(),
+                                                                  this->group(), view, table_.data(), ntypes_,
+                                                                  out});
         });
     }
 

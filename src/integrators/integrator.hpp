@@ -10,8 +10,9 @@ public:
     virtual ~ForceSource() = default;
     // Makes the force array current for the present positions.
     virtual void update_forces() = 0;
-    // Tells the engine the integrator moved the particles.
-    virtual void positions_moved() = 0;
+    // Tells the engine the integrator moved the particles to the next step's positions, `elapsed`
+    // time later (terms active at that step and fields at that time then apply).
+    virtual void positions_moved(double elapsed) = 0;
 };
 
 template <class B, class R>

@@ -59,7 +59,7 @@ public:
         const R dt = R(this->time_step());
         forces.update_forces();
         backend_.for_each(p.count, VerletKickDrift<R>{p.pos.data(), p.vel.data(), p.force.data(), p.box, dt});
-        forces.positions_moved();
+        forces.positions_moved(this->time_step());
         forces.update_forces();
         backend_.for_each(p.count, VerletKick<R>{p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});
     }

@@ -3,6 +3,7 @@
 // A particle whose list overflowed its capacity is served by scanning the cells directly, so the
 // result never depends on a capacity guess; the host grows the capacity for later builds.
 #include "neighbour/cell_grid.hpp"
+#include "neighbour/pair_filter.hpp"
 
 namespace structmd {
 
@@ -19,9 +20,11 @@ struct NeighbourView {
     int* overflowCount = nullptr;
     CellGrid<R> grid;
     Box<R> box;
+    PairFilter filter;
 
-    // Calls visit(j) for every candidate neighbour j != i, in an order that does not depend on
-    // thread timing. Candidates may lie beyond the cutoff; the caller checks the distance.
+    // Calls visit(j) for every candidate neighbour j != i that the filter accepts, in an order that
+    // does not depend on thread timing. Candidates may lie beyond the cutoff; the caller checks the
+    // distance.
     template <class Visit>
     SMD_HD SMD_INLINE void for_each_neighbour(int i, Vec3<R> ri, Visit&& visit) const {
         const int n = count[i];
@@ -43,11 +46,11 @@ struct NeighbourView {
             const int m = cellCount[c] < cellCapacity ? cellCount[c] : cellCapacity;
             const int* members = cellParticles + static_cast<int64_t>(c) * cellCapacity;
             for (int s = 0; s < m; ++s)
-                if (members[s] != i) visit(members[s]);
+                if (members[s] != i && filter.accepts(i, members[s])) visit(members[s]);
         });
         const int extra = *overflowCount;
         for (int k = 0; k < extra; ++k)
-            if (overflow[k] != i) visit(overflow[k]);
+            if (overflow[k] != i && filter.accepts(i, overflow[k])) visit(overflow[k]);
     }
 };
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "neighbour/verlet_list_kernels.hpp"
 
@@ -14,18 +15,38 @@ namespace structmd {
 template <class B, class R>
 class VerletList {
 public:
-    VerletList(const B& backend, std::string name, double cutoff, double verletFactor)
+    // excluded: for nonExcluded lists, the sorted ids each particle never pairs with (else empty);
+    // batch and model: backend arrays by particle, or null where not needed.
+    VerletList(const B& backend, std::string name, double cutoff, double verletFactor, PairCondition condition,
+               const std::vector<std::vector<int>>& excluded, const int* batch, const int* model)
         : backend_(backend), name_(std::move(name)), cutoff_(cutoff), listRadius_(cutoff * verletFactor) {
         control_.resize(kControlSlots);
         backend_.fill(control_, 0);
+        filter_.condition = condition;
+        filter_.batch = batch;
+        filter_.model = model;
+        if (condition == PairCondition::nonExcluded) {
+            std::vector<int> start(1, 0), flat;
+            for (const auto& ids : excluded) {
+                flat.insert(flat.end(), ids.begin(), ids.end());
+                start.push_back(static_cast<int>(flat.size()));
+            }
+            backend_.upload(excludedStart_, start.data(), start.size());
+            backend_.upload(excluded_, flat.data(), flat.size());
+            filter_.excludedStart = excludedStart_.data();
+            filter_.excluded = excluded_.data();
+        }
     }
 
     const std::string& name() const { return name_; }
     double cutoff() const { return cutoff_; }
     double list_radius() const { return listRadius_; }
 
-    // Brings the list up to date for the positions in pos (wrapped, n particles).
-    void update(const typename B::template Buffer<Real4<R>>& pos, int64_t n, const Box<R>& box) {
+    // Brings the list up to date for the positions in pos (wrapped, n particles); version names
+    // those positions, so asking twice for the same ones costs nothing.
+    void update(const typename B::template Buffer<Real4<R>>& pos, int64_t n, const Box<R>& box, int64_t version) {
+        if (version == updatedAt_ && !forceRebuild_) return;
+        updatedAt_ = version;
         if (needsLayout_ || n != particles_ || !same_box(box)) layout(n, box);
         backend_.write(control_, kRebuild, forceRebuild_ ? 1 : 0);
         if (!forceRebuild_) {
@@ -74,6 +95,7 @@ public:
         v.overflowCount = overflowCount();
         v.grid = grid_;
         v.box = box_;
+        v.filter = filter_;
         return v;
     }
 
@@ -122,6 +144,9 @@ private:
     bool needsLayout_ = true;
     bool forceRebuild_ = true;
     int64_t builds_ = 0;
+    int64_t updatedAt_ = -1;
+    PairFilter filter_;
+    typename B::template Buffer<int> excludedStart_, excluded_;
     typename B::template Buffer<int> control_;
     typename B::template Buffer<int> list_, count_, cellCount_, cellParticles_, overflow_;
     typename B::template Buffer<Real4<R>> reference_;

@@ -63,8 +63,20 @@ public:
         std::vector<R> charge(spec.charge.begin(), spec.charge.end());
         backend_.upload(p_.radius, radius.data(), radius.size());
         backend_.upload(p_.charge, charge.data(), charge.size());
+        batchId_ = spec.batchId;
+        if (std::any_of(batchId_.begin(), batchId_.end(), [](int b) { return b != 0; }))
+            backend_.upload(p_.batch, batchId_.data(), batchId_.size());
+        backend_.upload(p_.model, spec.modelId.data(), spec.modelId.size());
+        p_.step = step_;
+        p_.time = time_;
 
-        forceField_ = make_interactors<B, R>(backend_, spec.forceField, spec.typeNames.size(), p_.count);
+        ForceFieldContext context;
+        context.ntypes = spec.typeNames.size();
+        context.particles = p_.count;
+        context.constants = spec.constants;
+        context.batch = p_.batch.empty() ? nullptr : p_.batch.data();
+        context.model = p_.model.data();
+        forceField_ = make_interactors<B, R>(backend_, spec.forceField, context);
         for (const IntegratorSpec& integrator : spec.integrators)
             integrators_.push_back(std::make_unique<VelocityVerlet<B, R>>(backend_, integrator.timeStep));
         backend_.synchronize();
@@ -93,10 +105,11 @@ public:
         for (int64_t k = 0; k < n; ++k) {
             fire_steps(false);
             Integrator<B, R>& integrator = current_integrator();
-            p_.step = step_;
             integrator.step(p_, *this);
             ++step_;
             time_ += integrator.time_step();
+            p_.step = step_;
+            p_.time = time_;
         }
         check_fault();
         if (n > 0 && step_ == last) fire_steps(true);
@@ -128,25 +141,33 @@ public:
     void get_masses(double* m) override { std::copy(masses_.begin(), masses_.end(), m); }
     void get_types(int32_t* types) override { std::copy(typeIndex_.begin(), typeIndex_.end(), types); }
 
-    double energy(const std::string& term) override {
+    // A term may end in "@batch:K" for the share of the particles of batch K.
+    double energy(const std::string& request) override {
         backend_.activate();
-        if (term == "kinetic") return kinetic_energy();
-        if (term == "potential") return potential_energy();
-        if (term == "total") return kinetic_energy() + potential_energy();
+        std::string term = request;
+        int batch = -1;
+        const size_t at = request.find("@batch:");
+        if (at != std::string::npos) {
+            term = request.substr(0, at);
+            batch = parse_batch(request.substr(at + 7), request);
+        }
+        if (term == "kinetic") return kinetic_energy(batch);
+        if (term == "potential") return potential_energy(batch);
+        if (term == "total") return kinetic_energy(batch) + potential_energy(batch);
         const int index = forceField_.find(term);
         if (index < 0) {
             std::string known = "potential, kinetic, total";
             for (const std::string& name : forceField_.names()) known += ", " + name;
-            throw Error(STRUCTMD_ERR_ARGUMENT, "energy term '" + term + "' does not exist (terms: " + known + ")");
+            throw Error(STRUCTMD_ERR_ARGUMENT, "energy term '" + request + "' does not exist (terms: " + known +
+                                                   ", each optionally followed by @batch:K)");
         }
-        forceField_.update_lists(p_);
         p_.energy.resize(p_.count);
         backend_.fill(p_.energy, R(0));
         ForceOutputs<R> out;
         out.energy = p_.energy.data();
         forceField_.compute_one(index, p_, out);
         energyVersion_ = -1;  // the buffer now holds one term only
-        return sum_energy();
+        return sum_energy(batch);
     }
     std::vector<std::string> energy_terms() const override { return forceField_.names(); }
 
@@ -160,7 +181,7 @@ public:
     void set_positions(const double* xyz) override {
         backend_.activate();
         upload_positions(xyz);
-        positions_moved();
+        ++p_.version;
         forceField_.invalidate_lists();
     }
     void set_velocities(const double* v) override {
@@ -204,34 +225,38 @@ public:
 private:
     // ForceSource
     void update_forces() override { evaluate(kForces); }
-    void positions_moved() override { ++positionsVersion_; }
+    void positions_moved(double elapsed) override {
+        ++p_.version;
+        p_.step = step_ + 1;
+        p_.time = time_ + elapsed;
+    }
 
     // Evaluates, in one pass over the force field, whichever of forces, energies and virial asked
     // for in flags are stale.
     void evaluate(unsigned flags) {
         ForceOutputs<R> out;
-        if ((flags & kForces) && forcesVersion_ != positionsVersion_) {
+        if ((flags & kForces) && forcesVersion_ != p_.version) {
             backend_.for_each(p_.count, InitForces<R>{p_.force.data(), p_.externalForce.empty()
                                                                           ? nullptr
                                                                           : p_.externalForce.data()});
             out.force = p_.force.data();
         }
-        if ((flags & kEnergy) && energyVersion_ != positionsVersion_) {
+        if ((flags & kEnergy) && energyVersion_ != p_.version) {
             p_.energy.resize(p_.count);
             backend_.fill(p_.energy, R(0));
             out.energy = p_.energy.data();
         }
-        if ((flags & kVirial) && virialVersion_ != positionsVersion_) {
+        if ((flags & kVirial) && virialVersion_ != p_.version) {
             p_.virial.resize(p_.count);
             backend_.fill(p_.virial, zero_tensor<R>());
             out.virial = p_.virial.data();
         }
         if (!out.force && !out.energy && !out.virial) return;
-        forceField_.update_lists(p_);
+        forceField_.prepare(p_);
         forceField_.compute_all(p_, out);
-        if (out.force) forcesVersion_ = positionsVersion_;
-        if (out.energy) energyVersion_ = positionsVersion_;
-        if (out.virial) virialVersion_ = positionsVersion_;
+        if (out.force) forcesVersion_ = p_.version;
+        if (out.energy) energyVersion_ = p_.version;
+        if (out.virial) virialVersion_ = p_.version;
     }
 
     // Reports a fault recorded on the backend during the last steps, naming the first step and
@@ -257,12 +282,32 @@ private:
                         " and must be repaired with structmd_set_positions / structmd_set_velocities or a reload");
     }
 
-    double sum_energy() { return backend_.reduce(p_.count, SumEnergy<R>{p_.energy.data()}, 0.0); }
-    double potential_energy() {
-        evaluate(kEnergy);
-        return sum_energy();
+    int parse_batch(const std::string& text, const std::string& request) const {
+        size_t used = 0;
+        int batch = -1;
+        try {
+            batch = std::stoi(text, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != text.size() || std::find(batchId_.begin(), batchId_.end(), batch) == batchId_.end())
+            throw Error(STRUCTMD_ERR_ARGUMENT, "energy term '" + request + "': no particle has batchId '" + text + "'");
+        return p_.batch.empty() ? -1 : batch;  // one batch: its share is everything
     }
-    double kinetic_energy() { return backend_.reduce(p_.count, KineticEnergy<R>{p_.vel.data()}, 0.0); }
+
+    // batch < 0: all particles.
+    double sum_energy(int batch) {
+        if (batch < 0) return backend_.reduce(p_.count, SumEnergy<R>{p_.energy.data()}, 0.0);
+        return backend_.reduce(p_.count, InBatch<SumEnergy<R>>{{p_.energy.data()}, p_.batch.data(), batch}, 0.0);
+    }
+    double potential_energy(int batch) {
+        evaluate(kEnergy);
+        return sum_energy(batch);
+    }
+    double kinetic_energy(int batch) {
+        if (batch < 0) return backend_.reduce(p_.count, KineticEnergy<R>{p_.vel.data()}, 0.0);
+        return backend_.reduce(p_.count, InBatch<KineticEnergy<R>>{{p_.vel.data()}, p_.batch.data(), batch}, 0.0);
+    }
 
     Integrator<B, R>& current_integrator() {
         int64_t offset = step_ - firstStep_;
@@ -347,6 +392,7 @@ private:
     std::vector<ScheduleStage> schedule_;
     std::vector<std::unique_ptr<SimulationStep>> steps_;
     std::vector<int32_t> typeIndex_;
+    std::vector<int> batchId_;
     std::vector<double> masses_;
     std::array<double, 3> boxLengths_{};
     double boltzmann_ = 1.0;
@@ -354,7 +400,6 @@ private:
     int64_t firstStep_ = 0;
     double time_ = 0.0;
     // Versions: what each cached quantity was computed at (-1: never or invalid).
-    int64_t positionsVersion_ = 0;
     int64_t forcesVersion_ = -1;
     int64_t energyVersion_ = -1;
     int64_t virialVersion_ = -1;

@@ -41,4 +41,13 @@ struct SumVirial {
     }
 };
 
+// A per-particle sum restricted to the particles of one batch.
+template <class Sum>
+struct InBatch {
+    Sum sum;
+    const int* batch;
+    int wanted;
+    SMD_HD double operator()(int64_t i) const { return batch[i] == wanted ? sum(i) : 0.0; }
+};
+
 }  // namespace structmd

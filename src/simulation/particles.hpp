@@ -25,8 +25,12 @@ struct Particles {
     Buffer<Real4<R>> externalForce;  // empty when the host set none
     Buffer<R> radius;
     Buffer<R> charge;
+    Buffer<int> batch;  // batchId by particle; empty when every particle is in batch 0
+    Buffer<int> model;  // modelId by particle
     Buffer<unsigned long long> fault;  // one word, kNoFault when all is well
+    int64_t version = 0;               // changes whenever positions or the box change
     int64_t step = 0;                  // the step being computed, for fault reports
+    double time = 0.0;                 // the simulation time, for fields that move
 
     FaultSlot fault_slot() { return {fault.data(), step}; }
 };

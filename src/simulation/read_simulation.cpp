@@ -19,6 +19,8 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log) {
 
     spec.seed = system.seed;
     spec.boltzmann = system.units.boltzmann;
+    spec.constants.boltzmann = system.units.boltzmann;
+    spec.constants.electricConversion = system.units.electricConversion;
     spec.velocityKT = spec.schedule.empty() ? system.units.boltzmann * system.temperature
                                             : spec.integrators[spec.schedule.front().integrator].temperature;
     spec.box = system.box;
@@ -31,6 +33,8 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log) {
     spec.mass = system.mass;
     spec.radius = system.radius;
     spec.charge = system.charge;
+    spec.batchId = system.batchId;
+    spec.modelId = system.modelId;
     return spec;
 }
 

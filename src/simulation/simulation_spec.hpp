@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "forcefield/forcefield_spec.hpp"
+#include "forcefield/pair_potential.hpp"
 #include "integrators/integrator_spec.hpp"
 #include "steps/simulation_step.hpp"
 
@@ -16,6 +17,7 @@ namespace structmd {
 struct SimulationSpec {
     uint64_t seed = 0;
     double boltzmann = 1.0;
+    Constants constants;
     double velocityKT = 0.0;  // k_B T of drawn velocities: the first scheduled integrator's temperature
     std::array<double, 3> box{0, 0, 0};
     int64_t currentStep = 0;
@@ -26,6 +28,7 @@ struct SimulationSpec {
     std::vector<std::array<double, 3>> velocities;  // empty: draw from Maxwell-Boltzmann
     std::vector<int32_t> typeIndex;
     std::vector<double> mass, radius, charge;
+    std::vector<int32_t> batchId, modelId;
 
     ForceFieldSpec forceField;
     std::vector<IntegratorSpec> integrators;

@@ -1,0 +1,44 @@
+#pragma once
+// The contract of a bonded term of N particles (N = 1..4): a host+device functor with
+//   static constexpr int arity;                         // N
+//   template <class R> struct Params { ... };           // plain, copyable to the device
+//   template <class R> static Params<R> make_params(const double* values, const Constants& c);
+//                                                        // values in the order the reader lists them
+//   template <class R> static SMD_HD R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>& box,
+//                                              Vec3<R>* force);
+// compute() receives the N positions made consistent across periodic boundaries (r[0] is the first
+// particle's wrapped position, r[k] = r[k-1] + minimum_image(x_k - x_{k-1})) and the box (a term
+// tied to a fixed point needs its minimum image), writes the force on
+// each of the N particles and returns the energy. A geometry where the term has no finite energy
+// (an over-stretched FENE bond) returns NaN energy and NaN forces: the engine reports it as a
+// numerical error naming the step and particle.
+#include "core/box.hpp"
+#include "core/hd.hpp"
+#include "core/vec.hpp"
+#include "forcefield/pair_potential.hpp"
+
+namespace structmd {
+
+// Adapts a radial pair potential (pair_potential.hpp) to a two-particle bond.
+template <class Radial>
+struct RadialBond {
+    static constexpr int arity = 2;
+    template <class R>
+    using Params = typename Radial::template Params<R>;
+
+    template <class R>
+    static Params<R> make_params(const double* values, const Constants& c) {
+        return Radial::template make_bond_params<R>(values, c);
+    }
+
+    template <class R>
+    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
+        const Vec3<R> d = r[1] - r[0];
+        const PairTerm<R> t = Radial::evaluate(dot(d, d), p);
+        force[0] = t.dudr_over_r * d;
+        force[1] = -force[0];
+        return t.energy;
+    }
+};
+
+}  // namespace structmd

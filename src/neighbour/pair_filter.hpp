@@ -1,0 +1,38 @@
+#pragma once
+// Which pairs a neighbour list may hold: pairs in different batches never interact, and a list's
+// condition keeps excluded pairs out (nonExcluded) or pairs within or across models (intra, inter).
+// Applied when the list is built and on the cell-scan fallback, never per force evaluation.
+#include "core/hd.hpp"
+
+namespace structmd {
+
+enum class PairCondition : int { all, nonExcluded, intra, inter };
+
+struct PairFilter {
+    PairCondition condition = PairCondition::all;
+    const int* batch = nullptr;  // null when every particle is in one batch
+    const int* model = nullptr;  // for intra / inter
+    const int* excludedStart = nullptr;  // nonExcluded: sorted ids excluded for i in
+    const int* excluded = nullptr;       // excluded[excludedStart[i] .. excludedStart[i+1])
+
+    SMD_HD SMD_INLINE bool accepts(int i, int j) const {
+        if (batch && batch[i] != batch[j]) return false;
+        switch (condition) {
+            case PairCondition::all: return true;
+            case PairCondition::intra: return model[i] == model[j];
+            case PairCondition::inter: return model[i] != model[j];
+            case PairCondition::nonExcluded: {
+                int lo = excludedStart[i], hi = excludedStart[i + 1];
+                while (lo < hi) {
+                    const int mid = (lo + hi) / 2;
+                    if (excluded[mid] < j) lo = mid + 1;
+                    else hi = mid;
+                }
+                return !(lo < excludedStart[i + 1] && excluded[lo] == j);
+            }
+        }
+        return true;
+    }
+};
+
+}  // namespace structmd

@@ -1,0 +1,231 @@
+"""Which pairs and particles each interaction acts on, and when: exclusions (nonExcluded), intra- and
+inter-model lists, groups, batches and startStep/endStep. Each test compares the engine with the
+energy of the pairs that must interact, summed here independently, so ignoring the rule fails it."""
+
+import itertools
+import json
+import math
+
+import numpy as np
+import pytest
+
+import structmd
+
+
+def lj(r, epsilon=1.0, sigma=1.0):
+    return 4.0 * epsilon * ((sigma / r) ** 12 - (sigma / r) ** 6)
+
+
+def minimum_image(d, box):
+    return d - box * np.round(d / box)
+
+
+def document(positions, types=None, model=None, batch=None, force_field=None, steps=20, box=12.0):
+    n = len(positions)
+    types = types or ["A"] * n
+    structure_labels = ["id", "type"] + (["modelId"] if model else []) + (["batchId"] if batch else [])
+    rows = []
+    for i in range(n):
+        row = [i, types[i]]
+        if model:
+            row.append(model[i])
+        if batch:
+            row.append(batch[i])
+        rows.append(row)
+    return {
+        "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": "scope"}}},
+        "global": {
+            "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
+                      "data": [["A", 1.0, 0.5, 0.0], ["B", 1.0, 0.5, 0.0]]},
+            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
+                         "data": [[[box, box, box], 0.0]]},
+        },
+        "integrator": {
+            "vv": {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 0.001}},
+            "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                         "data": [[1, "vv", steps]]},
+        },
+        "state": {"labels": ["id", "position", "velocity"],
+                  "data": [[i, list(p), [0.0, 0.0, 0.0]] for i, p in enumerate(positions)]},
+        "topology": {"structure": {"labels": structure_labels, "data": rows}, "forceField": force_field or {}},
+    }
+
+
+def lj_entry(condition="all", pairs=(("A", "A", 1.0, 1.0), ("A", "B", 1.0, 1.0), ("B", "B", 1.0, 1.0)), **extra):
+    parameters = {"cutOffFactor": 2.5, "condition": condition}
+    parameters.update(extra)
+    return {"type": ["NonBonded", "LennardJonesType1"], "parameters": parameters,
+            "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [list(p) for p in pairs]}
+
+
+def pair_energy(positions, accept, box=12.0, epsilon=1.0):
+    positions = np.asarray(positions)
+    total = 0.0
+    for i, j in itertools.combinations(range(len(positions)), 2):
+        r = np.linalg.norm(minimum_image(positions[j] - positions[i], box))
+        if r < 2.5 and accept(i, j):
+            total += lj(r, epsilon)
+    return total
+
+
+# A small cluster: every pair within the cutoff, some across the boundary, none overlapping.
+CLUSTER = [[0.0, 0.0, 0.0], [1.1, 0.0, 0.0], [0.0, 1.2, 0.1], [1.0, 1.1, 0.9], [-1.0, 0.2, 0.5],
+           [5.6, 0.1, 0.0]]
+
+
+@pytest.fixture
+def sim(options):
+    with structmd.Simulation(options) as s:
+        yield s
+
+
+def test_non_excluded_list_skips_the_excluded_pairs(sim):
+    excluded = {0: [1, 2], 1: [0], 2: [0], 3: [4], 4: [3]}
+    doc = document(CLUSTER, force_field={
+        "nl": {"type": ["VerletConditionalListSet", "nonExcluded"], "parameters": {"cutOffVerletFactor": 1.2},
+               "labels": ["id", "id_list"], "data": [[i, ids] for i, ids in excluded.items()]},
+        "lj": lj_entry("nonExcluded")})
+    sim.load(doc)
+    expected = pair_energy(CLUSTER, lambda i, j: j not in excluded.get(i, []))
+    assert sim.energy("lj") == pytest.approx(expected, rel=1e-12)
+    assert expected != pytest.approx(pair_energy(CLUSTER, lambda i, j: True), rel=1e-3)
+
+
+def test_exclusions_must_be_symmetric(sim):
+    doc = document(CLUSTER, force_field={
+        "nl": {"type": ["VerletConditionalListSet", "nonExcluded"], "labels": ["id", "id_list"],
+               "data": [[0, [1]]]},
+        "lj": lj_entry("nonExcluded")})
+    with pytest.raises(structmd.InputError, match=r"topology\.forceField\.nl\.data.*symmetric"):
+        sim.load(doc)
+
+
+def test_intra_and_inter_lists_split_pairs_by_model(sim):
+    model = [0, 0, 0, 1, 1, 1]
+    doc = document(CLUSTER, model=model, force_field={
+        "nl": {"type": ["VerletConditionalListSet", "intra_inter"]},
+        "intra": lj_entry("intra", neighbourList="nl"),
+        "inter": lj_entry("inter", pairs=(("A", "A", 2.0, 1.0),), neighbourList="nl")})
+    sim.load(doc)
+    intra = pair_energy(CLUSTER, lambda i, j: model[i] == model[j])
+    inter = pair_energy(CLUSTER, lambda i, j: model[i] != model[j], epsilon=2.0)
+    assert sim.energy("intra") == pytest.approx(intra, rel=1e-12)
+    assert sim.energy("inter") == pytest.approx(inter, rel=1e-12)
+    assert sim.energy("potential") == pytest.approx(intra + inter, rel=1e-12)
+
+
+def test_unknown_condition_names_the_path(sim):
+    doc = document(CLUSTER, force_field={"nl": {"type": ["VerletConditionalListSet", "intra_inter"]},
+                                         "lj": lj_entry("all")})
+    with pytest.raises(structmd.InputError, match=r"topology\.forceField\.lj\.parameters\.condition.*intra, inter"):
+        sim.load(doc)
+
+
+@pytest.mark.parametrize("selection, members", [
+    (["Types", ["A"]], {0, 1, 3, 5}),
+    (["notTypes", ["A"]], {2, 4}),
+    (["Ids", [0, 1, 2]], {0, 1, 2}),
+    (["notIds", [0]], {1, 2, 3, 4, 5}),
+    (["ModelIds", [1]], {3, 4, 5}),
+    (["notModelIds", [1]], {0, 1, 2}),
+])
+def test_a_pair_term_acts_only_inside_its_group(sim, selection, members):
+    types = ["A", "A", "B", "A", "B", "A"]
+    doc = document(CLUSTER, types=types, model=[0, 0, 0, 1, 1, 1], force_field={
+        "groups": {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                   "data": [["chosen"] + selection]},
+        "nl": {"type": ["VerletConditionalListSet", "all"]},
+        "lj": lj_entry(group="chosen")})
+    sim.load(doc)
+    expected = pair_energy(CLUSTER, lambda i, j: i in members and j in members)
+    assert sim.energy("lj") == pytest.approx(expected, rel=1e-12)
+    forces = sim.forces
+    for i in set(range(len(CLUSTER))) - members:
+        assert np.all(forces[i] == 0.0), f"particle {i} is outside the group but feels a force"
+
+
+def test_a_group_selecting_nothing_is_an_input_error(sim):
+    doc = document(CLUSTER, force_field={
+        "groups": {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                   "data": [["empty", "Types", ["B"]]]},
+        "nl": {"type": ["VerletConditionalListSet", "all"]},
+        "lj": lj_entry(group="empty")})
+    with pytest.raises(structmd.InputError, match=r"topology\.forceField\.groups\.data\[0\].*selects no particle"):
+        sim.load(doc)
+
+
+def test_bonds_act_only_when_all_their_particles_are_in_the_group(sim):
+    doc = document(CLUSTER, force_field={
+        "groups": {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                   "data": [["first", "Ids", [0, 1, 2]]]},
+        "bonds": {"type": ["Bond2", "HarmonicCommon_K_r0"], "parameters": {"K": 10.0, "r0": 1.0, "group": "first"},
+                  "labels": ["id_i", "id_j"], "data": [[0, 1], [1, 2], [2, 3]]}})
+    sim.load(doc)
+    p = np.asarray(CLUSTER)
+    expected = sum(0.5 * 10.0 * (np.linalg.norm(p[j] - p[i]) - 1.0) ** 2 for i, j in [(0, 1), (1, 2)])
+    assert sim.energy("bonds") == pytest.approx(expected, rel=1e-12)
+
+
+def test_batches_never_interact_and_their_energies_are_read_separately(sim, options):
+    # Two copies of the cluster in one box, shifted by a little: across batches they would overlap.
+    shifted = [[x + 0.3, y + 0.2, z + 0.1] for x, y, z in CLUSTER]
+    positions = CLUSTER + shifted
+    batch = [0] * len(CLUSTER) + [1] * len(shifted)
+    doc = document(positions, batch=batch, force_field={"nl": {"type": ["VerletConditionalListSet", "all"]},
+                                                        "lj": lj_entry()})
+    sim.load(doc)
+    single = pair_energy(CLUSTER, lambda i, j: True)
+    assert sim.energy("lj@batch:0") == pytest.approx(single, rel=1e-12)
+    assert sim.energy("potential@batch:1") == pytest.approx(single, rel=1e-12)
+    assert sim.energy("lj") == pytest.approx(2.0 * single, rel=1e-12)
+    with structmd.Simulation(options) as alone:
+        alone.load(document(CLUSTER, force_field={"nl": {"type": ["VerletConditionalListSet", "all"]},
+                                                  "lj": lj_entry()}))
+        np.testing.assert_allclose(sim.forces[:len(CLUSTER)], alone.forces, rtol=1e-12, atol=1e-12)
+    with pytest.raises(structmd.ArgumentError, match="batchId '7'"):
+        sim.energy("lj@batch:7")
+
+
+def test_start_and_end_step_switch_a_term_on_and_off(sim):
+    doc = document([[0.0, 0.0, 0.0], [1.5, 0.0, 0.0]], steps=30, force_field={
+        "late": {"type": ["Bond2", "HarmonicCommon_K_r0"],
+                 "parameters": {"K": 10.0, "r0": 1.0, "startStep": 5, "endStep": 12},
+                 "labels": ["id_i", "id_j"], "data": [[0, 1]]}})
+    sim.load(doc)
+    for step in range(20):
+        active = 5 <= sim.step_number < 12
+        energy = sim.energy("late")
+        if active:
+            assert energy > 0.0, f"the bond must act at step {sim.step_number}"
+        else:
+            assert energy == 0.0 and np.all(sim.forces == 0.0), f"the bond must not act at step {sim.step_number}"
+        sim.step(1)
+    # Before step 5 nothing moved; the bond then pulled the particles together.
+    assert sim.positions[1][0] - sim.positions[0][0] < 1.5
+
+
+@pytest.mark.parametrize("entry, path, what", [
+    ({"type": ["Bond3", "HarmonicAngular"], "labels": ["id_i", "id_j", "id_k", "K", "theta0"],
+      "data": [[0, 1, 1, 1.0, 2.0]]}, r"data\[0\]\[2\]", "appears twice"),
+    ({"type": ["Bond2", "Harmonic"], "labels": ["id_i", "id_j", "K", "r0"], "data": [[0, 99, 1.0, 1.0]]},
+     r"data\[0\]\[1\]", "does not exist"),
+    ({"type": ["Bond2", "Harmonic"], "labels": ["id_i", "id_j", "K", "r0"], "data": [[0, 1, 1.0]]},
+     r"data\[0\]", "cells"),
+    ({"type": ["Bond2", "Harmonic"], "labels": ["id_i", "id_j", "K"], "data": [[0, 1, 1.0]]},
+     r"labels", "r0"),
+    ({"type": ["Bond4", "Dihedral4"], "labels": ["id_i", "id_j", "id_k", "id_l", "K", "phi0"],
+      "data": [[0, 1, 2, 3, [1.0, 2.0], [0.0, 0.0, 0.0, 0.0]]]}, r"data\[0\]\[4\]", "4 numbers"),
+    ({"type": ["External", "Plates"], "parameters": {"platesEpsilon": 1.0}}, r"parameters\.platesSeparation",
+     "missing"),
+])
+def test_malformed_bonded_entries_name_their_path(sim, entry, path, what):
+    doc = document(CLUSTER, force_field={"term": entry})
+    with pytest.raises(structmd.InputError, match=r"topology\.forceField\.term\." + path + ".*" + what):
+        sim.load(doc)
+
+
+def test_unknown_type_name_in_a_pair_table(sim):
+    doc = document(CLUSTER, force_field={"nl": {"type": ["VerletConditionalListSet", "all"]},
+                                         "lj": lj_entry(pairs=(("A", "C", 1.0, 1.0),))})
+    with pytest.raises(structmd.InputError, match=r"topology\.forceField\.lj\.data\[0\]\[1\].*unknown type 'C'"):
+        sim.load(doc)
