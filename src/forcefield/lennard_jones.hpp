@@ -22,7 +22,7 @@ struct LennardJonesShapeTerm {
 };
 
 struct LennardJonesShape1 {
-    static double minimum(double sigma) { return std::pow(2.0, 1.0 / 6.0) * sigma; }
+    static double minimum_distance(double sigma) { return std::pow(2.0, 1.0 / 6.0) * sigma; }
 
     template <class R>
     static SMD_HD SMD_INLINE LennardJonesShapeTerm<R> at(R sr2) {
@@ -33,7 +33,7 @@ struct LennardJonesShape1 {
 };
 
 struct LennardJonesShape2 {
-    static double minimum(double sigma) { return sigma; }
+    static double minimum_distance(double sigma) { return sigma; }
 
     template <class R>
     static SMD_HD SMD_INLINE LennardJonesShapeTerm<R> at(R sr2) {
@@ -44,7 +44,7 @@ struct LennardJonesShape2 {
 };
 
 struct LennardJonesShape3 {
-    static double minimum(double sigma) { return sigma; }
+    static double minimum_distance(double sigma) { return sigma; }
 
     template <class R>
     static SMD_HD SMD_INLINE LennardJonesShapeTerm<R> at(R sr2) {

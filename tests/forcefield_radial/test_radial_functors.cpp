@@ -1,0 +1,418 @@
+// Radial pair potentials, NonBonded and Bond2 forms: energies against the formulas of the input
+// specification (written out here independently of the functors), U'(r)/r against a central finite
+// difference of the functor's own energy, cutoffs, shifts, and single precision against double.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "forcefield/debye_huckel.hpp"
+#include "forcefield/gaussian_bond.hpp"
+#include "forcefield/lennard_jones.hpp"
+#include "forcefield/lennard_jones_general.hpp"
+#include "forcefield/lennard_jones_wca.hpp"
+#include "forcefield/morse.hpp"
+#include "forcefield/steric.hpp"
+
+using namespace structmd;
+
+namespace {
+
+constexpr double kEnergyTolerance = 1e-10;      // relative, double against the formula
+constexpr double kDerivativeTolerance = 1e-6;   // relative, against the central difference
+constexpr double kSinglePrecisionTolerance = 1e-4;  // relative, float against double
+
+// The worst relative errors met, printed once all tests ran so that runs can be compared.
+struct WorstErrors {
+    double energy = 0.0;
+    double derivative = 0.0;
+    double single_precision = 0.0;
+};
+WorstErrors worst;
+
+class PrintWorstErrors : public ::testing::Environment {
+public:
+    void TearDown() override {
+        std::printf("worst relative errors: energy %.3g, U'(r)/r %.3g, float against double %.3g\n", worst.energy,
+                    worst.derivative, worst.single_precision);
+    }
+};
+::testing::Environment* const print_worst_errors = ::testing::AddGlobalTestEnvironment(new PrintWorstErrors);
+
+double relative_error(double value, double reference) {
+    return std::fabs(value - reference) / std::fabs(reference);
+}
+
+// The three Lennard-Jones shapes as the specification writes them, in epsilon, sigma and r.
+double lj1(double eps, double s, double r) { return 4.0 * eps * (std::pow(s / r, 12) - std::pow(s / r, 6)); }
+double lj2(double eps, double s, double r) { return eps * (std::pow(s / r, 12) - 2.0 * std::pow(s / r, 6)); }
+double lj3(double eps, double s, double r) { return eps * (5.0 * std::pow(s / r, 12) - 6.0 * std::pow(s / r, 10)); }
+using Formula = double (*)(double, double, double);
+
+template <class Potential>
+PairTerm<double> at(double r, const typename Potential::template Params<double>& p) {
+    return Potential::evaluate(r * r, p);
+}
+
+// At each r: U equals `energy` and U'(r)/r equals the central difference of the functor's energy.
+template <class Potential>
+void expect_energy_and_derivative(const typename Potential::template Params<double>& p,
+                                  const std::function<double(double)>& energy, const std::vector<double>& radii) {
+    for (const double r : radii) {
+        SCOPED_TRACE("r = " + std::to_string(r));
+        const PairTerm<double> term = at<Potential>(r, p);
+        const double energy_error = relative_error(term.energy, energy(r));
+        EXPECT_LT(energy_error, kEnergyTolerance) << term.energy << " against " << energy(r);
+        const double h = 1e-6 * r;
+        const double slope = (at<Potential>(r + h, p).energy - at<Potential>(r - h, p).energy) / (2.0 * h);
+        const double derivative_error = relative_error(term.dudr_over_r, slope / r);
+        EXPECT_LT(derivative_error, kDerivativeTolerance) << term.dudr_over_r << " against " << slope / r;
+        worst.energy = std::max(worst.energy, energy_error);
+        worst.derivative = std::max(worst.derivative, derivative_error);
+    }
+}
+
+template <class Potential>
+void expect_no_interaction(const typename Potential::template Params<double>& p, const std::vector<double>& radii) {
+    for (const double r : radii) {
+        const PairTerm<double> term = at<Potential>(r, p);
+        EXPECT_EQ(term.energy, 0.0) << "r = " << r;
+        EXPECT_EQ(term.dudr_over_r, 0.0) << "r = " << r;
+    }
+}
+
+// make(tag) builds the Params of the precision of tag; evaluate(r2, p) evaluates them. Energy and
+// U'(r)/r in float agree with double.
+template <class Make, class Evaluate>
+void expect_float_matches_double(Make make, Evaluate evaluate, const std::vector<double>& radii) {
+    const auto pd = make(double{});
+    const auto pf = make(float{});
+    for (const double r : radii) {
+        SCOPED_TRACE("r = " + std::to_string(r));
+        const PairTerm<double> d = evaluate(r * r, pd);
+        const PairTerm<float> f = evaluate(float(r) * float(r), pf);
+        const double energy_error = relative_error(f.energy, d.energy);
+        const double derivative_error = relative_error(f.dudr_over_r, d.dudr_over_r);
+        EXPECT_LT(energy_error, kSinglePrecisionTolerance);
+        EXPECT_LT(derivative_error, kSinglePrecisionTolerance);
+        worst.single_precision = std::max({worst.single_precision, energy_error, derivative_error});
+    }
+}
+
+// A unit-free Lennard-Jones setup: sigma 1.3, epsilon 0.8, cutOffFactor 2.5.
+constexpr double kEps = 0.8;
+constexpr double kSigma = 1.3;
+constexpr double kCutoff = 2.5 * kSigma;
+
+// Radii in units of sigma inside 2.5 sigma, clear of the zeros of U and of U'.
+std::vector<double> lennard_jones_radii() {
+    std::vector<double> radii;
+    for (const double x : {0.85, 0.95, 1.05, 1.3, 1.6, 2.0, 2.4}) radii.push_back(x * kSigma);
+    return radii;
+}
+
+template <class Potential>
+void check_cut_lennard_jones(Formula formula) {
+    const auto p = Potential::template make_pair_params<double>(kEps, kSigma, kCutoff, false);
+    expect_energy_and_derivative<Potential>(p, [&](double r) { return formula(kEps, kSigma, r); },
+                                            lennard_jones_radii());
+    // Not shifted, the energy jumps at the cutoff: just inside it is the full U(r_c).
+    const double inside = kCutoff * (1.0 - 1e-9);
+    EXPECT_NEAR(at<Potential>(inside, p).energy, formula(kEps, kSigma, kCutoff), 1e-9 * kEps);
+    EXPECT_NE(formula(kEps, kSigma, kCutoff), 0.0);
+    expect_no_interaction<Potential>(p, {kCutoff, kCutoff * (1.0 + 1e-9), 1.5 * kCutoff, 10.0 * kCutoff});
+}
+
+template <class Potential>
+void check_shifted_lennard_jones(Formula formula) {
+    const auto p = Potential::template make_pair_params<double>(kEps, kSigma, kCutoff, true);
+    const double at_cutoff = formula(kEps, kSigma, kCutoff);
+    expect_energy_and_derivative<Potential>(p, [&](double r) { return formula(kEps, kSigma, r) - at_cutoff; },
+                                            lennard_jones_radii());
+    EXPECT_NEAR(at<Potential>(kCutoff * (1.0 - 1e-9), p).energy, 0.0, 1e-9 * kEps);
+    expect_no_interaction<Potential>(p, {kCutoff, 1.5 * kCutoff});
+}
+
+template <class Potential>
+void check_bonded_lennard_jones(Formula formula) {
+    const double values[] = {kEps, kSigma};
+    const auto p = Potential::template make_bond_params<double>(values, Constants{});
+    std::vector<double> radii = lennard_jones_radii();
+    radii.push_back(3.0 * kSigma);  // beyond any NonBonded cutoff: a bond has none
+    radii.push_back(40.0 * kSigma);
+    expect_energy_and_derivative<Potential>(p, [&](double r) { return formula(kEps, kSigma, r); }, radii);
+}
+
+TEST(LennardJones, CutPairFormsMatchTheFormulas) {
+    check_cut_lennard_jones<LennardJonesType1>(lj1);
+    check_cut_lennard_jones<LennardJonesType2>(lj2);
+    check_cut_lennard_jones<LennardJonesType3>(lj3);
+}
+
+TEST(LennardJones, ShiftSubtractsTheEnergyAtTheCutoff) {
+    check_shifted_lennard_jones<LennardJonesType1>(lj1);
+    check_shifted_lennard_jones<LennardJonesType2>(lj2);
+    check_shifted_lennard_jones<LennardJonesType3>(lj3);
+}
+
+TEST(LennardJones, BondFormsHaveNoCutoff) {
+    check_bonded_lennard_jones<LennardJonesType1>(lj1);
+    check_bonded_lennard_jones<LennardJonesType2>(lj2);
+    check_bonded_lennard_jones<LennardJonesType3>(lj3);
+}
+
+TEST(LennardJones, ShapesHaveTheirMinimumOfMinusEpsilonWhereDocumented) {
+    const double r1 = std::pow(2.0, 1.0 / 6.0) * kSigma;
+    const auto p1 = LennardJonesType1::make_pair_params<double>(kEps, kSigma, kCutoff, false);
+    const auto p2 = LennardJonesType2::make_pair_params<double>(kEps, kSigma, kCutoff, false);
+    const auto p3 = LennardJonesType3::make_pair_params<double>(kEps, kSigma, kCutoff, false);
+    EXPECT_NEAR(at<LennardJonesType1>(r1, p1).energy, -kEps, 1e-14);
+    EXPECT_NEAR(at<LennardJonesType2>(kSigma, p2).energy, -kEps, 1e-14);
+    EXPECT_NEAR(at<LennardJonesType3>(kSigma, p3).energy, -kEps, 1e-14);
+    EXPECT_NEAR(at<LennardJonesType1>(r1, p1).dudr_over_r, 0.0, 1e-13);
+    EXPECT_NEAR(at<LennardJonesType2>(kSigma, p2).dudr_over_r, 0.0, 1e-13);
+    EXPECT_NEAR(at<LennardJonesType3>(kSigma, p3).dudr_over_r, 0.0, 1e-13);
+}
+
+TEST(LennardJones, ZeroCutoffAndUnlistedPairsDoNotInteract) {
+    for (const bool shifted : {false, true}) {
+        const auto lennard_jones = LennardJonesType1::make_pair_params<double>(kEps, kSigma, 0.0, shifted);
+        expect_no_interaction<LennardJonesType1>(lennard_jones, {0.5 * kSigma, kSigma});
+        const auto wca = WCAType2::make_pair_params<double>(kEps, kSigma, 0.0, shifted);
+        expect_no_interaction<WCAType2>(wca, {0.5 * kSigma});
+    }
+    expect_no_interaction<LennardJonesType3>(LennardJonesType3::Params<double>{}, {0.5 * kSigma, kSigma});
+}
+
+// WCA: the shape plus epsilon below its minimum r_min, zero beyond.
+template <class Potential>
+void check_wca(Formula formula, double r_min) {
+    const auto p = Potential::template make_pair_params<double>(kEps, kSigma, kCutoff, false);
+    std::vector<double> radii;
+    for (const double x : {0.8, 0.85, 0.9, 0.95}) radii.push_back(x * kSigma);
+    radii.push_back(0.98 * r_min);
+    expect_energy_and_derivative<Potential>(p, [&](double r) { return formula(kEps, kSigma, r) + kEps; }, radii);
+    // The cutoff that acts is r_min, not cutOffFactor x sigma.
+    expect_no_interaction<Potential>(p, {r_min, r_min * (1.0 + 1e-9), 0.5 * (r_min + kCutoff), 0.99 * kCutoff});
+    // Continuous at r_min, with a vanishing force.
+    const PairTerm<double> inside = at<Potential>(r_min * (1.0 - 1e-8), p);
+    EXPECT_NEAR(inside.energy, 0.0, 1e-12 * kEps);
+    EXPECT_NEAR(inside.dudr_over_r, 0.0, 1e-5 * kEps / (kSigma * kSigma));
+    // Shifting changes nothing when the cutoff lies beyond r_min: U(r_min) is already 0.
+    const auto shifted = Potential::template make_pair_params<double>(kEps, kSigma, kCutoff, true);
+    for (const double r : radii) EXPECT_NEAR(at<Potential>(r, shifted).energy, at<Potential>(r, p).energy, 1e-12);
+}
+
+TEST(WCA, ShapePlusEpsilonBelowTheMinimumAndZeroBeyond) {
+    check_wca<WCAType1>(lj1, std::pow(2.0, 1.0 / 6.0) * kSigma);
+    check_wca<WCAType2>(lj2, kSigma);
+    check_wca<WCAType3>(lj3, kSigma);
+}
+
+TEST(WCA, Type1AddsTheFullEpsilon) {
+    // At r = sigma the type-1 shape is 0, so WCAType1 is eps there (the reference's eps/4 would give eps/4).
+    const auto p = WCAType1::make_pair_params<double>(kEps, kSigma, kCutoff, false);
+    EXPECT_NEAR(at<WCAType1>(kSigma, p).energy, kEps, 1e-14);
+}
+
+TEST(WCA, CutoffShortOfTheMinimumCutsEarlier) {
+    // cutOffFactor 1.05 < 2^(1/6) for type 1: the repulsion ends at 1.05 sigma.
+    const double cutoff = 1.05 * kSigma;
+    const auto p = WCAType1::make_pair_params<double>(kEps, kSigma, cutoff, false);
+    expect_energy_and_derivative<WCAType1>(p, [](double r) { return lj1(kEps, kSigma, r) + kEps; },
+                                           {0.9 * kSigma, 0.99 * kSigma, 1.04 * kSigma});
+    expect_no_interaction<WCAType1>(p, {cutoff, 1.1 * kSigma});
+    const auto shifted = WCAType1::make_pair_params<double>(kEps, kSigma, cutoff, true);
+    const double at_cutoff = lj1(kEps, kSigma, cutoff);
+    expect_energy_and_derivative<WCAType1>(shifted, [&](double r) { return lj1(kEps, kSigma, r) - at_cutoff; },
+                                           {0.9 * kSigma, 0.95 * kSigma, 1.04 * kSigma});
+    EXPECT_NEAR(at<WCAType1>(cutoff * (1.0 - 1e-12), shifted).energy, 0.0, 1e-10 * kEps);
+}
+
+template <class General, class WCA>
+void check_general_positive_epsilon(Formula formula, double r_min) {
+    for (const bool shifted : {false, true}) {
+        const auto p = General::template make_pair_params<double>(kEps, kSigma, kCutoff, shifted);
+        const auto wca = WCA::template make_pair_params<double>(kEps, kSigma, kCutoff, shifted);
+        EXPECT_EQ(p.cutoff2, wca.cutoff2);
+        expect_energy_and_derivative<General>(p, [&](double r) { return formula(kEps, kSigma, r) + kEps; },
+                                              {0.85 * kSigma, 0.9 * kSigma, 0.97 * r_min});
+        expect_no_interaction<General>(p, {r_min * (1.0 + 1e-9), 0.9 * kCutoff});
+    }
+}
+
+template <class General>
+void check_general_negative_epsilon(Formula formula) {
+    const auto p = General::template make_pair_params<double>(-kEps, kSigma, kCutoff, false);
+    expect_energy_and_derivative<General>(p, [&](double r) { return formula(kEps, kSigma, r); }, lennard_jones_radii());
+    // The attractive well acts between r_min and r_c.
+    EXPECT_LT(at<General>(1.6 * kSigma, p).energy, 0.0);
+    expect_no_interaction<General>(p, {kCutoff, 1.2 * kCutoff});
+    const auto shifted = General::template make_pair_params<double>(-kEps, kSigma, kCutoff, true);
+    const double at_cutoff = formula(kEps, kSigma, kCutoff);
+    expect_energy_and_derivative<General>(shifted, [&](double r) { return formula(kEps, kSigma, r) - at_cutoff; },
+                                          lennard_jones_radii());
+}
+
+TEST(GeneralLennardJones, PositiveEpsilonIsTheWCAForm) {
+    check_general_positive_epsilon<GeneralLennardJonesType1, WCAType1>(lj1, std::pow(2.0, 1.0 / 6.0) * kSigma);
+    check_general_positive_epsilon<GeneralLennardJonesType2, WCAType2>(lj2, kSigma);
+    check_general_positive_epsilon<GeneralLennardJonesType3, WCAType3>(lj3, kSigma);
+}
+
+TEST(GeneralLennardJones, NegativeEpsilonIsTheCutFormWithItsMagnitude) {
+    check_general_negative_epsilon<GeneralLennardJonesType1>(lj1);
+    check_general_negative_epsilon<GeneralLennardJonesType2>(lj2);
+    check_general_negative_epsilon<GeneralLennardJonesType3>(lj3);
+}
+
+template <class Potential>
+void check_steric(int n) {
+    const auto formula = [n](double r) { return kEps * std::pow(kSigma / r, n); };
+    const std::vector<double> radii{0.7 * kSigma, kSigma, 1.4 * kSigma, 2.3 * kSigma};
+    const auto p = Potential::template make_pair_params<double>(kEps, kSigma, kCutoff, false);
+    expect_energy_and_derivative<Potential>(p, formula, radii);
+    expect_no_interaction<Potential>(p, {kCutoff, 1.3 * kCutoff});
+    const auto shifted = Potential::template make_pair_params<double>(kEps, kSigma, kCutoff, true);
+    expect_energy_and_derivative<Potential>(shifted, [&](double r) { return formula(r) - formula(kCutoff); }, radii);
+    const double values[] = {kEps, kSigma};
+    const auto bond = Potential::template make_bond_params<double>(values, Constants{});
+    expect_energy_and_derivative<Potential>(bond, formula, {0.7 * kSigma, kSigma, 3.0 * kSigma, 20.0 * kSigma});
+}
+
+TEST(Steric, PairAndBondFormsMatchTheFormula) {
+    check_steric<Steric6>(6);
+    check_steric<Steric12>(12);
+}
+
+// Debye-Hueckel in kcal/mol and Angstrom: water-like dielectric, a 9 A Debye length.
+const Constants kKcalMolA{1.987191e-3, 332.0716};
+constexpr double kDielectric = 78.5;
+constexpr double kDebyeLength = 9.0;
+constexpr double kDebyeCutoff = 4.0 * kDebyeLength;
+
+double debye_huckel(double charge_product, double r) {
+    return 332.0716 * charge_product * std::exp(-r / kDebyeLength) / (kDielectric * r);
+}
+
+TEST(DebyeHuckel, UsesCharges) { EXPECT_TRUE(DebyeHuckel::uses_charges); }
+
+TEST(DebyeHuckel, PairFormScalesWithTheChargeProduct) {
+    const auto p = DebyeHuckel::make_params<double>(kDielectric, kDebyeLength, kDebyeCutoff, kKcalMolA);
+    const std::vector<double> radii{1.5, 3.0, 7.0, 12.0, 25.0, 35.0};
+    for (const double charge_product : {1.0, -0.42, 2.5}) {
+        SCOPED_TRACE("q_i q_j = " + std::to_string(charge_product));
+        for (const double r : radii) {
+            const PairTerm<double> term = DebyeHuckel::evaluate(r * r, p, charge_product);
+            const double expected = debye_huckel(charge_product, r);
+            EXPECT_LT(relative_error(term.energy, expected), kEnergyTolerance);
+            const double h = 1e-6 * r;
+            const double slope = (DebyeHuckel::evaluate((r + h) * (r + h), p, charge_product).energy -
+                                  DebyeHuckel::evaluate((r - h) * (r - h), p, charge_product).energy) /
+                                 (2.0 * h);
+            const double derivative_error = relative_error(term.dudr_over_r, slope / r);
+            EXPECT_LT(derivative_error, kDerivativeTolerance);
+            worst.energy = std::max(worst.energy, relative_error(term.energy, expected));
+            worst.derivative = std::max(worst.derivative, derivative_error);
+        }
+        for (const double r : {kDebyeCutoff, 1.2 * kDebyeCutoff}) {
+            const PairTerm<double> term = DebyeHuckel::evaluate(r * r, p, charge_product);
+            EXPECT_EQ(term.energy, 0.0);
+            EXPECT_EQ(term.dudr_over_r, 0.0);
+        }
+    }
+    // Like charges repel: U'(r) < 0, so the force on i, U'(r)/r r_ij, points away from j.
+    EXPECT_LT(DebyeHuckel::evaluate(9.0, p, 1.0).dudr_over_r, 0.0);
+    EXPECT_GT(DebyeHuckel::evaluate(9.0, p, -1.0).dudr_over_r, 0.0);
+}
+
+TEST(DebyeHuckel, ShiftedPairFormReachesZeroAtTheCutoff) {
+    const auto p = DebyeHuckel::make_params<double>(kDielectric, kDebyeLength, kDebyeCutoff, kKcalMolA, true);
+    const double charge_product = -1.5;
+    for (const double r : {2.0, 10.0, 30.0}) {
+        const double expected = debye_huckel(charge_product, r) - debye_huckel(charge_product, kDebyeCutoff);
+        EXPECT_LT(relative_error(DebyeHuckel::evaluate(r * r, p, charge_product).energy, expected), kEnergyTolerance);
+    }
+    const double inside = kDebyeCutoff * (1.0 - 1e-9);
+    EXPECT_NEAR(DebyeHuckel::evaluate(inside * inside, p, charge_product).energy, 0.0, 1e-9);
+}
+
+TEST(DebyeHuckel, BondFormFoldsTheChargeProductIn) {
+    const double charge_product = -0.8;
+    const double bond_cutoff = 20.0;
+    const double values[] = {charge_product, kDielectric, kDebyeLength, bond_cutoff};
+    const auto p = DebyeHuckel::make_bond_params<double>(values, kKcalMolA);
+    expect_energy_and_derivative<DebyeHuckel>(p, [&](double r) { return debye_huckel(charge_product, r); },
+                                              {1.0, 4.0, 9.0, 15.0, 19.5});
+    expect_no_interaction<DebyeHuckel>(p, {bond_cutoff, 25.0});
+}
+
+TEST(Morse, MatchesTheFormula) {
+    const double r0 = 1.5, depth = 2.2, width = 0.4;
+    const double values[] = {r0, depth, width};
+    const auto p = MorseBond::make_bond_params<double>(values, Constants{});
+    const auto formula = [&](double r) {
+        const double x = 1.0 - std::exp(-(r - r0) / width);
+        return depth * (x * x - 1.0);
+    };
+    expect_energy_and_derivative<MorseBond>(p, formula, {0.9, 1.2, 1.4, 1.7, 2.3, 4.0});
+    EXPECT_NEAR(at<MorseBond>(r0, p).energy, -depth, 1e-14);
+    EXPECT_EQ(at<MorseBond>(0.0, p).dudr_over_r, 0.0);
+}
+
+TEST(Gaussian, MatchesTheFormula) {
+    const double depth = 3.1, r0 = 2.0, variance = 0.3;
+    const double values[] = {depth, r0, variance};
+    const auto p = GaussianBond::make_bond_params<double>(values, Constants{});
+    const auto formula = [&](double r) { return -depth * std::exp(-(r - r0) * (r - r0) / (2.0 * variance)); };
+    expect_energy_and_derivative<GaussianBond>(p, formula, {0.5, 1.2, 1.8, 2.3, 3.0, 4.5});
+    EXPECT_NEAR(at<GaussianBond>(r0, p).energy, -depth, 1e-14);
+    EXPECT_EQ(at<GaussianBond>(0.0, p).dudr_over_r, 0.0);
+}
+
+template <class Potential>
+void check_single_precision_pair(double epsilon, const std::vector<double>& radii) {
+    expect_float_matches_double(
+        [&](auto tag) { return Potential::template make_pair_params<decltype(tag)>(epsilon, kSigma, kCutoff, false); },
+        [](auto r2, const auto& p) { return Potential::evaluate(r2, p); }, radii);
+}
+
+template <class Potential>
+void check_single_precision_bond(std::vector<double> values, const std::vector<double>& radii) {
+    expect_float_matches_double(
+        [&](auto tag) { return Potential::template make_bond_params<decltype(tag)>(values.data(), kKcalMolA); },
+        [](auto r2, const auto& p) { return Potential::evaluate(r2, p); }, radii);
+}
+
+TEST(SinglePrecision, MatchesDouble) {
+    const std::vector<double> radii = lennard_jones_radii();
+    const std::vector<double> repulsive{0.8 * kSigma, 0.9 * kSigma, 0.95 * kSigma};
+    check_single_precision_pair<LennardJonesType1>(kEps, radii);
+    check_single_precision_pair<LennardJonesType2>(kEps, radii);
+    check_single_precision_pair<LennardJonesType3>(kEps, radii);
+    check_single_precision_pair<WCAType1>(kEps, repulsive);
+    check_single_precision_pair<WCAType2>(kEps, repulsive);
+    check_single_precision_pair<WCAType3>(kEps, repulsive);
+    check_single_precision_pair<GeneralLennardJonesType1>(kEps, repulsive);
+    check_single_precision_pair<GeneralLennardJonesType2>(-kEps, radii);
+    check_single_precision_pair<GeneralLennardJonesType3>(-kEps, radii);
+    check_single_precision_pair<Steric6>(kEps, radii);
+    check_single_precision_pair<Steric12>(kEps, radii);
+    check_single_precision_bond<LennardJonesType1>({kEps, kSigma}, {0.9, 1.4, 5.0});
+    check_single_precision_bond<Steric12>({kEps, kSigma}, {0.9, 1.4, 5.0});
+    check_single_precision_bond<DebyeHuckel>({-0.8, kDielectric, kDebyeLength, 20.0}, {1.0, 4.0, 15.0});
+    check_single_precision_bond<MorseBond>({1.5, 2.2, 0.4}, {0.9, 1.2, 1.7, 2.3});
+    check_single_precision_bond<GaussianBond>({3.1, 2.0, 0.3}, {0.5, 1.2, 2.3, 3.0});
+    expect_float_matches_double(
+        [](auto tag) {
+            return DebyeHuckel::make_params<decltype(tag)>(kDielectric, kDebyeLength, kDebyeCutoff, kKcalMolA);
+        },
+        [](auto r2, const auto& p) { return DebyeHuckel::evaluate(r2, p, decltype(r2)(-0.42)); },
+        {1.5, 7.0, 25.0});
+}
+
+}  // namespace
