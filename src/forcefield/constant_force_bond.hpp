@@ -1,0 +1,29 @@
+#pragma once
+// A constant force on one particle (Bond1 ConstantForce): F = the given vector, U = 0 (the input
+// format assigns this term no energy, so F is not -grad U).
+#include "forcefield/bond_potential.hpp"
+
+namespace structmd {
+
+struct ConstantForceBond {
+    static constexpr int arity = 1;
+
+    template <class R>
+    struct Params {
+        Vec3<R> force;
+    };
+
+    // values: fx, fy, fz
+    template <class R>
+    static Params<R> make_params(const double* values, const Constants&) {
+        return {{R(values[0]), R(values[1]), R(values[2])}};
+    }
+
+    template <class R>
+    static SMD_HD SMD_INLINE R compute(const Vec3<R>*, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
+        force[0] = p.force;
+        return R(0);
+    }
+};
+
+}  // namespace structmd

@@ -1,0 +1,89 @@
+#pragma once
+// Dihedral (torsion) terms of four particles, in the IUPAC angle phi of the chain r[0]-r[1]-r[2]-r[3]
+// (phi in [-pi, pi], cis = 0, trans = pi; bonded_geometry.hpp):
+//   Dihedral:  U = K [1 + cos(n phi - phi0)]
+//   Dihedral4: U = sum_{n=1..4} K_n [1 + cos(n phi - phi0_n)]
+// A chain with three consecutive particles collinear has no dihedral: it feels no force from these
+// terms, and its energy is taken at phi = 0.
+#include "forcefield/bond_potential.hpp"
+#include "forcefield/bonded_geometry.hpp"
+
+namespace structmd {
+
+namespace dihedral_detail {
+
+// Forces -dU/dphi grad(phi) on the four particles.
+template <class R>
+SMD_HD SMD_INLINE void write_forces(const bonded_geometry::DihedralAngle<R>& angle, R dudphi, Vec3<R>* force) {
+    for (int k = 0; k < 4; ++k) force[k] = (-dudphi) * angle.dphi_dr[k];
+}
+
+template <class R>
+SMD_HD SMD_INLINE bonded_geometry::DihedralAngle<R> angle_of(const Vec3<R>* r) {
+    return bonded_geometry::dihedral_angle(r[1] - r[0], r[2] - r[1], r[3] - r[2]);
+}
+
+}  // namespace dihedral_detail
+
+struct Dihedral {
+    static constexpr int arity = 4;
+
+    template <class R>
+    struct Params {
+        R n;  // multiplicity, an integer (the reader checks it) kept as a real for the arithmetic
+        R K;
+        R phi0;
+    };
+
+    // values: n, K, phi0 (radians)
+    template <class R>
+    static Params<R> make_params(const double* values, const Constants&) {
+        return {R(values[0]), R(values[1]), R(values[2])};
+    }
+
+    template <class R>
+    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
+        const bonded_geometry::DihedralAngle<R> angle = dihedral_detail::angle_of(r);
+        const R phase = p.n * angle.phi - p.phi0;
+        dihedral_detail::write_forces<R>(angle, -p.K * p.n * sin(phase), force);
+        return p.K * (R(1) + cos(phase));
+    }
+};
+
+struct Dihedral4 {
+    static constexpr int arity = 4;
+
+    template <class R>
+    struct Params {
+        R K[4];     // K_n for n = 1..4
+        R phi0[4];  // phi0_n for n = 1..4
+    };
+
+    // values: K1, K2, K3, K4, phi0_1, phi0_2, phi0_3, phi0_4
+    template <class R>
+    static Params<R> make_params(const double* values, const Constants&) {
+        Params<R> p;
+        for (int k = 0; k < 4; ++k) {
+            p.K[k] = R(values[k]);
+            p.phi0[k] = R(values[4 + k]);
+        }
+        return p;
+    }
+
+    template <class R>
+    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
+        const bonded_geometry::DihedralAngle<R> angle = dihedral_detail::angle_of(r);
+        R energy = 0;
+        R dudphi = 0;
+        for (int k = 0; k < 4; ++k) {
+            const R n = R(k + 1);
+            const R phase = n * angle.phi - p.phi0[k];
+            energy += p.K[k] * (R(1) + cos(phase));
+            dudphi -= p.K[k] * n * sin(phase);
+        }
+        dihedral_detail::write_forces(angle, dudphi, force);
+        return energy;
+    }
+};
+
+}  // namespace structmd

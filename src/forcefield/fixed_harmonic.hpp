@@ -1,0 +1,39 @@
+#pragma once
+// A particle tied to a fixed point p by a harmonic spring: U = 1/2 K (d - r0)^2, d = |d_vec| with
+// d_vec the minimum image of p - r[0]; the force K (d - r0) d_vec / d pulls the particle towards
+// distance r0 from p. At d = 0 the spring has no direction and the force is taken as zero: with
+// r0 = 0 that is the minimum of U (the force K d_vec is smooth through it); with r0 != 0 every
+// direction is equally valid and U = 1/2 K r0^2 is finite.
+#include "forcefield/bond_potential.hpp"
+
+namespace structmd {
+
+struct FixedHarmonic {
+    static constexpr int arity = 1;
+
+    template <class R>
+    struct Params {
+        R K;
+        R r0;
+        Vec3<R> point;
+    };
+
+    // values: K, r0, px, py, pz
+    template <class R>
+    static Params<R> make_params(const double* values, const Constants&) {
+        return {R(values[0]), R(values[1]), {R(values[2]), R(values[3]), R(values[4])}};
+    }
+
+    template <class R>
+    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>& box, Vec3<R>* force) {
+        // wrap() folds any difference into the box, so the point need not lie inside it.
+        const Vec3<R> to_point = box.wrap(p.point - r[0]);
+        const R d = sqrt(dot(to_point, to_point));
+        const R stretch = d - p.r0;
+        const R scale = d > R(0) ? p.K * stretch / d : R(0);
+        force[0] = scale * to_point;
+        return R(0.5) * p.K * stretch * stretch;
+    }
+};
+
+}  // namespace structmd
