@@ -260,15 +260,19 @@ void read_debye_huckel_pair(const ComponentEntry& entry, const SystemDescription
 
 // ---- bonds ------------------------------------------------------------------------------------
 
-// A parameter of a bonded term and how many numbers it holds (3 for a vector).
+// A parameter of a bonded term, how many numbers it holds (3 for a vector) and whether they must
+// be integers (a dihedral's multiplicity).
 struct Parameter {
     std::string name;
     int size = 1;
+    bool integer = false;
 };
 
-void read_values(const TrackedNode& node, int size, std::vector<double>& values) {
+void read_values(const TrackedNode& node, int size, std::vector<double>& values, bool integer = false) {
     if (size == 1) {
-        values.push_back(checked_finite(node.path(), node.as<double>()));
+        const double value = checked_finite(node.path(), node.as<double>());
+        if (integer && value != std::floor(value)) throw input_error(node.path(), "expected an integer");
+        values.push_back(value);
         return;
     }
     if (!node.is_array() || node.size() != static_cast<size_t>(size))
@@ -294,7 +298,7 @@ Reader bond_reader(std::string family, int arity, std::vector<Parameter> paramet
                 TrackedNode params = parameters_of(entry);
                 if (!params.valid())
                     throw input_error(parameter_path(entry, parameters[k].name), "missing required parameter");
-                read_values(params.at(parameters[k].name), parameters[k].size, shared[k]);
+                read_values(params.at(parameters[k].name), parameters[k].size, shared[k], parameters[k].integer);
             } else {
                 columns.push_back(parameters[k].name);
             }
@@ -314,7 +318,8 @@ Reader bond_reader(std::string family, int arity, std::vector<Parameter> paramet
                 if (!shared[k].empty())
                     bonds.params.insert(bonds.params.end(), shared[k].begin(), shared[k].end());
                 else
-                    read_values(table.cell(r, parameters[k].name), parameters[k].size, bonds.params);
+                    read_values(table.cell(r, parameters[k].name), parameters[k].size, bonds.params,
+                                parameters[k].integer);
             }
         }
         ff.bonds.push_back(std::move(bonds));
@@ -400,7 +405,7 @@ const std::map<std::pair<std::string, std::string>, Reader>& registry() {
         r[{"Bond3", "KratkyPorod"}] = bond_reader("KratkyPorod", 3, {{"K"}});
         r[{"Bond3", "KratkyPorodCommon_K"}] = bond_reader("KratkyPorod", 3, {{"K"}}, {"K"});
 
-        const std::vector<Parameter> dihedral = {{"n"}, {"K"}, {"phi0"}};
+        const std::vector<Parameter> dihedral = {{"n", 1, true}, {"K"}, {"phi0"}};
         r[{"Bond4", "Dihedral"}] = bond_reader("Dihedral", 4, dihedral);
         r[{"Bond4", "DihedralCommon_n_K_phi0"}] = bond_reader("Dihedral", 4, dihedral, {"n", "K", "phi0"});
         r[{"Bond4", "Dihedral4"}] = bond_reader("Dihedral4", 4, {{"K", 4}, {"phi0", 4}});
