@@ -11,10 +11,14 @@
 namespace structmd {
 
 std::unique_ptr<Simulation> make_cpu_engine(bool doublePrecision, int threads, SimulationSpec spec, const Logger& log);
+std::unique_ptr<Simulation> make_cpu_engine_single(int threads, SimulationSpec spec, const Logger& log);
+std::unique_ptr<Simulation> make_cpu_engine_double(int threads, SimulationSpec spec, const Logger& log);
 int cpu_default_threads();
 
 // Present only in builds with the CUDA backend (STRUCTMD_HAVE_CUDA).
 std::unique_ptr<Simulation> make_cuda_engine(bool doublePrecision, int device, SimulationSpec spec, const Logger& log);
+std::unique_ptr<Simulation> make_cuda_engine_single(int device, SimulationSpec spec, const Logger& log);
+std::unique_ptr<Simulation> make_cuda_engine_double(int device, SimulationSpec spec, const Logger& log);
 int cuda_device_count();
 std::string cuda_device_name(int device);
 

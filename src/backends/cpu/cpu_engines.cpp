@@ -1,13 +1,15 @@
+// The CPU backend's entry points; the engines themselves are instantiated in cpu_engine_single.cpp
+// and cpu_engine_double.cpp.
+#include <omp.h>
+
 #include "backends/backend_engines.hpp"
-#include "backends/cpu/cpu_backend.hpp"
-#include "simulation/engine.hpp"
 
 namespace structmd {
 
 std::unique_ptr<Simulation> make_cpu_engine(bool doublePrecision, int threads, SimulationSpec spec,
                                             const Logger& log) {
-    if (doublePrecision) return std::make_unique<Engine<CpuBackend, double>>(std::move(spec), log, threads);
-    return std::make_unique<Engine<CpuBackend, float>>(std::move(spec), log, threads);
+    if (doublePrecision) return make_cpu_engine_double(threads, std::move(spec), log);
+    return make_cpu_engine_single(threads, std::move(spec), log);
 }
 
 int cpu_default_threads() { return omp_get_max_threads(); }

@@ -1,13 +1,14 @@
+// The CUDA backend's entry points; the engines themselves are instantiated in
+// cuda_engine_single.cu and cuda_engine_double.cu.
 #include "backends/backend_engines.hpp"
-#include "backends/cuda/cuda_backend.cuh"
-#include "simulation/engine.hpp"
+#include "backends/cuda/cuda_check.hpp"
 
 namespace structmd {
 
 std::unique_ptr<Simulation> make_cuda_engine(bool doublePrecision, int device, SimulationSpec spec,
                                              const Logger& log) {
-    if (doublePrecision) return std::make_unique<Engine<CudaBackend, double>>(std::move(spec), log, device);
-    return std::make_unique<Engine<CudaBackend, float>>(std::move(spec), log, device);
+    if (doublePrecision) return make_cuda_engine_double(device, std::move(spec), log);
+    return make_cuda_engine_single(device, std::move(spec), log);
 }
 
 int cuda_device_count() {

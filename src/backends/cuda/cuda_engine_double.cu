@@ -1,0 +1,13 @@
+// Engine<CudaBackend, double>, in a translation unit of its own so the two precisions compile in
+// parallel.
+#include "backends/backend_engines.hpp"
+#include "backends/cuda/cuda_backend.cuh"
+#include "simulation/engine.hpp"
+
+namespace structmd {
+
+std::unique_ptr<Simulation> make_cuda_engine_double(int device, SimulationSpec spec, const Logger& log) {
+    return std::make_unique<Engine<CudaBackend, double>>(std::move(spec), log, device);
+}
+
+}  // namespace structmd
