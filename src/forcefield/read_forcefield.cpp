@@ -254,24 +254,28 @@ void read_debye_huckel_pair(const ComponentEntry& entry, const SystemDescription
     pair.dielectricConstant = checked_positive(parameter_path(entry, "dielectricConstant"),
                                                parameter<double>(entry, "dielectricConstant"));
     pair.debyeLength = checked_positive(parameter_path(entry, "debyeLength"), parameter<double>(entry, "debyeLength"));
+    pair.shift = parameter_or<bool>(entry, "shift", false);
     check_cutoff(entry, system, pair);
     ff.pairs.push_back(std::move(pair));
 }
 
 // ---- bonds ------------------------------------------------------------------------------------
 
-// A parameter of a bonded term, how many numbers it holds (3 for a vector) and whether they must
-// be integers (a dihedral's multiplicity).
+// What a parameter's numbers must be, beyond finite.
+enum class Must { be_finite, be_positive, be_integer };
+
+// A parameter of a bonded term and how many numbers it holds (3 for a vector).
 struct Parameter {
     std::string name;
     int size = 1;
-    bool integer = false;
+    Must must = Must::be_finite;
 };
 
-void read_values(const TrackedNode& node, int size, std::vector<double>& values, bool integer = false) {
+void read_values(const TrackedNode& node, int size, std::vector<double>& values, Must must = Must::be_finite) {
     if (size == 1) {
         const double value = checked_finite(node.path(), node.as<double>());
-        if (integer && value != std::floor(value)) throw input_error(node.path(), "expected an integer");
+        if (must == Must::be_integer && value != std::floor(value)) throw input_error(node.path(), "expected an integer");
+        if (must == Must::be_positive) checked_positive(node.path(), value);
         values.push_back(value);
         return;
     }
@@ -298,7 +302,7 @@ Reader bond_reader(std::string family, int arity, std::vector<Parameter> paramet
                 TrackedNode params = parameters_of(entry);
                 if (!params.valid())
                     throw input_error(parameter_path(entry, parameters[k].name), "missing required parameter");
-                read_values(params.at(parameters[k].name), parameters[k].size, shared[k], parameters[k].integer);
+                read_values(params.at(parameters[k].name), parameters[k].size, shared[k], parameters[k].must);
             } else {
                 columns.push_back(parameters[k].name);
             }
@@ -319,7 +323,7 @@ Reader bond_reader(std::string family, int arity, std::vector<Parameter> paramet
                     bonds.params.insert(bonds.params.end(), shared[k].begin(), shared[k].end());
                 else
                     read_values(table.cell(r, parameters[k].name), parameters[k].size, bonds.params,
-                                parameters[k].integer);
+                                parameters[k].must);
             }
         }
         ff.bonds.push_back(std::move(bonds));
@@ -333,6 +337,7 @@ struct ExternalParameter {
     std::string name;
     int size;
     double fallback;
+    Must must = Must::be_finite;
 };
 
 Reader external_reader(std::string family, std::vector<ExternalParameter> parameters) {
@@ -343,7 +348,7 @@ Reader external_reader(std::string family, std::vector<ExternalParameter> parame
         for (const ExternalParameter& p : parameters) {
             auto node = params.valid() ? params.find(p.name) : std::nullopt;
             if (node) {
-                read_values(*node, p.size, external.values);
+                read_values(*node, p.size, external.values, p.must);
             } else if (std::isnan(p.fallback)) {
                 throw input_error(parameter_path(entry, p.name), "missing required parameter");
             } else {
@@ -374,11 +379,12 @@ const std::map<std::pair<std::string, std::string>, Reader>& registry() {
         r[{"Bond2", "Harmonic"}] = bond_reader("Harmonic", 2, harmonic);
         r[{"Bond2", "HarmonicCommon_K"}] = bond_reader("Harmonic", 2, harmonic, {"K"});
         r[{"Bond2", "HarmonicCommon_K_r0"}] = bond_reader("Harmonic", 2, harmonic, {"K", "r0"});
-        const std::vector<Parameter> fene = {{"r0"}, {"K"}, {"R0"}};
+        const Must positive = Must::be_positive;
+        const std::vector<Parameter> fene = {{"r0"}, {"K"}, {"R0", 1, positive}};
         r[{"Bond2", "Fene"}] = bond_reader("Fene", 2, fene);
         r[{"Bond2", "FeneCommon_K_R0"}] = bond_reader("Fene", 2, fene, {"K", "R0"});
         r[{"Bond2", "FeneCommon_r0_K_R0"}] = bond_reader("Fene", 2, fene, {"r0", "K", "R0"});
-        const std::vector<Parameter> morse = {{"r0"}, {"E"}, {"D"}};
+        const std::vector<Parameter> morse = {{"r0"}, {"E"}, {"D", 1, positive}};
         r[{"Bond2", "Morse"}] = bond_reader("Morse", 2, morse);
         r[{"Bond2", "MorseCommon_D"}] = bond_reader("Morse", 2, morse, {"D"});
         r[{"Bond2", "MorseCommon_r0_E_D"}] = bond_reader("Morse", 2, morse, {"r0", "E", "D"});
@@ -387,7 +393,7 @@ const std::map<std::pair<std::string, std::string>, Reader>& registry() {
             r[{"Bond2", family}] = bond_reader(family, 2, lennardJones);
             r[{"Bond2", std::string(family) + "Common_epsilon"}] = bond_reader(family, 2, lennardJones, {"epsilon"});
         }
-        const std::vector<Parameter> gaussian = {{"E"}, {"r0"}, {"D"}};
+        const std::vector<Parameter> gaussian = {{"E"}, {"r0"}, {"D", 1, positive}};
         r[{"Bond2", "Gaussian"}] = bond_reader("Gaussian", 2, gaussian);
         r[{"Bond2", "GaussianCommon_E_r0_D"}] = bond_reader("Gaussian", 2, gaussian, {"E", "r0", "D"});
         for (const char* family : {"Steric6", "Steric12"}) {
@@ -396,7 +402,8 @@ const std::map<std::pair<std::string, std::string>, Reader>& registry() {
                 bond_reader(family, 2, lennardJones, {"epsilon", "sigma"});
         }
         r[{"Bond2", "DebyeHuckel"}] = bond_reader(
-            "DebyeHuckel", 2, {{"chgProduct"}, {"dielectricConstant"}, {"debyeLength"}, {"cutOff"}});
+            "DebyeHuckel", 2,
+            {{"chgProduct"}, {"dielectricConstant", 1, positive}, {"debyeLength", 1, positive}, {"cutOff", 1, positive}});
 
         const std::vector<Parameter> angle = {{"K"}, {"theta0"}};
         r[{"Bond3", "HarmonicAngular"}] = bond_reader("HarmonicAngular", 3, angle);
@@ -405,18 +412,18 @@ const std::map<std::pair<std::string, std::string>, Reader>& registry() {
         r[{"Bond3", "KratkyPorod"}] = bond_reader("KratkyPorod", 3, {{"K"}});
         r[{"Bond3", "KratkyPorodCommon_K"}] = bond_reader("KratkyPorod", 3, {{"K"}}, {"K"});
 
-        const std::vector<Parameter> dihedral = {{"n", 1, true}, {"K"}, {"phi0"}};
+        const std::vector<Parameter> dihedral = {{"n", 1, Must::be_integer}, {"K"}, {"phi0"}};
         r[{"Bond4", "Dihedral"}] = bond_reader("Dihedral", 4, dihedral);
         r[{"Bond4", "DihedralCommon_n_K_phi0"}] = bond_reader("Dihedral", 4, dihedral, {"n", "K", "phi0"});
         r[{"Bond4", "Dihedral4"}] = bond_reader("Dihedral4", 4, {{"K", 4}, {"phi0", 4}});
 
         r[{"External", "ConstantForce"}] = external_reader("ConstantForce", {{"constantForce", 3, required}});
         r[{"External", "Plates"}] = external_reader(
-            "Plates", {{"platesSeparation", 1, required}, {"platesEpsilon", 1, 1.0}, {"platesSigma", 1, 1.0},
+            "Plates", {{"platesSeparation", 1, required, Must::be_positive}, {"platesEpsilon", 1, 1.0}, {"platesSigma", 1, 1.0},
                        {"compressionVelocity", 1, 0.0}, {"minPlatesSeparation", 1, 0.0},
                        {"maxPlatesSeparation", 1, infinity}});
         r[{"External", "SphericalShell"}] = external_reader(
-            "SphericalShell", {{"shellCenter", 3, required}, {"shellRadius", 1, required}, {"shellEpsilon", 1, 1.0},
+            "SphericalShell", {{"shellCenter", 3, required}, {"shellRadius", 1, required, Must::be_positive}, {"shellEpsilon", 1, 1.0},
                                {"shellSigma", 1, 1.0}, {"minShellRadius", 1, 0.0}, {"maxShellRadius", 1, infinity},
                                {"radiusVelocity", 1, 0.0}});
         return r;
