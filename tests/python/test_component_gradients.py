@@ -1,0 +1,133 @@
+"""Every force-field component through the whole engine (reader, kernels, neighbour list, energy
+split): the force on each particle equals minus the central finite difference of the potential
+energy, in double precision, on a random non-degenerate configuration that straddles the periodic
+boundary. The functor tests check the formulas; this checks the plumbing around them."""
+
+import math
+
+import numpy as np
+import pytest
+
+import structmd
+
+BOX = 7.0
+N = 12
+
+
+def configuration(seed):
+    """N particles, each at least 0.85 from the others (minimum image), clustered around a box face
+    so that many pairs and bonds cross the boundary."""
+    rng = np.random.default_rng(seed)
+    positions = []
+    while len(positions) < N:
+        candidate = rng.uniform(-1.6, 1.6, 3)
+        candidate[0] += BOX / 2  # around x = +-L/2
+        candidate -= BOX * np.round(candidate / BOX)
+        if all(np.linalg.norm((candidate - p) - BOX * np.round((candidate - p) / BOX)) > 0.85 for p in positions):
+            positions.append(candidate)
+    return np.array(positions)
+
+
+def document(positions, force_field, charges=None):
+    state_labels = ["id", "position", "velocity"] + (["charge"] if charges is not None else [])
+    rows = []
+    for i, p in enumerate(positions):
+        row = [i, list(p), [0.0, 0.0, 0.0]]
+        if charges is not None:
+            row.append(charges[i])
+        rows.append(row)
+    return {
+        "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": "gradients"}}},
+        "global": {
+            "units": {"type": ["Units", "KcalMol_A"]},
+            "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
+                      "data": [["A", 1.0, 0.3, 0.0], ["B", 2.0, 0.4, 0.0]]},
+            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
+                         "data": [[[BOX, BOX, BOX], 300.0]]},
+        },
+        "integrator": {
+            "vv": {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 0.001}},
+            "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                         "data": [[1, "vv", 10]]},
+        },
+        "state": {"labels": state_labels, "data": rows},
+        "topology": {"structure": {"labels": ["id", "type"],
+                                   "data": [[i, "A" if i % 3 else "B"] for i in range(len(positions))]},
+                     "forceField": force_field},
+    }
+
+
+TABLE = [["A", "A", 0.8, 1.0], ["A", "B", 1.2, 0.9], ["B", "B", 0.6, 1.1]]
+NEGATIVE = [["A", "A", -0.8, 1.0], ["A", "B", 1.2, 0.9], ["B", "B", -0.6, 1.1]]
+NL = {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": 1.15}}
+
+
+def pair(subclass, table=TABLE, shift=False):
+    return {"nl": NL, "term": {"type": ["NonBonded", subclass],
+                               "parameters": {"cutOffFactor": 2.4, "condition": "all", "shift": shift},
+                               "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": table}}
+
+
+def chain(ids, arity):
+    return [ids[k:k + arity] for k in range(0, len(ids) - arity + 1)]
+
+
+def bonds(cls, subclass, arity, labels, values):
+    rows = [list(ids) + list(values(k)) for k, ids in enumerate(chain(list(range(N)), arity))]
+    id_labels = ["id_i", "id_j", "id_k", "id_l"][:arity]
+    return {"term": {"type": [cls, subclass], "labels": id_labels + labels, "data": rows}}
+
+
+CASES = {
+    **{name: pair(name) for name in ["LennardJonesType1", "LennardJonesType2", "LennardJonesType3", "WCAType1",
+                                     "WCAType2", "WCAType3", "Steric6", "Steric12"]},
+    "LennardJonesType1 shifted": pair("LennardJonesType1", shift=True),
+    **{f"GeneralLennardJonesType{k}": pair(f"GeneralLennardJonesType{k}", NEGATIVE) for k in (1, 2, 3)},
+    "DebyeHuckel": {"nl": NL, "term": {"type": ["NonBonded", "DebyeHuckel"],
+                                       "parameters": {"cutOffFactor": 2.0, "condition": "all",
+                                                      "dielectricConstant": 80.0, "debyeLength": 1.5}}},
+    "Bond1 FixedHarmonic": bonds("Bond1", "FixedHarmonic", 1, ["K", "r0", "position"],
+                                 lambda k: [3.0, 0.4, [3.3, 0.2 * k - 1.0, 0.5]]),
+    "Bond2 Harmonic": bonds("Bond2", "Harmonic", 2, ["K", "r0"], lambda k: [10.0 + k, 1.0]),
+    "Bond2 Fene": bonds("Bond2", "Fene", 2, ["r0", "K", "R0"], lambda k: [0.3, 5.0, 6.0]),
+    "Bond2 Morse": bonds("Bond2", "Morse", 2, ["r0", "E", "D"], lambda k: [1.0, 2.0, 0.7]),
+    "Bond2 LennardJonesType2": bonds("Bond2", "LennardJonesType2", 2, ["epsilon", "sigma"], lambda k: [0.5, 0.8]),
+    "Bond2 Gaussian": bonds("Bond2", "Gaussian", 2, ["E", "r0", "D"], lambda k: [1.5, 1.2, 0.8]),
+    "Bond2 Steric12": bonds("Bond2", "Steric12", 2, ["epsilon", "sigma"], lambda k: [0.5, 0.8]),
+    "Bond2 DebyeHuckel": bonds("Bond2", "DebyeHuckel", 2, ["chgProduct", "dielectricConstant", "debyeLength",
+                                                            "cutOff"], lambda k: [-0.5, 40.0, 2.0, 3.4]),
+    "Bond3 HarmonicAngular": bonds("Bond3", "HarmonicAngular", 3, ["K", "theta0"], lambda k: [4.0, 2.0]),
+    "Bond3 KratkyPorod": bonds("Bond3", "KratkyPorod", 3, ["K"], lambda k: [3.0]),
+    "Bond4 Dihedral": bonds("Bond4", "Dihedral", 4, ["n", "K", "phi0"], lambda k: [1 + k % 3, 2.0, 0.4]),
+    "Bond4 Dihedral4": bonds("Bond4", "Dihedral4", 4, ["K", "phi0"],
+                             lambda k: [[1.0, 0.5, 0.2, 0.1], [0.1, 0.2, 0.3, 0.4]]),
+    "External Plates": {"term": {"type": ["External", "Plates"],
+                                 "parameters": {"platesSeparation": 6.0, "platesEpsilon": 0.5}}},
+    "External SphericalShell": {"term": {"type": ["External", "SphericalShell"],
+                                         "parameters": {"shellCenter": [3.5, 0.0, 0.0], "shellRadius": 4.0}}},
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_force_is_minus_the_energy_gradient(options, name):
+    positions = configuration(seed=sorted(CASES).index(name))
+    charges = list(np.linspace(-1.0, 1.0, N)) if "DebyeHuckel" in name else None
+    with structmd.Simulation(dict(options, precision="double")) as sim:
+        sim.load(document(positions, CASES[name], charges))
+        forces = sim.forces
+        assert np.all(np.isfinite(forces))
+        assert np.max(np.abs(forces)) > 0.0, "the term must act on this configuration"
+        h = 1e-5
+        numerical = np.zeros_like(forces)
+        for i in range(N):
+            for d in range(3):
+                moved = positions.copy()
+                moved[i, d] += h
+                sim.positions = moved
+                up = sim.energy("term")
+                moved[i, d] -= 2 * h
+                sim.positions = moved
+                down = sim.energy("term")
+                numerical[i, d] = -(up - down) / (2 * h)
+        error = np.max(np.abs(forces - numerical)) / np.max(np.abs(numerical))
+        assert error < 1e-6, f"{name}: relative error {error:.2e}"

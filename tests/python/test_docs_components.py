@@ -1,0 +1,214 @@
+"""docs/input-format.md is the user's reference for every component: each `### ["Class","SubClass"]`
+heading there opens with a JSON example. These tests load every example into a small system and
+check that the force-field components documented are exactly those the engine knows, so the page
+cannot fall behind the engine or promise a component it rejects."""
+
+import copy
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import structmd
+
+DOC = Path(__file__).resolve().parents[2] / "docs" / "input-format.md"
+HEADING = re.compile(r'^### \["([^"]+)","([^"]+)"\]\s*$')
+SECTION = re.compile(r"^Section: `([A-Za-z.]+)`")
+REGISTRY_LINE = re.compile(r'^\s*\["([^"]+)", "([^"]+)"\]\s*$')
+FORCE_FIELD = "topology.forceField"
+
+
+def documented_components():
+    """{(class, subclass): (example entry name, entry, section)} for every component heading."""
+    lines = DOC.read_text(encoding="utf-8").splitlines()
+    components = {}
+    for number, line in enumerate(lines):
+        match = HEADING.match(line)
+        if not match:
+            continue
+        key = (match.group(1), match.group(2))
+        where = f"{DOC.name}:{number + 1} {line}"
+        assert key not in components, f"{where}: documented twice"
+        k = number + 1
+        while k < len(lines) and not lines[k].strip():
+            k += 1
+        assert k < len(lines) and lines[k].strip() == "```json", f"{where}: no ```json example right below"
+        end = lines.index("```", k + 1)
+        example = json.loads("\n".join(lines[k + 1:end]))
+        assert len(example) == 1, f"{where}: the example must hold one named entry"
+        (name, entry), = example.items()
+        assert entry.get("type") == list(key), f"{where}: the example's type is {entry.get('type')}"
+        k = end + 1
+        while k < len(lines) and not lines[k].strip():
+            k += 1
+        section = SECTION.match(lines[k]) if k < len(lines) else None
+        assert section, f"{where}: the example must be followed by a 'Section: `...`' line"
+        components[key] = (name, entry, section.group(1))
+    return components
+
+
+COMPONENTS = documented_components()
+FORCE_FIELD_COMPONENTS = sorted(k for k, v in COMPONENTS.items() if v[2] == FORCE_FIELD)
+DOCUMENT_COMPONENTS = sorted(k for k, v in COMPONENTS.items() if v[2] != FORCE_FIELD)
+
+# The system every example is written for (docs/input-format.md, "Examples on this page"): ids 0..3
+# in a bent, non-planar chain (every angle and dihedral is defined), types A and B with charges,
+# models 0 and 1, all well inside a 10-wide box and within 2 of the origin.
+POSITIONS = [[0.0, 0.0, 0.0], [1.1, 0.0, 0.0], [1.5, 1.0, 0.0], [2.6, 1.1, 0.5]]
+TYPES = ["A", "B", "A", "B"]
+MODELS = [0, 0, 1, 1]
+BOX = 10.0
+# The conditions each neighbour list subclass offers (docs: "Neighbour lists").
+LIST_CONDITIONS = {"all": ["all"], "nonExcluded": ["nonExcluded"], "intra_inter": ["intra", "inter"]}
+
+
+def base_document():
+    return {
+        "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": "docs"}}},
+        "global": {
+            "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
+                      "data": [["A", 1.0, 0.5, 0.5], ["B", 1.0, 0.5, -0.5]]},
+            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
+                         "data": [[[BOX, BOX, BOX], 1.0]]},
+        },
+        "integrator": {
+            "vv": {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 0.001}},
+            "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                         "data": [[1, "vv", 10]]},
+        },
+        "state": {"labels": ["id", "position", "velocity"],
+                  "data": [[i, p, [0.0, 0.0, 0.0]] for i, p in enumerate(POSITIONS)]},
+        "topology": {
+            "structure": {"labels": ["id", "type", "modelId"],
+                          "data": [[i, TYPES[i], MODELS[i]] for i in range(len(POSITIONS))]},
+            "forceField": {"nl": {"type": ["VerletConditionalListSet", "all"]}},
+        },
+    }
+
+
+def lennard_jones(condition, neighbour_list):
+    return {"type": ["NonBonded", "LennardJonesType1"],
+            "parameters": {"cutOffFactor": 2.5, "condition": condition, "neighbourList": neighbour_list},
+            "labels": ["name_i", "name_j", "epsilon", "sigma"],
+            "data": [["A", "A", 1.0, 1.0], ["A", "B", 1.0, 1.0], ["B", "B", 1.0, 1.0]]}
+
+
+def with_force_field_example(key):
+    """The base document with the example added; lists and groups get entries that use them."""
+    name, entry, _ = COMPONENTS[key]
+    doc = base_document()
+    force_field = doc["topology"]["forceField"]
+    cls, subclass = key
+    if cls == "VerletConditionalListSet":
+        del force_field["nl"]  # the example is the list
+    assert name not in force_field, f"example name '{name}' clashes with the test's base system"
+    force_field[name] = copy.deepcopy(entry)
+    if cls == "VerletConditionalListSet":
+        for condition in LIST_CONDITIONS[subclass]:
+            force_field[f"lj_{condition}"] = lennard_jones(condition, name)
+    if cls == "Groups":
+        for group in entry["data"]:
+            force_field[f"bonds_{group[0]}"] = {
+                "type": ["Bond2", "HarmonicCommon_K_r0"], "parameters": {"K": 10.0, "r0": 1.0, "group": group[0]},
+                "labels": ["id_i", "id_j"], "data": [[0, 1], [1, 2], [2, 3]]}
+    return doc
+
+
+@pytest.fixture
+def sim(options):
+    with structmd.Simulation(options) as s:
+        yield s
+
+
+def known_force_field_components(sim):
+    """The components of the engine's registry, from its message for an unknown one."""
+    doc = base_document()
+    doc["topology"]["forceField"]["bogus"] = {"type": ["NoSuchClass", "NoSuchSubClass"]}
+    with pytest.raises(structmd.InputError):
+        sim.load(doc)
+    message = sim.last_error
+    assert "known components:" in message, message
+    listed = message.split("known components:", 1)[1].splitlines()
+    known = {REGISTRY_LINE.match(line).groups() for line in listed if REGISTRY_LINE.match(line)}
+    assert known, message
+    return known
+
+
+def known_list_conditions(sim):
+    doc = base_document()
+    doc["topology"]["forceField"]["nl"]["type"] = ["VerletConditionalListSet", "noSuchCondition"]
+    with pytest.raises(structmd.InputError):
+        sim.load(doc)
+    match = re.search(r"\(expected ([^)]*)\)", sim.last_error)
+    assert match, sim.last_error
+    return set(re.split(r", | or ", match.group(1)))
+
+
+def test_every_force_field_component_of_the_engine_is_documented(sim):
+    documented = set(FORCE_FIELD_COMPONENTS)
+    known = known_force_field_components(sim)
+    known |= {("VerletConditionalListSet", c) for c in known_list_conditions(sim)}
+    known.add(("Groups", "GroupsList"))
+    assert sorted(known - documented) == [], "known to the engine but not documented"
+    assert sorted(documented - known) == [], "documented but unknown to the engine"
+
+
+def test_the_list_conditions_are_those_documented(sim):
+    assert known_list_conditions(sim) == set(LIST_CONDITIONS)
+
+
+@pytest.mark.parametrize("key", FORCE_FIELD_COMPONENTS, ids=lambda k: f"{k[0]}-{k[1]}")
+def test_force_field_example_loads_and_computes(sim, key):
+    name = COMPONENTS[key][0]
+    sim.load(with_force_field_example(key))
+    sim.compute(forces=True, energy=True, virial=True)
+    forces = np.asarray(sim.forces)
+    assert forces.shape == (len(POSITIONS), 3)
+    assert np.all(np.isfinite(forces)), forces
+    assert math.isfinite(sim.energy("potential"))
+    assert np.all(np.isfinite(sim.particle_energies))
+    assert np.all(np.isfinite(sim.virial))
+    if key[0] not in ("VerletConditionalListSet", "Groups"):
+        assert math.isfinite(sim.energy(name))
+    sim.step(2)
+    assert np.all(np.isfinite(np.asarray(sim.positions)))
+
+
+def full_document_with(key):
+    """The base document with the example put in its section, replacing the entry of its class."""
+    name, entry, section = COMPONENTS[key]
+    doc = base_document()
+    entries = doc.setdefault(section, {})
+    for other in [n for n, e in entries.items() if e["type"][0] == key[0]]:
+        del entries[other]
+    entries[name] = copy.deepcopy(entry)
+    if key[0] == "Verlet":
+        doc["integrator"]["schedule"]["data"] = [[1, name, 10]]
+    return doc
+
+
+@pytest.mark.parametrize("key", DOCUMENT_COMPONENTS, ids=lambda k: f"{k[0]}-{k[1]}")
+def test_document_example_loads_and_steps(sim, key, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # measures write their files here
+    sim.load(full_document_with(key))
+    sim.step(2)
+    assert sim.step_number >= 2
+    assert np.all(np.isfinite(np.asarray(sim.forces)))
+
+
+def test_the_sections_of_the_examples_are_known():
+    known = {"system", "global", "integrator", "simulationStep", FORCE_FIELD}
+    assert {section for _, _, section in COMPONENTS.values()} <= known
+
+
+def test_the_complete_document_of_the_page_runs(sim, tmp_path, monkeypatch):
+    text = DOC.read_text(encoding="utf-8")
+    start = text.index("```json", text.index("## Document shape")) + len("```json")
+    doc = json.loads(text[start:text.index("```", start)])
+    monkeypatch.chdir(tmp_path)
+    sim.load(doc)
+    sim.run()
+    assert (tmp_path / "thermo.dat").read_text().startswith("#step")
