@@ -6,6 +6,11 @@
 
 namespace structmd {
 
+// How many box lengths a particle has crossed along each axis since its position was set.
+struct Image {
+    int x, y, z;
+};
+
 template <class R>
 struct Box {
     Vec3<R> length;
@@ -26,14 +31,29 @@ struct Box {
 
     // Position folded into [-L/2, L/2).
     SMD_HD SMD_INLINE Vec3<R> wrap(Vec3<R> r) const {
-        r.x -= length.x * floor(r.x * inverse.x + R(0.5));
-        r.y -= length.y * floor(r.y * inverse.y + R(0.5));
-        r.z -= length.z * floor(r.z * inverse.z + R(0.5));
-        // Rounding can land exactly on +L/2; fold it back so the interval stays half-open.
-        if (r.x >= R(0.5) * length.x) r.x -= length.x;
-        if (r.y >= R(0.5) * length.y) r.y -= length.y;
-        if (r.z >= R(0.5) * length.z) r.z -= length.z;
+        Image image{0, 0, 0};
+        return wrap(r, image);
+    }
+
+    // As wrap(r), adding to image the box lengths removed along each axis, so that the unwrapped
+    // position is the wrapped one plus image times L.
+    SMD_HD SMD_INLINE Vec3<R> wrap(Vec3<R> r, Image& image) const {
+        r.x = wrap_axis(r.x, length.x, inverse.x, image.x);
+        r.y = wrap_axis(r.y, length.y, inverse.y, image.y);
+        r.z = wrap_axis(r.z, length.z, inverse.z, image.z);
         return r;
+    }
+
+    static SMD_HD SMD_INLINE R wrap_axis(R x, R length, R inverse, int& image) {
+        int shift = static_cast<int>(floor(x * inverse + R(0.5)));
+        x -= length * R(shift);
+        // Rounding can land exactly on +L/2; fold it back so the interval stays half-open.
+        if (x >= R(0.5) * length) {
+            x -= length;
+            ++shift;
+        }
+        image += shift;
+        return x;
     }
 
     static SMD_HD SMD_INLINE R fold(R d, R length) {

@@ -57,6 +57,14 @@ public:
         for (auto& it : interactors_)
             if (it->active(p.step)) it->compute(p, out);
     }
+    // Adds only the active non-bonded pair terms.
+    void compute_pairwise(Particles<B, R>& p, const ForceOutputs<R>& out) {
+        for (auto& it : interactors_)
+            if (it->pairwise() && it->active(p.step)) {
+                it->prepare(p);
+                it->compute(p, out);
+            }
+    }
     void compute_one(int index, Particles<B, R>& p, const ForceOutputs<R>& out) {
         Interactor<B, R>& it = *interactors_[index];
         if (!it.active(p.step)) return;

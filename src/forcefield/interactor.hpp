@@ -72,6 +72,8 @@ public:
     const std::string& name() const { return scope_.name; }
     bool active(int64_t step) const { return step >= scope_.startStep && step < scope_.endStep; }
     const uint8_t* group() const { return scope_.group; }
+    // True for non-bonded pair terms (the per-particle stress measure sums only these).
+    virtual bool pairwise() const { return false; }
     // Brings what compute() needs up to date for the present positions (a neighbour list).
     virtual void prepare(Particles<B, R>&) {}
     virtual void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) = 0;

@@ -74,6 +74,8 @@ public:
         backend_.upload(table_, table.data(), table.size());
     }
 
+    bool pairwise() const override { return true; }
+
     void prepare(Particles<B, R>& p) override { list_->update(p.pos, p.count, p.box, p.version); }
 
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {

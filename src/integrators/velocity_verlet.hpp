@@ -17,6 +17,7 @@ SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {
 template <class R>
 struct VerletKickDrift {
     Real4<R>* pos;
+    Image* image;
     Real4<R>* vel;
     const Real4<R>* force;
     Box<R> box;
@@ -25,7 +26,7 @@ struct VerletKickDrift {
         const Real4<R> v = half_kick(vel[i], force[i], dt);
         vel[i] = v;
         Real4<R> p = pos[i];
-        const Vec3<R> r = box.wrap(Vec3<R>{p.x + dt * v.x, p.y + dt * v.y, p.z + dt * v.z});
+        const Vec3<R> r = box.wrap(Vec3<R>{p.x + dt * v.x, p.y + dt * v.y, p.z + dt * v.z}, image[i]);
         p.x = r.x;
         p.y = r.y;
         p.z = r.z;
@@ -58,7 +59,7 @@ public:
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const R dt = R(this->time_step());
         forces.update_forces();
-        backend_.for_each(p.count, VerletKickDrift<R>{p.pos.data(), p.vel.data(), p.force.data(), p.box, dt});
+        backend_.for_each(p.count, VerletKickDrift<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), p.box, dt});
         forces.positions_moved(this->time_step());
         forces.update_forces();
         backend_.for_each(p.count, VerletKick<R>{p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});

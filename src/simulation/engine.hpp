@@ -59,6 +59,8 @@ public:
         p_.force.resize(p_.count);
         p_.fault.resize(1);
         backend_.fill(p_.fault, kNoFault);
+        radii_ = spec.radius;
+        typeNames_ = spec.typeNames;
         std::vector<R> radius(spec.radius.begin(), spec.radius.end());
         std::vector<R> charge(spec.charge.begin(), spec.charge.end());
         backend_.upload(p_.radius, radius.data(), radius.size());
@@ -123,6 +125,24 @@ public:
 
     void get_positions(double* xyz) override { download_vectors(p_.pos, xyz); }
     void get_velocities(double* v) override { download_vectors(p_.vel, v); }
+    void get_images(int32_t* images) override {
+        backend_.activate();
+        std::vector<Image> values(p_.count);
+        backend_.download(p_.image, values.data(), values.size());
+        for (int64_t i = 0; i < p_.count; ++i) {
+            images[3 * i] = values[i].x;
+            images[3 * i + 1] = values[i].y;
+            images[3 * i + 2] = values[i].z;
+        }
+    }
+    void get_unwrapped_positions(double* xyz) override {
+        get_positions(xyz);
+        std::vector<int32_t> images(3 * p_.count);
+        get_images(images.data());
+        for (int64_t k = 0; k < 3 * p_.count; ++k) xyz[k] += images[k] * boxLengths_[k % 3];
+    }
+    void get_radii(double* r) override { std::copy(radii_.begin(), radii_.end(), r); }
+    const std::vector<std::string>& type_names() const override { return typeNames_; }
     void get_forces(double* f) override {
         compute(kForces);
         download_vectors(p_.force, f);
@@ -178,6 +198,23 @@ public:
         return {w.xx, w.xy, w.xz, w.yx, w.yy, w.yz, w.zx, w.zy, w.zz};
     }
 
+    void get_pair_virials(double* w) override {
+        backend_.activate();
+        p_.virial.resize(p_.count);
+        backend_.fill(p_.virial, zero_tensor<R>());
+        ForceOutputs<R> out;
+        out.virial = p_.virial.data();
+        forceField_.compute_pairwise(p_, out);
+        virialVersion_ = -1;  // the buffer now holds the pair terms only
+        std::vector<Tensor3<R>> values(p_.count);
+        backend_.download(p_.virial, values.data(), values.size());
+        for (int64_t i = 0; i < p_.count; ++i) {
+            const Tensor3<R>& t = values[i];
+            const R row[9] = {t.xx, t.xy, t.xz, t.yx, t.yy, t.yz, t.zx, t.zy, t.zz};
+            std::copy(row, row + 9, w + 9 * i);
+        }
+    }
+
     void set_positions(const double* xyz) override {
         backend_.activate();
         upload_positions(xyz);
@@ -197,7 +234,7 @@ public:
                                                    ") must be shorter than half the box (" +
                                                    std::to_string(halfBox) + ")");
         std::vector<double> xyz(3 * p_.count);
-        get_positions(xyz.data());
+        get_unwrapped_positions(xyz.data());
         for (int64_t i = 0; i < p_.count; ++i)
             for (int d = 0; d < 3; ++d) xyz[3 * i + d] *= lengths[d] / boxLengths_[d];
         boxLengths_ = {lengths[0], lengths[1], lengths[2]};
@@ -356,14 +393,18 @@ private:
         return v;
     }
 
+    // Wraps the given positions into the box; their images count the box lengths removed, so the
+    // unwrapped positions are the ones given.
     void upload_positions(const double* xyz) {
         const Box<double> box = Box<double>::make(boxLengths_[0], boxLengths_[1], boxLengths_[2]);
         std::vector<Real4<R>> values(p_.count);
+        std::vector<Image> images(p_.count, Image{0, 0, 0});
         for (int64_t i = 0; i < p_.count; ++i) {
-            const Vec3<double> r = box.wrap({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+            const Vec3<double> r = box.wrap({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, images[i]);
             values[i] = {R(r.x), R(r.y), R(r.z), R(typeIndex_[i])};
         }
         backend_.upload(p_.pos, values.data(), values.size());
+        backend_.upload(p_.image, images.data(), images.size());
     }
 
     void upload_velocities(const double* v) {
@@ -394,6 +435,8 @@ private:
     std::vector<int32_t> typeIndex_;
     std::vector<int> batchId_;
     std::vector<double> masses_;
+    std::vector<double> radii_;
+    std::vector<std::string> typeNames_;
     std::array<double, 3> boxLengths_{};
     double boltzmann_ = 1.0;
     int64_t step_ = 0;

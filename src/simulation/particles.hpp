@@ -18,6 +18,7 @@ struct Particles {
     int64_t count = 0;
     Box<R> box{};
     Buffer<Real4<R>> pos;    // w: type index
+    Buffer<Image> image;     // box crossings since the position was set: unwrapped = pos + image L
     Buffer<Real4<R>> vel;    // w: mass
     Buffer<Real4<R>> force;  // w: unused
     Buffer<R> energy;        // per-particle potential energy, sized when first asked for

@@ -28,18 +28,25 @@ public:
     virtual void advance(int64_t n) = 0;
     virtual void compute(unsigned flags) = 0;
 
-    virtual void get_positions(double* xyz) = 0;
+    virtual void get_positions(double* xyz) = 0;  // wrapped into the box
+    // Box crossings since the positions were set (3n); unwrapped = wrapped + image L.
+    virtual void get_images(int32_t* images) = 0;
+    virtual void get_unwrapped_positions(double* xyz) = 0;
     virtual void get_velocities(double* v) = 0;
     virtual void get_forces(double* f) = 0;
     virtual void get_particle_energies(double* e) = 0;
     virtual void get_masses(double* m) = 0;
     virtual void get_types(int32_t* types) = 0;
+    virtual void get_radii(double* r) = 0;
+    virtual const std::vector<std::string>& type_names() const = 0;
 
     // Energy terms: "potential", "kinetic", "total", or a forceField entry name; an unknown term
     // throws ERR_ARGUMENT.
     virtual double energy(const std::string& term) = 0;
     virtual std::vector<std::string> energy_terms() const = 0;  // the forceField entry names
     virtual std::array<double, 9> virial() = 0;
+    // Per-particle virial of the non-bonded pair terms, 1/2 sum_j (-r_ij) (x) F_ij, row-major (9n).
+    virtual void get_pair_virials(double* w) = 0;
 
     virtual void set_positions(const double* xyz) = 0;
     virtual void set_velocities(const double* v) = 0;
