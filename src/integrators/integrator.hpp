@@ -1,6 +1,8 @@
 #pragma once
-// An integrator advances the particles by one step; it asks the engine for forces at the positions
-// it needs them, and the engine evaluates only what is stale.
+// An integrator advances the particles by one step; it asks the engine for forces (and, for a
+// minimiser, energies) at the positions it needs them, and the engine evaluates only what is stale.
+#include <cstdint>
+
 #include "simulation/particles.hpp"
 
 namespace structmd {
@@ -10,21 +12,37 @@ public:
     virtual ~ForceSource() = default;
     // Makes the force array current for the present positions.
     virtual void update_forces() = 0;
+    // The potential energy at the present positions (a reduction: the host waits for it).
+    virtual double potential_energy() = 0;
     // Tells the engine the integrator moved the particles to the next step's positions, `elapsed`
     // time later (terms active at that step and fields at that time then apply).
     virtual void positions_moved(double elapsed) = 0;
 };
 
+// What every integrator is given: its time step, its thermal energy and the particles it moves.
+struct IntegratorScope {
+    double timeStep = 0.0;
+    double kT = 0.0;                  // k_B T in energy units
+    const uint8_t* group = nullptr;   // backend bytes by particle; null: every particle
+};
+
 template <class B, class R>
 class Integrator {
 public:
-    explicit Integrator(double timeStep) : timeStep_(timeStep) {}
+    explicit Integrator(const IntegratorScope& scope) : scope_(scope) {}
     virtual ~Integrator() = default;
-    double time_step() const { return timeStep_; }
+    double time_step() const { return scope_.timeStep; }
+    // The simulation time one step adds (a minimiser adds none).
+    virtual double time_advance() const { return scope_.timeStep; }
+    // Called before the first step of each stage of the schedule this integrator runs.
+    virtual void begin(Particles<B, R>&, ForceSource&) {}
     virtual void step(Particles<B, R>& particles, ForceSource& forces) = 0;
 
+protected:
+    const IntegratorScope& scope() const { return scope_; }
+
 private:
-    double timeStep_;
+    IntegratorScope scope_;
 };
 
 }  // namespace structmd

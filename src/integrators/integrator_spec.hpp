@@ -9,9 +9,15 @@ namespace structmd {
 struct IntegratorSpec {
     std::string name;
     std::string path;
-    std::string kind;  // "VelocityVerlet"
+    std::string kind;  // VelocityVerlet, BBK, GJF, EulerMaruyama or SteepestDescent
     double timeStep = 0.0;
     double temperature = 0.0;  // k_B T, in energy units
+    std::string group;         // empty: every particle
+    double frictionConstant = 0.0;   // Langevin
+    bool resetVelocities = true;     // Langevin
+    double viscosity = 0.0;          // Brownian
+    double h = 0.0;                  // SteepestDescent: initial step
+    double maxObjectiveForce = 0.0;  // SteepestDescent
 };
 
 struct ScheduleStage {

@@ -16,6 +16,7 @@ SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {
 
 template <class R>
 struct VerletKickDrift {
+    const uint8_t* group;
     Real4<R>* pos;
     Image* image;
     Real4<R>* vel;
@@ -23,6 +24,7 @@ struct VerletKickDrift {
     Box<R> box;
     R dt;
     SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
         const Real4<R> v = half_kick(vel[i], force[i], dt);
         vel[i] = v;
         Real4<R> p = pos[i];
@@ -38,12 +40,14 @@ struct VerletKickDrift {
 // step that produced it at no extra pass over memory.
 template <class R>
 struct VerletKick {
+    const uint8_t* group;
     const Real4<R>* pos;
     Real4<R>* vel;
     const Real4<R>* force;
     R dt;
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
         const Real4<R> f = force[i];
         const Real4<R> v = half_kick(vel[i], f, dt);
         vel[i] = v;
@@ -54,15 +58,15 @@ struct VerletKick {
 template <class B, class R>
 class VelocityVerlet : public Integrator<B, R> {
 public:
-    VelocityVerlet(const B& backend, double timeStep) : Integrator<B, R>(timeStep), backend_(backend) {}
+    VelocityVerlet(const B& backend, const IntegratorScope& scope) : Integrator<B, R>(scope), backend_(backend) {}
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const R dt = R(this->time_step());
         forces.update_forces();
-        backend_.for_each(p.count, VerletKickDrift<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), p.box, dt});
+        backend_.for_each(p.count, VerletKickDrift<R>{this->scope().group, p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), p.box, dt});
         forces.positions_moved(this->time_step());
         forces.update_forces();
-        backend_.for_each(p.count, VerletKick<R>{p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});
+        backend_.for_each(p.count, VerletKick<R>{this->scope().group, p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});
     }
 
 private:

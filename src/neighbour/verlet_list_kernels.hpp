@@ -112,6 +112,18 @@ struct BuildLists {
                 ++n;
             }
         });
+        // In index order, so a particle's force sum does not depend on which cells the particles
+        // happened to occupy at this build: a restarted run repeats the same sums bit for bit.
+        const int stored = n < v.capacity ? n : v.capacity;
+        for (int k = 1; k < stored; ++k) {
+            const int value = v.list[static_cast<int64_t>(k) * v.stride + i];
+            int m = k - 1;
+            while (m >= 0 && v.list[static_cast<int64_t>(m) * v.stride + i] > value) {
+                v.list[static_cast<int64_t>(m + 1) * v.stride + i] = v.list[static_cast<int64_t>(m) * v.stride + i];
+                --m;
+            }
+            v.list[static_cast<int64_t>(m + 1) * v.stride + i] = value;
+        }
         view.count[i] = n;
         atomic_max(control + kMaxNeighbours, n);
     }

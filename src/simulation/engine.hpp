@@ -14,6 +14,10 @@
 #include "core/logger.hpp"
 #include "core/random.hpp"
 #include "forcefield/make_interactors.hpp"
+#include "integrators/brownian.hpp"
+#include "integrators/langevin_bbk.hpp"
+#include "integrators/langevin_gjf.hpp"
+#include "integrators/steepest_descent.hpp"
 #include "integrators/velocity_verlet.hpp"
 #include "simulation/engine_functors.hpp"
 #include "simulation/simulation.hpp"
@@ -71,6 +75,7 @@ public:
         backend_.upload(p_.model, spec.modelId.data(), spec.modelId.size());
         p_.step = step_;
         p_.time = time_;
+        p_.seed = spec.seed;
 
         ForceFieldContext context;
         context.ntypes = spec.typeNames.size();
@@ -80,7 +85,7 @@ public:
         context.model = p_.model.data();
         forceField_ = make_interactors<B, R>(backend_, spec.forceField, context);
         for (const IntegratorSpec& integrator : spec.integrators)
-            integrators_.push_back(std::make_unique<VelocityVerlet<B, R>>(backend_, integrator.timeStep));
+            integrators_.push_back(make_integrator(integrator, spec.forceField.groups));
         backend_.synchronize();
     }
 
@@ -106,10 +111,15 @@ public:
         backend_.activate();
         for (int64_t k = 0; k < n; ++k) {
             fire_steps(false);
-            Integrator<B, R>& integrator = current_integrator();
+            const int stage = current_stage();
+            Integrator<B, R>& integrator = *integrators_[schedule_[stage].integrator];
+            if (stage != activeStage_) {
+                integrator.begin(p_, *this);
+                activeStage_ = stage;
+            }
             integrator.step(p_, *this);
             ++step_;
-            time_ += integrator.time_step();
+            time_ += integrator.time_advance();
             p_.step = step_;
             p_.time = time_;
         }
@@ -262,6 +272,7 @@ public:
 private:
     // ForceSource
     void update_forces() override { evaluate(kForces); }
+    double potential_energy() override { return potential_energy(-1); }
     void positions_moved(double elapsed) override {
         ++p_.version;
         p_.step = step_ + 1;
@@ -346,13 +357,29 @@ private:
         return backend_.reduce(p_.count, InBatch<KineticEnergy<R>>{{p_.vel.data()}, p_.batch.data(), batch}, 0.0);
     }
 
-    Integrator<B, R>& current_integrator() {
+    // The schedule row the next step belongs to.
+    int current_stage() const {
         int64_t offset = step_ - firstStep_;
-        for (const ScheduleStage& stage : schedule_) {
-            if (offset < stage.steps) return *integrators_[stage.integrator];
-            offset -= stage.steps;
+        for (size_t k = 0; k < schedule_.size(); ++k) {
+            if (offset < schedule_[k].steps) return static_cast<int>(k);
+            offset -= schedule_[k].steps;
         }
         throw Error(STRUCTMD_ERR_INTERNAL, "no integrator scheduled at step " + std::to_string(step_));
+    }
+
+    std::unique_ptr<Integrator<B, R>> make_integrator(const IntegratorSpec& spec, const std::vector<GroupSpec>& groups) {
+        IntegratorScope scope{spec.timeStep, spec.temperature, nullptr};
+        for (size_t g = 0; g < groups.size(); ++g)
+            if (groups[g].name == spec.group) scope.group = forceField_.group(static_cast<int>(g));
+        if (spec.kind == "BBK")
+            return std::make_unique<LangevinBBK<B, R>>(backend_, scope, spec.frictionConstant, spec.resetVelocities);
+        if (spec.kind == "GJF")
+            return std::make_unique<LangevinGJF<B, R>>(backend_, scope, spec.frictionConstant, spec.resetVelocities);
+        if (spec.kind == "EulerMaruyama")
+            return std::make_unique<BrownianEulerMaruyama<B, R>>(backend_, scope, spec.viscosity);
+        if (spec.kind == "SteepestDescent")
+            return std::make_unique<SteepestDescent<B, R>>(backend_, scope, spec.h, spec.maxObjectiveForce);
+        return std::make_unique<VelocityVerlet<B, R>>(backend_, scope);
     }
 
     // Simulation steps see the state before the step is taken; the final state of the schedule
@@ -441,6 +468,7 @@ private:
     double boltzmann_ = 1.0;
     int64_t step_ = 0;
     int64_t firstStep_ = 0;
+    int activeStage_ = -1;  // the schedule row whose integrator has begun
     double time_ = 0.0;
     // Versions: what each cached quantity was computed at (-1: never or invalid).
     int64_t forcesVersion_ = -1;

@@ -32,6 +32,7 @@ struct Particles {
     int64_t version = 0;               // changes whenever positions or the box change
     int64_t step = 0;                  // the step being computed, for fault reports
     double time = 0.0;                 // the simulation time, for fields that move
+    uint64_t seed = 0;                 // the system's seed, for counter-based noise
 
     FaultSlot fault_slot() { return {fault.data(), step}; }
 };

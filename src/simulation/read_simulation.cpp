@@ -1,5 +1,9 @@
 #include "simulation/read_simulation.hpp"
 
+#include <algorithm>
+
+#include "core/error.hpp"
+
 #include "forcefield/read_forcefield.hpp"
 #include "input/description.hpp"
 #include "integrators/read_integrators.hpp"
@@ -14,7 +18,14 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log) {
     SimulationSpec spec;
     spec.forceField = read_forcefield(system, log);
     spec.integrators = read_integrators(system, spec.schedule);
-    spec.steps = read_simulation_steps(system);
+    for (const IntegratorSpec& integrator : spec.integrators) {
+        if (integrator.group.empty()) continue;
+        const auto& groups = spec.forceField.groups;
+        if (std::none_of(groups.begin(), groups.end(), [&](const GroupSpec& g) { return g.name == integrator.group; }))
+            throw input_error(integrator.path + ".parameters.group",
+                              "no group named '" + integrator.group + "' (define it in a [\"Groups\", \"GroupsList\"] entry)");
+    }
+    spec.steps = read_simulation_steps(system, spec.forceField.groups, log);
     doc.root.check_all_used();
 
     spec.seed = system.seed;

@@ -68,6 +68,15 @@ public:
         return total;
     }
 
+    // Largest f(i) over i < n (0 for n = 0; f is meant to be non-negative).
+    template <class F>
+    double maximum(int64_t n, const F& f) const {
+        double largest = 0.0;
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(max : largest)
+        for (int64_t i = 0; i < n; ++i) largest = std::max(largest, static_cast<double>(f(i)));
+        return largest;
+    }
+
     template <class T>
     void fill(Buffer<T>& buffer, const T& value) const {
         T* data = buffer.data();

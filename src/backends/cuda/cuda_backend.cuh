@@ -59,6 +59,10 @@ struct ReducePlus {
     __host__ __device__ T operator()(const T& a, const T& b) const { return a + b; }
 };
 
+struct ReduceMax {
+    __host__ __device__ double operator()(double a, double b) const { return a > b ? a : b; }
+};
+
 template <class T>
 struct FillFunctor {
     T* data;
@@ -111,6 +115,14 @@ public:
         if (n <= 0) return zero;
         return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
                                         thrust::counting_iterator<int64_t>(n), f, zero, ReducePlus<T>());
+    }
+
+    // Largest f(i) over i < n (0 for n = 0; f is meant to be non-negative).
+    template <class F>
+    double maximum(int64_t n, const F& f) const {
+        if (n <= 0) return 0.0;
+        return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
+                                        thrust::counting_iterator<int64_t>(n), f, 0.0, ReduceMax());
     }
 
     template <class T>

@@ -1,0 +1,77 @@
+#pragma once
+// ["Brownian","EulerMaruyama"], overdamped dynamics without velocities: with the mobility
+// M_i = 1 / (6 pi eta a_i) from each particle's radius,
+//   x += dt M F + sqrt(2 kT M dt) xi.
+#include "integrators/integrator.hpp"
+#include "integrators/thermal_noise.hpp"
+#include "simulation/fault.hpp"
+
+namespace structmd {
+
+template <class R>
+struct EulerMaruyamaStep {
+    Real4<R>* pos;
+    Image* image;
+    const Real4<R>* force;
+    const R* radius;
+    const uint8_t* group;
+    Box<R> box;
+    R dt, viscosity, kT;
+    uint64_t seed;
+    int64_t step;
+    FaultSlot fault;
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
+        const Real4<R> f = force[i];
+        const R mobility = R(1) / (R(6 * 3.14159265358979323846) * viscosity * radius[i]);
+        const R spread = sqrt(R(2) * kT * mobility * dt);
+        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, step);
+        Real4<R> p = pos[i];
+        const Vec3<R> r = box.wrap(Vec3<R>{p.x + dt * mobility * f.x + spread * xi.x,
+                                           p.y + dt * mobility * f.y + spread * xi.y,
+                                           p.z + dt * mobility * f.z + spread * xi.z},
+                                   image[i]);
+        p.x = r.x;
+        p.y = r.y;
+        p.z = r.z;
+        pos[i] = p;
+        if (!(finite(f) && finite(p))) fault.report(i);
+    }
+};
+
+template <class R>
+struct StopParticles {
+    Real4<R>* vel;
+    const uint8_t* group;
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
+        vel[i].x = vel[i].y = vel[i].z = R(0);
+    }
+};
+
+template <class B, class R>
+class BrownianEulerMaruyama : public Integrator<B, R> {
+public:
+    BrownianEulerMaruyama(const B& backend, const IntegratorScope& scope, double viscosity)
+        : Integrator<B, R>(scope), backend_(backend), viscosity_(viscosity) {}
+
+    // Overdamped particles have no velocity of their own: the kinetic energy reads 0.
+    void begin(Particles<B, R>& p, ForceSource&) override {
+        backend_.for_each(p.count, StopParticles<R>{p.vel.data(), this->scope().group});
+    }
+
+    void step(Particles<B, R>& p, ForceSource& forces) override {
+        const IntegratorScope& s = this->scope();
+        forces.update_forces();
+        backend_.for_each(p.count, EulerMaruyamaStep<R>{p.pos.data(), p.image.data(), p.force.data(), p.radius.data(),
+                                                        s.group, p.box, R(s.timeStep), R(viscosity_), R(s.kT),
+                                                        p.seed, p.step, p.fault_slot()});
+        forces.positions_moved(s.timeStep);
+    }
+
+private:
+    const B& backend_;
+    double viscosity_;
+};
+
+}  // namespace structmd

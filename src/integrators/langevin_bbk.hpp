@@ -1,0 +1,94 @@
+#pragma once
+// ["Langevin","BBK"], Brünger-Brooks-Karplus leapfrog. With g = gamma dt / 2 and the random force
+// R = sqrt(2 m gamma kT / dt) xi:
+//   v(n+1/2) = [(1 - g) v(n-1/2) + dt (F_n + R) / m] / (1 + g);   x(n+1) = x(n) + dt v(n+1/2).
+// Velocities are the half-step ones. begin() turns full-step velocities v(0) into v(-1/2) with half a
+// kick back, so positions move once per step from the start.
+#include "integrators/integrator.hpp"
+#include "integrators/thermal_noise.hpp"
+#include "simulation/fault.hpp"
+
+namespace structmd {
+
+template <class R>
+struct HalfKickBack {
+    Real4<R>* vel;
+    const Real4<R>* force;
+    const uint8_t* group;
+    R dt;
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
+        Real4<R> v = vel[i];
+        const Real4<R> f = force[i];
+        const R h = R(0.5) * dt / v.w;
+        v.x -= h * f.x;
+        v.y -= h * f.y;
+        v.z -= h * f.z;
+        vel[i] = v;
+    }
+};
+
+template <class R>
+struct BbkStep {
+    Real4<R>* pos;
+    Image* image;
+    Real4<R>* vel;
+    const Real4<R>* force;
+    const uint8_t* group;
+    Box<R> box;
+    R dt, gamma, kT;
+    uint64_t seed;
+    int64_t step;
+    FaultSlot fault;
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
+        Real4<R> v = vel[i];
+        const Real4<R> f = force[i];
+        const R m = v.w;
+        const R g = R(0.5) * gamma * dt;
+        const R noise = sqrt(R(2) * m * gamma * kT / dt);
+        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, step);
+        v.x = ((R(1) - g) * v.x + dt * (f.x + noise * xi.x) / m) / (R(1) + g);
+        v.y = ((R(1) - g) * v.y + dt * (f.y + noise * xi.y) / m) / (R(1) + g);
+        v.z = ((R(1) - g) * v.z + dt * (f.z + noise * xi.z) / m) / (R(1) + g);
+        vel[i] = v;
+        Real4<R> p = pos[i];
+        const Vec3<R> r = box.wrap(Vec3<R>{p.x + dt * v.x, p.y + dt * v.y, p.z + dt * v.z}, image[i]);
+        p.x = r.x;
+        p.y = r.y;
+        p.z = r.z;
+        pos[i] = p;
+        if (!(finite(v) && finite(f) && finite(p))) fault.report(i);
+    }
+};
+
+template <class B, class R>
+class LangevinBBK : public Integrator<B, R> {
+public:
+    LangevinBBK(const B& backend, const IntegratorScope& scope, double friction, bool resetVelocities)
+        : Integrator<B, R>(scope), backend_(backend), friction_(friction), resetVelocities_(resetVelocities) {}
+
+    void begin(Particles<B, R>& p, ForceSource& forces) override {
+        const IntegratorScope& s = this->scope();
+        if (resetVelocities_)
+            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.seed, p.step, R(s.kT)});
+        forces.update_forces();
+        backend_.for_each(p.count, HalfKickBack<R>{p.vel.data(), p.force.data(), s.group, R(s.timeStep)});
+    }
+
+    void step(Particles<B, R>& p, ForceSource& forces) override {
+        const IntegratorScope& s = this->scope();
+        forces.update_forces();
+        backend_.for_each(p.count, BbkStep<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
+                                              p.box, R(s.timeStep), R(friction_), R(s.kT), p.seed, p.step,
+                                              p.fault_slot()});
+        forces.positions_moved(s.timeStep);
+    }
+
+private:
+    const B& backend_;
+    double friction_;
+    bool resetVelocities_;
+};
+
+}  // namespace structmd

@@ -1,0 +1,102 @@
+#pragma once
+// ["Langevin","GJF"], Grønbech-Jensen-Farago. With b = 1/(1 + gamma dt/2), a = (1 - gamma dt/2) b and
+// beta = sqrt(2 gamma m kT dt) xi, fresh each step:
+//   x(n+1) = x + b dt v + b dt^2/(2m) F + b dt/(2m) beta
+//   v(n+1) = a v + dt/(2m) (a F + F(n+1)) + (b/m) beta
+// Configurational sampling is correct at any stable time step.
+#include "integrators/integrator.hpp"
+#include "integrators/thermal_noise.hpp"
+#include "simulation/fault.hpp"
+
+namespace structmd {
+
+template <class R>
+struct GjfDrift {
+    Real4<R>* pos;
+    Image* image;
+    Real4<R>* vel;
+    const Real4<R>* force;
+    const uint8_t* group;
+    Box<R> box;
+    R dt, gamma, kT;
+    uint64_t seed;
+    int64_t step;
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
+        Real4<R> v = vel[i];
+        const Real4<R> f = force[i];
+        const R m = v.w;
+        const R b = R(1) / (R(1) + R(0.5) * gamma * dt);
+        const R a = (R(1) - R(0.5) * gamma * dt) * b;
+        const R amplitude = sqrt(R(2) * gamma * m * kT * dt);
+        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, step);
+        const Vec3<R> beta{amplitude * xi.x, amplitude * xi.y, amplitude * xi.z};
+        Real4<R> p = pos[i];
+        const R c = b * dt / (R(2) * m);
+        const Vec3<R> r{p.x + b * dt * v.x + c * (dt * f.x + beta.x), p.y + b * dt * v.y + c * (dt * f.y + beta.y),
+                        p.z + b * dt * v.z + c * (dt * f.z + beta.z)};
+        const Vec3<R> wrapped = box.wrap(r, image[i]);
+        p.x = wrapped.x;
+        p.y = wrapped.y;
+        p.z = wrapped.z;
+        pos[i] = p;
+        // The part of v(n+1) known before F(n+1); GjfKick adds dt/(2m) F(n+1).
+        const R h = dt / (R(2) * m);
+        v.x = a * v.x + h * a * f.x + (b / m) * beta.x;
+        v.y = a * v.y + h * a * f.y + (b / m) * beta.y;
+        v.z = a * v.z + h * a * f.z + (b / m) * beta.z;
+        vel[i] = v;
+    }
+};
+
+template <class R>
+struct GjfKick {
+    const Real4<R>* pos;
+    Real4<R>* vel;
+    const Real4<R>* force;
+    const uint8_t* group;
+    R dt;
+    FaultSlot fault;
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
+        Real4<R> v = vel[i];
+        const Real4<R> f = force[i];
+        const R h = dt / (R(2) * v.w);
+        v.x += h * f.x;
+        v.y += h * f.y;
+        v.z += h * f.z;
+        vel[i] = v;
+        if (!(finite(v) && finite(f) && finite(pos[i]))) fault.report(i);
+    }
+};
+
+template <class B, class R>
+class LangevinGJF : public Integrator<B, R> {
+public:
+    LangevinGJF(const B& backend, const IntegratorScope& scope, double friction, bool resetVelocities)
+        : Integrator<B, R>(scope), backend_(backend), friction_(friction), resetVelocities_(resetVelocities) {}
+
+    void begin(Particles<B, R>& p, ForceSource&) override {
+        const IntegratorScope& s = this->scope();
+        if (resetVelocities_)
+            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.seed, p.step, R(s.kT)});
+    }
+
+    void step(Particles<B, R>& p, ForceSource& forces) override {
+        const IntegratorScope& s = this->scope();
+        const R dt = R(s.timeStep);
+        forces.update_forces();
+        backend_.for_each(p.count, GjfDrift<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
+                                               p.box, dt, R(friction_), R(s.kT), p.seed, p.step});
+        forces.positions_moved(s.timeStep);
+        forces.update_forces();
+        backend_.for_each(p.count, GjfKick<R>{p.pos.data(), p.vel.data(), p.force.data(), s.group, dt, p.fault_slot()});
+    }
+
+private:
+    const B& backend_;
+    double friction_;
+    bool resetVelocities_;
+};
+
+}  // namespace structmd

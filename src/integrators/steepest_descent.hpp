@@ -1,0 +1,111 @@
+#pragma once
+// ["SteepestDescent","SteepestDescent"]: energy minimisation. Each step moves x += (h / max|F|) F; a
+// move that lowers the energy is kept and h grows by 1.001, one that raises it is undone and h
+// shrinks by 0.999. Once max|F| < maxObjectiveForce the particles stay put. Steps advance the step
+// counter only, not the time. Each step waits for two energies and a maximum on the host.
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "integrators/integrator.hpp"
+#include "simulation/fault.hpp"
+
+namespace structmd {
+
+template <class R>
+struct ForceMagnitude {
+    const Real4<R>* force;
+    const uint8_t* group;
+    SMD_HD double operator()(int64_t i) const {
+        if (group && !group[i]) return 0.0;
+        const Real4<R> f = force[i];
+        return sqrt(static_cast<double>(f.x) * f.x + static_cast<double>(f.y) * f.y + static_cast<double>(f.z) * f.z);
+    }
+};
+
+template <class R>
+struct DescentMove {
+    Real4<R>* pos;
+    Image* image;
+    Real4<R>* savedPos;
+    Image* savedImage;
+    const Real4<R>* force;
+    const uint8_t* group;
+    Box<R> box;
+    R stepPerForce;  // h / max|F|
+    FaultSlot fault;
+    SMD_HD void operator()(int64_t i) const {
+        Real4<R> p = pos[i];
+        savedPos[i] = p;
+        savedImage[i] = image[i];
+        if (group && !group[i]) return;
+        const Real4<R> f = force[i];
+        const Vec3<R> r = box.wrap(
+            Vec3<R>{p.x + stepPerForce * f.x, p.y + stepPerForce * f.y, p.z + stepPerForce * f.z}, image[i]);
+        p.x = r.x;
+        p.y = r.y;
+        p.z = r.z;
+        pos[i] = p;
+        if (!(finite(f) && finite(p))) fault.report(i);
+    }
+};
+
+template <class R>
+struct UndoMove {
+    Real4<R>* pos;
+    Image* image;
+    const Real4<R>* savedPos;
+    const Image* savedImage;
+    SMD_HD void operator()(int64_t i) const {
+        pos[i] = savedPos[i];
+        image[i] = savedImage[i];
+    }
+};
+
+template <class B, class R>
+class SteepestDescent : public Integrator<B, R> {
+public:
+    SteepestDescent(const B& backend, const IntegratorScope& scope, double h, double maxObjectiveForce)
+        : Integrator<B, R>(scope), backend_(backend), initialH_(h), h_(h), maxObjectiveForce_(maxObjectiveForce) {}
+
+    double time_advance() const override { return 0.0; }
+
+    void begin(Particles<B, R>& p, ForceSource&) override {
+        h_ = initialH_;
+        savedPos_.resize(p.count);
+        savedImage_.resize(p.count);
+    }
+
+    void step(Particles<B, R>& p, ForceSource& forces) override {
+        forces.update_forces();
+        const double largest = backend_.maximum(p.count, ForceMagnitude<R>{p.force.data(), this->scope().group});
+        if (!std::isfinite(largest))
+            throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(p.step) +
+                                                    ": a force is not finite, steepest descent cannot move "
+                                                    "(overlapping particles?)");
+        if (largest < maxObjectiveForce_ || largest == 0.0) return;  // converged
+        const double before = forces.potential_energy();
+        backend_.for_each(p.count, DescentMove<R>{p.pos.data(), p.image.data(), savedPos_.data(), savedImage_.data(),
+                                                  p.force.data(), this->scope().group, p.box, R(h_ / largest),
+                                                  p.fault_slot()});
+        forces.positions_moved(0.0);
+        const double after = forces.potential_energy();
+        if (after < before) {
+            h_ *= 1.001;
+            return;
+        }
+        backend_.for_each(p.count, UndoMove<R>{p.pos.data(), p.image.data(), savedPos_.data(), savedImage_.data()});
+        forces.positions_moved(0.0);
+        h_ *= 0.999;
+    }
+
+private:
+    const B& backend_;
+    double initialH_;
+    double h_;
+    double maxObjectiveForce_;
+    typename B::template Buffer<Real4<R>> savedPos_;
+    typename B::template Buffer<Image> savedImage_;
+};
+
+}  // namespace structmd

@@ -1,0 +1,45 @@
+#pragma once
+// Gaussian noise and Maxwell-Boltzmann velocities for the stochastic integrators, from the
+// counter-based generator keyed by (seed, particle id, step): the same seed gives the same numbers
+// on any backend, thread count or particle order.
+#include <cmath>
+#include <cstdint>
+
+#include "core/random.hpp"
+#include "core/vec.hpp"
+
+namespace structmd {
+
+// What a draw is for: each use has its own stream, so no two uses see the same numbers.
+enum class NoisePurpose : uint64_t { initialVelocities = 0, integrator = 1, velocityReset = 2 };
+
+// Three independent N(0, 1) numbers for particle `id` at `step`.
+template <class R>
+SMD_HD SMD_INLINE Vec3<R> gaussian3(uint64_t seed, NoisePurpose purpose, int64_t id, int64_t step) {
+    double xi[4];
+    normal4(seed, (static_cast<uint64_t>(purpose) << 48) ^ static_cast<uint64_t>(id), static_cast<uint64_t>(step),
+            xi);
+    return {R(xi[0]), R(xi[1]), R(xi[2])};
+}
+
+// Velocities drawn from Maxwell-Boltzmann at kT (mass in v.w), for the particles of the group.
+template <class R>
+struct DrawThermalVelocities {
+    Real4<R>* vel;
+    const uint8_t* group;
+    uint64_t seed;
+    int64_t step;
+    R kT;
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
+        Real4<R> v = vel[i];
+        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::velocityReset, i, step);
+        const R sigma = sqrt(kT / v.w);
+        v.x = sigma * xi.x;
+        v.y = sigma * xi.y;
+        v.z = sigma * xi.z;
+        vel[i] = v;
+    }
+};
+
+}  // namespace structmd
