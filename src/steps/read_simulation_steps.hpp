@@ -2,13 +2,19 @@
 #include <memory>
 #include <vector>
 
+#include "core/logger.hpp"
+#include "forcefield/forcefield_spec.hpp"
 #include "input/description.hpp"
 #include "steps/simulation_step.hpp"
 
 namespace structmd {
 
-// Builds the simulationStep entries. Throws Error(ERR_INPUT) naming the path for an unknown step
-// or a bad interval, and Error(ERR_IO) when an output file cannot be opened.
-std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const input::SystemDescription& system);
+// Builds the simulationStep entries. groups: those of the force field, which a step's `group` names;
+// log: the handle's log, which ["UtilsStep","InfoStep"] writes to. Throws Error(ERR_INPUT) naming the
+// path for an unknown step, a bad parameter or an unknown group, and Error(ERR_UNSUPPORTED) for a
+// group on a step that cannot restrict itself to one.
+std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const input::SystemDescription& system,
+                                                                   const std::vector<GroupSpec>& groups,
+                                                                   const Logger& log);
 
 }  // namespace structmd

@@ -17,8 +17,10 @@ public:
 
     const std::string& name() const { return name_; }
 
-    // Fires when start <= step <= end and step is a multiple of the interval.
-    bool due(int64_t step) const { return step >= start_ && step <= end_ && step % interval_ == 0; }
+    // Fires when start <= step <= end and step is a multiple of the interval; the state the
+    // schedule ends in is given to every step whose window holds it.
+    bool in_window(int64_t step) const { return step >= start_ && step <= end_; }
+    bool due(int64_t step) const { return in_window(step) && step % interval_ == 0; }
 
     // Runs the step for the current state once per step number, however often it is asked.
     void fire(Simulation& sim) {

@@ -1,0 +1,29 @@
+#pragma once
+// ["GeometricalMeasure","MeanSquareDisplacement"]: one line `step time msd` per firing, with
+// msd = 1/N sum_i |r_i(t) - r_i(t0)|^2 over the unwrapped positions (box crossings counted), t0 the
+// first firing. With a group, over its members only.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "steps/measure_file.hpp"
+#include "steps/simulation_step.hpp"
+
+namespace structmd {
+
+class MeanSquareDisplacement : public SimulationStep {
+public:
+    // members: by particle id, 1 for the particles measured; empty for every particle.
+    MeanSquareDisplacement(std::string name, int64_t interval, int64_t start, int64_t end, std::string outputPath,
+                           std::vector<uint8_t> members);
+
+protected:
+    void run(Simulation& sim) override;
+
+private:
+    MeasureFile file_;
+    std::vector<uint8_t> members_;
+    std::vector<double> reference_;  // unwrapped positions at the first firing; empty before it
+};
+
+}  // namespace structmd

@@ -1,0 +1,152 @@
+// The text trajectory formats (xyz, sp, lammpstrj, pdb) and the table of every format. Values are
+// written with 8 significant digits (pdb: its fixed columns).
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "steps/dcd_writer.hpp"
+#include "steps/trajectory_writer.hpp"
+
+namespace structmd {
+
+Error trajectory_io_error(const TrajectoryOptions& options, const std::string& action, const std::string& reason) {
+    return Error(STRUCTMD_ERR_IO, options.owner + ": cannot " + action + " '" + options.path + "': " + reason);
+}
+
+namespace {
+
+// Opens the file at the first frame, flushes after every frame so the file is complete whenever
+// the host looks at it, and turns stream failures into ERR_IO.
+class TextTrajectoryWriter : public TrajectoryWriter {
+public:
+    explicit TextTrajectoryWriter(TrajectoryOptions options)
+        : options_(std::move(options)), file_(nullptr, &std::fclose) {}
+
+    void write(const TrajectoryFrame& frame) final {
+        if (!file_) {
+            if (options_.append) count_existing_frames();
+            file_.reset(std::fopen(options_.path.c_str(), options_.append ? "a" : "w"));
+            if (!file_) throw trajectory_io_error(options_, "open", std::strerror(errno));
+        }
+        errno = 0;
+        write_frame(file_.get(), frame);
+        ++frames_;
+        if (std::fflush(file_.get()) != 0 || std::ferror(file_.get()))
+            throw trajectory_io_error(options_, "write", errno ? std::strerror(errno) : "stream error");
+    }
+
+protected:
+    virtual void write_frame(std::FILE* f, const TrajectoryFrame& frame) = 0;
+    // Formats that number their frames count those already in a file they append to.
+    virtual void count_existing_frames() {}
+    int64_t frames() const { return frames_; }
+    void set_frames(int64_t frames) { frames_ = frames; }
+    const TrajectoryOptions& options() const { return options_; }
+
+private:
+    TrajectoryOptions options_;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
+    int64_t frames_ = 0;  // frames in the file before the one being written
+};
+
+// N, a comment line in the extended-XYZ style (step, time, box), then "type x y z" per particle.
+class XyzWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        const size_t n = frame.types.size();
+        const auto& L = frame.box;
+        std::fprintf(f, "%zu\nstep=%lld time=%.8g Lattice=\"%.8g 0 0 0 %.8g 0 0 0 %.8g\" Properties=species:S:1:pos:R:3\n",
+                     n, static_cast<long long>(frame.step), frame.time, L[0], L[1], L[2]);
+        for (size_t i = 0; i < n; ++i)
+            std::fprintf(f, "%s %.8g %.8g %.8g\n", frame.typeNames[frame.types[i]].c_str(), frame.positions[3 * i],
+                         frame.positions[3 * i + 1], frame.positions[3 * i + 2]);
+    }
+};
+
+// The superpunto format: a header with the half box lengths, then "x y z radius type" per particle.
+class SpWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        const auto& L = frame.box;
+        std::fprintf(f, "#Lx=%.8g;Ly=%.8g;Lz=%.8g;\n", 0.5 * L[0], 0.5 * L[1], 0.5 * L[2]);
+        for (size_t i = 0; i < frame.types.size(); ++i)
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", frame.positions[3 * i], frame.positions[3 * i + 1],
+                         frame.positions[3 * i + 2], frame.radii[i], frame.types[i]);
+    }
+};
+
+// A LAMMPS text dump: ids and types from 1, as LAMMPS counts them; xu yu zu mark unwrapped positions.
+class LammpsDumpWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        const size_t n = frame.types.size();
+        std::fprintf(f, "ITEM: TIMESTEP\n%lld\nITEM: NUMBER OF ATOMS\n%zu\nITEM: BOX BOUNDS pp pp pp\n",
+                     static_cast<long long>(frame.step), n);
+        for (double L : frame.box) std::fprintf(f, "%.8g %.8g\n", -0.5 * L, 0.5 * L);
+        std::fprintf(f, frame.wrapped ? "ITEM: ATOMS id type x y z\n" : "ITEM: ATOMS id type xu yu zu\n");
+        for (size_t i = 0; i < n; ++i)
+            std::fprintf(f, "%lld %d %.8g %.8g %.8g\n", static_cast<long long>(frame.ids[i] + 1), frame.types[i] + 1,
+                         frame.positions[3 * i],
+                         frame.positions[3 * i + 1], frame.positions[3 * i + 2]);
+    }
+};
+
+// PDB: MODEL, CRYST1, one ATOM record per particle (serial id+1 modulo 100000, the type name as
+// atom name, residue UNK 1 of chain A), ENDMDL. No END record, so that frames can be appended.
+// The fixed columns hold coordinates from -999.999 to 9999.999; larger ones widen the line.
+class PdbWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+
+protected:
+    void count_existing_frames() override {
+        std::unique_ptr<std::FILE, int (*)(std::FILE*)> existing(std::fopen(options().path.c_str(), "r"), &std::fclose);
+        if (!existing) return;
+        int64_t models = 0;
+        char line[128];
+        bool lineStart = true;
+        while (std::fgets(line, sizeof line, existing.get())) {
+            if (lineStart && std::strncmp(line, "MODEL ", 6) == 0) ++models;
+            lineStart = std::strchr(line, '\n') != nullptr;
+        }
+        set_frames(models);
+    }
+
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        const auto& L = frame.box;
+        std::fprintf(f, "MODEL     %4lld\n", static_cast<long long>(frames() + 1));
+        std::fprintf(f, "CRYST1%9.3f%9.3f%9.3f%7.2f%7.2f%7.2f %-11s%4d\n", L[0], L[1], L[2], 90.0, 90.0, 90.0, "P 1", 1);
+        for (size_t i = 0; i < frame.types.size(); ++i)
+            std::fprintf(f, "ATOM  %5d %-4.4s UNK A%4d    %8.3f%8.3f%8.3f%6.2f%6.2f\n",
+                         static_cast<int>((frame.ids[i] + 1) % 100000), frame.typeNames[frame.types[i]].c_str(), 1,
+                         frame.positions[3 * i], frame.positions[3 * i + 1], frame.positions[3 * i + 2], 1.0, 0.0);
+        std::fprintf(f, "ENDMDL\n");
+    }
+};
+
+}  // namespace
+
+const std::vector<std::string>& trajectory_formats() {
+    static const std::vector<std::string> names{"xyz", "sp", "lammpstrj", "dcd", "pdb"};
+    return names;
+}
+
+std::unique_ptr<TrajectoryWriter> make_trajectory_writer(const std::string& format, TrajectoryOptions options) {
+    if (format == "xyz") return std::make_unique<XyzWriter>(std::move(options));
+    if (format == "sp") return std::make_unique<SpWriter>(std::move(options));
+    if (format == "lammpstrj") return std::make_unique<LammpsDumpWriter>(std::move(options));
+    if (format == "dcd") return std::make_unique<DcdWriter>(std::move(options));
+    if (format == "pdb") return std::make_unique<PdbWriter>(std::move(options));
+    return nullptr;
+}
+
+}  // namespace structmd

@@ -1,0 +1,52 @@
+#pragma once
+// The trajectory formats of ["WriteStep","WriteStep"]. A writer appends one frame per call to its
+// file, which it opens at the first frame (not at load, so a load that fails later leaves an old
+// file alone): truncated, or kept and extended when appending.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace structmd {
+
+// One frame: the particles written (all, or a group's), in id order.
+struct TrajectoryFrame {
+    int64_t step = 0;
+    double time = 0.0;
+    std::array<double, 3> box{0, 0, 0};
+    bool wrapped = true;                 // false: positions are unwrapped (images added back)
+    std::vector<int64_t> ids;            // n, ascending
+    std::vector<double> positions;       // 3n
+    std::vector<int32_t> types;          // n rows of global.types, 0-based
+    std::vector<double> radii;           // n
+    std::vector<std::string> typeNames;  // indexed by type
+};
+
+struct TrajectoryOptions {
+    std::string path;        // the file written, extension included
+    std::string owner;       // the entry's JSON path, which starts every message
+    bool append = false;
+    int64_t interval = 1;    // steps between frames (DCD NSAVC)
+    double timeStep = 0.0;   // DCD DELTA; 0 when unknown
+};
+
+class TrajectoryWriter {
+public:
+    virtual ~TrajectoryWriter() = default;
+    // Throws Error(ERR_IO) naming the file and the reason when it cannot be opened or written.
+    virtual void write(const TrajectoryFrame& frame) = 0;
+};
+
+// The names outputFormat accepts, which are also the file extensions.
+const std::vector<std::string>& trajectory_formats();
+
+// The writer of a format; nullptr when the format is unknown.
+std::unique_ptr<TrajectoryWriter> make_trajectory_writer(const std::string& format, TrajectoryOptions options);
+
+// "<owner>: cannot <action> '<path>': <reason>" as Error(ERR_IO).
+Error trajectory_io_error(const TrajectoryOptions& options, const std::string& action, const std::string& reason);
+
+}  // namespace structmd

@@ -1,0 +1,91 @@
+#include "steps/write_step.hpp"
+
+#include "core/error.hpp"
+
+namespace structmd {
+
+WriteStep::WriteStep(std::string name, int64_t interval, int64_t start, int64_t end, bool wrapped,
+                     std::vector<uint8_t> members, std::unique_ptr<TrajectoryWriter> writer)
+    : SimulationStep(std::move(name), interval, start, end),
+      wrapped_(wrapped),
+      members_(std::move(members)),
+      writer_(std::move(writer)) {}
+
+void WriteStep::run(Simulation& sim) {
+    const int64_t n = sim.particle_count();
+    positions_.resize(3 * n);
+    types_.resize(n);
+    radii_.resize(n);
+    if (wrapped_)
+        sim.get_positions(positions_.data());
+    else
+        sim.get_unwrapped_positions(positions_.data());
+    sim.get_types(types_.data());
+    sim.get_radii(radii_.data());
+
+    frame_.step = sim.current_step();
+    frame_.time = sim.current_time();
+    frame_.box = sim.box();
+    frame_.wrapped = wrapped_;
+    frame_.typeNames = sim.type_names();
+    frame_.ids.clear();
+    frame_.positions.clear();
+    frame_.types.clear();
+    frame_.radii.clear();
+    for (int64_t i = 0; i < n; ++i) {
+        if (!members_.empty() && !members_[i]) continue;
+        frame_.ids.push_back(i);
+        frame_.positions.insert(frame_.positions.end(), &positions_[3 * i], &positions_[3 * i] + 3);
+        frame_.types.push_back(types_[i]);
+        frame_.radii.push_back(radii_[i]);
+    }
+    writer_->write(frame_);
+}
+
+namespace {
+
+// The time step of the integrator the schedule starts with (its own, else global.fundamental's);
+// 0 when neither gives one. Only DCD records it.
+double first_time_step(const input::SystemDescription& system) {
+    double timeStep = system.timeStep.value_or(0.0);
+    for (const input::ScheduleRow& row : system.schedule) {
+        if (row.steps <= 0) continue;
+        for (const input::ComponentEntry& integrator : system.integrators) {
+            if (integrator.name != row.integrator) continue;
+            if (const auto params = integrator.node.find("parameters"))
+                timeStep = params->get_or<double>("timeStep", timeStep);
+        }
+        break;
+    }
+    return timeStep;
+}
+
+std::string known_formats() {
+    std::string list;
+    for (const std::string& format : trajectory_formats()) list += (list.empty() ? "" : ", ") + format;
+    return list;
+}
+
+}  // namespace
+
+std::unique_ptr<SimulationStep> make_write_step(const std::string& name, const input::TrackedNode& params,
+                                                int64_t interval, int64_t start, int64_t end,
+                                                std::vector<uint8_t> members, const input::SystemDescription& system) {
+    const input::TrackedNode formatNode = params.at("outputFormat");
+    const std::string format = formatNode.as<std::string>();
+
+    TrajectoryOptions options;
+    options.path = params.get<std::string>("outputFilePath") + "." + format;
+    options.owner = "simulationStep." + name;
+    options.append = params.get_or<bool>("append", false);
+    options.interval = interval;
+    options.timeStep = first_time_step(system);
+    const bool wrapped = params.get_or<bool>("pbc", true);
+
+    std::unique_ptr<TrajectoryWriter> writer = make_trajectory_writer(format, std::move(options));
+    if (!writer)
+        throw input_error(formatNode.path(), "unknown output format '" + format + "'; known: " + known_formats());
+    return std::make_unique<WriteStep>(name, interval, start, end, wrapped, std::move(members), std::move(writer));
+}
+
+}  // namespace structmd

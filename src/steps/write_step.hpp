@@ -1,0 +1,41 @@
+#pragma once
+// ["WriteStep","WriteStep"]: writes the particles (all, or a group's), in id order, to
+// <outputFilePath>.<outputFormat> at every firing; the formats are in trajectory_writer.hpp.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "input/description.hpp"
+#include "steps/simulation_step.hpp"
+#include "steps/trajectory_writer.hpp"
+
+namespace structmd {
+
+class WriteStep : public SimulationStep {
+public:
+    // wrapped: positions wrapped into the box (pbc true) or unwrapped (pbc false). members: by
+    // particle id, nonzero for the particles written; empty writes them all.
+    WriteStep(std::string name, int64_t interval, int64_t start, int64_t end, bool wrapped,
+              std::vector<uint8_t> members, std::unique_ptr<TrajectoryWriter> writer);
+
+protected:
+    void run(Simulation& sim) override;
+
+private:
+    bool wrapped_;
+    std::vector<uint8_t> members_;
+    std::unique_ptr<TrajectoryWriter> writer_;
+    std::vector<double> positions_;  // every particle's, before the selection
+    std::vector<int32_t> types_;
+    std::vector<double> radii_;
+    TrajectoryFrame frame_;
+};
+
+// Builds the step from its parameters object once the shared ones (intervalStep, startStep, endStep,
+// group) are read: outputFilePath, outputFormat, pbc and append. Throws Error(ERR_INPUT) naming
+// parameters.outputFormat, with the known formats, for an unknown one.
+std::unique_ptr<SimulationStep> make_write_step(const std::string& name, const input::TrackedNode& params,
+                                                int64_t interval, int64_t start, int64_t end,
+                                                std::vector<uint8_t> members, const input::SystemDescription& system);
+
+}  // namespace structmd
