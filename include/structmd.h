@@ -220,6 +220,29 @@ STRUCTMD_API structmd_status structmd_set_external_forces(structmd_sim* sim, con
 /* ---- structmd additions to the contract ---- */
 
 /**
+ * Writes the dynamic state to a file: step, time, box, positions (with their periodic images),
+ * velocities, external forces and the integrators' own state, in the engine's working precision.
+ * The file is written beside the target and renamed over it once complete, so an interrupted write
+ * never replaces a good checkpoint. The forces are not stored: they are recomputed from the
+ * positions, so a restarted run continues the same trajectory (bit for bit on the CPU backend).
+ *
+ * @param path  the file; it carries a format version and a checksum.
+ * @return STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_IO if the file cannot be written.
+ */
+STRUCTMD_API structmd_status structmd_save_checkpoint(structmd_sim* sim, const char* path);
+
+/**
+ * Restores the state saved by structmd_save_checkpoint into a simulation loaded from the same input
+ * (same particles, precision and schedule start). The whole file is read and checked before
+ * anything changes: on failure the handle keeps its state.
+ *
+ * @return STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_IO for a missing, truncated or corrupt
+ *         file, another format version, or a checkpoint of another simulation (the message says
+ *         which).
+ */
+STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const char* path);
+
+/**
  * Describes the handle as a JSON object written into buffer (NUL-terminated):
  * {"backend": "cpu"|"cuda", "precision": "single"|"double", "device": name, "threads": n,
  *  "loaded": bool, "particles": n, "final_step": step at which the schedule ends (-1 if none)}.

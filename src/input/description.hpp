@@ -36,6 +36,14 @@ struct ComponentEntry {
     TrackedNode node;      // the entry ("type" already consumed)
 };
 
+// ["Simulation","Backup"]: a checkpoint every intervalStep steps for start <= step <= end.
+struct BackupSettings {
+    std::string filePath;
+    int64_t intervalStep = 0;
+    int64_t startStep = 0;
+    int64_t endStep = INT64_MAX;
+};
+
 struct ScheduleRow {
     int order = 0;
     std::string integrator;  // an entry name of the integrator section
@@ -46,6 +54,7 @@ struct SystemDescription {
     // system
     std::string name;
     uint64_t seed = 0;
+    std::optional<BackupSettings> backup;  // ["Simulation","Backup"]
 
     // global
     Units units;

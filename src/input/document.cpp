@@ -210,7 +210,24 @@ double read_at_least(const TrackedNode& node, double lowest, const std::string& 
 
 void read_system(const TrackedNode& system, SystemDescription& description) {
     std::optional<ComponentEntry> information;
+    std::optional<std::string> backupPath;
     for (ComponentEntry& entry : read_components(system)) {
+        if (entry.cls == "Simulation" && entry.subclass == "Backup") {
+            if (backupPath)
+                throw input_error(entry.node.path(), "a second [Simulation, Backup] entry (the first is " +
+                                                         *backupPath + ")");
+            backupPath = entry.node.path();
+            const TrackedNode parameters = entry.node.at("parameters");
+            BackupSettings backup;
+            backup.filePath = parameters.get<std::string>("backupFilePath");
+            backup.intervalStep = parameters.get<int64_t>("backupIntervalStep");
+            if (backup.intervalStep <= 0)
+                throw input_error(parameters.path() + ".backupIntervalStep", "expected a positive integer");
+            backup.startStep = parameters.get_or<int64_t>("backupStartStep", 0);
+            backup.endStep = parameters.get_or<int64_t>("backupEndStep", INT64_MAX);
+            description.backup = backup;
+            continue;
+        }
         if (entry.cls != "Simulation" || entry.subclass != "Information")
             throw unknown_component(entry.node, {entry.cls, entry.subclass});
         if (information)

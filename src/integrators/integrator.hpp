@@ -2,6 +2,7 @@
 // An integrator advances the particles by one step; it asks the engine for forces (and, for a
 // minimiser, energies) at the positions it needs them, and the engine evaluates only what is stale.
 #include <cstdint>
+#include <vector>
 
 #include "simulation/particles.hpp"
 
@@ -37,6 +38,9 @@ public:
     // Called before the first step of each stage of the schedule this integrator runs.
     virtual void begin(Particles<B, R>&, ForceSource&) {}
     virtual void step(Particles<B, R>& particles, ForceSource& forces) = 0;
+    // State the integrator carries between steps beyond the particles (a checkpoint saves it).
+    virtual std::vector<double> state() const { return {}; }
+    virtual void restore(const std::vector<double>&) {}
 
 protected:
     const IntegratorScope& scope() const { return scope_; }

@@ -69,6 +69,8 @@ public:
         : Integrator<B, R>(scope), backend_(backend), initialH_(h), h_(h), maxObjectiveForce_(maxObjectiveForce) {}
 
     double time_advance() const override { return 0.0; }
+    std::vector<double> state() const override { return {h_}; }
+    void restore(const std::vector<double>& state) override { h_ = state.at(0); }
 
     void begin(Particles<B, R>& p, ForceSource&) override {
         h_ = initialH_;

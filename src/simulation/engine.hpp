@@ -19,6 +19,7 @@
 #include "integrators/langevin_gjf.hpp"
 #include "integrators/steepest_descent.hpp"
 #include "integrators/velocity_verlet.hpp"
+#include "simulation/checkpoint_file.hpp"
 #include "simulation/engine_functors.hpp"
 #include "simulation/simulation.hpp"
 #include "simulation/simulation_spec.hpp"
@@ -264,6 +265,92 @@ public:
         forcesVersion_ = -1;
     }
 
+    void save_checkpoint(const std::string& path) override {
+        backend_.activate();
+        ByteWriter out;
+        out.put(static_cast<uint32_t>(sizeof(R)));
+        out.put(p_.count);
+        out.put(firstStep_);
+        out.put(step_);
+        out.put(time_);
+        out.put(static_cast<int32_t>(activeStage_));
+        for (double length : boxLengths_) out.put(length);
+        put_buffer(out, p_.pos);
+        put_buffer(out, p_.image);
+        put_buffer(out, p_.vel);
+        out.put(static_cast<uint8_t>(!p_.externalForce.empty()));
+        if (!p_.externalForce.empty()) put_buffer(out, p_.externalForce);
+        for (const auto& integrator : integrators_) {
+            const std::vector<double> state = integrator->state();
+            out.put(static_cast<uint32_t>(state.size()));
+            out.put_bytes(state.data(), state.size() * sizeof(double));
+        }
+        write_checkpoint_file(path, out.bytes());
+    }
+
+    void load_checkpoint(const std::string& path) override {
+        const std::vector<unsigned char> payload = read_checkpoint_file(path);
+        ByteReader in(payload, path);
+        const auto mismatch = [&](const std::string& what) {
+            return Error(STRUCTMD_ERR_IO, "checkpoint '" + path + "' does not fit this simulation: " + what);
+        };
+        const uint32_t realSize = in.get<uint32_t>();
+        if (realSize != sizeof(R))
+            throw mismatch(std::string("it was written in ") + (realSize == 4 ? "single" : "double") +
+                           " precision, this simulation runs in " + PrecisionName<R>::value);
+        const int64_t count = in.get<int64_t>();
+        if (count != p_.count)
+            throw mismatch("it holds " + std::to_string(count) + " particles, this simulation " + std::to_string(p_.count));
+        const int64_t firstStep = in.get<int64_t>();
+        if (firstStep != firstStep_)
+            throw mismatch("its schedule starts at step " + std::to_string(firstStep) + ", this one at " +
+                           std::to_string(firstStep_));
+        const int64_t step = in.get<int64_t>();
+        const double time = in.get<double>();
+        const int32_t activeStage = in.get<int32_t>();
+        std::array<double, 3> box{};
+        for (double& length : box) length = in.get<double>();
+        if (step < firstStep_ || step > final_step() || activeStage < -1 ||
+            activeStage >= static_cast<int32_t>(schedule_.size()) || !(box[0] > 0 && box[1] > 0 && box[2] > 0))
+            throw mismatch("its step, schedule stage or box is out of range");
+        std::vector<Real4<R>> pos(p_.count), vel(p_.count), external;
+        std::vector<Image> image(p_.count);
+        in.get_bytes(pos.data(), pos.size() * sizeof(Real4<R>));
+        in.get_bytes(image.data(), image.size() * sizeof(Image));
+        in.get_bytes(vel.data(), vel.size() * sizeof(Real4<R>));
+        if (in.get<uint8_t>()) {
+            external.resize(p_.count);
+            in.get_bytes(external.data(), external.size() * sizeof(Real4<R>));
+        }
+        std::vector<std::vector<double>> states(integrators_.size());
+        for (auto& state : states) {
+            state.resize(in.get<uint32_t>());
+            in.get_bytes(state.data(), state.size() * sizeof(double));
+        }
+        if (!in.at_end()) throw mismatch("it has more data than this simulation's integrators hold");
+
+        // Everything read and checked: now the state changes.
+        backend_.activate();
+        boxLengths_ = box;
+        p_.box = Box<R>::make(box[0], box[1], box[2]);
+        backend_.upload(p_.pos, pos.data(), pos.size());
+        backend_.upload(p_.image, image.data(), image.size());
+        backend_.upload(p_.vel, vel.data(), vel.size());
+        if (external.empty())
+            p_.externalForce.release();
+        else
+            backend_.upload(p_.externalForce, external.data(), external.size());
+        for (size_t k = 0; k < integrators_.size(); ++k) integrators_[k]->restore(states[k]);
+        step_ = step;
+        time_ = time;
+        activeStage_ = activeStage;
+        p_.step = step_;
+        p_.time = time_;
+        ++p_.version;
+        forcesVersion_ = energyVersion_ = virialVersion_ = -1;
+        forceField_.invalidate_lists();
+    }
+
     std::string backend_name() const override { return B::name; }
     std::string precision_name() const override { return PrecisionName<R>::value; }
     std::string device_name() const override { return backend_.device_name(); }
@@ -383,10 +470,10 @@ private:
     }
 
     // Simulation steps see the state before the step is taken; the final state of the schedule
-    // is given to every step.
+    // is given to every step whose window holds it.
     void fire_steps(bool final) {
         for (auto& s : steps_)
-            if (final || s->due(step_)) s->fire(*this);
+            if (final ? s->in_window(step_) : s->due(step_)) s->fire(*this);
     }
 
     static std::vector<double> flatten(const std::vector<std::array<double, 3>>& vectors) {
@@ -439,6 +526,13 @@ private:
         for (int64_t i = 0; i < p_.count; ++i)
             values[i] = {R(v[3 * i]), R(v[3 * i + 1]), R(v[3 * i + 2]), R(masses_[i])};
         backend_.upload(p_.vel, values.data(), values.size());
+    }
+
+    template <class T>
+    void put_buffer(ByteWriter& out, const typename B::template Buffer<T>& buffer) {
+        std::vector<T> values(buffer.size());
+        backend_.download(buffer, values.data(), values.size());
+        out.put_bytes(values.data(), values.size() * sizeof(T));
     }
 
     void download_vectors(const typename B::template Buffer<Real4<R>>& buffer, double* out) {

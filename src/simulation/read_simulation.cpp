@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "steps/backup_step.hpp"
 
 #include "forcefield/read_forcefield.hpp"
 #include "input/description.hpp"
@@ -10,6 +11,7 @@
 #include "steps/read_simulation_steps.hpp"
 
 namespace structmd {
+
 
 SimulationSpec read_simulation(const std::string& text, const Logger& log) {
     input::ParsedDocument doc = input::parse_document(text);
@@ -26,6 +28,8 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log) {
                               "no group named '" + integrator.group + "' (define it in a [\"Groups\", \"GroupsList\"] entry)");
     }
     spec.steps = read_simulation_steps(system, spec.forceField.groups, log);
+    if (const auto& b = system.backup)
+        spec.steps.push_back(std::make_unique<BackupStep>(b->intervalStep, b->startStep, b->endStep, b->filePath));
     doc.root.check_all_used();
 
     spec.seed = system.seed;

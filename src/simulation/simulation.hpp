@@ -53,6 +53,12 @@ public:
     virtual void set_box(const double lengths[3]) = 0;
     virtual void set_external_forces(const double* f) = 0;  // nullptr clears
 
+    // The dynamic state (step, time, box, positions, images, velocities, external forces, integrator
+    // state) to a file, and back into a simulation loaded from the same input. Loading validates
+    // the whole file before changing anything.
+    virtual void save_checkpoint(const std::string& path) = 0;
+    virtual void load_checkpoint(const std::string& path) = 0;
+
     virtual std::string backend_name() const = 0;
     virtual std::string precision_name() const = 0;
     virtual std::string device_name() const = 0;

@@ -279,9 +279,19 @@ TEST(Document, GlobalEntriesByClass) {
 }
 
 TEST(Document, SystemEntries) {
-    json backup = valid_document();
-    backup["system"]["backup"] = {{"type", {"Simulation", "Backup"}}, {"parameters", {{"backupFilePath", "b"}}}};
-    expect_input_error(backup, {"system.backup.type: unknown component [Simulation, Backup]"});
+    json backups = valid_document();
+    backups["system"]["backup"] = {{"type", {"Simulation", "Backup"}},
+                                   {"parameters", {{"backupFilePath", "b"}, {"backupIntervalStep", 10}}}};
+    backups["system"]["again"] = backups["system"]["backup"];
+    expect_input_error(backups, {"system.backup: a second [Simulation, Backup] entry", "system.again"});
+
+    json noInterval = valid_document();
+    noInterval["system"]["backup"] = {{"type", {"Simulation", "Backup"}}, {"parameters", {{"backupFilePath", "b"}}}};
+    expect_input_error(noInterval, {"system.backup.parameters.backupIntervalStep: missing required entry"});
+
+    json other = valid_document();
+    other["system"]["other"] = {{"type", {"Simulation", "Restart"}}};
+    expect_input_error(other, {"system.other.type: unknown component [Simulation, Restart]"});
 
     json nameless = valid_document();
     nameless["system"]["info"]["parameters"].erase("name");

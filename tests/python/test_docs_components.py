@@ -182,7 +182,9 @@ def full_document_with(key):
     name, entry, section = COMPONENTS[key]
     doc = base_document()
     entries = doc.setdefault(section, {})
-    for other in [n for n, e in entries.items() if e["type"][0] == key[0]]:
+    # One entry per class, except in system, where Information and Backup stand side by side.
+    same = (lambda t: t == list(key)) if key[0] == "Simulation" else (lambda t: t[0] == key[0])
+    for other in [n for n, e in entries.items() if same(e["type"])]:
         del entries[other]
     entries[name] = copy.deepcopy(entry)
     if key[0] == "Verlet":

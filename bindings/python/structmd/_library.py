@@ -48,6 +48,8 @@ SIGNATURES = {
     "structmd_set_velocities": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
     "structmd_set_box": (STATUS_T, [HANDLE_T, POINTER(c_double)]),
     "structmd_set_external_forces": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
+    "structmd_save_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
+    "structmd_load_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_get_info": (STATUS_T, [HANDLE_T, c_char_p, c_size_t, POINTER(c_size_t)]),
 }
 

@@ -142,6 +142,14 @@ class Simulation:
         """Advances until the integrator schedule ends."""
         self._call(lib.structmd_run)
 
+    def save_checkpoint(self, path):
+        """Writes the dynamic state (step, time, box, positions, velocities, ...) to a file, atomically."""
+        self._call(lib.structmd_save_checkpoint, os.fsencode(path))
+
+    def load_checkpoint(self, path):
+        """Restores a checkpoint of a simulation loaded from the same input; on failure nothing changes."""
+        self._call(lib.structmd_load_checkpoint, os.fsencode(path))
+
     def compute(self, forces=True, energy=False, virial=False):
         """Evaluates now what is asked for (unless already current), without advancing time."""
         flags = ((COMPUTE_FLAGS["STRUCTMD_FORCES"] if forces else 0)
