@@ -43,9 +43,12 @@ public:
     void activate() const {}
     void synchronize() const {}
 
+    // Loops shorter than this run on the calling thread: waking a team costs more than they do.
+    static constexpr int64_t kParallelThreshold = 2048;
+
     template <class F>
     void for_each(int64_t n, const F& f) const {
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(threads_) schedule(static) if (n >= kParallelThreshold)
         for (int64_t i = 0; i < n; ++i) f(i);
     }
 
@@ -56,7 +59,7 @@ public:
         constexpr int64_t block = 4096;
         const int64_t blocks = (n + block - 1) / block;
         std::vector<T> partial(static_cast<size_t>(blocks), zero);
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(threads_) schedule(static) if (n >= kParallelThreshold)
         for (int64_t b = 0; b < blocks; ++b) {
             T sum = zero;
             const int64_t end = std::min(n, (b + 1) * block);
@@ -72,7 +75,7 @@ public:
     template <class F>
     double maximum(int64_t n, const F& f) const {
         double largest = 0.0;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(max : largest)
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(max : largest) if (n >= kParallelThreshold)
         for (int64_t i = 0; i < n; ++i) largest = std::max(largest, static_cast<double>(f(i)));
         return largest;
     }
