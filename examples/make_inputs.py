@@ -5,6 +5,10 @@
   0.8442 and temperature 1.44; velocities are drawn by the engine (the state gives none).
 - bead_spring.json: 20 bead-spring chains of 20 beads (harmonic bonds, LJ between all pairs) at
   density 0.5 and temperature 1.0, with velocities given.
+- polymer_melt.json: a Kremer-Grest melt, 40 chains of 25 beads at density 0.85 (FENE bonds, WCA
+  between all non-bonded pairs), grown as random walks that may overlap a little; a schedule first
+  minimises the energy (SteepestDescent), then equilibrates at T = 1 (Langevin BBK), writing a DCD
+  trajectory and the thermodynamics.
 
 The output is deterministic (fixed seeds, Python's own Mersenne Twister, no numpy), so running the
 script again reproduces the committed files byte for byte.
@@ -217,6 +221,63 @@ def bead_spring():
     }
 
 
+def polymer_melt():
+    chains = 40
+    beads_per_chain = 25
+    density = 0.85
+    n = chains * beads_per_chain
+    box_length = (n / density) ** (1.0 / 3.0)
+    rng = random.Random(1986)
+
+    # Loose walks (beads may come as close as 0.75): the minimiser removes the overlaps.
+    walk = grow_chains(rng, chains, beads_per_chain, bond_length=0.97, min_distance=0.75, box_length=box_length)
+    positions = [[rounded(wrapped(x, box_length)) for x in bead] for bead in walk]
+    bonds = [[chain * beads_per_chain + bead, chain * beads_per_chain + bead + 1]
+             for chain in range(chains) for bead in range(beads_per_chain - 1)]
+    bonded = [[] for _ in range(n)]
+    for i, j in bonds:
+        bonded[i].append(j)
+        bonded[j].append(i)
+    wca_cut = round(2.0 ** (1.0 / 6.0), 12)
+    return {
+        "system": {"info": {"type": ["Simulation", "Information"],
+                            "parameters": {"name": "polymer_melt", "seed": 1986}}},
+        "global": {
+            "units": {"type": ["Units", "None"]},
+            "types": single_type(),
+            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
+                         "data": [[[box_length] * 3, 1.0]]},
+        },
+        "integrator": {
+            "minimise": {"type": ["SteepestDescent", "SteepestDescent"],
+                         "parameters": {"h": 0.01, "maxObjectiveForce": 10.0}},
+            "langevin": {"type": ["Langevin", "BBK"], "parameters": {"timeStep": 0.005, "frictionConstant": 0.5}},
+            "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                         "data": [[1, "minimise", 500], [2, "langevin", 5000]]},
+        },
+        "state": {"labels": ["id", "position"], "data": [[index, positions[index]] for index in range(n)]},
+        "topology": {
+            "structure": {"labels": ["id", "type", "chainId"],
+                          "data": [[index, "A", index // beads_per_chain] for index in range(n)]},
+            "forceField": {
+                "nl": {"type": ["VerletConditionalListSet", "nonExcluded"], "parameters": {"cutOffVerletFactor": 1.3},
+                       "labels": ["id", "id_list"], "data": [[index, bonded[index]] for index in range(n)]},
+                "wca": {"type": ["NonBonded", "WCAType1"], "parameters": {"cutOffFactor": wca_cut,
+                                                                          "condition": "nonExcluded"},
+                        "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [["A", "A", 1.0, 1.0]]},
+                "fene": {"type": ["Bond2", "FeneCommon_r0_K_R0"], "parameters": {"r0": 0.0, "K": 30.0, "R0": 1.5},
+                         "labels": ["id_i", "id_j"], "data": bonds},
+            },
+        },
+        "simulationStep": {
+            "trajectory": {"type": ["WriteStep", "WriteStep"],
+                           "parameters": {"intervalStep": 500, "outputFilePath": "polymer_melt",
+                                          "outputFormat": "dcd"}},
+            **thermo_every(100, "polymer_melt_thermo.dat"),
+        },
+    }
+
+
 def to_text(value, indent=0):
     """JSON with long objects spread over lines and each row of a "data" table on a line of its own."""
     pad = "  " * indent
@@ -237,7 +298,8 @@ def to_text(value, indent=0):
 
 def main():
     output_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
-    for name, document in (("lj_liquid.json", lj_liquid()), ("bead_spring.json", bead_spring())):
+    for name, document in (("lj_liquid.json", lj_liquid()), ("bead_spring.json", bead_spring()),
+                           ("polymer_melt.json", polymer_melt())):
         path = os.path.join(output_dir, name)
         with open(path, "w") as f:
             f.write(to_text(document) + "\n")

@@ -10,7 +10,7 @@ import subprocess
 import sys
 import tempfile
 
-BUNDLED_INPUTS = ("lj_liquid.json", "bead_spring.json")
+BUNDLED_INPUTS = ("lj_liquid.json", "bead_spring.json", "polymer_melt.json")
 
 
 def main():
