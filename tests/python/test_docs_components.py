@@ -178,16 +178,21 @@ def test_force_field_example_loads_and_computes(sim, key):
 
 
 def full_document_with(key):
-    """The base document with the example put in its section, replacing the entry of its class."""
+    """The base document with the example put in its section, replacing the entry of its class (an
+    integrator replaces every integrator and becomes the whole schedule)."""
     name, entry, section = COMPONENTS[key]
     doc = base_document()
     entries = doc.setdefault(section, {})
-    # One entry per class, except in system, where Information and Backup stand side by side.
-    same = (lambda t: t == list(key)) if key[0] == "Simulation" else (lambda t: t[0] == key[0])
+    if section == "integrator" and key[0] != "Schedule":
+        same = lambda t: t[0] != "Schedule"
+    elif key[0] == "Simulation":  # Information and Backup stand side by side in system
+        same = lambda t: t == list(key)
+    else:
+        same = lambda t: t[0] == key[0]
     for other in [n for n, e in entries.items() if same(e["type"])]:
         del entries[other]
     entries[name] = copy.deepcopy(entry)
-    if key[0] == "Verlet":
+    if section == "integrator" and key[0] != "Schedule":
         doc["integrator"]["schedule"]["data"] = [[1, name, 10]]
     return doc
 
