@@ -45,7 +45,7 @@ public:
     // Brings the list up to date for the positions in pos (wrapped, n particles); version names
     // those positions, so asking twice for the same ones costs nothing.
     void update(const typename B::template Buffer<Real4<R>>& pos, int64_t n, const Box<R>& box, int64_t version) {
-        if (version == updatedAt_ && !forceRebuild_) return;
+        if (version == updatedAt_ && !forceRebuild_ && !needsLayout_) return;
         updatedAt_ = version;
         if (needsLayout_ || n != particles_ || !same_box(box)) layout(n, box);
         backend_.write(control_, kRebuild, forceRebuild_ ? 1 : 0);
@@ -69,12 +69,14 @@ public:
         int control[kControlSlots];
         backend_.download(control_, control, kControlSlots);
         builds_ = control[kBuilds];
+        // The new capacities take effect at the next layout, together with the buffers sized for
+        // them: until then every view keeps describing the buffers as they are.
         if (control[kMaxCellFill] > cellCapacity_) {
-            cellCapacity_ = control[kMaxCellFill] + control[kMaxCellFill] / 4 + 4;
+            pendingCellCapacity_ = control[kMaxCellFill] + control[kMaxCellFill] / 4 + 4;
             needsLayout_ = true;
         }
         if (control[kMaxNeighbours] > capacity_) {
-            capacity_ = control[kMaxNeighbours] + control[kMaxNeighbours] / 4 + 8;
+            pendingCapacity_ = control[kMaxNeighbours] + control[kMaxNeighbours] / 4 + 8;
             needsLayout_ = true;
         }
     }
@@ -109,6 +111,8 @@ private:
     // Sizes every buffer for n particles in this box and schedules a full rebuild.
     void layout(int64_t n, const Box<R>& box) {
         box_ = box;
+        capacity_ = std::max(capacity_, pendingCapacity_);
+        cellCapacity_ = std::max(cellCapacity_, pendingCellCapacity_);
         grid_ = CellGrid<R>::make(box, listRadius_, n);
         const double volume = static_cast<double>(box.length.x) * box.length.y * box.length.z;
         const double density = n / volume;
@@ -141,6 +145,8 @@ private:
     CellGrid<R> grid_;
     int capacity_ = 0;
     int cellCapacity_ = 0;
+    int pendingCapacity_ = 0;  // raised by adapt(), applied by layout()
+    int pendingCellCapacity_ = 0;
     bool needsLayout_ = true;
     bool forceRebuild_ = true;
     int64_t builds_ = 0;

@@ -229,3 +229,20 @@ def test_unknown_type_name_in_a_pair_table(sim):
                                          "lj": lj_entry(pairs=(("A", "C", 1.0, 1.0),))})
     with pytest.raises(structmd.InputError, match=r"topology\.forceField\.lj\.data\[0\]\[1\].*unknown type 'C'"):
         sim.load(doc)
+
+
+def test_reading_after_the_neighbour_list_grew(sim):
+    # A cluster much denser than the box's mean density: the first list capacity, guessed from the
+    # mean, is too small, and stepping enlarges it. Reading at the same positions afterwards must use
+    # buffers sized for the new capacity (this once read past their end).
+    cluster = [[0.95 * i, 0.95 * j, 0.95 * k] for i in range(3) for j in range(3) for k in range(3)][:20]
+    doc = document(cluster, steps=10, force_field={"nl": {"type": ["VerletConditionalListSet", "all"]},
+                                                   "lj": lj_entry()})
+    sim.load(doc)
+    sim.step(2)
+    energy = sim.energy("lj")
+    forces = sim.forces
+    positions = sim.positions
+    expected = pair_energy(positions, lambda i, j: True)
+    assert energy == pytest.approx(expected, rel=1e-9)
+    assert np.all(np.isfinite(forces))
