@@ -20,12 +20,23 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log) {
     SimulationSpec spec;
     spec.forceField = read_forcefield(system, log);
     spec.integrators = read_integrators(system, spec.schedule);
+    const auto& groups = spec.forceField.groups;
     for (const IntegratorSpec& integrator : spec.integrators) {
-        if (integrator.group.empty()) continue;
-        const auto& groups = spec.forceField.groups;
-        if (std::none_of(groups.begin(), groups.end(), [&](const GroupSpec& g) { return g.name == integrator.group; }))
-            throw input_error(integrator.path + ".parameters.group",
-                              "no group named '" + integrator.group + "' (define it in a [\"Groups\", \"GroupsList\"] entry)");
+        const GroupSpec* group = nullptr;
+        if (!integrator.group.empty()) {
+            auto it = std::find_if(groups.begin(), groups.end(), [&](const GroupSpec& g) { return g.name == integrator.group; });
+            if (it == groups.end())
+                throw input_error(integrator.path + ".parameters.group",
+                                  "no group named '" + integrator.group + "' (define it in a [\"Groups\", \"GroupsList\"] entry)");
+            group = &*it;
+        }
+        // Brownian mobility is 1 / (6 pi eta a): every particle it moves needs a radius.
+        if (integrator.kind == "EulerMaruyama")
+            for (int64_t i = 0; i < system.numParticles(); ++i)
+                if ((!group || group->members[i]) && !(system.radius[i] > 0.0))
+                    throw input_error(integrator.path, "particle id " + std::to_string(i) +
+                                                           " has radius " + std::to_string(system.radius[i]) +
+                                                           ": Brownian dynamics needs a positive radius");
     }
     spec.steps = read_simulation_steps(system, spec.forceField.groups, log);
     if (const auto& b = system.backup)
