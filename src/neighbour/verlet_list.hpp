@@ -59,7 +59,8 @@ public:
         backend_.for_each(grid_.count(), ClearCells{control_.data(), cellCount_.data(), overflowCount()});
         backend_.for_each(n, BinParticles<R>{pos.data(), reference_.data(), v, control_.data()});
         backend_.for_each(grid_.count(), SortCells<R>{v, control_.data()});
-        backend_.for_each(n, BuildLists<R>{pos.data(), v, R(listRadius_ * listRadius_), control_.data()});
+        backend_.for_each(n, BuildLists<R>{pos.data(), v, R(listRadius_ * listRadius_), control_.data(),
+                                           B::ordered_neighbour_lists});
     }
 
     // Reads what the last builds needed (one small copy to the host) and enlarges the capacities

@@ -100,6 +100,7 @@ struct BuildLists {
     NeighbourView<R> view;
     R listRadius2;
     int* control;
+    bool ordered;  // sort each list by index (see below)
     SMD_HD void operator()(int64_t i) const {
         if (!control[kRebuild]) return;
         const Vec3<R> ri = xyz(pos[i]);
@@ -114,7 +115,7 @@ struct BuildLists {
         });
         // In index order, so a particle's force sum does not depend on which cells the particles
         // happened to occupy at this build: a restarted run repeats the same sums bit for bit.
-        const int stored = n < v.capacity ? n : v.capacity;
+        const int stored = !ordered ? 0 : (n < v.capacity ? n : v.capacity);
         for (int k = 1; k < stored; ++k) {
             const int value = v.list[static_cast<int64_t>(k) * v.stride + i];
             int m = k - 1;

@@ -35,6 +35,9 @@ public:
     using Buffer = HostBuffer<T>;
 
     static constexpr const char* name = "cpu";
+    // Neighbour lists in index order: force sums independent of the build history, so a restart
+    // continues bit for bit (the promise of the CPU backend).
+    static constexpr bool ordered_neighbour_lists = true;
 
     explicit CpuBackend(int threads) : threads_(threads > 0 ? threads : omp_get_max_threads()) {}
 
