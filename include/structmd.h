@@ -255,6 +255,21 @@ STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const c
 STRUCTMD_API structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t size,
                                                size_t* needed);
 
+/**
+ * What the engine has done since the simulation was loaded, as a JSON object written into buffer
+ * (NUL-terminated): {"force_evaluations", "energy_evaluations", "virial_evaluations": passes over
+ * the force field that evaluated each quantity; "neighbour_list_builds"; "host_to_device_bytes",
+ * "device_to_host_bytes": bytes copied between the host and the backend's buffers (on the CPU
+ * backend, between the caller's arrays and the engine's)}. It shows that work a scene does not
+ * need is skipped: no list without pair terms, no energy between the steps that read it, no
+ * particle data leaving the device while stepping.
+ *
+ * @param buffer  receives the text; 512 bytes always suffice.
+ * @return STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_ARGUMENT if buffer is NULL or too small
+ *         (the message gives the size needed).
+ */
+STRUCTMD_API structmd_status structmd_get_counters(structmd_sim* sim, char* buffer, size_t size);
+
 #ifdef __cplusplus
 }
 #endif

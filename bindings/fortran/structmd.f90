@@ -45,7 +45,7 @@ module structmd
             structmd_get_energy, structmd_get_virial, structmd_get_pressure, structmd_get_box, &
             structmd_get_step, structmd_get_time, structmd_set_positions, structmd_set_velocities, &
             structmd_set_box, structmd_set_external_forces, structmd_get_info, &
-            structmd_save_checkpoint, structmd_load_checkpoint
+            structmd_save_checkpoint, structmd_load_checkpoint, structmd_get_counters
 
   public :: structmd_version_f, structmd_last_error_f, structmd_create_f, structmd_load_file_f, &
             structmd_load_string_f, structmd_get_energy_f, structmd_get_ids_f, &
@@ -53,7 +53,7 @@ module structmd
             structmd_get_particle_energies_f, structmd_get_masses_f, structmd_get_types_f, &
             structmd_set_positions_f, structmd_set_velocities_f, structmd_set_external_forces_f, &
             structmd_clear_external_forces_f, structmd_get_info_f, structmd_save_checkpoint_f, &
-            structmd_load_checkpoint_f
+            structmd_load_checkpoint_f, structmd_get_counters_f
 
   interface
     function structmd_abi_version() bind(C, name="structmd_abi_version") result(version)
@@ -283,6 +283,14 @@ module structmd
       integer(c_int32_t) :: status
     end function
 
+    function structmd_get_counters(sim, buffer, size) bind(C, name="structmd_get_counters") result(status)
+      import :: c_ptr, c_char, c_int32_t, c_size_t
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(inout) :: buffer(*)
+      integer(c_size_t), value :: size
+      integer(c_int32_t) :: status
+    end function
+
     function c_strlen(text) bind(C, name="strlen") result(length)
       import :: c_ptr, c_size_t
       type(c_ptr), value :: text
@@ -463,6 +471,25 @@ contains
     length = int(needed) - 1
     info = repeat(' ', length)
     if (length > 0) info = transfer(buffer(1:length), info)
+  end function
+
+  !> counters: the JSON text of structmd_get_counters (512 bytes always suffice).
+  function structmd_get_counters_f(sim, counters) result(status)
+    type(c_ptr), intent(in) :: sim
+    character(len=:), allocatable, intent(out) :: counters
+    integer(c_int32_t) :: status
+    character(kind=c_char) :: buffer(512)
+    integer :: length
+
+    counters = ''
+    status = structmd_get_counters(sim, buffer, int(size(buffer), c_size_t))
+    if (status /= STRUCTMD_OK) return
+    length = 0
+    do while (buffer(length + 1) /= c_null_char)
+      length = length + 1
+    end do
+    counters = repeat(' ', length)
+    if (length > 0) counters = transfer(buffer(1:length), counters)
   end function
 
   !> s without trailing blanks, NUL-terminated for C.

@@ -52,6 +52,12 @@ public:
     void adapt() {
         for (auto& list : lists_) list->adapt();
     }
+    // Builds of every list, as of the last adapt().
+    int64_t builds() const {
+        int64_t total = 0;
+        for (const auto& list : lists_) total += list->builds();
+        return total;
+    }
     // Adds the terms active at the particles' step; an inactive term costs nothing.
     void compute_all(Particles<B, R>& p, const ForceOutputs<R>& out) {
         for (auto& it : interactors_)

@@ -197,6 +197,7 @@ public:
         ForceOutputs<R> out;
         out.energy = p_.energy.data();
         forceField_.compute_one(index, p_, out);
+        count(out);
         energyVersion_ = -1;  // the buffer now holds one term only
         return sum_energy(batch);
     }
@@ -216,6 +217,7 @@ public:
         ForceOutputs<R> out;
         out.virial = p_.virial.data();
         forceField_.compute_pairwise(p_, out);
+        count(out);
         virialVersion_ = -1;  // the buffer now holds the pair terms only
         std::vector<Tensor3<R>> values(p_.count);
         backend_.download(p_.virial, values.data(), values.size());
@@ -351,6 +353,16 @@ public:
         forceField_.invalidate_lists();
     }
 
+    Counters counters() override {
+        backend_.activate();
+        Counters c = evaluations_;
+        c.hostToDeviceBytes = backend_.transfers().hostToDevice;
+        c.deviceToHostBytes = backend_.transfers().deviceToHost;
+        forceField_.adapt();  // reads the lists' build counts (after the transfers were taken)
+        c.neighbourListBuilds = static_cast<uint64_t>(forceField_.builds());
+        return c;
+    }
+
     std::string backend_name() const override { return B::name; }
     std::string precision_name() const override { return PrecisionName<R>::value; }
     std::string device_name() const override { return backend_.device_name(); }
@@ -389,6 +401,7 @@ private:
         if (!out.force && !out.energy && !out.virial) return;
         forceField_.prepare(p_);
         forceField_.compute_all(p_, out);
+        count(out);
         if (out.force) forcesVersion_ = p_.version;
         if (out.energy) energyVersion_ = p_.version;
         if (out.virial) virialVersion_ = p_.version;
@@ -431,6 +444,12 @@ private:
     }
 
     // batch < 0: all particles.
+    void count(const ForceOutputs<R>& out) {
+        evaluations_.forceEvaluations += out.force != nullptr;
+        evaluations_.energyEvaluations += out.energy != nullptr;
+        evaluations_.virialEvaluations += out.virial != nullptr;
+    }
+
     double sum_energy(int batch) {
         if (batch < 0) return backend_.reduce(p_.count, SumEnergy<R>{p_.energy.data()}, 0.0);
         return backend_.reduce(p_.count, InBatch<SumEnergy<R>>{{p_.energy.data()}, p_.batch.data(), batch}, 0.0);
@@ -563,6 +582,7 @@ private:
     int64_t step_ = 0;
     int64_t firstStep_ = 0;
     int activeStage_ = -1;  // the schedule row whose integrator has begun
+    Counters evaluations_;  // the evaluation counts; counters() adds builds and transfers
     double time_ = 0.0;
     // Versions: what each cached quantity was computed at (-1: never or invalid).
     int64_t forcesVersion_ = -1;

@@ -11,6 +11,18 @@ namespace structmd {
 
 enum ComputeFlags : unsigned { kForces = 1u, kEnergy = 2u, kVirial = 4u };
 
+// What the engine has done since the simulation was loaded: passes over the force field that
+// evaluated forces, energies or the virial, neighbour-list builds, and bytes moved between the
+// host and the backend's buffers.
+struct Counters {
+    uint64_t forceEvaluations = 0;
+    uint64_t energyEvaluations = 0;
+    uint64_t virialEvaluations = 0;
+    uint64_t neighbourListBuilds = 0;
+    uint64_t hostToDeviceBytes = 0;
+    uint64_t deviceToHostBytes = 0;
+};
+
 class Simulation {
 public:
     virtual ~Simulation() = default;
@@ -58,6 +70,8 @@ public:
     // the whole file before changing anything.
     virtual void save_checkpoint(const std::string& path) = 0;
     virtual void load_checkpoint(const std::string& path) = 0;
+
+    virtual Counters counters() = 0;
 
     virtual std::string backend_name() const = 0;
     virtual std::string precision_name() const = 0;

@@ -771,6 +771,15 @@ def test_get_info_reports_the_size_it_needs(loaded):
     assert description["precision"] in ("single", "double")
 
 
+def test_get_counters_fits_512_bytes_and_refuses_a_short_buffer(loaded):
+    buffer = ffi.new("char[]", 512)
+    check(loaded, lib.structmd_get_counters(loaded, buffer, 512))
+    text = ffi.string(buffer).decode()
+    assert set(json.loads(text)) >= {"force_evaluations", "neighbour_list_builds", "device_to_host_bytes"}
+    expect(loaded, lib.structmd_get_counters(loaded, buffer, len(text)), ARGUMENT)
+    assert str(len(text) + 1) in message(loaded)
+
+
 @pytest.mark.parametrize("precision", ["single", "double"])
 def test_get_info_reports_the_requested_precision(new_handle, precision):
     handle = new_handle({**engine_options(), "precision": precision})

@@ -51,6 +51,7 @@ SIGNATURES = {
     "structmd_save_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_load_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_get_info": (STATUS_T, [HANDLE_T, c_char_p, c_size_t, POINTER(c_size_t)]),
+    "structmd_get_counters": (STATUS_T, [HANDLE_T, c_char_p, c_size_t]),
 }
 
 

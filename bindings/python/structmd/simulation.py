@@ -16,6 +16,7 @@ except ImportError:
     _np = None
 
 _INFO_FIRST_GUESS = 512  # bytes; structmd_get_info says how much it needs if this is short
+_COUNTERS_SIZE = 512  # bytes; the header promises structmd_get_counters never needs more
 
 
 def _decode(text):
@@ -311,6 +312,14 @@ class Simulation:
         t = c_double()
         self._call(lib.structmd_get_time, byref(t))
         return t.value
+
+    @property
+    def counters(self):
+        """A dict of what the engine did since the load: force, energy and virial evaluations,
+        neighbour-list builds, and bytes copied to and from the backend's buffers."""
+        buffer = create_string_buffer(_COUNTERS_SIZE)
+        self._call(lib.structmd_get_counters, buffer, _COUNTERS_SIZE)
+        return json.loads(buffer.value.decode("utf-8"))
 
     @property
     def info(self):

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "backends/transfer_counters.hpp"
+
 namespace structmd {
 
 template <class T>
@@ -71,6 +73,7 @@ public:
         }
         T total = zero;
         for (const T& p : partial) total = total + p;
+        transfers_.deviceToHost += sizeof(T);
         return total;
     }
 
@@ -80,6 +83,7 @@ public:
         double largest = 0.0;
 #pragma omp parallel for num_threads(threads_) schedule(static) reduction(max : largest) if (n >= kParallelThreshold)
         for (int64_t i = 0; i < n; ++i) largest = std::max(largest, static_cast<double>(f(i)));
+        transfers_.deviceToHost += sizeof(double);
         return largest;
     }
 
@@ -91,17 +95,20 @@ public:
 
     template <class T>
     void upload(Buffer<T>& buffer, const T* host, size_t n) const {
+        transfers_.hostToDevice += n * sizeof(T);
         buffer.resize(n);
         std::copy(host, host + n, buffer.data());
     }
 
     template <class T>
     void download(const Buffer<T>& buffer, T* host, size_t n) const {
+        transfers_.deviceToHost += n * sizeof(T);
         std::copy(buffer.data(), buffer.data() + n, host);
     }
 
     template <class T>
     T read(const Buffer<T>& buffer, size_t index) const {
+        transfers_.deviceToHost += sizeof(T);
         return buffer.data()[index];
     }
 
@@ -110,8 +117,11 @@ public:
         buffer.data()[index] = value;
     }
 
+    const TransferCounters& transfers() const { return transfers_; }
+
 private:
     int threads_;
+    mutable TransferCounters transfers_;
 };
 
 }  // namespace structmd

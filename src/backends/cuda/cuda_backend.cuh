@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "backends/cuda/cuda_check.hpp"
+#include "backends/transfer_counters.hpp"
 
 namespace structmd {
 
@@ -117,6 +118,7 @@ public:
     template <class T, class F>
     T reduce(int64_t n, const F& f, T zero) const {
         if (n <= 0) return zero;
+        transfers_.deviceToHost += sizeof(T);
         return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
                                         thrust::counting_iterator<int64_t>(n), f, zero, ReducePlus<T>());
     }
@@ -125,6 +127,7 @@ public:
     template <class F>
     double maximum(int64_t n, const F& f) const {
         if (n <= 0) return 0.0;
+        transfers_.deviceToHost += sizeof(double);
         return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
                                         thrust::counting_iterator<int64_t>(n), f, 0.0, ReduceMax());
     }
@@ -139,6 +142,7 @@ public:
     void upload(Buffer<T>& buffer, const T* host, size_t n) const {
         buffer.resize(n);
         if (n == 0) return;
+        transfers_.hostToDevice += n * sizeof(T);
         cuda_check(cudaMemcpyAsync(buffer.data(), host, n * sizeof(T), cudaMemcpyHostToDevice, stream_),
                    "copying to the device");
         synchronize();
@@ -147,6 +151,7 @@ public:
     template <class T>
     void download(const Buffer<T>& buffer, T* host, size_t n) const {
         if (n == 0) return;
+        transfers_.deviceToHost += n * sizeof(T);
         cuda_check(cudaMemcpyAsync(host, buffer.data(), n * sizeof(T), cudaMemcpyDeviceToHost, stream_),
                    "copying from the device");
         synchronize();
@@ -154,6 +159,7 @@ public:
 
     template <class T>
     T read(const Buffer<T>& buffer, size_t index) const {
+        transfers_.deviceToHost += sizeof(T);
         T value;
         cuda_check(cudaMemcpyAsync(&value, buffer.data() + index, sizeof(T), cudaMemcpyDeviceToHost, stream_),
                    "reading from the device");
@@ -167,8 +173,11 @@ public:
         for_each(1, FillFunctor<T>{buffer.data() + index, value});
     }
 
+    const TransferCounters& transfers() const { return transfers_; }
+
 private:
     int device_;
+    mutable TransferCounters transfers_;
     std::string deviceName_;
     cudaStream_t stream_ = nullptr;
 };

@@ -1,0 +1,131 @@
+"""The engine skips what a scene does not need, proved with structmd_get_counters: a bonded-only
+scene builds no neighbour list; steps between measures evaluate no energy or virial; asking for the
+forces twice evaluates them once; stepping moves no particle data to the host."""
+
+import pytest
+
+import structmd
+
+SIDE = 5  # 125 particles on a simple cubic lattice
+
+
+def document(bonds_only=False, thermo_interval=None, steps=200):
+    spacing = 1.12
+    box = SIDE * spacing
+    positions = [[(i + 0.5) * spacing - box / 2, (j + 0.5) * spacing - box / 2, (k + 0.5) * spacing - box / 2]
+                 for i in range(SIDE) for j in range(SIDE) for k in range(SIDE)]
+    n = len(positions)
+    force_field = {"bonds": {"type": ["Bond2", "HarmonicCommon_K_r0"], "parameters": {"K": 20.0, "r0": 1.12},
+                             "labels": ["id_i", "id_j"], "data": [[i, i + 1] for i in range(0, n - 1, 2)]}}
+    if not bonds_only:
+        force_field["nl"] = {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": 1.2}}
+        force_field["lj"] = {"type": ["NonBonded", "LennardJonesType1"],
+                             "parameters": {"cutOffFactor": 2.5, "condition": "all"},
+                             "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [["A", "A", 1.0, 1.0]]}
+    doc = {
+        "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": "counters"}}},
+        "global": {
+            "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
+                      "data": [["A", 1.0, 0.5, 0.0]]},
+            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
+                         "data": [[[box, box, box], 1.0]]},
+        },
+        "integrator": {
+            "vv": {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 0.002}},
+            "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                         "data": [[1, "vv", steps]]},
+        },
+        "state": {"labels": ["id", "position"], "data": [[i, p] for i, p in enumerate(positions)]},
+        "topology": {"structure": {"labels": ["id", "type"], "data": [[i, "A"] for i in range(n)]},
+                     "forceField": force_field},
+    }
+    if thermo_interval:
+        doc["simulationStep"] = {"thermo": {"type": ["ThermodynamicMeasure", "ThermodynamicQuantityMeasure"],
+                                            "parameters": {"intervalStep": thermo_interval,
+                                                           "outputFilePath": "thermo.dat"}}}
+    return doc
+
+
+@pytest.fixture
+def sim(options, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with structmd.Simulation(options) as s:
+        yield s
+
+
+def difference(after, before):
+    return {key: after[key] - before[key] for key in after}
+
+
+def test_counters_are_json_with_every_field(sim):
+    sim.load(document())
+    assert set(sim.counters) == {"force_evaluations", "energy_evaluations", "virial_evaluations",
+                                 "neighbour_list_builds", "host_to_device_bytes", "device_to_host_bytes"}
+    assert all(isinstance(value, int) and value >= 0 for value in sim.counters.values())
+
+
+def test_a_bonded_only_scene_builds_no_neighbour_list(sim):
+    sim.load(document(bonds_only=True))
+    sim.step(100)
+    sim.energy("potential")
+    assert sim.counters["neighbour_list_builds"] == 0
+    sim.load(document())
+    sim.step(100)
+    assert sim.counters["neighbour_list_builds"] >= 1
+
+
+def test_steps_without_measures_evaluate_no_energy_or_virial(sim):
+    sim.load(document())
+    sim.step(100)
+    counters = sim.counters
+    assert counters["energy_evaluations"] == 0
+    assert counters["virial_evaluations"] == 0
+    # Velocity Verlet: one force evaluation per step, plus the first at the initial positions.
+    assert counters["force_evaluations"] == 101
+
+
+def test_measures_evaluate_energies_only_at_their_steps(sim):
+    sim.load(document(thermo_interval=50))
+    sim.step(100)  # the measure fires at steps 0 and 50 (step 100 is the next call's first)
+    counters = sim.counters
+    terms = 2  # one energy pass per forceField entry (bonds, lj) per firing
+    assert counters["energy_evaluations"] == 2 * terms
+    assert counters["virial_evaluations"] == 2
+
+
+def test_reading_forces_twice_evaluates_them_once(sim):
+    sim.load(document())
+    before = sim.counters
+    first = sim.forces
+    middle = sim.counters
+    second = sim.forces
+    after = sim.counters
+    assert difference(middle, before)["force_evaluations"] == 1
+    assert difference(after, middle)["force_evaluations"] == 0
+    assert (first == second).all()
+    sim.positions = first * 0.0 + sim.positions  # the same values, but set: forces are stale now
+    sim.forces
+    assert difference(sim.counters, after)["force_evaluations"] == 1
+
+
+def test_energy_is_evaluated_once_per_state(sim):
+    sim.load(document())
+    sim.energy("potential")
+    once = sim.counters
+    sim.energy("potential")
+    sim.particle_energies
+    assert difference(sim.counters, once)["energy_evaluations"] == 0
+
+
+def test_stepping_moves_no_particle_data_to_the_host(sim):
+    sim.load(document(steps=1000))
+    sim.step(1)
+    before = sim.counters
+    sim.step(500)
+    moved = difference(sim.counters, before)
+    assert moved["host_to_device_bytes"] == 0
+    # One fault word and one neighbour-list control record per call: a few dozen bytes, whatever N.
+    assert moved["device_to_host_bytes"] <= 64, moved
+    n = SIDE ** 3
+    sim.positions
+    assert difference(sim.counters, before)["device_to_host_bytes"] >= moved["device_to_host_bytes"] + 3 * 4 * n
