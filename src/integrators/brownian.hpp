@@ -26,14 +26,7 @@ struct EulerMaruyamaStep {
         const R mobility = R(1) / (R(6 * 3.14159265358979323846) * viscosity * radius[i]);
         const R spread = sqrt(R(2) * kT * mobility * dt);
         const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, step);
-        Real4<R> p = pos[i];
-        const Vec3<R> r = box.wrap(Vec3<R>{p.x + dt * mobility * f.x + spread * xi.x,
-                                           p.y + dt * mobility * f.y + spread * xi.y,
-                                           p.z + dt * mobility * f.z + spread * xi.z},
-                                   image[i]);
-        p.x = r.x;
-        p.y = r.y;
-        p.z = r.z;
+        const Real4<R> p = displaced(pos[i], (dt * mobility) * xyz(f) + spread * xi, box, image[i]);
         pos[i] = p;
         if (!(finite(f) && finite(p))) fault.report(i);
     }

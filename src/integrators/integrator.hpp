@@ -20,6 +20,27 @@ public:
     virtual void positions_moved(double elapsed) = 0;
 };
 
+// The particle moved by d, wrapped into the box (its image counts the crossings); the type in w
+// stays.
+template <class R>
+SMD_HD SMD_INLINE Real4<R> displaced(Real4<R> p, const Vec3<R>& d, const Box<R>& box, Image& image) {
+    const Vec3<R> r = box.wrap(Vec3<R>{p.x + d.x, p.y + d.y, p.z + d.z}, image);
+    p.x = r.x;
+    p.y = r.y;
+    p.z = r.z;
+    return p;
+}
+
+// Half a kick: v += dt/2 F/m (the mass rides in v.w); a negative dt kicks back.
+template <class R>
+SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {
+    const R halfDtOverM = R(0.5) * dt / v.w;
+    v.x += halfDtOverM * f.x;
+    v.y += halfDtOverM * f.y;
+    v.z += halfDtOverM * f.z;
+    return v;
+}
+
 // What every integrator is given: its time step, its thermal energy and the particles it moves.
 struct IntegratorScope {
     double timeStep = 0.0;

@@ -18,13 +18,7 @@ struct HalfKickBack {
     R dt;
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
-        Real4<R> v = vel[i];
-        const Real4<R> f = force[i];
-        const R h = R(0.5) * dt / v.w;
-        v.x -= h * f.x;
-        v.y -= h * f.y;
-        v.z -= h * f.z;
-        vel[i] = v;
+        vel[i] = half_kick(vel[i], force[i], -dt);
     }
 };
 
@@ -52,11 +46,7 @@ struct BbkStep {
         v.y = ((R(1) - g) * v.y + dt * (f.y + noise * xi.y) / m) / (R(1) + g);
         v.z = ((R(1) - g) * v.z + dt * (f.z + noise * xi.z) / m) / (R(1) + g);
         vel[i] = v;
-        Real4<R> p = pos[i];
-        const Vec3<R> r = box.wrap(Vec3<R>{p.x + dt * v.x, p.y + dt * v.y, p.z + dt * v.z}, image[i]);
-        p.x = r.x;
-        p.y = r.y;
-        p.z = r.z;
+        const Real4<R> p = displaced(pos[i], dt * xyz(v), box, image[i]);
         pos[i] = p;
         if (!(finite(v) && finite(f) && finite(p))) fault.report(i);
     }

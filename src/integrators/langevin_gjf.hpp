@@ -31,15 +31,8 @@ struct GjfDrift {
         const R amplitude = sqrt(R(2) * gamma * m * kT * dt);
         const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, step);
         const Vec3<R> beta{amplitude * xi.x, amplitude * xi.y, amplitude * xi.z};
-        Real4<R> p = pos[i];
         const R c = b * dt / (R(2) * m);
-        const Vec3<R> r{p.x + b * dt * v.x + c * (dt * f.x + beta.x), p.y + b * dt * v.y + c * (dt * f.y + beta.y),
-                        p.z + b * dt * v.z + c * (dt * f.z + beta.z)};
-        const Vec3<R> wrapped = box.wrap(r, image[i]);
-        p.x = wrapped.x;
-        p.y = wrapped.y;
-        p.z = wrapped.z;
-        pos[i] = p;
+        pos[i] = displaced(pos[i], (b * dt) * xyz(v) + c * (dt * xyz(f) + beta), box, image[i]);
         // The part of v(n+1) known before F(n+1); GjfKick adds dt/(2m) F(n+1).
         const R h = dt / (R(2) * m);
         v.x = a * v.x + h * a * f.x + (b / m) * beta.x;
@@ -59,12 +52,8 @@ struct GjfKick {
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
-        Real4<R> v = vel[i];
         const Real4<R> f = force[i];
-        const R h = dt / (R(2) * v.w);
-        v.x += h * f.x;
-        v.y += h * f.y;
-        v.z += h * f.z;
+        const Real4<R> v = half_kick(vel[i], f, dt);
         vel[i] = v;
         if (!(finite(v) && finite(f) && finite(pos[i]))) fault.report(i);
     }

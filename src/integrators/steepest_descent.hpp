@@ -35,18 +35,14 @@ struct DescentMove {
     R stepPerForce;  // h / max|F|
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
-        Real4<R> p = pos[i];
+        const Real4<R> p = pos[i];
         savedPos[i] = p;
         savedImage[i] = image[i];
         if (group && !group[i]) return;
         const Real4<R> f = force[i];
-        const Vec3<R> r = box.wrap(
-            Vec3<R>{p.x + stepPerForce * f.x, p.y + stepPerForce * f.y, p.z + stepPerForce * f.z}, image[i]);
-        p.x = r.x;
-        p.y = r.y;
-        p.z = r.z;
-        pos[i] = p;
-        if (!(finite(f) && finite(p))) fault.report(i);
+        const Real4<R> moved = displaced(p, stepPerForce * xyz(f), box, image[i]);
+        pos[i] = moved;
+        if (!(finite(f) && finite(moved))) fault.report(i);
     }
 };
 

@@ -4,16 +4,6 @@
 
 namespace structmd {
 
-// Half a kick: v += dt/2 F/m (the mass rides in v.w).
-template <class R>
-SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {
-    const R halfDtOverM = R(0.5) * dt / v.w;
-    v.x += halfDtOverM * f.x;
-    v.y += halfDtOverM * f.y;
-    v.z += halfDtOverM * f.z;
-    return v;
-}
-
 template <class R>
 struct VerletKickDrift {
     const uint8_t* group;
@@ -27,12 +17,7 @@ struct VerletKickDrift {
         if (group && !group[i]) return;
         const Real4<R> v = half_kick(vel[i], force[i], dt);
         vel[i] = v;
-        Real4<R> p = pos[i];
-        const Vec3<R> r = box.wrap(Vec3<R>{p.x + dt * v.x, p.y + dt * v.y, p.z + dt * v.z}, image[i]);
-        p.x = r.x;
-        p.y = r.y;
-        p.z = r.z;
-        pos[i] = p;
+        pos[i] = displaced(pos[i], dt * xyz(v), box, image[i]);
     }
 };
 
