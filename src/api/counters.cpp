@@ -1,6 +1,4 @@
 // structmd_get_counters: what the engine has done since the load, as JSON.
-#include <cstring>
-
 #include <nlohmann/json.hpp>
 
 #include "api/handle.hpp"
@@ -20,12 +18,7 @@ structmd_status structmd_get_counters(structmd_sim* sim, char* buffer, size_t si
         counters["neighbour_list_builds"] = c.neighbourListBuilds;
         counters["host_to_device_bytes"] = c.hostToDeviceBytes;
         counters["device_to_host_bytes"] = c.deviceToHostBytes;
-        const std::string text = counters.dump();
-        if (size < text.size() + 1)
-            throw Error(STRUCTMD_ERR_ARGUMENT, "size: the buffer needs " + std::to_string(text.size() + 1) +
-                                                   " bytes, got " + std::to_string(size));
-        require_pointer(buffer, "buffer");
-        std::memcpy(buffer, text.c_str(), text.size() + 1);
+        copy_text(counters.dump(), buffer, size);
     });
 }
 

@@ -2,6 +2,7 @@
 // What a structmd_sim handle holds, and the exception barrier every exported function goes through:
 // the only place that catches, mapping each failure to a status and a per-handle message.
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <string>
@@ -75,6 +76,15 @@ inline void require_count(const Simulation& simulation, int64_t n, const void* p
         throw Error(STRUCTMD_ERR_ARGUMENT, "n: expected " + std::to_string(simulation.particle_count()) +
                                                " (the number of particles), got " + std::to_string(n));
     require_pointer(pointer, name);
+}
+
+// Copies text and its NUL into a caller's buffer of size bytes, or fails naming the size needed.
+inline void copy_text(const std::string& text, char* buffer, size_t size) {
+    if (size < text.size() + 1)
+        throw Error(STRUCTMD_ERR_ARGUMENT,
+                    "size: the buffer needs " + std::to_string(text.size() + 1) + " bytes, got " + std::to_string(size));
+    require_pointer(buffer, "buffer");
+    std::memcpy(buffer, text.c_str(), text.size() + 1);
 }
 
 }  // namespace structmd::api

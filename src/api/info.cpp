@@ -1,6 +1,4 @@
 // structmd_get_info: the handle described as JSON.
-#include <cstring>
-
 #include <nlohmann/json.hpp>
 
 #include "api/handle.hpp"
@@ -28,11 +26,7 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
         }
         const std::string text = info.dump();
         if (needed) *needed = text.size() + 1;
-        if (size < text.size() + 1)
-            throw Error(STRUCTMD_ERR_ARGUMENT, "size: the buffer needs " + std::to_string(text.size() + 1) +
-                                                   " bytes, got " + std::to_string(size));
-        require_pointer(buffer, "buffer");
-        std::memcpy(buffer, text.c_str(), text.size() + 1);
+        copy_text(text, buffer, size);
     });
 }
 
