@@ -46,6 +46,7 @@ public:
     void get_bytes(void* data, size_t size) {
         if (size > bytes_.size() - offset_)
             throw Error(STRUCTMD_ERR_IO, "checkpoint '" + path_ + "': the payload ends early");
+        if (size == 0) return;  // data may be null then (an empty vector's), which memcpy forbids
         std::memcpy(data, bytes_.data() + offset_, size);
         offset_ += size;
     }
