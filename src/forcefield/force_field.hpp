@@ -23,7 +23,6 @@ public:
     }
     const uint8_t* group(int index) const { return groups_[index].data(); }
     void add_list(std::shared_ptr<VerletList<B, R>> list) { lists_.push_back(std::move(list)); }
-    const std::vector<std::shared_ptr<VerletList<B, R>>>& lists() const { return lists_; }
 
     int find(const std::string& name) const {
         for (size_t k = 0; k < interactors_.size(); ++k)

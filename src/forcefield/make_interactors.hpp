@@ -161,9 +161,8 @@ ForceField<B, R> make_interactors(const B& backend, const ForceFieldSpec& spec, 
                                         : pair.subList == "intra"     ? PairCondition::intra
                                         : pair.subList == "inter"     ? PairCondition::inter
                                                                       : PairCondition::all;
-        auto list = std::make_shared<VerletList<B, R>>(backend, entry.name + "/" + pair.subList, cutoff,
-                                                       entry.verletFactor, condition, entry.excluded, context.batch,
-                                                       context.model);
+        auto list = std::make_shared<VerletList<B, R>>(backend, cutoff, entry.verletFactor, condition, entry.excluded,
+                                                       context.batch, context.model);
         lists.emplace_back(key, list);
         ff.add_list(list);
         return list;

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "neighbour/verlet_list_kernels.hpp"
@@ -17,9 +16,9 @@ class VerletList {
 public:
     // excluded: for nonExcluded lists, the sorted ids each particle never pairs with (else empty);
     // batch and model: backend arrays by particle, or null where not needed.
-    VerletList(const B& backend, std::string name, double cutoff, double verletFactor, PairCondition condition,
+    VerletList(const B& backend, double cutoff, double verletFactor, PairCondition condition,
                const std::vector<std::vector<int>>& excluded, const int* batch, const int* model)
-        : backend_(backend), name_(std::move(name)), cutoff_(cutoff), listRadius_(cutoff * verletFactor) {
+        : backend_(backend), cutoff_(cutoff), listRadius_(cutoff * verletFactor) {
         control_.resize(kControlSlots);
         backend_.fill(control_, 0);
         filter_.condition = condition;
@@ -38,9 +37,7 @@ public:
         }
     }
 
-    const std::string& name() const { return name_; }
     double cutoff() const { return cutoff_; }
-    double list_radius() const { return listRadius_; }
 
     // Brings the list up to date for the positions in pos (wrapped, n particles); version names
     // those positions, so asking twice for the same ones costs nothing.
@@ -138,7 +135,6 @@ private:
     }
 
     const B& backend_;
-    std::string name_;
     double cutoff_;
     double listRadius_;
     int64_t particles_ = 0;

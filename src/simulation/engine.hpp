@@ -44,7 +44,7 @@ public:
     Engine(SimulationSpec spec, const Logger& log, BackendArgs&&... backendArgs)
         : backend_(std::forward<BackendArgs>(backendArgs)...), log_(log) {
         backend_.activate();
-        boltzmann_ = spec.boltzmann;
+        boltzmann_ = spec.constants.boltzmann;
         step_ = spec.currentStep;
         firstStep_ = spec.currentStep;
         time_ = spec.simulationTime;

@@ -44,7 +44,6 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log) {
     doc.root.check_all_used();
 
     spec.seed = system.seed;
-    spec.boltzmann = system.units.boltzmann;
     spec.constants.boltzmann = system.units.boltzmann;
     spec.constants.electricConversion = system.units.electricConversion;
     spec.velocityKT = spec.schedule.empty() ? system.units.boltzmann * system.temperature

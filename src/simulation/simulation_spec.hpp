@@ -16,8 +16,7 @@ namespace structmd {
 
 struct SimulationSpec {
     uint64_t seed = 0;
-    double boltzmann = 1.0;
-    Constants constants;
+    Constants constants;  // k_B and the electric conversion factor of the units
     double velocityKT = 0.0;  // k_B T of drawn velocities: the first scheduled integrator's temperature
     std::array<double, 3> box{0, 0, 0};
     int64_t currentStep = 0;

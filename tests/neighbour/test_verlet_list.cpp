@@ -76,7 +76,7 @@ void expect_complete(const std::set<std::pair<int, int>>& wanted, const std::set
 
 TEST(VerletList, FindsEveryPairAfterABuild) {
     System s(800, 12.0, 13.0, 14.0, 1);
-    List list(s.backend, "all", 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
     expect_complete(s.pairs_within(2.5), s.visited(list));
     list.adapt();
     EXPECT_EQ(list.builds(), 1);
@@ -84,7 +84,7 @@ TEST(VerletList, FindsEveryPairAfterABuild) {
 
 TEST(VerletList, StillCompleteAfterMovesBelowHalfTheSkin) {
     System s(800, 12.0, 12.0, 12.0, 2);
-    List list(s.backend, "all", 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);  // skin 0.3
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);  // skin 0.3
     s.visited(list);
     for (int k = 0; k < 5; ++k) {
         s.jiggle(0.029, 10 + k);  // five moves of 0.029: at most 0.145 < 0.15, no rebuild
@@ -96,7 +96,7 @@ TEST(VerletList, StillCompleteAfterMovesBelowHalfTheSkin) {
 
 TEST(VerletList, RebuildsOnceAParticleMovesPastHalfTheSkin) {
     System s(500, 12.0, 12.0, 12.0, 3);
-    List list(s.backend, "all", 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
     s.visited(list);
     s.jiggle(0.16, 7);
     expect_complete(s.pairs_within(2.5), s.visited(list));
@@ -106,7 +106,7 @@ TEST(VerletList, RebuildsOnceAParticleMovesPastHalfTheSkin) {
 
 TEST(VerletList, ForcedRebuildAfterInvalidate) {
     System s(300, 10.0, 10.0, 10.0, 4);
-    List list(s.backend, "all", 2.0, 1.2, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.0, 1.2, PairCondition::all, {}, nullptr, nullptr);
     s.visited(list);
     list.invalidate();
     s.visited(list);
@@ -122,7 +122,7 @@ TEST(VerletList, CompleteWhenEveryParticleSitsInOneCell) {
         Real4<double>& p = s.pos.data()[i];
         p = {0.05 * p.x, 0.05 * p.y, 0.05 * p.z, 0.0};
     }
-    List list(s.backend, "all", 2.5, 1.1, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.5, 1.1, PairCondition::all, {}, nullptr, nullptr);
     expect_complete(s.pairs_within(2.5), s.visited(list));
     list.adapt();
     list.invalidate();
@@ -132,17 +132,17 @@ TEST(VerletList, CompleteWhenEveryParticleSitsInOneCell) {
 TEST(VerletList, SmallBoxesWithOneOrTwoCellsPerSide) {
     // 5.2 / (2.5 * 1.02) gives 2 cells per side; 3.0 gives 1 along z.
     System s(120, 5.2, 5.2, 3.0, 6);
-    List list(s.backend, "all", 1.4, 1.02, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 1.4, 1.02, PairCondition::all, {}, nullptr, nullptr);
     expect_complete(s.pairs_within(1.4), s.visited(list));
     System t(60, 5.2, 5.2, 5.2, 7);
-    List wide(t.backend, "all", 2.5, 1.02, PairCondition::all, {}, nullptr, nullptr);
+    List wide(t.backend, 2.5, 1.02, PairCondition::all, {}, nullptr, nullptr);
     expect_complete(t.pairs_within(2.5), t.visited(wide));
 }
 
 TEST(VerletList, DiluteSystemInALargeBoxKeepsTheGridSmall) {
     System s(50, 400.0, 400.0, 400.0, 8);
     for (int64_t i = 0; i < 10; ++i) s.pos.data()[i] = {0.3 * i, 0.0, 0.0, 0.0};  // a close cluster
-    List list(s.backend, "all", 2.5, 1.1, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.5, 1.1, PairCondition::all, {}, nullptr, nullptr);
     expect_complete(s.pairs_within(2.5), s.visited(list));
 }
 
