@@ -260,7 +260,8 @@ STRUCTMD_API structmd_status structmd_get_info(const structmd_sim* sim, char* bu
  * (NUL-terminated): {"force_evaluations", "energy_evaluations", "virial_evaluations": passes over
  * the force field that evaluated each quantity; "neighbour_list_builds"; "host_to_device_bytes",
  * "device_to_host_bytes": bytes copied between the host and the backend's buffers (on the CPU
- * backend, between the caller's arrays and the engine's)}. It shows that work a scene does not
+ * backend, between the caller's arrays and the engine's); "device_memory_bytes": bytes the
+ * handle's buffers hold on its backend now (GPU memory on CUDA)}. It shows that work a scene does not
  * need is skipped: no list without pair terms, no energy between the steps that read it, no
  * particle data leaving the device while stepping.
  *

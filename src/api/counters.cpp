@@ -18,6 +18,7 @@ structmd_status structmd_get_counters(structmd_sim* sim, char* buffer, size_t si
         counters["neighbour_list_builds"] = c.neighbourListBuilds;
         counters["host_to_device_bytes"] = c.hostToDeviceBytes;
         counters["device_to_host_bytes"] = c.deviceToHostBytes;
+        counters["device_memory_bytes"] = c.deviceMemoryBytes;
         copy_text(counters.dump(), buffer, size);
     });
 }

@@ -70,8 +70,8 @@ public:
 
     void begin(Particles<B, R>& p, ForceSource&) override {
         h_ = initialH_;
-        savedPos_.resize(p.count);
-        savedImage_.resize(p.count);
+        backend_.resize(savedPos_, p.count);
+        backend_.resize(savedImage_, p.count);
     }
 
     void step(Particles<B, R>& p, ForceSource& forces) override {

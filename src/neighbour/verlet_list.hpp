@@ -19,7 +19,7 @@ public:
     VerletList(const B& backend, double cutoff, double verletFactor, PairCondition condition,
                const std::vector<std::vector<int>>& excluded, const int* batch, const int* model)
         : backend_(backend), cutoff_(cutoff), listRadius_(cutoff * verletFactor) {
-        control_.resize(kControlSlots);
+        backend_.resize(control_, kControlSlots);
         backend_.fill(control_, 0);
         filter_.condition = condition;
         filter_.batch = batch;
@@ -123,12 +123,12 @@ private:
             cellCapacity_ = std::max(cellCapacity_, static_cast<int>(std::ceil(2.0 * perCell)) + 8);
         }
         particles_ = n;
-        list_.resize(static_cast<size_t>(capacity_) * n);
-        count_.resize(n);
-        reference_.resize(n);
-        cellCount_.resize(grid_.count());
-        cellParticles_.resize(static_cast<size_t>(cellCapacity_) * grid_.count());
-        overflow_.resize(n + 1);  // the last slot holds the overflow count
+        backend_.resize(list_, static_cast<size_t>(capacity_) * n);
+        backend_.resize(count_, n);
+        backend_.resize(reference_, n);
+        backend_.resize(cellCount_, grid_.count());
+        backend_.resize(cellParticles_, static_cast<size_t>(cellCapacity_) * grid_.count());
+        backend_.resize(overflow_, n + 1);  // the last slot holds the overflow count
         backend_.fill(overflow_, 0);
         needsLayout_ = false;
         forceRebuild_ = true;

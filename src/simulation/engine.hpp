@@ -61,8 +61,8 @@ public:
             upload_velocities(maxwell_boltzmann(spec).data());
         else
             upload_velocities(flatten(spec.velocities).data());
-        p_.force.resize(p_.count);
-        p_.fault.resize(1);
+        backend_.resize(p_.force, p_.count);
+        backend_.resize(p_.fault, 1);
         backend_.fill(p_.fault, kNoFault);
         radii_ = spec.radius;
         typeNames_ = spec.typeNames;
@@ -192,7 +192,7 @@ public:
             throw Error(STRUCTMD_ERR_ARGUMENT, "energy term '" + request + "' does not exist (terms: " + known +
                                                    ", each optionally followed by @batch:K)");
         }
-        p_.energy.resize(p_.count);
+        backend_.resize(p_.energy, p_.count);
         backend_.fill(p_.energy, R(0));
         ForceOutputs<R> out;
         out.energy = p_.energy.data();
@@ -212,7 +212,7 @@ public:
 
     void get_pair_virials(double* w) override {
         backend_.activate();
-        p_.virial.resize(p_.count);
+        backend_.resize(p_.virial, p_.count);
         backend_.fill(p_.virial, zero_tensor<R>());
         ForceOutputs<R> out;
         out.virial = p_.virial.data();
@@ -358,6 +358,7 @@ public:
         Counters c = evaluations_;
         c.hostToDeviceBytes = backend_.transfers().hostToDevice;
         c.deviceToHostBytes = backend_.transfers().deviceToHost;
+        c.deviceMemoryBytes = backend_.memory_bytes();
         forceField_.adapt();  // reads the lists' build counts (after the transfers were taken)
         c.neighbourListBuilds = static_cast<uint64_t>(forceField_.builds());
         return c;
@@ -389,12 +390,12 @@ private:
             out.force = p_.force.data();
         }
         if ((flags & kEnergy) && energyVersion_ != p_.version) {
-            p_.energy.resize(p_.count);
+            backend_.resize(p_.energy, p_.count);
             backend_.fill(p_.energy, R(0));
             out.energy = p_.energy.data();
         }
         if ((flags & kVirial) && virialVersion_ != p_.version) {
-            p_.virial.resize(p_.count);
+            backend_.resize(p_.virial, p_.count);
             backend_.fill(p_.virial, zero_tensor<R>());
             out.virial = p_.virial.data();
         }

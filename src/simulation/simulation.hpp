@@ -21,6 +21,7 @@ struct Counters {
     uint64_t neighbourListBuilds = 0;
     uint64_t hostToDeviceBytes = 0;
     uint64_t deviceToHostBytes = 0;
+    int64_t deviceMemoryBytes = 0;  // held now, not accumulated
 };
 
 class Simulation {

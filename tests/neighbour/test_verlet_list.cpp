@@ -25,7 +25,7 @@ struct System {
     System(int64_t count, double lx, double ly, double lz, unsigned seed) : box(Box<double>::make(lx, ly, lz)), n(count) {
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(-0.5, 0.5);
-        pos.resize(n);
+        backend.resize(pos, n);
         for (int64_t i = 0; i < n; ++i) pos.data()[i] = {u(rng) * lx, u(rng) * ly, u(rng) * lz, 0.0};
     }
 

@@ -9,11 +9,11 @@ import structmd
 SIDE = 5  # 125 particles on a simple cubic lattice
 
 
-def document(bonds_only=False, thermo_interval=None, steps=200):
+def document(bonds_only=False, thermo_interval=None, steps=200, side=SIDE):
     spacing = 1.12
-    box = SIDE * spacing
+    box = side * spacing
     positions = [[(i + 0.5) * spacing - box / 2, (j + 0.5) * spacing - box / 2, (k + 0.5) * spacing - box / 2]
-                 for i in range(SIDE) for j in range(SIDE) for k in range(SIDE)]
+                 for i in range(side) for j in range(side) for k in range(side)]
     n = len(positions)
     force_field = {"bonds": {"type": ["Bond2", "HarmonicCommon_K_r0"], "parameters": {"K": 20.0, "r0": 1.12},
                              "labels": ["id_i", "id_j"], "data": [[i, i + 1] for i in range(0, n - 1, 2)]}}
@@ -60,7 +60,8 @@ def difference(after, before):
 def test_counters_are_json_with_every_field(sim):
     sim.load(document())
     assert set(sim.counters) == {"force_evaluations", "energy_evaluations", "virial_evaluations",
-                                 "neighbour_list_builds", "host_to_device_bytes", "device_to_host_bytes"}
+                                 "neighbour_list_builds", "host_to_device_bytes", "device_to_host_bytes",
+                                 "device_memory_bytes"}
     assert all(isinstance(value, int) and value >= 0 for value in sim.counters.values())
 
 
@@ -115,6 +116,26 @@ def test_energy_is_evaluated_once_per_state(sim):
     sim.energy("potential")
     sim.particle_energies
     assert difference(sim.counters, once)["energy_evaluations"] == 0
+
+
+def test_device_memory_is_linear_in_the_particle_count(sim):
+    held = {}
+    for side in (6, 12):
+        sim.load(document(side=side))
+        sim.step(10)
+        held[side] = sim.counters["device_memory_bytes"]
+    # positions, velocities and forces alone take 48 bytes a particle in single precision
+    assert held[6] >= 48 * 6**3
+    assert 6.0 < held[12] / held[6] < 10.0  # 8 times the particles
+
+
+def test_a_scene_without_pair_terms_holds_no_list_memory(sim):
+    sim.load(document(bonds_only=True))
+    without_list = sim.counters["device_memory_bytes"]
+    sim.load(document())
+    sim.step(1)
+    # a Verlet list of a liquid takes tens of bytes per particle at least
+    assert sim.counters["device_memory_bytes"] - without_list > 20 * SIDE**3
 
 
 def test_stepping_moves_no_particle_data_to_the_host(sim):

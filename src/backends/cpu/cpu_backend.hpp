@@ -17,18 +17,35 @@ template <class T>
 class HostBuffer {
 public:
     HostBuffer() = default;
-    explicit HostBuffer(size_t n) : data_(n) {}
 
     T* data() { return data_.data(); }
     const T* data() const { return data_.data(); }
     size_t size() const { return data_.size(); }
     bool empty() const { return data_.empty(); }
     // Contents are unspecified after a resize, as for a device buffer.
-    void resize(size_t n) { data_.resize(n); }
-    void release() { std::vector<T>().swap(data_); }
+    void resize(size_t n, MemoryAccount& account) {
+        release();
+        data_.resize(n);
+        account_ = &account;
+        account_->bytes += static_cast<int64_t>(n * sizeof(T));
+    }
+    void release() {
+        if (account_) account_->bytes -= static_cast<int64_t>(data_.size() * sizeof(T));
+        std::vector<T>().swap(data_);
+    }
+    HostBuffer(const HostBuffer&) = delete;
+    HostBuffer& operator=(const HostBuffer&) = delete;
+    HostBuffer(HostBuffer&& other) noexcept { swap(other); }
+    HostBuffer& operator=(HostBuffer&& other) noexcept { swap(other); return *this; }
+    ~HostBuffer() { release(); }
 
 private:
+    void swap(HostBuffer& other) noexcept {
+        data_.swap(other.data_);
+        std::swap(account_, other.account_);
+    }
     std::vector<T> data_;
+    MemoryAccount* account_ = nullptr;
 };
 
 class CpuBackend {
@@ -87,6 +104,12 @@ public:
         return largest;
     }
 
+    // Buffers are sized through their backend, which keeps the account of what they hold.
+    template <class T>
+    void resize(Buffer<T>& buffer, size_t n) const {
+        if (n != buffer.size()) buffer.resize(n, memory_);
+    }
+
     template <class T>
     void fill(Buffer<T>& buffer, const T& value) const {
         T* data = buffer.data();
@@ -96,7 +119,7 @@ public:
     template <class T>
     void upload(Buffer<T>& buffer, const T* host, size_t n) const {
         transfers_.hostToDevice += n * sizeof(T);
-        buffer.resize(n);
+        resize(buffer, n);
         std::copy(host, host + n, buffer.data());
     }
 
@@ -118,10 +141,12 @@ public:
     }
 
     const TransferCounters& transfers() const { return transfers_; }
+    int64_t memory_bytes() const { return memory_.bytes; }
 
 private:
     int threads_;
     mutable TransferCounters transfers_;
+    mutable MemoryAccount memory_;
 };
 
 }  // namespace structmd

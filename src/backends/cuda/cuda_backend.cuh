@@ -29,14 +29,16 @@ public:
     const T* data() const { return data_; }
     size_t size() const { return size_; }
     bool empty() const { return size_ == 0; }
-    void resize(size_t n) {
-        if (n == size_) return;
+    void resize(size_t n, MemoryAccount& account) {
         release();
         if (n > 0) cuda_check(cudaMalloc(&data_, n * sizeof(T)), "allocating device memory");
         size_ = n;
+        account_ = &account;
+        account_->bytes += static_cast<int64_t>(n * sizeof(T));
     }
     void release() {
         if (data_) cudaFree(data_);
+        if (account_) account_->bytes -= static_cast<int64_t>(size_ * sizeof(T));
         data_ = nullptr;
         size_ = 0;
     }
@@ -44,9 +46,11 @@ private:
     void swap(DeviceBuffer& other) noexcept {
         std::swap(data_, other.data_);
         std::swap(size_, other.size_);
+        std::swap(account_, other.account_);
     }
     T* data_ = nullptr;
     size_t size_ = 0;
+    MemoryAccount* account_ = nullptr;
 };
 
 template <class F>
@@ -132,6 +136,12 @@ public:
                                         thrust::counting_iterator<int64_t>(n), f, 0.0, ReduceMax());
     }
 
+    // Buffers are sized through their backend, which keeps the account of what they hold.
+    template <class T>
+    void resize(Buffer<T>& buffer, size_t n) const {
+        if (n != buffer.size()) buffer.resize(n, memory_);
+    }
+
     template <class T>
     void fill(Buffer<T>& buffer, const T& value) const {
         for_each(static_cast<int64_t>(buffer.size()), FillFunctor<T>{buffer.data(), value});
@@ -140,7 +150,7 @@ public:
     // Copies are ordered on the handle's stream, after the kernels queued before them.
     template <class T>
     void upload(Buffer<T>& buffer, const T* host, size_t n) const {
-        buffer.resize(n);
+        resize(buffer, n);
         if (n == 0) return;
         transfers_.hostToDevice += n * sizeof(T);
         cuda_check(cudaMemcpyAsync(buffer.data(), host, n * sizeof(T), cudaMemcpyHostToDevice, stream_),
@@ -174,10 +184,12 @@ public:
     }
 
     const TransferCounters& transfers() const { return transfers_; }
+    int64_t memory_bytes() const { return memory_.bytes; }
 
 private:
     int device_;
     mutable TransferCounters transfers_;
+    mutable MemoryAccount memory_;
     std::string deviceName_;
     cudaStream_t stream_ = nullptr;
 };
