@@ -80,7 +80,8 @@ STRUCTMD_API const char* structmd_version(void);
  * @param options_json  NULL, "" or a JSON object with the optional keys
  *                      "backend": "auto" (default: CUDA if a usable GPU exists, else CPU) | "cpu" | "cuda";
  *                      "device": GPU ordinal (default 0);
- *                      "precision": "single" (default) | "double";
+ *                      "precision": "single" (default) | "mixed" | "double"
+ *                      (mixed: state, forces and sums in double, pair potentials in single);
  *                      "threads": CPU threads (default: all the OpenMP runtime offers);
  *                      "log": "quiet" | "warning" (default) | "info" | "debug";
  *                      "log_file": path (default: standard error).
@@ -261,7 +262,9 @@ STRUCTMD_API structmd_status structmd_get_info(const structmd_sim* sim, char* bu
  * the force field that evaluated each quantity; "neighbour_list_builds"; "host_to_device_bytes",
  * "device_to_host_bytes": bytes copied between the host and the backend's buffers (on the CPU
  * backend, between the caller's arrays and the engine's); "device_memory_bytes": bytes the
- * handle's buffers hold on its backend now (GPU memory on CUDA)}. It shows that work a scene does not
+ * handle's buffers hold on its backend now (GPU memory on CUDA); "step_graphs_captured",
+ * "step_graphs_replayed": batches of steps captured as CUDA graphs, and batches that replayed one
+ * (0 on the CPU)}. It shows that work a scene does not
  * need is skipped: no list without pair terms, no energy between the steps that read it, no
  * particle data leaving the device while stepping.
  *

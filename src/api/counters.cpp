@@ -19,6 +19,8 @@ structmd_status structmd_get_counters(structmd_sim* sim, char* buffer, size_t si
         counters["host_to_device_bytes"] = c.hostToDeviceBytes;
         counters["device_to_host_bytes"] = c.deviceToHostBytes;
         counters["device_memory_bytes"] = c.deviceMemoryBytes;
+        counters["step_graphs_captured"] = c.stepGraphsCaptured;
+        counters["step_graphs_replayed"] = c.stepGraphsReplayed;
         copy_text(counters.dump(), buffer, size);
     });
 }

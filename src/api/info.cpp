@@ -13,7 +13,7 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
         nlohmann::json info;
         info["version"] = STRUCTMD_VERSION_STRING;
         info["backend"] = s.options.backend;
-        info["precision"] = s.options.doublePrecision ? "double" : "single";
+        info["precision"] = s.options.precision;
         info["loaded"] = static_cast<bool>(s.simulation);
         info["device"] = device_description(s.options);
         info["threads"] = s.options.backend == "cpu" ? cpu_thread_count(s.options) : 0;

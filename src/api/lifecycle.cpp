@@ -21,12 +21,12 @@ std::unique_ptr<Simulation> make_engine(const structmd_sim& sim, SimulationSpec 
     const EngineOptions& o = sim.options;
     if (o.backend == "cuda") {
 #ifdef STRUCTMD_HAVE_CUDA
-        return make_cuda_engine(o.doublePrecision, o.device, std::move(spec), sim.log);
+        return make_cuda_engine(o.precision, o.device, std::move(spec), sim.log);
 #else
         throw Error(STRUCTMD_ERR_UNSUPPORTED, "this build of structmd has no CUDA backend");
 #endif
     }
-    return make_cpu_engine(o.doublePrecision, o.threads, std::move(spec), sim.log);
+    return make_cpu_engine(o.precision, o.threads, std::move(spec), sim.log);
 }
 
 void load_text(structmd_sim& sim, const std::string& text) {

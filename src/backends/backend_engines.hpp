@@ -1,6 +1,6 @@
 #pragma once
-// Entry points of the compiled backends: each instantiates Engine<Backend, float|double> in its own
-// translation unit (the CUDA one compiled by nvcc), so nothing else includes backend headers.
+// Entry points of the compiled backends: each instantiates Engine<Backend, state real, pair real>
+// for single, mixed and double precision in its own translation unit (the CUDA one compiled by nvcc), so nothing else includes backend headers.
 #include <memory>
 #include <string>
 
@@ -10,14 +10,17 @@
 
 namespace structmd {
 
-std::unique_ptr<Simulation> make_cpu_engine(bool doublePrecision, int threads, SimulationSpec spec, const Logger& log);
+// precision: "single", "mixed" or "double" (validated by the options).
+std::unique_ptr<Simulation> make_cpu_engine(const std::string& precision, int threads, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cpu_engine_single(int threads, SimulationSpec spec, const Logger& log);
+std::unique_ptr<Simulation> make_cpu_engine_mixed(int threads, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cpu_engine_double(int threads, SimulationSpec spec, const Logger& log);
 int cpu_default_threads();
 
 // Present only in builds with the CUDA backend (STRUCTMD_HAVE_CUDA).
-std::unique_ptr<Simulation> make_cuda_engine(bool doublePrecision, int device, SimulationSpec spec, const Logger& log);
+std::unique_ptr<Simulation> make_cuda_engine(const std::string& precision, int device, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cuda_engine_single(int device, SimulationSpec spec, const Logger& log);
+std::unique_ptr<Simulation> make_cuda_engine_mixed(int device, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cuda_engine_double(int device, SimulationSpec spec, const Logger& log);
 int cuda_device_count();
 std::string cuda_device_name(int device);

@@ -44,8 +44,12 @@ struct Box {
         return r;
     }
 
+    // Shifts beyond a billion box lengths are clamped (the conversion to int would overflow): such a
+    // particle has blown up and the integrators report it; NaN stays NaN.
     static SMD_HD SMD_INLINE R wrap_axis(R x, R length, R inverse, int& image) {
-        int shift = static_cast<int>(floor(x * inverse + R(0.5)));
+        const R lengths = floor(x * inverse + R(0.5));
+        int shift = lengths < R(1e9) ? (lengths > R(-1e9) ? static_cast<int>(lengths) : -1000000000) : 1000000000;
+        if (lengths != lengths) shift = 0;
         x -= length * R(shift);
         // Rounding can land exactly on +L/2; fold it back so the interval stays half-open.
         if (x >= R(0.5) * length) {

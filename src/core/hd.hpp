@@ -4,7 +4,9 @@
 #if defined(__CUDACC__)
 #define SMD_HD __host__ __device__
 #define SMD_INLINE __forceinline__
+#define SMD_UNROLL4 _Pragma("unroll 4")
 #else
 #define SMD_HD
 #define SMD_INLINE inline
+#define SMD_UNROLL4
 #endif

@@ -16,13 +16,13 @@ struct ExternalKernel {
     const R* radius;
     const uint8_t* group;
     Params params;
-    R time;
+    ClockView now;
     ForceOutputs<R> out;
 
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
         Vec3<R> f{0, 0, 0};
-        const R e = Potential::compute(xyz(pos[i]), radius[i], params, time, f);
+        const R e = Potential::compute(xyz(pos[i]), radius[i], params, R(now.time()), f);
         add_to_outputs<WantForce, WantEnergy, false>(out, i, f, e, zero_tensor<R>());
     }
 };
@@ -42,7 +42,7 @@ public:
             backend_.for_each(particles.count,
                               ExternalKernel<Potential, R, decltype(force)::value, decltype(energy)::value, false>{
                                   particles.pos.data(), particles.radius.data(), this->group(), params_,
-                                  R(particles.time), own});
+                                  particles.now(), own});
         });
     }
 

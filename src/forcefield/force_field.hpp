@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +39,13 @@ public:
         double largest = 0.0;
         for (const auto& list : lists_) largest = std::max(largest, list->cutoff());
         return largest;
+    }
+
+    // The thinnest skin of the lists (infinite without lists): no particle may move farther in a step.
+    double smallest_skin() const {
+        double skin = std::numeric_limits<double>::infinity();
+        for (const auto& list : lists_) skin = std::min(skin, list->skin());
+        return skin;
     }
 
     // Prepares the terms active now: only their neighbour lists are kept up to date.

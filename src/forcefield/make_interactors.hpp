@@ -137,7 +137,8 @@ struct ForceFieldContext {
     const int* model = nullptr;
 };
 
-template <class B, class R>
+// Pair terms evaluate in PairR (float for mixed precision); everything else in R.
+template <class B, class R, class PairR>
 ForceField<B, R> make_interactors(const B& backend, const ForceFieldSpec& spec, const ForceFieldContext& context) {
     ForceField<B, R> ff;
     for (const GroupSpec& group : spec.groups) ff.add_group(backend, group.members);
@@ -175,9 +176,9 @@ ForceField<B, R> make_interactors(const B& backend, const ForceFieldSpec& spec, 
             const PairSpec& pair = spec.pairs[nextPair++];
             const bool known = with_pair_potential(pair.potential, [&](auto tag) {
                 using Potential = typename decltype(tag)::type;
-                const auto table = pair_table<Potential, R>(pair, context.ntypes, context.constants);
-                ff.add(std::make_unique<PairInteraction<B, R, Potential>>(backend, scope(pair), list_for(pair), table,
-                                                                          static_cast<int>(context.ntypes)));
+                const auto table = pair_table<Potential, PairR>(pair, context.ntypes, context.constants);
+                ff.add(std::make_unique<PairInteraction<B, R, Potential, PairR>>(
+                    backend, scope(pair), list_for(pair), table, static_cast<int>(context.ntypes)));
             });
             if (!known) throw Error(STRUCTMD_ERR_INTERNAL, pair.path + ": pair potential without an implementation");
         } else if (nextBond < spec.bonds.size() && spec.bonds[nextBond].name == name) {

@@ -27,9 +27,11 @@ SMD_HD SMD_INLINE PairTerm<R> evaluate_pair(R r2, const typename Potential::temp
         return Potential::evaluate(r2, p);
 }
 
-template <class Potential, class R, bool WantForce, bool WantEnergy, bool WantVirial>
+// Positions, separations and sums in R; the potential itself in PairR (float under mixed precision:
+// the separation is taken in double, so its accuracy does not fall with the size of the box).
+template <class Potential, class R, class PairR, bool WantForce, bool WantEnergy, bool WantVirial>
 struct PairKernel {
-    using Params = typename Potential::template Params<R>;
+    using Params = typename Potential::template Params<PairR>;
     const Real4<R>* pos;
     const R* charge;       // read only by potentials of charges
     const uint8_t* group;  // null: every particle takes part
@@ -38,7 +40,7 @@ struct PairKernel {
     int ntypes;
     ForceOutputs<R> out;
 
-    SMD_HD void operator()(int64_t i) const {
+    SMD_HD void operator()(int64_t i, Lanes lanes) const {
         if (group && !group[i]) return;
         const Real4<R> pi = pos[i];
         const Vec3<R> ri = xyz(pi);
@@ -50,23 +52,27 @@ struct PairKernel {
         neighbours.for_each_neighbour(static_cast<int>(i), ri, [&](int j) {
             const Real4<R> pj = pos[j];
             const Vec3<R> rij = box.minimum_image(xyz(pj) - ri);
-            const R r2 = dot(rij, rij);
+            const PairR r2 = PairR(dot(rij, rij));
             const Params& p = row[static_cast<int>(pj.w)];
             if (!(r2 < p.cutoff2) || (group && !group[j])) return;
-            const PairTerm<R> t =
-                evaluate_pair<Potential>(r2, p, UsesCharges<Potential>::value ? charge[i] * charge[j] : R(0));
-            if (WantForce) f += t.dudr_over_r * rij;
-            if (WantEnergy) e += R(0.5) * t.energy;
-            if (WantVirial) w += (R(-0.5) * t.dudr_over_r) * outer(rij, rij);
-        });
-        add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
+            const PairTerm<PairR> t = evaluate_pair<Potential>(
+                r2, p, UsesCharges<Potential>::value ? PairR(charge[i] * charge[j]) : PairR(0));
+            const R dudrOverR = R(t.dudr_over_r);
+            if (WantForce) f += dudrOverR * rij;
+            if (WantEnergy) e += R(0.5) * R(t.energy);
+            if (WantVirial) w += (R(-0.5) * dudrOverR) * outer(rij, rij);
+        }, lanes);
+        if (WantForce) f = lanes.sum(f);
+        if (WantEnergy) e = lanes.sum(e);
+        if (WantVirial) w = lanes.sum(w);
+        if (lanes.leader()) add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
     }
 };
 
-template <class B, class R, class Potential>
+template <class B, class R, class Potential, class PairR = R>
 class PairInteraction : public Interactor<B, R> {
 public:
-    using Params = typename Potential::template Params<R>;
+    using Params = typename Potential::template Params<PairR>;
 
     PairInteraction(const B& backend, InteractorScope scope, std::shared_ptr<VerletList<B, R>> list,
                     const std::vector<Params>& table, int ntypes)
@@ -81,8 +87,8 @@ public:
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
         const NeighbourView<R> view = list_->view();
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
-            backend_.for_each(particles.count,
-                              PairKernel<Potential, R, decltype(force)::value, decltype(energy)::value,
+            backend_.for_each_lanes(particles.count,
+                              PairKernel<Potential, R, PairR, decltype(force)::value, decltype(energy)::value,
                                          decltype(virial)::value>{particles.pos.data(), particles.charge.data(),
                                                                   this->group(), view, table_.data(), ntypes_,
                                                                   out});

@@ -18,17 +18,19 @@ struct EulerMaruyamaStep {
     Box<R> box;
     R dt, viscosity, kT;
     uint64_t seed;
-    int64_t step;
+    ClockView now;
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
         const Real4<R> f = force[i];
         const R mobility = R(1) / (R(6 * 3.14159265358979323846) * viscosity * radius[i]);
         const R spread = sqrt(R(2) * kT * mobility * dt);
-        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, step);
-        const Real4<R> p = displaced(pos[i], (dt * mobility) * xyz(f) + spread * xi, box, image[i]);
+        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
+        const Vec3<R> move = (dt * mobility) * xyz(f) + spread * xi;
+        fault.check_move(i, move);
+        const Real4<R> p = displaced(pos[i], move, box, image[i]);
         pos[i] = p;
-        if (!(finite(f) && finite(p))) fault.report(i);
+        fault.check(i, p, f);
     }
 };
 
@@ -58,7 +60,7 @@ public:
         forces.update_forces();
         backend_.for_each(p.count, EulerMaruyamaStep<R>{p.pos.data(), p.image.data(), p.force.data(), p.radius.data(),
                                                         s.group, p.box, R(s.timeStep), R(viscosity_), R(s.kT),
-                                                        p.seed, p.step, p.fault_slot()});
+                                                        p.seed, p.now(), p.fault_slot(1)});
         forces.positions_moved(s.timeStep);
     }
 

@@ -32,7 +32,7 @@ struct BbkStep {
     Box<R> box;
     R dt, gamma, kT;
     uint64_t seed;
-    int64_t step;
+    ClockView now;
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
@@ -41,14 +41,16 @@ struct BbkStep {
         const R m = v.w;
         const R g = R(0.5) * gamma * dt;
         const R noise = sqrt(R(2) * m * gamma * kT / dt);
-        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, step);
+        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
         v.x = ((R(1) - g) * v.x + dt * (f.x + noise * xi.x) / m) / (R(1) + g);
         v.y = ((R(1) - g) * v.y + dt * (f.y + noise * xi.y) / m) / (R(1) + g);
         v.z = ((R(1) - g) * v.z + dt * (f.z + noise * xi.z) / m) / (R(1) + g);
         vel[i] = v;
-        const Real4<R> p = displaced(pos[i], dt * xyz(v), box, image[i]);
+        const Vec3<R> move = dt * xyz(v);
+        fault.check_move(i, move);
+        const Real4<R> p = displaced(pos[i], move, box, image[i]);
         pos[i] = p;
-        if (!(finite(v) && finite(f) && finite(p))) fault.report(i);
+        fault.check(i, p, v, f);
     }
 };
 
@@ -61,7 +63,7 @@ public:
     void begin(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
         if (resetVelocities_)
-            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.seed, p.step, R(s.kT)});
+            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.seed, p.now(), R(s.kT)});
         forces.update_forces();
         backend_.for_each(p.count, HalfKickBack<R>{p.vel.data(), p.force.data(), s.group, R(s.timeStep)});
     }
@@ -70,8 +72,8 @@ public:
         const IntegratorScope& s = this->scope();
         forces.update_forces();
         backend_.for_each(p.count, BbkStep<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
-                                              p.box, R(s.timeStep), R(friction_), R(s.kT), p.seed, p.step,
-                                              p.fault_slot()});
+                                              p.box, R(s.timeStep), R(friction_), R(s.kT), p.seed, p.now(),
+                                              p.fault_slot(1)});
         forces.positions_moved(s.timeStep);
     }
 

@@ -20,7 +20,8 @@ struct GjfDrift {
     Box<R> box;
     R dt, gamma, kT;
     uint64_t seed;
-    int64_t step;
+    ClockView now;
+    FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
         Real4<R> v = vel[i];
@@ -29,10 +30,12 @@ struct GjfDrift {
         const R b = R(1) / (R(1) + R(0.5) * gamma * dt);
         const R a = (R(1) - R(0.5) * gamma * dt) * b;
         const R amplitude = sqrt(R(2) * gamma * m * kT * dt);
-        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, step);
+        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
         const Vec3<R> beta{amplitude * xi.x, amplitude * xi.y, amplitude * xi.z};
         const R c = b * dt / (R(2) * m);
-        pos[i] = displaced(pos[i], (b * dt) * xyz(v) + c * (dt * xyz(f) + beta), box, image[i]);
+        const Vec3<R> move = (b * dt) * xyz(v) + c * (dt * xyz(f) + beta);
+        fault.check_move(i, move);
+        pos[i] = displaced(pos[i], move, box, image[i]);
         // The part of v(n+1) known before F(n+1); GjfKick adds dt/(2m) F(n+1).
         const R h = dt / (R(2) * m);
         v.x = a * v.x + h * a * f.x + (b / m) * beta.x;
@@ -55,7 +58,7 @@ struct GjfKick {
         const Real4<R> f = force[i];
         const Real4<R> v = half_kick(vel[i], f, dt);
         vel[i] = v;
-        if (!(finite(v) && finite(f) && finite(pos[i]))) fault.report(i);
+        fault.check(i, pos[i], v, f);
     }
 };
 
@@ -68,7 +71,7 @@ public:
     void begin(Particles<B, R>& p, ForceSource&) override {
         const IntegratorScope& s = this->scope();
         if (resetVelocities_)
-            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.seed, p.step, R(s.kT)});
+            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.seed, p.now(), R(s.kT)});
     }
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
@@ -76,7 +79,7 @@ public:
         const R dt = R(s.timeStep);
         forces.update_forces();
         backend_.for_each(p.count, GjfDrift<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
-                                               p.box, dt, R(friction_), R(s.kT), p.seed, p.step});
+                                               p.box, dt, R(friction_), R(s.kT), p.seed, p.now(), p.fault_slot(1)});
         forces.positions_moved(s.timeStep);
         forces.update_forces();
         backend_.for_each(p.count, GjfKick<R>{p.pos.data(), p.vel.data(), p.force.data(), s.group, dt, p.fault_slot()});

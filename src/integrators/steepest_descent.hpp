@@ -42,7 +42,7 @@ struct DescentMove {
         const Real4<R> f = force[i];
         const Real4<R> moved = displaced(p, stepPerForce * xyz(f), box, image[i]);
         pos[i] = moved;
-        if (!(finite(f) && finite(moved))) fault.report(i);
+        fault.check(i, moved, f);
     }
 };
 
@@ -85,7 +85,7 @@ public:
         const double before = forces.potential_energy();
         backend_.for_each(p.count, DescentMove<R>{p.pos.data(), p.image.data(), savedPos_.data(), savedImage_.data(),
                                                   p.force.data(), this->scope().group, p.box, R(h_ / largest),
-                                                  p.fault_slot()});
+                                                  p.fault_slot(1)});
         forces.positions_moved(0.0);
         const double after = forces.potential_energy();
         if (after < before) {

@@ -7,6 +7,7 @@
 
 #include "core/random.hpp"
 #include "core/vec.hpp"
+#include "simulation/step_clock.hpp"
 
 namespace structmd {
 
@@ -28,12 +29,12 @@ struct DrawThermalVelocities {
     Real4<R>* vel;
     const uint8_t* group;
     uint64_t seed;
-    int64_t step;
+    ClockView now;
     R kT;
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
         Real4<R> v = vel[i];
-        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::velocityReset, i, step);
+        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::velocityReset, i, now.step());
         const R sigma = sqrt(kT / v.w);
         v.x = sigma * xi.x;
         v.y = sigma * xi.y;

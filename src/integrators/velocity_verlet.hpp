@@ -13,11 +13,14 @@ struct VerletKickDrift {
     const Real4<R>* force;
     Box<R> box;
     R dt;
+    FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
         const Real4<R> v = half_kick(vel[i], force[i], dt);
         vel[i] = v;
-        pos[i] = displaced(pos[i], dt * xyz(v), box, image[i]);
+        const Vec3<R> move = dt * xyz(v);
+        fault.check_move(i, move);
+        pos[i] = displaced(pos[i], move, box, image[i]);
     }
 };
 
@@ -36,7 +39,7 @@ struct VerletKick {
         const Real4<R> f = force[i];
         const Real4<R> v = half_kick(vel[i], f, dt);
         vel[i] = v;
-        if (!(finite(v) && finite(f) && finite(pos[i]))) fault.report(i);
+        fault.check(i, pos[i], v, f);
     }
 };
 
@@ -48,7 +51,7 @@ public:
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const R dt = R(this->time_step());
         forces.update_forces();
-        backend_.for_each(p.count, VerletKickDrift<R>{this->scope().group, p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), p.box, dt});
+        backend_.for_each(p.count, VerletKickDrift<R>{this->scope().group, p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), p.box, dt, p.fault_slot(1)});
         forces.positions_moved(this->time_step());
         forces.update_forces();
         backend_.for_each(p.count, VerletKick<R>{this->scope().group, p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});

@@ -38,6 +38,7 @@ public:
     }
 
     double cutoff() const { return cutoff_; }
+    double skin() const { return listRadius_ - cutoff_; }
 
     // Brings the list up to date for the positions in pos (wrapped, n particles); version names
     // those positions, so asking twice for the same ones costs nothing.
@@ -55,9 +56,9 @@ public:
         NeighbourView<R> v = view();
         backend_.for_each(grid_.count(), ClearCells{control_.data(), cellCount_.data(), overflowCount()});
         backend_.for_each(n, BinParticles<R>{pos.data(), reference_.data(), v, control_.data()});
-        backend_.for_each(grid_.count(), SortCells<R>{v, control_.data()});
-        backend_.for_each(n, BuildLists<R>{pos.data(), v, R(listRadius_ * listRadius_), control_.data(),
-                                           B::ordered_neighbour_lists});
+        backend_.for_each(grid_.count(), SortCells<R>{pos.data(), v, control_.data()});
+        backend_.for_each_lanes(n, BuildLists<R>{pos.data(), v, R(listRadius_ * listRadius_), control_.data(),
+                                                 B::ordered_neighbour_lists});
     }
 
     // Reads what the last builds needed (one small copy to the host) and enlarges the capacities
@@ -87,9 +88,16 @@ public:
         v.list = list_.data();
         v.count = count_.data();
         v.capacity = capacity_;
-        v.stride = static_cast<int>(particles_);
+        if (backend_.lists_by_rows(particles_)) {
+            v.particleStride = capacity_;
+            v.entryStride = 1;
+        } else {
+            v.particleStride = 1;
+            v.entryStride = particles_;
+        }
         v.cellCount = cellCount_.data();
         v.cellParticles = cellParticles_.data();
+        v.cellPositions = cellPositions_.data();
         v.cellCapacity = cellCapacity_;
         v.overflow = overflow_.data();
         v.overflowCount = overflowCount();
@@ -128,6 +136,7 @@ private:
         backend_.resize(reference_, n);
         backend_.resize(cellCount_, grid_.count());
         backend_.resize(cellParticles_, static_cast<size_t>(cellCapacity_) * grid_.count());
+        backend_.resize(cellPositions_, static_cast<size_t>(cellCapacity_) * grid_.count());
         backend_.resize(overflow_, n + 1);  // the last slot holds the overflow count
         backend_.fill(overflow_, 0);
         needsLayout_ = false;
@@ -152,7 +161,7 @@ private:
     typename B::template Buffer<int> excludedStart_, excluded_;
     typename B::template Buffer<int> control_;
     typename B::template Buffer<int> list_, count_, cellCount_, cellParticles_, overflow_;
-    typename B::template Buffer<Real4<R>> reference_;
+    typename B::template Buffer<Real4<R>> reference_, cellPositions_;
 };
 
 }  // namespace structmd

@@ -26,18 +26,14 @@
 
 namespace structmd {
 
-template <class R>
-struct PrecisionName;
-template <>
-struct PrecisionName<float> {
-    static constexpr const char* value = "single";
-};
-template <>
-struct PrecisionName<double> {
-    static constexpr const char* value = "double";
-};
+// R: positions, velocities, forces and sums; PairR: the arithmetic of non-bonded pair terms.
+template <class R, class PairR>
+constexpr const char* precision_label() {
+    if constexpr (sizeof(R) == sizeof(PairR)) return sizeof(R) == sizeof(float) ? "single" : "double";
+    return "mixed";
+}
 
-template <class B, class R>
+template <class B, class R, class PairR = R>
 class Engine final : public Simulation, private ForceSource {
 public:
     template <class... BackendArgs>
@@ -64,6 +60,7 @@ public:
         backend_.resize(p_.force, p_.count);
         backend_.resize(p_.fault, 1);
         backend_.fill(p_.fault, kNoFault);
+        set_clock();
         radii_ = spec.radius;
         typeNames_ = spec.typeNames;
         std::vector<R> radius(spec.radius.begin(), spec.radius.end());
@@ -74,8 +71,6 @@ public:
         if (std::any_of(batchId_.begin(), batchId_.end(), [](int b) { return b != 0; }))
             backend_.upload(p_.batch, batchId_.data(), batchId_.size());
         backend_.upload(p_.model, spec.modelId.data(), spec.modelId.size());
-        p_.step = step_;
-        p_.time = time_;
         p_.seed = spec.seed;
 
         ForceFieldContext context;
@@ -84,9 +79,11 @@ public:
         context.constants = spec.constants;
         context.batch = p_.batch.empty() ? nullptr : p_.batch.data();
         context.model = p_.model.data();
-        forceField_ = make_interactors<B, R>(backend_, spec.forceField, context);
+        forceField_ = make_interactors<B, R, PairR>(backend_, spec.forceField, context);
         for (const IntegratorSpec& integrator : spec.integrators)
             integrators_.push_back(make_integrator(integrator, spec.forceField.groups));
+        const double skin = forceField_.smallest_skin();
+        p_.maxMove2 = std::isfinite(skin) ? skin * skin : 1e300;
         backend_.synchronize();
     }
 
@@ -110,20 +107,34 @@ public:
                                                 std::to_string(step_) + ": the schedule ends at step " +
                                                 std::to_string(last));
         backend_.activate();
-        for (int64_t k = 0; k < n; ++k) {
-            fire_steps(false);
-            const int stage = current_stage();
-            Integrator<B, R>& integrator = *integrators_[schedule_[stage].integrator];
-            if (stage != activeStage_) {
-                integrator.begin(p_, *this);
-                activeStage_ = stage;
+        save_state();
+        backend_.begin_steps();
+        try {
+            for (int64_t k = 0; k < n; ++k) {
+                if (k > 0 && k % kStepsPerGraph == 0) {
+                    backend_.end_steps();
+                    backend_.begin_steps();
+                }
+                fire_steps(false);
+                const int stage = current_stage();
+                Integrator<B, R>& integrator = *integrators_[schedule_[stage].integrator];
+                if (stage != activeStage_) {
+                    integrator.begin(p_, *this);
+                    activeStage_ = stage;
+                }
+                integrator.step(p_, *this);
+                ++step_;
+                time_ += integrator.time_advance();
+                backend_.for_each(1, AdvanceClock{p_.clock.data(), integrator.time_advance()});
+                p_.clockAtLaunch = {step_, time_};
+                p_.step = step_;
+                p_.time = time_;
             }
-            integrator.step(p_, *this);
-            ++step_;
-            time_ += integrator.time_advance();
-            p_.step = step_;
-            p_.time = time_;
+        } catch (...) {
+            backend_.end_steps();
+            throw;
         }
+        backend_.end_steps();
         check_fault();
         if (n > 0 && step_ == last) fire_steps(true);
         forceField_.adapt();
@@ -299,7 +310,7 @@ public:
         const uint32_t realSize = in.get<uint32_t>();
         if (realSize != sizeof(R))
             throw mismatch(std::string("it was written in ") + (realSize == 4 ? "single" : "double") +
-                           " precision, this simulation runs in " + PrecisionName<R>::value);
+                           " precision, this simulation runs in " + precision_label<R, PairR>());
         const int64_t count = in.get<int64_t>();
         if (count != p_.count)
             throw mismatch("it holds " + std::to_string(count) + " particles, this simulation " + std::to_string(p_.count));
@@ -346,8 +357,7 @@ public:
         step_ = step;
         time_ = time;
         activeStage_ = activeStage;
-        p_.step = step_;
-        p_.time = time_;
+        set_clock();
         ++p_.version;
         forcesVersion_ = energyVersion_ = virialVersion_ = -1;
         forceField_.invalidate_lists();
@@ -359,17 +369,31 @@ public:
         c.hostToDeviceBytes = backend_.transfers().hostToDevice;
         c.deviceToHostBytes = backend_.transfers().deviceToHost;
         c.deviceMemoryBytes = backend_.memory_bytes();
+        c.stepGraphsCaptured = backend_.graphs_captured();
+        c.stepGraphsReplayed = backend_.graphs_replayed();
         forceField_.adapt();  // reads the lists' build counts (after the transfers were taken)
         c.neighbourListBuilds = static_cast<uint64_t>(forceField_.builds());
         return c;
     }
 
     std::string backend_name() const override { return B::name; }
-    std::string precision_name() const override { return PrecisionName<R>::value; }
+    std::string precision_name() const override { return precision_label<R, PairR>(); }
     std::string device_name() const override { return backend_.device_name(); }
     int threads() const override { return backend_.threads(); }
 
 private:
+    // Steps per CUDA graph: enough to make the launch of the graph negligible, few enough that the
+    // graph stays small and the last, shorter batch of a call is cheap to capture.
+    static constexpr int64_t kStepsPerGraph = 16;
+
+    // The step and time on the host and on the backend's clock agree again.
+    void set_clock() {
+        p_.step = step_;
+        p_.time = time_;
+        p_.clockAtLaunch = {step_, time_};
+        backend_.upload(p_.clock, &p_.clockAtLaunch, 1);
+    }
+
     // ForceSource
     void update_forces() override { evaluate(kForces); }
     double potential_energy() override { return potential_energy(-1); }
@@ -408,27 +432,69 @@ private:
         if (out.virial) virialVersion_ = p_.version;
     }
 
-    // Reports a fault recorded on the backend during the last steps, naming the first step and
-    // particle, then clears it so the host can repair the state (set_positions, reload).
+    // The state a step call starts from, on the backend, so that a blow-up can be undone.
+    struct SavedState {
+        typename B::template Buffer<Real4<R>> pos, vel;
+        typename B::template Buffer<Image> image;
+        int64_t step = 0;
+        double time = 0.0;
+        int activeStage = -1;
+        std::vector<std::vector<double>> integrators;
+    };
+
+    void save_state() {
+        backend_.resize(saved_.pos, p_.count);
+        backend_.resize(saved_.vel, p_.count);
+        backend_.resize(saved_.image, p_.count);
+        backend_.for_each(p_.count, CopyState<R>{p_.pos.data(), p_.image.data(), p_.vel.data(), saved_.pos.data(),
+                                                 saved_.image.data(), saved_.vel.data()});
+        saved_.step = step_;
+        saved_.time = time_;
+        saved_.activeStage = activeStage_;
+        saved_.integrators.clear();
+        for (const auto& integrator : integrators_) saved_.integrators.push_back(integrator->state());
+    }
+
+    void restore_state() {
+        backend_.for_each(p_.count, CopyState<R>{saved_.pos.data(), saved_.image.data(), saved_.vel.data(),
+                                                 p_.pos.data(), p_.image.data(), p_.vel.data()});
+        for (size_t k = 0; k < integrators_.size(); ++k) integrators_[k]->restore(saved_.integrators[k]);
+        step_ = saved_.step;
+        time_ = saved_.time;
+        activeStage_ = saved_.activeStage;
+        set_clock();
+        ++p_.version;
+        forcesVersion_ = energyVersion_ = virialVersion_ = -1;
+        forceField_.invalidate_lists();
+    }
+
+    // Reports a fault recorded on the backend during the last steps, naming the first step, particle
+    // and quantity, and returns to the state the call started from, so that the getters show the
+    // last good state and the host can go on from it (with a smaller time step, say).
     void check_fault() {
         const unsigned long long word = backend_.read(p_.fault, 0);
         if (word == kNoFault) return;
         backend_.fill(p_.fault, kNoFault);
+        const int64_t failedStep = step_;
+        restore_state();
         const int64_t step = FaultSlot::step_of(word);
         const int64_t id = FaultSlot::particle_of(word);
-        std::vector<double> values(3 * p_.count);
-        std::string quantity = "force";
-        download_vectors(p_.pos, values.data());
-        if (!(std::isfinite(values[3 * id]) && std::isfinite(values[3 * id + 1]) && std::isfinite(values[3 * id + 2])))
-            quantity = "position";
-        download_vectors(p_.vel, values.data());
-        if (!(std::isfinite(values[3 * id]) && std::isfinite(values[3 * id + 1]) && std::isfinite(values[3 * id + 2])))
-            quantity = "velocity";
+        std::string what;
+        switch (FaultSlot::quantity_of(word)) {
+            case FaultQuantity::position: what = "the position is not finite"; break;
+            case FaultQuantity::velocity: what = "the velocity is not finite"; break;
+            case FaultQuantity::force: what = "the force is not finite"; break;
+            case FaultQuantity::displacement:
+                what = "the displacement in one step is longer than the neighbour-list skin (" +
+                       std::to_string(std::sqrt(p_.maxMove2)) + ")";
+                break;
+        }
         throw Error(STRUCTMD_ERR_NUMERICAL,
-                    "step " + std::to_string(step) + ", particle id " + std::to_string(id) + ": the " + quantity +
-                        " is not finite: the simulation blew up (time step too large, or overlapping particles); "
-                        "the state is now at step " + std::to_string(step_) +
-                        " and must be repaired with structmd_set_positions / structmd_set_velocities or a reload");
+                    "step " + std::to_string(step) + ", particle id " + std::to_string(id) + ": " + what +
+                        ": the simulation blew up (time step too large, or overlapping particles); the run went on to "
+                        "step " + std::to_string(failedStep) + ", and the state is back at step " +
+                        std::to_string(step_) + ", where this call started: repair it (structmd_set_positions, "
+                        "structmd_set_velocities, a checkpoint) or step on with a smaller time step");
     }
 
     int parse_batch(const std::string& text, const std::string& request) const {
@@ -534,6 +600,14 @@ private:
         std::vector<Real4<R>> values(p_.count);
         std::vector<Image> images(p_.count, Image{0, 0, 0});
         for (int64_t i = 0; i < p_.count; ++i) {
+            for (int d = 0; d < 3; ++d) {
+                const double x = xyz[3 * i + d];
+                if (!std::isfinite(x) || std::fabs(x) > 1e8 * boxLengths_[d])
+                    throw Error(STRUCTMD_ERR_ARGUMENT,
+                                "position of particle id " + std::to_string(i) + ": coordinate " + std::to_string(d) +
+                                    " is " + std::to_string(x) +
+                                    ": expected a finite value within 1e8 box lengths of the box");
+            }
             const Vec3<double> r = box.wrap({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, images[i]);
             values[i] = {R(r.x), R(r.y), R(r.z), R(typeIndex_[i])};
         }
@@ -583,6 +657,7 @@ private:
     int64_t step_ = 0;
     int64_t firstStep_ = 0;
     int activeStage_ = -1;  // the schedule row whose integrator has begun
+    SavedState saved_;
     Counters evaluations_;  // the evaluation counts; counters() adds builds and transfers
     double time_ = 0.0;
     // Versions: what each cached quantity was computed at (-1: never or invalid).

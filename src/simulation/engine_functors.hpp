@@ -50,4 +50,21 @@ struct InBatch {
     SMD_HD double operator()(int64_t i) const { return batch[i] == wanted ? sum(i) : 0.0; }
 };
 
+// Copies the dynamical state (positions, images, velocities) from one set of buffers to another:
+// the engine keeps the state a step call started from, to return to it after a blow-up.
+template <class R>
+struct CopyState {
+    const Real4<R>* fromPos;
+    const Image* fromImage;
+    const Real4<R>* fromVel;
+    Real4<R>* toPos;
+    Image* toImage;
+    Real4<R>* toVel;
+    SMD_HD void operator()(int64_t i) const {
+        toPos[i] = fromPos[i];
+        toImage[i] = fromImage[i];
+        toVel[i] = fromVel[i];
+    }
+};
+
 }  // namespace structmd

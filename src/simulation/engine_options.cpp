@@ -74,9 +74,9 @@ EngineOptions parse_engine_options(const char* text) {
                 options.device = int_option(value, key, 0);
             } else if (key == "precision") {
                 const std::string precision = string_option(value, key);
-                if (precision != "single" && precision != "double")
-                    throw option_error(key, "expected \"single\" or \"double\", got \"" + precision + "\"");
-                options.doublePrecision = precision == "double";
+                if (precision != "single" && precision != "mixed" && precision != "double")
+                    throw option_error(key, "expected \"single\", \"mixed\" or \"double\", got \"" + precision + "\"");
+                options.precision = precision;
             } else if (key == "threads") {
                 options.threads = int_option(value, key, 1);
             } else if (key == "log") {

@@ -11,7 +11,8 @@ namespace structmd {
 struct EngineOptions {
     std::string backend = "cpu";  // resolved: "cpu" or "cuda"
     int device = 0;
-    bool doublePrecision = false;
+    // "single", "mixed" (state and sums in double, pair terms evaluated in single) or "double"
+    std::string precision = "single";
     int threads = 0;  // 0: all the OpenMP runtime offers
     LogLevel logLevel = LogLevel::warning;
     std::string logFile;  // empty: standard error

@@ -7,6 +7,7 @@
 #include "core/box.hpp"
 #include "core/vec.hpp"
 #include "simulation/fault.hpp"
+#include "simulation/step_clock.hpp"
 
 namespace structmd {
 
@@ -29,12 +30,22 @@ struct Particles {
     Buffer<int> batch;  // batchId by particle; empty when every particle is in batch 0
     Buffer<int> model;  // modelId by particle
     Buffer<unsigned long long> fault;  // one word, kNoFault when all is well
+    Buffer<StepClock> clock;           // one entry: the step and time on the backend
     int64_t version = 0;               // changes whenever positions or the box change
-    int64_t step = 0;                  // the step being computed, for fault reports
-    double time = 0.0;                 // the simulation time, for fields that move
+    int64_t step = 0;                  // the step being computed
+    double time = 0.0;                 // its simulation time
+    StepClock clockAtLaunch;           // what `clock` holds when the next kernel runs
     uint64_t seed = 0;                 // the system's seed, for counter-based noise
 
-    FaultSlot fault_slot() { return {fault.data(), step}; }
+    ClockView now() { return {clock.data(), step - clockAtLaunch.step, time - clockAtLaunch.time}; }
+    double maxMove2 = 1e300;           // see FaultSlot; no limit without neighbour lists
+    // ahead = 1 in kernels that produce the next step's state before the engine moves on to it: a
+    // fault is reported at the step whose state went wrong.
+    FaultSlot fault_slot(int64_t ahead = 0) {
+        ClockView view = now();
+        view.stepOffset += ahead;
+        return {fault.data(), view, maxMove2};
+    }
 };
 
 }  // namespace structmd

@@ -22,6 +22,8 @@ struct Counters {
     uint64_t hostToDeviceBytes = 0;
     uint64_t deviceToHostBytes = 0;
     int64_t deviceMemoryBytes = 0;  // held now, not accumulated
+    uint64_t stepGraphsCaptured = 0;  // CUDA graphs of steps made, and launches of ones made before
+    uint64_t stepGraphsReplayed = 0;
 };
 
 class Simulation {

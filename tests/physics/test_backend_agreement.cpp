@@ -93,6 +93,7 @@ TEST_P(BackendAgreement, Trajectory) {
 
 INSTANTIATE_TEST_SUITE_P(Precisions, BackendAgreement,
                          ::testing::Values(PrecisionCase{"double", 1e-10, 200, 1e-8},
+                                           PrecisionCase{"mixed", 1e-5, 50, 1e-4},
                                            PrecisionCase{"single", 1e-5, 50, 1e-4}),
                          [](const ::testing::TestParamInfo<PrecisionCase>& info) { return info.param.precision; });
 

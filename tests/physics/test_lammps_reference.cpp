@@ -2,7 +2,8 @@
 // tests/reference/make_lammps_reference.py (an LJ liquid, LJ with bonds) and
 // make_lammps_reference_forcefield.py (a Kremer-Grest FENE + WCA melt with bonded exclusions,
 // molecules with bonds, angles and dihedrals, a Kob-Andersen mixture): forces, per-particle
-// energies, the energy of every forceField entry and the virial tensor, in double and single precision.
+// energies, the energy of every forceField entry and the virial tensor, in double, mixed and single
+// precision.
 #include "physics_support.hpp"
 
 #include <nlohmann/json.hpp>
@@ -105,18 +106,24 @@ TEST_P(LammpsReference, Virial) {
 // angle terms, a few ulps of the largest terms; the issue asks 1e-10 for the LJ cases and 1e-9 for the
 // force-field cases. Single: float rounding of positions (about 5e-7 of a coordinate near the box
 // edge) magnified by the steepest pair forces at r = 0.8 sigma gives a few 1e-6 of the largest force,
-// and of the molecules' LJ energy, a sum of terms of both signs.
+// and of the molecules' LJ energy, a sum of terms of both signs. Mixed: separations in double, the
+// pair potential in float: the float rounding of r^2 and of the potential's own arithmetic remains.
 INSTANTIATE_TEST_SUITE_P(Cases, LammpsReference,
                          ::testing::Values(ReferenceCase{"lj_liquid", "double", 1e-10},
                                            ReferenceCase{"lj_liquid", "single", 1e-5},
+                                           ReferenceCase{"lj_liquid", "mixed", 2e-6},
                                            ReferenceCase{"lj_bonds", "double", 1e-10},
                                            ReferenceCase{"lj_bonds", "single", 1e-5},
+                                           ReferenceCase{"lj_bonds", "mixed", 2e-6},
                                            ReferenceCase{"kg_melt", "double", 1e-9},
                                            ReferenceCase{"kg_melt", "single", 1e-5},
+                                           ReferenceCase{"kg_melt", "mixed", 2e-6},
                                            ReferenceCase{"molecules", "double", 1e-9},
                                            ReferenceCase{"molecules", "single", 1e-5},
+                                           ReferenceCase{"molecules", "mixed", 2e-6},
                                            ReferenceCase{"lj_mixture", "double", 1e-9},
-                                           ReferenceCase{"lj_mixture", "single", 1e-5}),
+                                           ReferenceCase{"lj_mixture", "single", 1e-5},
+                                           ReferenceCase{"lj_mixture", "mixed", 2e-6}),
                          [](const ::testing::TestParamInfo<ReferenceCase>& info) {
                              return info.param.name + "_" + info.param.precision;
                          });

@@ -61,7 +61,7 @@ def test_counters_are_json_with_every_field(sim):
     sim.load(document())
     assert set(sim.counters) == {"force_evaluations", "energy_evaluations", "virial_evaluations",
                                  "neighbour_list_builds", "host_to_device_bytes", "device_to_host_bytes",
-                                 "device_memory_bytes"}
+                                 "device_memory_bytes", "step_graphs_captured", "step_graphs_replayed"}
     assert all(isinstance(value, int) and value >= 0 for value in sim.counters.values())
 
 
@@ -150,3 +150,15 @@ def test_stepping_moves_no_particle_data_to_the_host(sim):
     n = SIDE ** 3
     sim.positions
     assert difference(sim.counters, before)["device_to_host_bytes"] >= moved["device_to_host_bytes"] + 3 * 4 * n
+
+
+def test_cuda_replays_steps_as_graphs(sim, options):
+    sim.load(document(steps=2000))
+    sim.step(1000)
+    counters = sim.counters
+    if options["backend"] == "cuda":
+        # 1000 steps in batches of 16: one graph for the full batches, one for the last, shorter one
+        assert counters["step_graphs_captured"] <= 4
+        assert counters["step_graphs_replayed"] >= 1000 // 16 - 4
+    else:
+        assert counters["step_graphs_captured"] == counters["step_graphs_replayed"] == 0

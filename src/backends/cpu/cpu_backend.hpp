@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "backends/transfer_counters.hpp"
+#include "core/lanes.hpp"
 
 namespace structmd {
 
@@ -64,6 +65,11 @@ public:
     std::string device_name() const { return "host CPU"; }
     void activate() const {}
     void synchronize() const {}
+    // Steps run as they are issued: there are no launches to replay.
+    void begin_steps() const {}
+    void end_steps() const {}
+    uint64_t graphs_captured() const { return 0; }
+    uint64_t graphs_replayed() const { return 0; }
 
     // Loops shorter than this run on the calling thread: waking a team costs more than they do.
     static constexpr int64_t kParallelThreshold = 2048;
@@ -72,6 +78,15 @@ public:
     void for_each(int64_t n, const F& f) const {
 #pragma omp parallel for num_threads(threads_) schedule(static) if (n >= kParallelThreshold)
         for (int64_t i = 0; i < n; ++i) f(i);
+    }
+
+    // A thread reads a particle's neighbours one after the other: side by side suits its cache.
+    bool lists_by_rows(int64_t) const { return true; }
+
+    // f(i, lanes) for i < n, one lane per item: a CPU thread works through a neighbour loop alone.
+    template <class F>
+    void for_each_lanes(int64_t n, const F& f) const {
+        for_each(n, [&](int64_t i) { f(i, Lanes{}); });
     }
 
     // Sum of f(i) over i < n. Partial sums over fixed blocks make the result independent of the

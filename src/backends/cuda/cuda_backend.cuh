@@ -11,7 +11,9 @@
 #include <utility>
 
 #include "backends/cuda/cuda_check.hpp"
+#include "backends/cuda/step_graphs.cuh"
 #include "backends/transfer_counters.hpp"
+#include "core/lanes.hpp"
 
 namespace structmd {
 
@@ -59,6 +61,23 @@ __global__ void for_each_kernel(int64_t n, F f) {
     if (i < n) f(i);
 }
 
+// Item i gets `lanes` consecutive threads (a power of two dividing the warp), so the lanes of an
+// item share a warp and can exchange values through shuffles.
+// 128 threads and 8 blocks per multiprocessor: at most 64 registers, so that the pair kernel keeps
+// half of the device's warps resident.
+template <class F>
+__global__ void __launch_bounds__(128, 8) for_each_lanes_kernel(int64_t n, int lanes, F f) {
+    const int64_t thread = static_cast<int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+    const int64_t i = thread / lanes;
+    if (i >= n) return;
+    Lanes group;
+    group.count = lanes;
+    group.lane = static_cast<int>(thread % lanes);
+    group.warpLane = static_cast<int>(threadIdx.x % 32);
+    group.mask = lanes == 32 ? 0xffffffffu : ((1u << lanes) - 1u) << (group.warpLane - group.lane);
+    f(i, group);
+}
+
 template <class T>
 struct ReducePlus {
     __host__ __device__ T operator()(const T& a, const T& b) const { return a + b; }
@@ -97,6 +116,7 @@ public:
         cudaDeviceProp prop{};
         cuda_check(cudaGetDeviceProperties(&prop, device_), "reading device properties");
         deviceName_ = prop.name;
+        residentThreads_ = static_cast<int64_t>(prop.multiProcessorCount) * prop.maxThreadsPerMultiProcessor;
         cuda_check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "creating a stream");
     }
     CudaBackend(const CudaBackend&) = delete;
@@ -108,20 +128,62 @@ public:
     int threads() const { return 0; }
     std::string device_name() const { return deviceName_; }
     void activate() const { cuda_check(cudaSetDevice(device_), "selecting the GPU"); }
-    void synchronize() const { cuda_check(cudaStreamSynchronize(stream_), "running on the GPU"); }
+    void synchronize() const {
+        issue_recorded();
+        cuda_check(cudaStreamSynchronize(stream_), "running on the GPU");
+    }
+
+    // Steps between begin_steps and end_steps run as one CUDA graph (see step_graphs.cuh).
+    void begin_steps() const { graphs_.open(); }
+    void end_steps() const { graphs_.close(stream_); }
+    uint64_t graphs_captured() const { return graphs_.captured(); }
+    uint64_t graphs_replayed() const { return graphs_.replayed(); }
 
     template <class F>
     void for_each(int64_t n, const F& f) const {
         if (n <= 0) return;
         constexpr int threads = 128;
         const int64_t blocks = (n + threads - 1) / threads;
-        for_each_kernel<<<static_cast<unsigned>(blocks), threads, 0, stream_>>>(n, f);
-        cuda_check(cudaGetLastError(), "launching a kernel");
+        if (!graphs_.recording()) {
+            for_each_kernel<<<static_cast<unsigned>(blocks), threads, 0, stream_>>>(n, f);
+            cuda_check(cudaGetLastError(), "launching a kernel");
+            return;
+        }
+        graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_kernel<F>), blocks, threads, false, n, 1, f));
+    }
+
+    // f(i, lanes) for i < n. Items get as many lanes (up to a warp) as it takes to keep the whole
+    // device busy: a system of 10,000 particles then runs 32 threads per particle, one of millions
+    // a thread each.
+    // Lanes of one particle read its entries side by side; single threads of consecutive particles
+    // read entry k of each side by side.
+    bool lists_by_rows(int64_t n) const { return lanes_for(n) > 1; }
+
+    int lanes_for(int64_t n) const {
+        int lanes = 1;
+        while (lanes < 32 && n * lanes < residentThreads_) lanes *= 2;
+        return lanes;
+    }
+
+    template <class F>
+    void for_each_lanes(int64_t n, const F& f) const {
+        if (n <= 0) return;
+        const int lanes = lanes_for(n);
+        constexpr int threads = 128;
+        const int64_t blocks = (n * lanes + threads - 1) / threads;
+        if (!graphs_.recording()) {
+            for_each_lanes_kernel<<<static_cast<unsigned>(blocks), threads, 0, stream_>>>(n, lanes, f);
+            cuda_check(cudaGetLastError(), "launching a kernel");
+            return;
+        }
+        graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_lanes_kernel<F>), blocks, threads, true, n,
+                                lanes, f));
     }
 
     template <class T, class F>
     T reduce(int64_t n, const F& f, T zero) const {
         if (n <= 0) return zero;
+        issue_recorded();
         transfers_.deviceToHost += sizeof(T);
         return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
                                         thrust::counting_iterator<int64_t>(n), f, zero, ReducePlus<T>());
@@ -131,6 +193,7 @@ public:
     template <class F>
     double maximum(int64_t n, const F& f) const {
         if (n <= 0) return 0.0;
+        issue_recorded();
         transfers_.deviceToHost += sizeof(double);
         return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
                                         thrust::counting_iterator<int64_t>(n), f, 0.0, ReduceMax());
@@ -139,7 +202,9 @@ public:
     // Buffers are sized through their backend, which keeps the account of what they hold.
     template <class T>
     void resize(Buffer<T>& buffer, size_t n) const {
-        if (n != buffer.size()) buffer.resize(n, memory_);
+        if (n == buffer.size()) return;
+        issue_recorded();  // recorded kernels may still use the old allocation
+        buffer.resize(n, memory_);
     }
 
     template <class T>
@@ -153,6 +218,7 @@ public:
         resize(buffer, n);
         if (n == 0) return;
         transfers_.hostToDevice += n * sizeof(T);
+        issue_recorded();
         cuda_check(cudaMemcpyAsync(buffer.data(), host, n * sizeof(T), cudaMemcpyHostToDevice, stream_),
                    "copying to the device");
         synchronize();
@@ -162,6 +228,7 @@ public:
     void download(const Buffer<T>& buffer, T* host, size_t n) const {
         if (n == 0) return;
         transfers_.deviceToHost += n * sizeof(T);
+        issue_recorded();
         cuda_check(cudaMemcpyAsync(host, buffer.data(), n * sizeof(T), cudaMemcpyDeviceToHost, stream_),
                    "copying from the device");
         synchronize();
@@ -171,6 +238,7 @@ public:
     T read(const Buffer<T>& buffer, size_t index) const {
         transfers_.deviceToHost += sizeof(T);
         T value;
+        issue_recorded();
         cuda_check(cudaMemcpyAsync(&value, buffer.data() + index, sizeof(T), cudaMemcpyDeviceToHost, stream_),
                    "reading from the device");
         synchronize();
@@ -187,9 +255,29 @@ public:
     int64_t memory_bytes() const { return memory_.bytes; }
 
 private:
+    void issue_recorded() const {
+        if (graphs_.recording()) graphs_.flush(stream_);
+    }
+
+    template <class F>
+    static KernelLaunch recorded(const void* kernel, int64_t blocks, int threads, bool withLanes, int64_t n, int lanes,
+                                 const F& f) {
+        KernelLaunch launch;
+        launch.kernel = kernel;
+        launch.blocks = static_cast<unsigned>(blocks);
+        launch.threads = static_cast<unsigned>(threads);
+        launch.withLanes = withLanes;
+        launch.n = n;
+        launch.lanes = lanes;
+        launch.functor.assign(reinterpret_cast<const char*>(&f), sizeof(F));
+        return launch;
+    }
+
     int device_;
+    mutable StepGraphs graphs_;
     mutable TransferCounters transfers_;
     mutable MemoryAccount memory_;
+    int64_t residentThreads_ = 0;  // threads the device holds at once
     std::string deviceName_;
     cudaStream_t stream_ = nullptr;
 };

@@ -1,0 +1,176 @@
+#pragma once
+// Steps replayed as CUDA graphs. While a batch of steps is open, the backend records its launches
+// (kernel, grid and argument bytes) instead of issuing them. At the end of the batch a sequence
+// of the same kernels and grids as one seen before replays that graph, after updating the nodes
+// whose arguments changed; a new sequence is built into a graph and kept for later batches.
+// Anything that needs the device in between (a copy, a reduction, an allocation) first issues what
+// was recorded, so the order of work never changes. Kernels read the step and time from the
+// device clock, so the steps of a run pass the same arguments again and again and replaying a
+// batch costs one graph launch.
+#include <cuda_runtime.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "backends/cuda/cuda_check.hpp"
+
+namespace structmd {
+
+// One launch of for_each_kernel(n, f) or for_each_lanes_kernel(n, lanes, f), held by value.
+struct KernelLaunch {
+    const void* kernel = nullptr;
+    unsigned blocks = 0;
+    unsigned threads = 0;
+    bool withLanes = false;
+    int64_t n = 0;
+    int lanes = 1;
+    std::string functor;  // the functor's bytes
+    void* params[3] = {nullptr, nullptr, nullptr};
+
+    void** kernel_params() {
+        params[0] = &n;
+        if (withLanes) {
+            params[1] = &lanes;
+            params[2] = functor.data();
+        } else {
+            params[1] = functor.data();
+        }
+        return params;
+    }
+    cudaKernelNodeParams node_params() {
+        cudaKernelNodeParams p{};
+        p.func = const_cast<void*>(kernel);
+        p.gridDim = dim3(blocks);
+        p.blockDim = dim3(threads);
+        p.kernelParams = kernel_params();
+        return p;
+    }
+    bool same_arguments(const KernelLaunch& other) const {
+        return n == other.n && lanes == other.lanes && functor == other.functor;
+    }
+    void issue(cudaStream_t stream) {
+        cuda_check(cudaLaunchKernel(kernel, dim3(blocks), dim3(threads), kernel_params(), 0, stream),
+                   "launching a kernel");
+    }
+};
+
+class StepGraphs {
+public:
+    StepGraphs() = default;
+    StepGraphs(const StepGraphs&) = delete;
+    StepGraphs& operator=(const StepGraphs&) = delete;
+    ~StepGraphs() {
+        for (Cached& c : cache_) release(c);
+    }
+
+    bool recording() const { return open_; }
+    uint64_t captured() const { return captured_; }
+    uint64_t replayed() const { return replayed_; }
+
+    void open() {
+        open_ = true;
+        launches_.clear();
+    }
+
+    void record(KernelLaunch launch) { launches_.push_back(std::move(launch)); }
+
+    // Issues what was recorded, one launch at a time, and goes on recording afresh.
+    void flush(cudaStream_t stream) {
+        for (KernelLaunch& launch : launches_) launch.issue(stream);
+        launches_.clear();
+    }
+
+    // Ends the batch: replays the graph of these kernels, or builds one.
+    void close(cudaStream_t stream) {
+        open_ = false;
+        if (launches_.empty()) return;
+        Cached* graph = find();
+        if (graph) {
+            update(*graph);
+            ++replayed_;
+        } else {
+            graph = &build();
+            ++captured_;
+        }
+        graph->lastUse = ++uses_;
+        launches_.clear();
+        cuda_check(cudaGraphLaunch(graph->exec, stream), "launching a step graph");
+    }
+
+private:
+    struct Cached {
+        cudaGraph_t graph = nullptr;
+        cudaGraphExec_t exec = nullptr;
+        std::vector<cudaGraphNode_t> nodes;
+        std::vector<KernelLaunch> launches;  // the arguments the nodes hold now
+        uint64_t lastUse = 0;
+    };
+    static constexpr size_t kCacheSize = 4;  // a run needs two: full batches and the last, shorter one
+
+    static void release(Cached& c) {
+        if (c.exec) cudaGraphExecDestroy(c.exec);
+        if (c.graph) cudaGraphDestroy(c.graph);
+    }
+
+    Cached* find() {
+        for (Cached& c : cache_) {
+            if (c.launches.size() != launches_.size()) continue;
+            bool same = true;
+            for (size_t k = 0; same && k < launches_.size(); ++k)
+                same = c.launches[k].kernel == launches_[k].kernel && c.launches[k].blocks == launches_[k].blocks &&
+                       c.launches[k].threads == launches_[k].threads;
+            if (same) return &c;
+        }
+        return nullptr;
+    }
+
+    void update(Cached& c) {
+        for (size_t k = 0; k < launches_.size(); ++k) {
+            if (c.launches[k].same_arguments(launches_[k])) continue;
+            const cudaKernelNodeParams params = launches_[k].node_params();
+            cuda_check(cudaGraphExecKernelNodeSetParams(c.exec, c.nodes[k], &params), "updating a step graph");
+            c.launches[k] = std::move(launches_[k]);
+        }
+    }
+
+    Cached& build() {
+        if (cache_.size() == kCacheSize) {
+            size_t oldest = 0;
+            for (size_t k = 1; k < cache_.size(); ++k)
+                if (cache_[k].lastUse < cache_[oldest].lastUse) oldest = k;
+            release(cache_[oldest]);
+            cache_.erase(cache_.begin() + static_cast<std::ptrdiff_t>(oldest));
+        }
+        Cached c;
+        cuda_check(cudaGraphCreate(&c.graph, 0), "creating a step graph");
+        try {
+            for (KernelLaunch& launch : launches_) {
+                const cudaKernelNodeParams params = launch.node_params();
+                cudaGraphNode_t node = nullptr;
+                const cudaGraphNode_t* after = c.nodes.empty() ? nullptr : &c.nodes.back();
+                cuda_check(cudaGraphAddKernelNode(&node, c.graph, after, after ? 1 : 0, &params),
+                           "building a step graph");
+                c.nodes.push_back(node);
+            }
+            cuda_check(cudaGraphInstantiate(&c.exec, c.graph, 0), "instantiating a step graph");
+        } catch (...) {
+            release(c);
+            throw;
+        }
+        c.launches = std::move(launches_);
+        cache_.push_back(std::move(c));
+        return cache_.back();
+    }
+
+    bool open_ = false;
+    std::vector<KernelLaunch> launches_;
+    std::vector<Cached> cache_;
+    uint64_t uses_ = 0;
+    uint64_t captured_ = 0;
+    uint64_t replayed_ = 0;
+};
+
+}  // namespace structmd

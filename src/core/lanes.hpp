@@ -1,0 +1,55 @@
+#pragma once
+// Lanes: the threads that work together on one item (a particle's neighbours). On the GPU they are
+// a power-of-two segment of a warp, so a small system still fills the device and a long neighbour
+// loop is split among several threads; on the CPU an item has one lane and every operation here
+// is the identity. Code written against Lanes is the same source for both backends.
+#include "core/hd.hpp"
+#include "core/vec.hpp"
+
+namespace structmd {
+
+struct Lanes {
+    int lane = 0;        // this thread's rank within the item's lanes
+    int count = 1;       // lanes per item: a power of two, at most 32
+    int warpLane = 0;    // this thread's rank within its warp
+    unsigned mask = 1u;  // the item's lanes within the warp
+
+    SMD_HD SMD_INLINE bool leader() const { return lane == 0; }
+
+    // The sum of v over the item's lanes, in every lane; a fixed butterfly, so the result does not
+    // depend on thread timing.
+    template <class T>
+    SMD_HD SMD_INLINE T sum(T v) const {
+#if defined(__CUDA_ARCH__)
+        for (int offset = count / 2; offset > 0; offset /= 2) v += __shfl_xor_sync(mask, v, offset, count);
+#endif
+        return v;
+    }
+    template <class R>
+    SMD_HD SMD_INLINE Vec3<R> sum(Vec3<R> v) const {
+        return {sum(v.x), sum(v.y), sum(v.z)};
+    }
+    template <class R>
+    SMD_HD SMD_INLINE Tensor3<R> sum(const Tensor3<R>& w) const {
+        return {sum(w.xx), sum(w.xy), sum(w.xz), sum(w.yx), sum(w.yy), sum(w.yz), sum(w.zx), sum(w.zy), sum(w.zz)};
+    }
+
+    // For a flag raised by some lanes: how many lanes below this one raised it, and (in total) how
+    // many raised it, so each can write its entry after the others without atomics.
+    SMD_HD SMD_INLINE int rank_among(bool flag, int& total) const {
+#if defined(__CUDA_ARCH__)
+        if (count == 1) {  // a ballot of one would still make the warp's threads wait for each other
+            total = flag ? 1 : 0;
+            return 0;
+        }
+        const unsigned raised = __ballot_sync(mask, flag) & mask;
+        total = __popc(raised);
+        return __popc(raised & ((1u << warpLane) - 1u));
+#else
+        total = flag ? 1 : 0;
+        return 0;
+#endif
+    }
+};
+
+}  // namespace structmd
