@@ -1,0 +1,103 @@
+#!/usr/bin/env python3
+"""Smoke test of the two LJ benchmarks on the CPU backend: tiny systems, a few steps. Runs one
+program with --csv and checks that it exits 0 and that its CSV has the expected columns, one row per
+configuration asked, and sane values: positive finite rates, finite drift, and force errors that
+test the host reference of the accuracy benchmark. In double precision the engine's forces (Verlet
+list) and the reference (exact cell search, double) differ by summation order alone, so the
+relative error is ~1e-15; the bound 1e-10 fails on any missed pair, wrong image or wrong formula.
+With forces in single precision the error is ~1e-7 (float rounding), hence 1e-9 .. 1e-3.
+
+usage: check_benchmark_smoke.py lj|accuracy PROGRAM"""
+import csv
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+LJ_COLUMNS = ["n", "backend", "precision", "steps_per_call", "steps_per_second", "particle_steps_per_second",
+              "list_builds_per_1000_steps", "device_memory_mib", "setup_seconds"]
+ACCURACY_COLUMNS = ["precision", "dt", "skin", "n", "backend", "steps", "steps_per_second", "seconds_per_tau",
+                    "energy_drift", "relative_force_error", "list_builds_per_1000_steps"]
+# Force-error bounds per precision (the forces' arithmetic), see the docstring.
+FORCE_ERROR_BOUNDS = {"double": (0.0, 1e-10), "mixed": (1e-9, 1e-3), "single": (1e-9, 1e-3)}
+
+problems = []
+
+
+def run(program, arguments, columns):
+    """Runs the program with --csv and returns its rows as dicts after checking the header."""
+    with tempfile.TemporaryDirectory() as work:
+        path = os.path.join(work, "rows.csv")
+        result = subprocess.run([program, *arguments, "--csv", path], capture_output=True, text=True)
+        print(result.stdout, result.stderr, sep="")
+        if result.returncode != 0:
+            sys.exit(f"{os.path.basename(program)} {' '.join(arguments)} exited with {result.returncode}")
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            if reader.fieldnames != columns:
+                sys.exit(f"CSV columns {reader.fieldnames}, expected {columns}")
+            return list(reader)
+
+
+def expect(condition, message):
+    if not condition:
+        problems.append(message)
+
+
+def positive_finite(row, key):
+    value = float(row[key])
+    expect(math.isfinite(value) and value > 0, f"{key} = {row[key]} is not positive and finite in {row}")
+    return value
+
+
+def check_lj(program):
+    # The adaptive path (steps per call from a probe) and the fixed one.
+    for arguments in (["--seconds", "0.05"], ["--steps", "10"]):
+        rows = run(program, ["--n", "500", "--backend", "cpu", "--precision", "single", "--precision", "double",
+                             "--repeats", "3", "--warmup", "5", *arguments], LJ_COLUMNS)
+        expect([row["precision"] for row in rows] == ["single", "double"], f"rows {rows}")
+        for row in rows:
+            expect(row["n"] == "500" and row["backend"] == "cpu", f"n and backend of {row}")
+            steps_per_call = int(row["steps_per_call"])
+            expect(steps_per_call >= 1, f"steps_per_call in {row}")
+            if arguments[0] == "--steps":
+                expect(steps_per_call == 10, f"--steps 10 ran {steps_per_call} per call")
+            rate = positive_finite(row, "steps_per_second")
+            particle_rate = positive_finite(row, "particle_steps_per_second")
+            expect(math.isclose(particle_rate, 500 * rate, rel_tol=1e-4), f"particle-steps/s in {row}")
+            builds = float(row["list_builds_per_1000_steps"])
+            expect(math.isfinite(builds) and 0 <= builds <= 1000, f"list builds in {row}")
+            positive_finite(row, "device_memory_mib")  # this engine reports it, on the CPU backend too
+            setup = float(row["setup_seconds"])
+            expect(math.isfinite(setup) and setup >= 0, f"setup_seconds in {row}")
+
+
+def check_accuracy(program):
+    # 500 particles: 3 reference cells per edge. 256 particles (box 6.7): 2 cells per edge, where
+    # the adjacent cells repeat and the reference must visit each once.
+    cases = [("500", ["single", "mixed", "double"]), ("256", ["double"])]
+    for size, precisions in cases:
+        arguments = ["--n", size, "--backend", "cpu", "--dt", "0.005", "--skin", "0.3", "--steps", "200",
+                     "--samples", "10", "--equilibrate", "0.5"]
+        for precision in precisions:
+            arguments += ["--precision", precision]
+        rows = run(program, arguments, ACCURACY_COLUMNS)
+        expect([row["precision"] for row in rows] == precisions, f"rows {rows}")
+        for row in rows:
+            expect(row["n"] == size and row["backend"] == "cpu" and row["steps"] == "200", f"n, backend, steps of {row}")
+            rate = positive_finite(row, "steps_per_second")
+            seconds_per_tau = positive_finite(row, "seconds_per_tau")
+            expect(math.isclose(seconds_per_tau, 1 / (rate * 0.005), rel_tol=1e-4), f"seconds_per_tau in {row}")
+            expect(math.isfinite(float(row["energy_drift"])), f"energy_drift in {row}")
+            error = float(row["relative_force_error"])
+            low, high = FORCE_ERROR_BOUNDS[row["precision"]]
+            expect(low <= error < high, f"{row['precision']} force error {error} outside [{low}, {high})")
+            builds = float(row["list_builds_per_1000_steps"])
+            expect(math.isfinite(builds) and 0 <= builds <= 1000, f"list builds in {row}")
+
+
+kind, program = sys.argv[1], os.path.abspath(sys.argv[2])
+{"lj": check_lj, "accuracy": check_accuracy}[kind](program)
+if problems:
+    sys.exit("\n".join(problems))

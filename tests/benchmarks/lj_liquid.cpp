@@ -1,0 +1,134 @@
+#include "lj_liquid.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "structmd.hpp"
+
+namespace structmd::benchmarks {
+
+namespace {
+
+void append_number(std::string& text, double value) {
+    char digits[32];
+    const auto end = std::to_chars(digits, digits + sizeof digits, value).ptr;  // shortest exact form
+    text.append(digits, end);
+}
+
+void append_integer(std::string& text, int64_t value) {
+    char digits[24];
+    const auto end = std::to_chars(digits, digits + sizeof digits, value).ptr;
+    text.append(digits, end);
+}
+
+// Nine significant digits: a float survives the round trip exactly, so the single-precision engine
+// starts from the same lattice as from the full text, and the text (parsed by the engine at about
+// 20 MB/s) is a third shorter; a double loses below 1e-8 sigma, which the melting forgets at once.
+void append_position(std::string& text, double x, double y, double z) {
+    char digits[96];
+    char* end = digits;
+    *end++ = '[';
+    for (const double value : {x, y, z}) {
+        if (end != digits + 1) *end++ = ',';
+        end = std::to_chars(end, digits + sizeof digits, value, std::chars_format::general, 9).ptr;
+    }
+    *end++ = ']';
+    text.append(digits, end);
+}
+
+}  // namespace
+
+int64_t cells_per_edge(int64_t requested_particles) {
+    const auto k = static_cast<int64_t>(std::llround(std::cbrt(static_cast<double>(requested_particles) / 4.0)));
+    return std::max<int64_t>(k, 1);
+}
+
+std::string lj_liquid_input(const LjLiquid& liquid) {
+    const double lattice = std::cbrt(4.0 / kDensity);
+    const double box = lattice * static_cast<double>(liquid.cells);
+    const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+    const int64_t particles = 4 * liquid.cells * liquid.cells * liquid.cells;
+
+    std::string json;
+    // About 45 bytes per state row and 12 per structure row.
+    json.reserve(static_cast<size_t>(particles) * 64 + 2048);
+    json += R"({"system": {"info": {"type": ["Simulation", "Information"],)"
+            R"( "parameters": {"name": "lj_liquid", "seed": 1}}},)";
+    json += R"("global": {"units": {"type": ["Units", "None"]},)"
+            R"("types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],)"
+            R"( "data": [["A", 1.0, 0.5, 0.0]]},)"
+            R"("ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[)";
+    json += '[';
+    for (int axis = 0; axis < 3; ++axis) {
+        append_number(json, box);
+        json += axis < 2 ? "," : "],";
+    }
+    append_number(json, kTemperature);
+    json += "]]}},";
+
+    json += R"("integrator": {"vv": {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": )";
+    append_number(json, liquid.timeStep);
+    json += "}},";
+    json += R"("schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],)"
+            R"( "data": [[1, "vv", )";
+    append_integer(json, liquid.scheduleSteps);
+    json += "]]}},";
+
+    // Lattice sites shifted by a quarter cell so none sits on the box boundary at -L/2.
+    json += R"("state": {"labels": ["id", "position"], "data": [)";
+    int64_t id = 0;
+    for (int64_t i = 0; i < liquid.cells; ++i)
+        for (int64_t j = 0; j < liquid.cells; ++j)
+            for (int64_t l = 0; l < liquid.cells; ++l)
+                for (const auto& site : basis) {
+                    json += id > 0 ? ",[" : "[";
+                    append_integer(json, id);
+                    json += ',';
+                    append_position(json, -0.5 * box + lattice * (static_cast<double>(i) + site[0] + 0.25),
+                                    -0.5 * box + lattice * (static_cast<double>(j) + site[1] + 0.25),
+                                    -0.5 * box + lattice * (static_cast<double>(l) + site[2] + 0.25));
+                    json += ']';
+                    ++id;
+                }
+    json += "]},";
+
+    json += R"("topology": {"structure": {"labels": ["id", "type"], "data": [)";
+    for (int64_t p = 0; p < particles; ++p) {
+        json += p > 0 ? ",[" : "[";
+        append_integer(json, p);
+        json += R"(,"A"])";
+    }
+    json += "]},";
+    json += R"("forceField": {"nl": {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": )";
+    append_number(json, (kCutOff + liquid.skin) / kCutOff);
+    json += "}},";
+    json += R"("lj": {"type": ["NonBonded", "LennardJonesType1"], "parameters": {"cutOffFactor": )";
+    append_number(json, kCutOff);
+    json += R"(, "condition": "all", "shift": )";
+    json += liquid.shiftEnergy ? "true" : "false";
+    json += R"(}, "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [["A", "A", 1.0, 1.0]]}}}})";
+    return json;
+}
+
+std::string create_options(const std::string& backend, const std::string& precision, int threads) {
+    nlohmann::json options = {{"backend", backend}, {"precision", precision}, {"log", "warning"}};
+    if (threads > 0) options["threads"] = threads;
+    return options.dump();
+}
+
+nlohmann::json engine_info(const structmd_sim* sim) { return nlohmann::json::parse(host::info(sim)); }
+
+nlohmann::json engine_counters(structmd_sim* sim) {
+    char text[1024];  // the header promises 512 bytes suffice; keys may be added
+    host::check(structmd_get_counters(sim, text, sizeof text), sim, "structmd_get_counters");
+    return nlohmann::json::parse(text);
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const size_t half = values.size() / 2;
+    return values.size() % 2 == 1 ? values[half] : 0.5 * (values[half - 1] + values[half]);
+}
+
+}  // namespace structmd::benchmarks
