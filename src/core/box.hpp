@@ -56,7 +56,9 @@ struct Box {
             x -= length;
             ++shift;
         }
-        image += shift;
+        // Saturates: a particle that blew up may wrap by a billion boxes step after step.
+        const long long images = static_cast<long long>(image) + shift;
+        image = images > 2147483647LL ? 2147483647 : (images < -2147483647LL ? -2147483647 : static_cast<int>(images));
         return x;
     }
 

@@ -192,7 +192,8 @@ std::vector<std::string> sub_lists(const std::string& condition) {
 void choose_list(const ComponentEntry& entry, ForceFieldSpec& ff, PairSpec& pair) {
     if (ff.lists.empty())
         throw input_error(pair.path, "a NonBonded entry needs a [\"VerletConditionalListSet\", condition] entry");
-    if (ff.lists.size() > 1 || parameters_of(entry).has("neighbourList")) {
+    const TrackedNode params = parameters_of(entry);
+    if (ff.lists.size() > 1 || (params.valid() && params.has("neighbourList"))) {
         const std::string wanted = parameter<std::string>(entry, "neighbourList");
         auto it = std::find_if(ff.lists.begin(), ff.lists.end(), [&](const auto& l) { return l.name == wanted; });
         if (it == ff.lists.end())
@@ -216,6 +217,7 @@ void check_cutoff(const ComponentEntry& entry, const SystemDescription& system, 
     const double cutoff = pair.largest_cutoff();
     if (cutoff >= halfBox) {
         std::ostringstream what;
+        what.precision(17);  // a box just below 2 r_c must not print as if it were 2 r_c
         what << "cutoff " << cutoff << " is not shorter than half the box (" << halfBox << ")";
         throw input_error(parameter_path(entry, "cutOffFactor"), what.str());
     }

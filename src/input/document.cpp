@@ -18,6 +18,13 @@ using nlohmann::json;
 // reference does) seeds every random stream.
 constexpr uint64_t kDefaultSeed = 0x5EED;
 
+// Bounds that keep every derived count finite: cell grids of a box, the step counter after a whole
+// schedule, and the nesting the parser follows (deeper documents are junk, and building paths and
+// messages for them costs time and stack).
+constexpr double kLargestBoxLength = 1e15;
+constexpr int64_t kLargestStepCount = 1000000000000000;
+constexpr size_t kDeepestNesting = 64;
+
 std::string member_path(const std::string& parent, const std::string& key) {
     return parent.empty() ? key : parent + "." + key;
 }
@@ -70,6 +77,7 @@ public:
     bool binary(binary_t& value) override { return add(json::binary(std::move(value))); }
 
     bool start_object(std::size_t) override {
+        check_depth();
         json& object = place(json::object());
         open_.push_back({&object, open_path(), {}});
         return true;
@@ -84,6 +92,7 @@ public:
     }
     bool end_object() override { return close(); }
     bool start_array(std::size_t) override {
+        check_depth();
         open_.push_back({&place(json::array()), {}, {}});
         return true;
     }
@@ -101,6 +110,18 @@ private:
         std::string path;  // objects only
         std::string key;   // objects only: the key whose value comes next
     };
+
+    // Names the member of the innermost object whose value nests too deep.
+    void check_depth() const {
+        if (open_.size() < kDeepestNesting) return;
+        std::string where;
+        for (auto it = open_.rbegin(); it != open_.rend(); ++it)
+            if (it->value->is_object()) {
+                where = member_path(it->path, it->key);
+                break;
+            }
+        throw input_error(where, "objects and arrays nested deeper than " + std::to_string(kDeepestNesting) + " levels");
+    }
 
     bool add(json&& value) {
         place(std::move(value));
@@ -280,8 +301,9 @@ void read_ensemble(const ComponentEntry& entry, SystemDescription& description) 
     const TrackedNode boxCell = table.cell(0, "box");
     description.box = boxCell.as<Vec3d>();
     for (size_t axis = 0; axis < 3; ++axis)
-        if (!(description.box[axis] > 0.0))
-            throw input_error(boxCell.at(axis).path(), "box length must be > 0, got " + boxCell.at(axis).json().dump());
+        if (!(description.box[axis] > 0.0 && description.box[axis] <= kLargestBoxLength))
+            throw input_error(boxCell.at(axis).path(), "box length must be > 0 and <= 1e15, got " +
+                                                           boxCell.at(axis).json().dump());
     description.temperature = read_at_least(table.cell(0, "temperature"), 0.0, "temperature");
 }
 
@@ -291,8 +313,8 @@ void read_fundamental(const ComponentEntry& entry, SystemDescription& descriptio
     if (!parameters) return;
     if (const auto step = parameters->find("currentStep")) {
         description.currentStep = step->as<int64_t>();
-        if (description.currentStep < 0)
-            throw input_error(step->path(), "currentStep must be >= 0, got " + step->json().dump());
+        if (description.currentStep < 0 || description.currentStep > kLargestStepCount)
+            throw input_error(step->path(), "currentStep must be >= 0 and <= 1e15, got " + step->json().dump());
     }
     description.simulationTime = parameters->get_or<double>("simulationTime", 0.0);
     if (const auto timeStep = parameters->find("timeStep")) {
@@ -456,8 +478,9 @@ void read_schedule(const ComponentEntry& entry, SystemDescription& description) 
 
         const TrackedNode stepsCell = table.cell(row, "steps");
         scheduleRow.steps = stepsCell.as<int64_t>();
-        if (scheduleRow.steps < 0)
-            throw input_error(stepsCell.path(), "steps must be >= 0, got " + std::to_string(scheduleRow.steps));
+        if (scheduleRow.steps < 0 || scheduleRow.steps > kLargestStepCount)
+            throw input_error(stepsCell.path(),
+                              "steps must be >= 0 and <= 1e15, got " + std::to_string(scheduleRow.steps));
         description.schedule.push_back(std::move(scheduleRow));
     }
     for (size_t i = 0; i < scheduled.size(); ++i)

@@ -22,7 +22,7 @@ struct CellGrid {
         CellGrid grid;
         double n[3] = {std::floor(box.length.x / minWidth), std::floor(box.length.y / minWidth),
                        std::floor(box.length.z / minWidth)};
-        for (double& v : n) v = std::max(1.0, v);
+        for (double& v : n) v = std::min(std::max(1.0, v), 1e6);  // NaN and huge ratios: 1 and 1e6
         const double limit = std::max<double>(64.0, 2.0 * static_cast<double>(particles));
         while (n[0] * n[1] * n[2] > limit) {
             for (double& v : n) v = std::max(1.0, std::floor(v * 0.8));
@@ -36,13 +36,19 @@ struct CellGrid {
         return grid;
     }
 
-    static SMD_HD SMD_INLINE int clamp_index(int c, int n) { return c < 0 ? 0 : (c >= n ? n - 1 : c); }
+
+    // The cell along an axis of n cells; a coordinate outside the box (a particle that blew up,
+    // reported by the integrator) lands in an edge cell, and NaN in cell 0.
+    static SMD_HD SMD_INLINE int cell_of(R scaled, int n) {
+        const R c = floor(scaled);
+        return c >= R(0) ? (c < R(n) ? static_cast<int>(c) : n - 1) : 0;
+    }
 
     // Cell coordinates of a wrapped position (r in [-L/2, L/2)).
     SMD_HD SMD_INLINE void coordinates(Vec3<R> r, const Box<R>& box, int& cx, int& cy, int& cz) const {
-        cx = clamp_index(static_cast<int>(floor((r.x + R(0.5) * box.length.x) * cellsPerLength.x)), nx);
-        cy = clamp_index(static_cast<int>(floor((r.y + R(0.5) * box.length.y) * cellsPerLength.y)), ny);
-        cz = clamp_index(static_cast<int>(floor((r.z + R(0.5) * box.length.z) * cellsPerLength.z)), nz);
+        cx = cell_of((r.x + R(0.5) * box.length.x) * cellsPerLength.x, nx);
+        cy = cell_of((r.y + R(0.5) * box.length.y) * cellsPerLength.y, ny);
+        cz = cell_of((r.z + R(0.5) * box.length.z) * cellsPerLength.z, nz);
     }
 
     SMD_HD SMD_INLINE int index(int cx, int cy, int cz) const { return (cz * ny + cy) * nx + cx; }

@@ -123,8 +123,9 @@ private:
         const double volume = static_cast<double>(box.length.x) * box.length.y * box.length.z;
         const double density = n / volume;
         if (capacity_ == 0) {
+            // No particle has more neighbours than there are particles, whatever the list radius.
             const double expected = 4.18879 * listRadius_ * listRadius_ * listRadius_ * density;
-            capacity_ = static_cast<int>(std::ceil(1.3 * expected)) + 16;
+            capacity_ = static_cast<int>(std::min(std::ceil(1.3 * expected), static_cast<double>(n))) + 16;
         }
         if (cellCapacity_ == 0 || n != particles_) {
             const double perCell = static_cast<double>(n) / grid_.count();

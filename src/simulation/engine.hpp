@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -251,12 +252,14 @@ public:
     }
     void set_box(const double lengths[3]) override {
         backend_.activate();
+        for (int d = 0; d < 3; ++d)
+            if (!(lengths[d] > 0.0 && lengths[d] <= 1e15))
+                throw Error(STRUCTMD_ERR_ARGUMENT, "lengths[" + std::to_string(d) + "]: expected a box length > 0 and "
+                                                   "<= 1e15, got " + precise(lengths[d]));
         const double halfBox = 0.5 * std::min({lengths[0], lengths[1], lengths[2]});
         if (forceField_.largest_cutoff() >= halfBox)
-            throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the largest cutoff (" +
-                                                   std::to_string(forceField_.largest_cutoff()) +
-                                                   ") must be shorter than half the box (" +
-                                                   std::to_string(halfBox) + ")");
+            throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the largest cutoff (" + precise(forceField_.largest_cutoff()) +
+                                                   ") must be shorter than half the box (" + precise(halfBox) + ")");
         std::vector<double> xyz(3 * p_.count);
         get_unwrapped_positions(xyz.data());
         for (int64_t i = 0; i < p_.count; ++i)
@@ -562,6 +565,13 @@ private:
             if (final ? s->in_window(step_) : s->due(step_)) s->fire(*this);
     }
 
+    // All the digits a double needs, so that two numbers that differ never print alike.
+    static std::string precise(double x) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.17g", x);
+        return text;
+    }
+
     static std::vector<double> flatten(const std::vector<std::array<double, 3>>& vectors) {
         std::vector<double> flat;
         flat.reserve(3 * vectors.size());
@@ -605,7 +615,7 @@ private:
                 if (!std::isfinite(x) || std::fabs(x) > 1e8 * boxLengths_[d])
                     throw Error(STRUCTMD_ERR_ARGUMENT,
                                 "position of particle id " + std::to_string(i) + ": coordinate " + std::to_string(d) +
-                                    " is " + std::to_string(x) +
+                                    " is " + precise(x) +
                                     ": expected a finite value within 1e8 box lengths of the box");
             }
             const Vec3<double> r = box.wrap({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, images[i]);
