@@ -4,7 +4,8 @@
 set -euo pipefail
 
 packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev googletest
-          lammps python3 python3-pip)
+          lammps python3 python3-pip
+          clang libclang-rt-dev libomp-dev)  # clang, libFuzzer and clang's OpenMP: scripts/fuzz.sh
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

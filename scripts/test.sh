@@ -7,3 +7,5 @@ bash scripts/install-deps.sh
 bash scripts/build.sh
 cd build
 ctest --output-on-failure -LE benchmark -j"$(nproc)"
+# The libFuzzer targets, FUZZ_SECONDS (default 60) each, once the suite has passed.
+JOBS="$(nproc)" bash ../scripts/fuzz.sh

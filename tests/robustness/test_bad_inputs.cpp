@@ -1,0 +1,210 @@
+// Bad inputs through structmd_load_string and structmd_load_file: each must fail with the expected
+// status and a message that starts with where the culprit is, never crash, and leave the handle that
+// failed able to load a good input and step it. The cases live in bad_inputs/cases.json; a second
+// test puts a value of the wrong type in place of every value of bad_inputs/base.json.
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "robustness_support.hpp"
+
+namespace {
+
+using nlohmann::json;
+using namespace structmd::robustness;
+using structmd::host::check;
+using structmd::host::Handle;
+
+struct BadInput {
+    std::string name;
+    std::string text;
+    structmd_status status;
+    std::string where;  // the message starts with where + ": "
+    std::string what;   // and contains this after it
+};
+
+structmd_status status_named(const std::string& name) {
+    static const std::map<std::string, structmd_status> statuses = {
+        {"STRUCTMD_ERR_ARGUMENT", STRUCTMD_ERR_ARGUMENT}, {"STRUCTMD_ERR_INPUT", STRUCTMD_ERR_INPUT},
+        {"STRUCTMD_ERR_STATE", STRUCTMD_ERR_STATE},       {"STRUCTMD_ERR_NUMERICAL", STRUCTMD_ERR_NUMERICAL},
+        {"STRUCTMD_ERR_IO", STRUCTMD_ERR_IO},             {"STRUCTMD_ERR_MEMORY", STRUCTMD_ERR_MEMORY}};
+    return statuses.at(name);
+}
+
+std::string nested_arrays(size_t depth) { return std::string(depth, '[') + std::string(depth, ']'); }
+
+// The document a case describes (see "about" in cases.json).
+std::string case_text(const json& entry, const std::string& base) {
+    if (entry.contains("text")) return entry.at("text").get<std::string>();
+    if (entry.contains("edit")) {
+        const auto find = entry.at("edit").at("find").get<std::string>();
+        const size_t at = base.find(find);
+        if (at == std::string::npos || base.find(find, at + 1) != std::string::npos)
+            throw std::runtime_error("edit.find must occur exactly once in base.json: " + find);
+        return std::string(base).replace(at, find.size(), entry.at("edit").at("replace").get<std::string>());
+    }
+    if (entry.contains("patch")) return json::parse(base).patch(entry.at("patch")).dump(1);
+    if (entry.contains("truncate")) {
+        const auto bytes = entry.at("truncate").get<long>();
+        return base.substr(0, static_cast<size_t>(bytes >= 0 ? bytes : static_cast<long>(base.size()) + bytes));
+    }
+    if (entry.contains("nested_arrays")) {
+        const json& nested = entry.at("nested_arrays");
+        const std::string arrays = nested_arrays(nested.at("depth").get<size_t>());
+        const auto at = nested.at("at").get<std::string>();
+        if (at.empty()) return arrays;
+        // Built as text: nlohmann::json itself would recurse that deep when dumping.
+        const std::string marker = "\"@nested@\"";
+        std::string text = json::parse(base).patch(json::array({{{"op", "replace"}, {"path", at}, {"value", "@nested@"}}})).dump();
+        return text.replace(text.find(marker), marker.size(), arrays);
+    }
+    throw std::runtime_error("case " + entry.at("name").get<std::string>() + " gives no document");
+}
+
+std::vector<BadInput> cases_from_file() {
+    const std::string base = base_input_text();
+    const json file = json::parse(read_text(std::string(STRUCTMD_ROBUSTNESS_DIR) + "/bad_inputs/cases.json"));
+    std::vector<BadInput> cases;
+    for (const json& entry : file.at("cases"))
+        cases.push_back({entry.at("name").get<std::string>(), case_text(entry, base),
+                         status_named(entry.at("status").get<std::string>()), entry.at("where").get<std::string>(),
+                         entry.at("what").get<std::string>()});
+    return cases;
+}
+
+using Loader = std::function<structmd_status(structmd_sim*, const std::string&)>;
+
+structmd_status load_string(structmd_sim* sim, const std::string& text) { return structmd_load_string(sim, text.c_str()); }
+
+structmd_status load_file(structmd_sim* sim, const std::string& text) {
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("structmd_bad_input_" + std::to_string(::getpid()) + ".json");
+    std::ofstream(path, std::ios::binary) << text;
+    const structmd_status status = structmd_load_file(sim, path.c_str());
+    std::filesystem::remove(path);
+    return status;
+}
+
+// The handle that just failed loads the good input and steps it.
+void expect_usable_after_failure(structmd_sim* sim, const std::string& good) {
+    // A failed load leaves no simulation behind, not the one loaded before it.
+    EXPECT_EQ(structmd_step(sim, 1), STRUCTMD_ERR_STATE) << structmd_last_error(sim);
+    ASSERT_EQ(structmd_load_string(sim, good.c_str()), STRUCTMD_OK) << structmd_last_error(sim);
+    ASSERT_EQ(structmd_step(sim, 10), STRUCTMD_OK) << structmd_last_error(sim);
+    int64_t step = -1;
+    ASSERT_EQ(structmd_get_step(sim, &step), STRUCTMD_OK);
+    EXPECT_EQ(step, 10);
+    for (double x : positions(sim)) EXPECT_TRUE(std::isfinite(x));
+}
+
+void expect_rejected(const BadInput& bad, const Loader& load, const std::string& good) {
+    Handle sim(kHandleOptions);
+    // A simulation is loaded first, so the failed load has one to replace.
+    check(structmd_load_string(sim.get(), good.c_str()), sim.get(), "structmd_load_string");
+    const structmd_status status = load(sim.get(), bad.text);
+    const std::string message = structmd_last_error(sim.get());
+    EXPECT_EQ(status, bad.status) << message;
+    EXPECT_EQ(message.rfind(bad.where + ": ", 0), 0u) << "message: " << message << "\nexpected it to start with: "
+                                                      << bad.where << ": ";
+    EXPECT_NE(message.find(bad.what, bad.where.size()), std::string::npos)
+        << "message: " << message << "\nexpected it to contain: " << bad.what;
+    expect_usable_after_failure(sim.get(), good);
+}
+
+TEST(BadInputs, EveryCaseOfTheCorpusFailsNamingWhere) {
+    const std::string good = base_input_text();
+    const std::vector<BadInput> cases = cases_from_file();
+    ASSERT_FALSE(cases.empty());
+    for (const BadInput& bad : cases) {
+        SCOPED_TRACE(bad.name);
+        {
+            SCOPED_TRACE("structmd_load_string");
+            expect_rejected(bad, load_string, good);
+        }
+        {
+            SCOPED_TRACE("structmd_load_file");
+            expect_rejected(bad, load_file, good);
+        }
+    }
+}
+
+// Values of every JSON type but the one the value has (and a fraction in place of an integer).
+std::vector<json> wrong_types(const json& value) {
+    const json object = {{"a", 1}};
+    if (value.is_number_integer()) return {"7", nullptr, json::array({1}), object, true, 0.5};
+    if (value.is_number()) return {"1.0", nullptr, json::array({1.0}), object, true};
+    if (value.is_string()) return {7, nullptr, json::array({value}), object, true};
+    if (value.is_array()) return {7, "x", object, nullptr};
+    return {7, "x", json::array({1}), nullptr};
+}
+
+struct Site {
+    json::json_pointer pointer;
+    std::string path;  // where the engine reports a wrong value put there
+};
+
+// Every value under node, with the path the engine names for it: its own (path), except the two
+// strings of a component's "type", which the engine reads and reports as one value (reported).
+void collect_sites(const json& node, const json::json_pointer& pointer, const std::string& path,
+                   const std::string& reported, std::vector<Site>& sites) {
+    sites.push_back({pointer, reported});
+    if (node.is_object())
+        for (const auto& [key, child] : node.items())
+            collect_sites(child, pointer / key, path + "." + key, path + "." + key, sites);
+    else if (node.is_array())
+        for (size_t i = 0; i < node.size(); ++i) {
+            const std::string element = path + "[" + std::to_string(i) + "]";
+            const bool typePair = pointer.back() == "type";
+            collect_sites(node[i], pointer / i, element, typePair ? path : element, sites);
+        }
+}
+
+TEST(BadInputs, AWrongTypeAnywhereFailsNamingItsPath) {
+    const std::string good = base_input_text();
+    const json base = json::parse(good);
+    std::vector<Site> sites;
+    for (const auto& [section, node] : base.items()) collect_sites(node, json::json_pointer("/" + section), section, section, sites);
+    ASSERT_GT(sites.size(), 100u);  // every section, down to each coordinate
+    for (const Site& site : sites) {
+        for (const json& value : wrong_types(base.at(site.pointer))) {
+            json document = base;
+            document.at(site.pointer) = value;
+            const BadInput bad{site.pointer.to_string(), document.dump(), STRUCTMD_ERR_INPUT, site.path, "expected"};
+            SCOPED_TRACE(site.pointer.to_string() + " = " + value.dump());
+            expect_rejected(bad, load_string, good);
+            expect_rejected(bad, load_file, good);
+        }
+    }
+}
+
+TEST(BadInputs, MissingNullAndUnreadableSourcesAreNamed) {
+    const std::string good = base_input_text();
+    Handle sim(kHandleOptions);
+    const std::string missing = "/nonexistent/structmd/input.json";
+    EXPECT_EQ(structmd_load_file(sim.get(), missing.c_str()), STRUCTMD_ERR_IO);
+    EXPECT_NE(std::string(structmd_last_error(sim.get())).find(missing), std::string::npos) << structmd_last_error(sim.get());
+    expect_usable_after_failure(sim.get(), good);
+
+    EXPECT_EQ(structmd_load_file(sim.get(), nullptr), STRUCTMD_ERR_ARGUMENT);
+    EXPECT_EQ(std::string(structmd_last_error(sim.get())).rfind("path: ", 0), 0u) << structmd_last_error(sim.get());
+    EXPECT_EQ(structmd_load_string(sim.get(), nullptr), STRUCTMD_ERR_ARGUMENT);
+    EXPECT_EQ(std::string(structmd_last_error(sim.get())).rfind("json: ", 0), 0u) << structmd_last_error(sim.get());
+    ASSERT_EQ(structmd_load_string(sim.get(), good.c_str()), STRUCTMD_OK) << structmd_last_error(sim.get());
+    EXPECT_EQ(structmd_step(sim.get(), 10), STRUCTMD_OK) << structmd_last_error(sim.get());
+
+    // Without a handle the message is kept for this thread.
+    EXPECT_EQ(structmd_load_string(nullptr, good.c_str()), STRUCTMD_ERR_ARGUMENT);
+    EXPECT_EQ(std::string(structmd_last_error(nullptr)).rfind("sim: ", 0), 0u) << structmd_last_error(nullptr);
+    EXPECT_EQ(structmd_load_file(nullptr, missing.c_str()), STRUCTMD_ERR_ARGUMENT);
+}
+
+}  // namespace
