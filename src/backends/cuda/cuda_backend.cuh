@@ -33,7 +33,14 @@ public:
     bool empty() const { return size_ == 0; }
     void resize(size_t n, MemoryAccount& account) {
         release();
-        if (n > 0) cuda_check(cudaMalloc(&data_, n * sizeof(T)), "allocating device memory");
+        if (n > 0) {
+            const cudaError_t status = cudaMalloc(&data_, n * sizeof(T));
+            if (status != cudaSuccess) {
+                cudaGetLastError();  // an allocation failure must not resurface at the next launch
+                data_ = nullptr;
+                cuda_check(status, ("allocating " + std::to_string(n * sizeof(T)) + " bytes of device memory").c_str());
+            }
+        }
         size_ = n;
         account_ = &account;
         account_->bytes += static_cast<int64_t>(n * sizeof(T));
