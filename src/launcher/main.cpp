@@ -1,7 +1,7 @@
 // structmd: the command-line launcher. It drives the engine through the public C API only, as any
 // host program would: create a handle, load the input, step along the schedule, report.
 //
-//   structmd run INPUT.json [--backend auto|cpu|cuda] [--precision single|double] [--threads N] [--quiet]
+//   structmd run INPUT.json [--backend auto|cpu|cuda] [--precision single|mixed|double] [--threads N] [--quiet]
 //   structmd --version
 //
 // Exit status: 0 on success, the structmd_status code (1..9) when the engine reports a failure,
@@ -240,7 +240,7 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
         ->capture_default_str();
     run->add_option("--precision", options.precision, "Floating-point precision of the engine")
-        ->check(CLI::IsMember({"single", "double"}))
+        ->check(CLI::IsMember({"single", "mixed", "double"}))
         ->capture_default_str();
     run->add_option("--threads", options.threads, "CPU threads (default: all OpenMP offers)")
         ->check(CLI::PositiveNumber);

@@ -303,15 +303,11 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     std::ofstream csv;
-    if (!options.csvPath.empty()) {
-        csv.open(options.csvPath);
-        if (!csv) {
-            std::fprintf(stderr, "cannot write %s\n", options.csvPath.c_str());
-            return 2;
-        }
-        csv << "precision,dt,skin,n,backend,steps,steps_per_second,seconds_per_tau,energy_drift,"
-               "relative_force_error,list_builds_per_1000_steps\n";
-    }
+    if (!options.csvPath.empty() &&
+        !open_csv(csv, options.csvPath,
+                  "precision,dt,skin,n,backend,steps,steps_per_second,seconds_per_tau,energy_drift,"
+                  "relative_force_error,list_builds_per_1000_steps"))
+        return 2;
 
     std::printf("structmd %s, LJ liquid (shifted), %lld steps after %g tau of equilibration, %lld energy samples\n",
                 structmd_version(), static_cast<long long>(options.steps), options.equilibrationTime,

@@ -202,15 +202,11 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     std::ofstream csv;
-    if (!options.csvPath.empty()) {
-        csv.open(options.csvPath);
-        if (!csv) {
-            std::fprintf(stderr, "cannot write %s\n", options.csvPath.c_str());
-            return 2;
-        }
-        csv << "n,backend,precision,steps_per_call,steps_per_second,particle_steps_per_second,"
-               "list_builds_per_1000_steps,device_memory_mib,setup_seconds\n";
-    }
+    if (!options.csvPath.empty() &&
+        !open_csv(csv, options.csvPath,
+                  "n,backend,precision,steps_per_call,steps_per_second,particle_steps_per_second,"
+                  "list_builds_per_1000_steps,device_memory_mib,setup_seconds"))
+        return 2;
 
     if (options.fixedSteps > 0)
         std::printf("structmd %s, LJ liquid, %lld steps per call", structmd_version(),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 #include "structmd.hpp"
 
@@ -129,6 +130,16 @@ double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
     const size_t half = values.size() / 2;
     return values.size() % 2 == 1 ? values[half] : 0.5 * (values[half - 1] + values[half]);
+}
+
+bool open_csv(std::ofstream& csv, const std::string& path, const std::string& header) {
+    csv.open(path);
+    if (!csv) {
+        std::fprintf(stderr, "cannot write %s\n", path.c_str());
+        return false;
+    }
+    csv << header << "\n";
+    return true;
 }
 
 }  // namespace structmd::benchmarks

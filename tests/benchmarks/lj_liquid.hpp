@@ -6,6 +6,7 @@
 #define STRUCTMD_BENCHMARKS_LJ_LIQUID_HPP
 
 #include <cstdint>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,9 @@ nlohmann::json engine_info(const structmd_sim* sim);      // structmd_get_info, 
 nlohmann::json engine_counters(structmd_sim* sim);        // structmd_get_counters, parsed
 
 double median(std::vector<double> values);
+
+// Opens path for the rows of a table and writes its header; false (with a message) if it cannot.
+bool open_csv(std::ofstream& csv, const std::string& path, const std::string& header);
 
 }  // namespace structmd::benchmarks
 

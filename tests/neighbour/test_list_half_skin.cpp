@@ -206,18 +206,6 @@ INSTANTIATE_TEST_SUITE_P(Skins, ListHalfSkin,
 }  // namespace
 }  // namespace structmd_stability
 
-// GTEST_SKIP would report success to CTest; a missing GPU must read as "skipped" (exit 77) instead.
 int main(int argc, char** argv) {
-    ::testing::InitGoogleTest(&argc, argv);
-    for (int k = 1; k < argc; ++k)
-        if (std::strncmp(argv[k], "--backend=", 10) == 0) structmd_stability::g_backend = argv[k] + 10;
-    structmd_sim* probe = nullptr;
-    if (structmd_create(structmd_stability::create_options(structmd_stability::g_backend, "double").c_str(), &probe) !=
-        STRUCTMD_OK) {
-        std::printf("skipped: no usable %s backend: %s\n", structmd_stability::g_backend.c_str(),
-                    structmd_last_error(nullptr));
-        return 77;
-    }
-    structmd_destroy(probe);
-    return RUN_ALL_TESTS();
+    return structmd_stability::run_tests_on_backend(argc, argv, structmd_stability::g_backend, "double");
 }

@@ -6,10 +6,13 @@
 
 #include "physics_support.hpp"
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <regex>
 #include <string>
 #include <vector>
@@ -267,6 +270,21 @@ inline PairReference all_pairs_lennard_jones(const std::vector<double>& xyz, con
                 for (int b = 0; b < 3; ++b) out.virial[3 * a + b] += -d[a] * du_dr_over_r * d[b];
         }
     return out;
+}
+
+// The main of a test program run with --backend=NAME (default `backend`): GTEST_SKIP would report
+// success to CTest, so a backend that cannot be had (no GPU) exits 77, which CTest reads as skipped.
+inline int run_tests_on_backend(int argc, char** argv, std::string& backend, const std::string& precision) {
+    ::testing::InitGoogleTest(&argc, argv);
+    for (int k = 1; k < argc; ++k)
+        if (std::strncmp(argv[k], "--backend=", 10) == 0) backend = argv[k] + 10;
+    structmd_sim* probe = nullptr;
+    if (structmd_create(create_options(backend, precision).c_str(), &probe) != STRUCTMD_OK) {
+        std::printf("skipped: no usable %s backend: %s\n", backend.c_str(), structmd_last_error(nullptr));
+        return 77;
+    }
+    structmd_destroy(probe);
+    return RUN_ALL_TESTS();
 }
 
 }  // namespace structmd_stability
