@@ -126,7 +126,10 @@ STRUCTMD_API structmd_status structmd_load_string(structmd_sim* sim, const char*
  * @param nsteps  number of steps, >= 0.
  * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load, or when the schedule ends before nsteps
  *         (no step is taken then); STRUCTMD_ERR_ARGUMENT for nsteps < 0; STRUCTMD_ERR_IO when an
- *         output cannot be written.
+ *         output cannot be written; STRUCTMD_ERR_MEMORY when the device cannot hold what a step
+ *         needs; STRUCTMD_ERR_NUMERICAL when a position, velocity or force became non-finite or a
+ *         particle moved farther than the neighbour-list skin in one step: the message names the
+ *         step, particle id and quantity, and the state is back where the call started.
  */
 STRUCTMD_API structmd_status structmd_step(structmd_sim* sim, int64_t nsteps);
 
