@@ -49,11 +49,15 @@ names = [t["name"] for t in json.load(sys.stdin)["tests"]
          if not os.path.realpath(t["command"][0]).startswith(build + os.sep)]
 print("^(" + "|".join(map(re.escape, names)) + ")$" if names else "")' "$build")
 
+# The resident-memory bound of robustness.lifecycle_memory measures the process's own allocator; under
+# ASan, freed blocks wait in its quarantine and its metadata grows, so here LeakSanitizer does that job.
+allocator_bound='^robustness\.lifecycle_memory$'
+
 status=0
 cd "$build"
 echo "== built executables, leak detection on"
 ASAN_OPTIONS="$asan_options:detect_leaks=1" \
-  ctest -LE benchmark ${hosted:+-E "$hosted"} -j"$jobs" --output-on-failure || status=1
+  ctest -LE benchmark -E "${hosted:+$hosted|}$allocator_bound" -j"$jobs" --output-on-failure || status=1
 cp Testing/Temporary/LastTest.log "$work/built.log"
 if [ -n "$hosted" ]; then
   echo "== interpreters and scripts, ASan preloaded, leak detection off"
