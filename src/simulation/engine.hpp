@@ -166,14 +166,17 @@ public:
     }
     void get_radii(double* r) override { std::copy(radii_.begin(), radii_.end(), r); }
     const std::vector<std::string>& type_names() const override { return typeNames_; }
+    // A failed getter leaves the caller's array alone: the forces are checked before they are handed over.
     void get_forces(double* f) override {
         compute(kForces);
-        download_vectors(p_.force, f);
+        std::vector<double> values(3 * p_.count);
+        download_vectors(p_.force, values.data());
         for (int64_t k = 0; k < 3 * p_.count; ++k)
-            if (!std::isfinite(f[k]))
+            if (!std::isfinite(values[k]))
                 throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(step_) + ", particle id " +
                                                         std::to_string(k / 3) +
                                                         ": the force is not finite (overlapping particles?)");
+        std::copy(values.begin(), values.end(), f);
     }
     void get_particle_energies(double* e) override {
         compute(kEnergy);

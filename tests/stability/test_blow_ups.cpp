@@ -78,10 +78,13 @@ TEST(CoincidentParticles, ForcesAreANumericalErrorNamingTheParticleAndStep) {
     SimHandle sim = load_document(input_document(liquid.spec));
     ASSERT_TRUE(sim);
     const std::int64_t n = particle_count(sim.get());
-    std::vector<double> forces(3 * n);
+    constexpr double kUntouched = 12345.0;
+    std::vector<double> forces(3 * n, kUntouched);
     ASSERT_EQ(structmd_get_forces(sim.get(), forces.data(), n), STRUCTMD_ERR_NUMERICAL);
     const std::string message = structmd_last_error(sim.get());
     std::printf("[ message ] %s\n", message.c_str());
+    // A failed getter writes nothing into the caller's array.
+    EXPECT_EQ(forces, std::vector<double>(3 * n, kUntouched));
     // Only the two coincident particles feel a non-finite force; every other pair is at r > 0.
     const long long named = number_after(message, "particle id");
     EXPECT_TRUE(named == static_cast<long long>(kFirstOfPair) || named == static_cast<long long>(kSecondOfPair))
