@@ -107,6 +107,7 @@ public:
             throw Error(STRUCTMD_ERR_STATE, "cannot advance " + std::to_string(n) + " steps from step " +
                                                 std::to_string(step_) + ": the schedule ends at step " +
                                                 std::to_string(last));
+        if (n == 0) return;
         backend_.activate();
         save_state();
         backend_.begin_steps();
@@ -137,7 +138,7 @@ public:
         }
         backend_.end_steps();
         check_fault();
-        if (n > 0 && step_ == last) fire_steps(true);
+        if (step_ == last) fire_steps(true);
         forceField_.adapt();
     }
 
