@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
+
 namespace structmd {
 
 // A named selection of particles (["Groups","GroupsList"]); "All" is every particle.
@@ -13,6 +15,15 @@ struct GroupSpec {
     std::string name;
     std::vector<uint8_t> members;  // by particle id: 1 in the group
 };
+
+// The index of the group called `name` (-1 for "All", every particle); an input error at `path` when
+// no group has that name. Every component that takes a "group" parameter looks it up here.
+inline int group_index(const std::vector<GroupSpec>& groups, const std::string& name, const std::string& path) {
+    if (name == "All") return -1;
+    for (size_t g = 0; g < groups.size(); ++g)
+        if (groups[g].name == name) return static_cast<int>(g);
+    throw input_error(path, "no group named '" + name + "' (define it in a [\"Groups\", \"GroupsList\"] entry)");
+}
 
 // What every interaction entry shares: its name, where it was read, when it is active
 // (startStep <= step < endStep) and which particles it acts on.

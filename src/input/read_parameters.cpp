@@ -1,0 +1,64 @@
+#include "input/read_parameters.hpp"
+
+#include <cmath>
+
+namespace structmd::input {
+
+namespace {
+
+double checked(const TrackedNode& node, Must must) {
+    const double value = node.as<double>();
+    const auto fail = [&](const char* what) { return input_error(node.path(), what); };
+    if (!std::isfinite(value)) throw fail("expected a finite number");
+    switch (must) {
+        case Must::be_finite: break;
+        case Must::be_positive:
+            if (!(value > 0.0)) throw fail("expected a positive number");
+            break;
+        case Must::be_non_negative:
+            if (!(value >= 0.0)) throw fail("expected a number >= 0");
+            break;
+        case Must::be_integer:
+            if (value != std::floor(value)) throw fail("expected an integer");
+            break;
+        case Must::be_at_least_one:
+            if (!(value >= 1.0)) throw fail("expected a number >= 1");
+            break;
+    }
+    return value;
+}
+
+}  // namespace
+
+std::vector<double> read_parameter(const TrackedNode& node, const Parameter& parameter) {
+    if (parameter.size == 1) return {checked(node, parameter.must)};
+    if (!node.is_array() || node.size() != static_cast<size_t>(parameter.size))
+        throw input_error(node.path(), "expected a list of " + std::to_string(parameter.size) + " numbers");
+    std::vector<double> values;
+    for (int k = 0; k < parameter.size; ++k) values.push_back(checked(node.at(k), parameter.must));
+    return values;
+}
+
+TrackedNode parameters_of(const TrackedNode& entry) {
+    auto params = entry.find("parameters");
+    if (!params) return TrackedNode();
+    if (!params->is_object()) throw input_error(params->path(), "expected an object of parameters");
+    return *params;
+}
+
+ParameterValues read_parameters(const TrackedNode& entry, const std::vector<Parameter>& schema) {
+    const TrackedNode params = parameters_of(entry);
+    ParameterValues values;
+    for (const Parameter& p : schema) {
+        auto node = params.valid() ? params.find(p.name) : std::nullopt;
+        if (node)
+            values.set(p.name, read_parameter(*node, p));
+        else if (p.required())
+            throw input_error(entry.path() + ".parameters." + p.name, "missing required parameter");
+        else
+            values.set(p.name, std::vector<double>(p.size, p.fallback));
+    }
+    return values;
+}
+
+}  // namespace structmd::input

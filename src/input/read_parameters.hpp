@@ -1,0 +1,23 @@
+#pragma once
+// Reading a component's declared parameters (core/parameters.hpp) from JSON, with the rule of each
+// checked and the path of the culprit in every message.
+#include <string>
+#include <vector>
+
+#include "core/parameters.hpp"
+#include "input/tracked_node.hpp"
+
+namespace structmd::input {
+
+// The numbers of one parameter: a number, or a list of `size` numbers.
+std::vector<double> read_parameter(const TrackedNode& node, const Parameter& parameter);
+
+// The "parameters" object of an entry, or an invalid node when it has none; a "parameters" that is
+// not an object is an error.
+TrackedNode parameters_of(const TrackedNode& entry);
+
+// The parameters in `schema` from the entry's "parameters" object; absent ones take their default,
+// and an absent required one is an error naming <entry>.parameters.<name>.
+ParameterValues read_parameters(const TrackedNode& entry, const std::vector<Parameter>& schema);
+
+}  // namespace structmd::input
