@@ -2,8 +2,8 @@
 // The contract of a bonded term of N particles (N = 1..4): a host+device functor with
 //   static constexpr int arity;                         // N
 //   template <class R> struct Params { ... };           // plain, copyable to the device
-//   template <class R> static Params<R> make_params(const double* values, const Constants& c);
-//                                                        // values in the order the reader lists them
+//   static std::vector<Parameter> parameters();         // what its input gives, by name
+//   template <class R> static Params<R> make_params(const ParameterValues& v, const Constants& c);
 //   template <class R> static SMD_HD R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>& box,
 //                                              Vec3<R>* force);
 // compute() receives the N positions made consistent across periodic boundaries (r[0] is the first
@@ -26,9 +26,10 @@ struct RadialBond {
     template <class R>
     using Params = typename Radial::template Params<R>;
 
+    static std::vector<Parameter> parameters() { return Radial::bond_parameters(); }
     template <class R>
-    static Params<R> make_params(const double* values, const Constants& c) {
-        return Radial::template make_bond_params<R>(values, c);
+    static Params<R> make_params(const ParameterValues& v, const Constants& c) {
+        return Radial::template make_bond_params<R>(v, c);
     }
 
     template <class R>

@@ -13,10 +13,11 @@ struct ConstantForceBond {
         Vec3<R> force;
     };
 
-    // values: fx, fy, fz
+    static std::vector<Parameter> parameters() { return {numbers("force", 3, "force")}; }
     template <class R>
-    static Params<R> make_params(const double* values, const Constants&) {
-        return {{R(values[0]), R(values[1]), R(values[2])}};
+    static Params<R> make_params(const ParameterValues& v, const Constants&) {
+        const std::array<double, 3> f = v.vec3("force");
+        return {{R(f[0]), R(f[1]), R(f[2])}};
     }
 
     template <class R>

@@ -18,17 +18,31 @@ struct DebyeHuckel {
         R shift;           // prefactor exp(-r_c/l_D) / r_c when shifted, else 0
     };
 
-    // NonBonded: cutoff = cutOffFactor x debyeLength.
+    // NonBonded: the same for every type pair (the charges make the difference), cut at
+    // cutOffFactor x debyeLength.
+    static std::vector<Parameter> pair_parameters() { return {}; }
+    static std::vector<Parameter> entry_parameters() {
+        return {number("dielectricConstant", "1", Must::be_positive), number("debyeLength", "length", Must::be_positive)};
+    }
+    template <class R>
+    static Params<R> make_pair_params(const ParameterValues& v, const Constants& c, double cutOffFactor, bool shift) {
+        return make_params<R>(v["dielectricConstant"], v["debyeLength"], cutOffFactor * v["debyeLength"], c, shift);
+    }
+
     template <class R>
     static Params<R> make_params(double dielectricConstant, double debyeLength, double cutoff, const Constants& c,
                                  bool shifted = false) {
         return make<R>(c.electricConversion / dielectricConstant, debyeLength, cutoff, shifted);
     }
 
-    // values: chgProduct, dielectricConstant, debyeLength, cutOff
+    static std::vector<Parameter> bond_parameters() {
+        return {number("chgProduct", "charge^2"), number("dielectricConstant", "1", Must::be_positive),
+                number("debyeLength", "length", Must::be_positive), number("cutOff", "length", Must::be_positive)};
+    }
     template <class R>
-    static Params<R> make_bond_params(const double* values, const Constants& c) {
-        return make<R>(c.electricConversion * values[0] / values[1], values[2], values[3], false);
+    static Params<R> make_bond_params(const ParameterValues& v, const Constants& c) {
+        return make<R>(c.electricConversion * v["chgProduct"] / v["dielectricConstant"], v["debyeLength"], v["cutOff"],
+                       false);
     }
 
     template <class R>

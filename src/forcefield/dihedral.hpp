@@ -35,10 +35,12 @@ struct Dihedral {
         R phi0;
     };
 
-    // values: n, K, phi0 (radians)
+    static std::vector<Parameter> parameters() {
+        return {number("n", "1", Must::be_integer), number("K", "energy"), number("phi0", "radian")};
+    }
     template <class R>
-    static Params<R> make_params(const double* values, const Constants&) {
-        return {R(values[0]), R(values[1]), R(values[2])};
+    static Params<R> make_params(const ParameterValues& v, const Constants&) {
+        return {R(v["n"]), R(v["K"]), R(v["phi0"])};
     }
 
     template <class R>
@@ -59,13 +61,13 @@ struct Dihedral4 {
         R phi0[4];  // phi0_n for n = 1..4
     };
 
-    // values: K1, K2, K3, K4, phi0_1, phi0_2, phi0_3, phi0_4
+    static std::vector<Parameter> parameters() { return {numbers("K", 4, "energy"), numbers("phi0", 4, "radian")}; }
     template <class R>
-    static Params<R> make_params(const double* values, const Constants&) {
+    static Params<R> make_params(const ParameterValues& v, const Constants&) {
         Params<R> p;
         for (int k = 0; k < 4; ++k) {
-            p.K[k] = R(values[k]);
-            p.phi0[k] = R(values[4 + k]);
+            p.K[k] = R(v.vector("K")[k]);
+            p.phi0[k] = R(v.vector("phi0")[k]);
         }
         return p;
     }

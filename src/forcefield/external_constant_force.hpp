@@ -11,6 +11,13 @@ struct ExternalConstantForce {
         Vec3<R> force;
     };
 
+    static std::vector<Parameter> parameters() { return {numbers("constantForce", 3, "force")}; }
+    template <class R>
+    static Params<R> make_params(const ParameterValues& v, const Constants&) {
+        const std::array<double, 3> f = v.vec3("constantForce");
+        return make_params<R>(Vec3<double>{f[0], f[1], f[2]});
+    }
+
     template <class R>
     static Params<R> make_params(Vec3<double> constantForce) {
         return {{R(constantForce.x), R(constantForce.y), R(constantForce.z)}};

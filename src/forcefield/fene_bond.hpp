@@ -16,10 +16,12 @@ struct FeneBond {
         R R0;
     };
 
-    // values: r0, K, R0
+    static std::vector<Parameter> bond_parameters() {
+        return {number("r0", "length"), number("K", "energy/length^2"), number("R0", "length", Must::be_positive)};
+    }
     template <class R>
-    static Params<R> make_bond_params(const double* values, const Constants&) {
-        return {R(values[0]), R(values[1]), R(values[2])};
+    static Params<R> make_bond_params(const ParameterValues& v, const Constants&) {
+        return {R(v["r0"]), R(v["K"]), R(v["R0"])};
     }
 
     template <class R>

@@ -18,10 +18,13 @@ struct FixedHarmonic {
         Vec3<R> point;
     };
 
-    // values: K, r0, px, py, pz
+    static std::vector<Parameter> parameters() {
+        return {number("K", "energy/length^2"), number("r0", "length"), numbers("position", 3, "length")};
+    }
     template <class R>
-    static Params<R> make_params(const double* values, const Constants&) {
-        return {R(values[0]), R(values[1]), {R(values[2]), R(values[3]), R(values[4])}};
+    static Params<R> make_params(const ParameterValues& v, const Constants&) {
+        const std::array<double, 3> point = v.vec3("position");
+        return {R(v["K"]), R(v["r0"]), {R(point[0]), R(point[1]), R(point[2])}};
     }
 
     template <class R>

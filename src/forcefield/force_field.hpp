@@ -35,11 +35,6 @@ public:
         for (const auto& it : interactors_) all.push_back(it->name());
         return all;
     }
-    double largest_cutoff() const {
-        double largest = 0.0;
-        for (const auto& list : lists_) largest = std::max(largest, list->cutoff());
-        return largest;
-    }
 
     // The thinnest skin of the lists (infinite without lists): no particle may move farther in a step.
     double smallest_skin() const {

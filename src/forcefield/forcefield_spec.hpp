@@ -1,12 +1,19 @@
 #pragma once
 // The force field as read from topology.forceField: plain data, validated against the system, with
-// the JSON path of each entry kept for later messages. The engine turns it into interactors.
+// the JSON path of each entry kept for later messages. Each interaction names its component by key
+// and holds its parameters by name; the engine's factories (make_interactors.hpp) turn it into
+// interactors.
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/parameters.hpp"
+#include "core/registry.hpp"
+#include "neighbour/pair_filter.hpp"
 
 namespace structmd {
 
@@ -25,12 +32,18 @@ inline int group_index(const std::vector<GroupSpec>& groups, const std::string& 
     throw input_error(path, "no group named '" + name + "' (define it in a [\"Groups\", \"GroupsList\"] entry)");
 }
 
-// What every interaction entry shares: its name, where it was read, when it is active
-// (startStep <= step < endStep) and which particles it acts on.
+// The one rule between pair terms and the box: minimum images are exact only for interactions
+// shorter than half the shortest box length.
+inline bool cutoff_fits_box(double cutoff, const std::array<double, 3>& box) {
+    return cutoff < 0.5 * std::min({box[0], box[1], box[2]});
+}
+
+// What every interaction entry shares: its name, where it was read, which component it is, when it
+// is active (startStep <= step < endStep) and which particles it acts on.
 struct InteractionSpec {
     std::string name;
     std::string path;
-    std::string potential;  // the family, e.g. "Harmonic" for Harmonic, HarmonicCommon_K, ...
+    ComponentKey key;
     int64_t startStep = 0;
     int64_t endStep = std::numeric_limits<int64_t>::max();
     int group = -1;  // index into ForceFieldSpec::groups; -1: all particles
@@ -39,37 +52,35 @@ struct InteractionSpec {
 struct NeighbourListSpec {
     std::string name;
     std::string path;
-    std::string condition;  // "all", "nonExcluded" or "intra_inter"
+    ComponentKey key;  // ["VerletConditionalListSet", condition]
     double verletFactor = 1.1;
-    double minimumCutoff = 0.0;            // the entry's cutOff parameter
+    double minimumCutoff = 0.0;              // the entry's cutOff parameter
     std::vector<std::vector<int>> excluded;  // nonExcluded: by particle id, sorted ids never paired
 };
 
 struct PairSpec : InteractionSpec {
     struct Row {
         int typeI, typeJ;
-        double epsilon, sigma;
+        ParameterValues values;  // the component's per-type-pair parameters
     };
-    std::string subList;  // "all", "nonExcluded", "intra" or "inter"
-    int list = 0;         // index into ForceFieldSpec::lists
+    int list = 0;  // index into ForceFieldSpec::lists
+    PairCondition condition = PairCondition::all;
     double cutOffFactor = 0.0;
     bool shift = false;
-    std::vector<Row> rows;       // each unordered type pair at most once (table potentials)
-    double dielectricConstant = 1.0;  // Debye-Hueckel
-    double debyeLength = 1.0;
-
-    double largest_cutoff() const;
+    ParameterValues shared;  // the component's parameters given once for every type pair
+    std::vector<Row> rows;   // each unordered type pair at most once; none for a term of every type pair
+    double cutoff = 0.0;     // the largest distance at which the term acts, from its functor
 };
 
 struct BondSpec : InteractionSpec {
     int arity = 2;
-    int parameterCount = 0;
-    std::vector<int> members;    // arity particle ids per bond
-    std::vector<double> params;  // parameterCount values per bond, in the potential's order
+    std::vector<Parameter> schema;  // the component's parameters, in the layout of `values`
+    std::vector<int> members;       // arity particle ids per bond
+    std::vector<double> values;     // width_of(schema) numbers per bond, in the schema's order
 };
 
 struct ExternalSpec : InteractionSpec {
-    std::vector<double> values;  // the potential's parameters, in its order
+    ParameterValues values;
 };
 
 struct ForceFieldSpec {
@@ -79,6 +90,13 @@ struct ForceFieldSpec {
     std::vector<BondSpec> bonds;
     std::vector<ExternalSpec> externals;
     std::vector<std::string> entryNames;  // every interaction entry (energy terms), in document order
+
+    // The longest distance at which any pair term acts (0 without pair terms).
+    double largest_cutoff() const {
+        double largest = 0.0;
+        for (const PairSpec& pair : pairs) largest = std::max(largest, pair.cutoff);
+        return largest;
+    }
 };
 
 }  // namespace structmd

@@ -12,10 +12,12 @@ struct GaussianBond {
         R inverse_variance;
     };
 
-    // values: E, r0, D
+    static std::vector<Parameter> bond_parameters() {
+        return {number("E", "energy"), number("r0", "length"), number("D", "length^2", Must::be_positive)};
+    }
     template <class R>
-    static Params<R> make_bond_params(const double* values, const Constants&) {
-        return {R(values[0]), R(values[1]), R(1.0 / values[2])};
+    static Params<R> make_bond_params(const ParameterValues& v, const Constants&) {
+        return {R(v["E"]), R(v["r0"]), R(1.0 / v["D"])};
     }
 
     template <class R>

@@ -19,10 +19,12 @@ struct HarmonicAngle {
         R theta0;
     };
 
-    // values: K, theta0 (radians)
+    static std::vector<Parameter> parameters() {
+        return {number("K", "energy/radian^2"), number("theta0", "radian")};
+    }
     template <class R>
-    static Params<R> make_params(const double* values, const Constants&) {
-        return {R(values[0]), R(values[1])};
+    static Params<R> make_params(const ParameterValues& v, const Constants&) {
+        return {R(v["K"]), R(v["theta0"])};
     }
 
     template <class R>

@@ -11,10 +11,12 @@ struct HarmonicBond {
         R r0;
     };
 
-    // values: K, r0
+    static std::vector<Parameter> bond_parameters() {
+        return {number("K", "energy/length^2"), number("r0", "length")};
+    }
     template <class R>
-    static Params<R> make_bond_params(const double* values, const Constants&) {
-        return {R(values[0]), R(values[1])};
+    static Params<R> make_bond_params(const ParameterValues& v, const Constants&) {
+        return {R(v["K"]), R(v["r0"])};
     }
 
     template <class R>

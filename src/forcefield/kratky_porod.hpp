@@ -16,10 +16,10 @@ struct KratkyPorod {
         R K;
     };
 
-    // values: K
+    static std::vector<Parameter> parameters() { return {number("K", "energy")}; }
     template <class R>
-    static Params<R> make_params(const double* values, const Constants&) {
-        return {R(values[0])};
+    static Params<R> make_params(const ParameterValues& v, const Constants&) {
+        return {R(v["K"])};
     }
 
     template <class R>

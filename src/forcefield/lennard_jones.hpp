@@ -87,19 +87,22 @@ LennardJonesParams<R> make_cut_lennard_jones(double epsilon, double sigma, doubl
 }
 
 template <class Shape>
-struct LennardJones {
+struct LennardJones : EpsilonSigmaPair<LennardJones<Shape>> {
     template <class R>
     using Params = LennardJonesParams<R>;
+    using EpsilonSigmaPair<LennardJones<Shape>>::make_pair_params;
 
     template <class R>
     static Params<R> make_pair_params(double epsilon, double sigma, double cutoff, bool shifted) {
         return make_cut_lennard_jones<Shape, R>(epsilon, sigma, cutoff, 0.0, shifted);
     }
 
-    // values: epsilon, sigma
+    static std::vector<Parameter> bond_parameters() { return LennardJones::pair_parameters(); }
+
+    // A bond has no cutoff.
     template <class R>
-    static Params<R> make_bond_params(const double* values, const Constants&) {
-        return {R(values[0]), R(values[1] * values[1]), std::numeric_limits<R>::infinity(), R(0)};
+    static Params<R> make_bond_params(const ParameterValues& v, const Constants&) {
+        return {R(v["epsilon"]), R(v["sigma"] * v["sigma"]), std::numeric_limits<R>::infinity(), R(0)};
     }
 
     template <class R>

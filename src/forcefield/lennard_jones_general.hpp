@@ -10,9 +10,10 @@
 namespace structmd {
 
 template <class Shape>
-struct GeneralLennardJones {
+struct GeneralLennardJones : EpsilonSigmaPair<GeneralLennardJones<Shape>> {
     template <class R>
     using Params = LennardJonesParams<R>;
+    using EpsilonSigmaPair<GeneralLennardJones<Shape>>::make_pair_params;
 
     template <class R>
     static Params<R> make_pair_params(double epsilon, double sigma, double cutoff, bool shifted) {

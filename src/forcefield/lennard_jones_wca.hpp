@@ -12,9 +12,10 @@
 namespace structmd {
 
 template <class Shape>
-struct WeeksChandlerAndersen {
+struct WeeksChandlerAndersen : EpsilonSigmaPair<WeeksChandlerAndersen<Shape>> {
     template <class R>
     using Params = LennardJonesParams<R>;
+    using EpsilonSigmaPair<WeeksChandlerAndersen<Shape>>::make_pair_params;
 
     template <class R>
     static Params<R> make_pair_params(double epsilon, double sigma, double cutoff, bool shifted) {

@@ -12,10 +12,12 @@ struct MorseBond {
         R inverse_width;
     };
 
-    // values: r0, E, D
+    static std::vector<Parameter> bond_parameters() {
+        return {number("r0", "length"), number("E", "energy"), number("D", "length", Must::be_positive)};
+    }
     template <class R>
-    static Params<R> make_bond_params(const double* values, const Constants&) {
-        return {R(values[0]), R(values[1]), R(1.0 / values[2])};
+    static Params<R> make_bond_params(const ParameterValues& v, const Constants&) {
+        return {R(v["r0"]), R(v["E"]), R(1.0 / v["D"])};
     }
 
     template <class R>

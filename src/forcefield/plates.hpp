@@ -3,6 +3,8 @@
 // the plates stand at z_top = S/2 and z_bot = -S/2. Each particle feels
 //   U = eps [(sigma / (z_top - z))^12 + (sigma / (z - z_bot))^12],   F = -dU/dz e_z,
 // the exact gradient (the reference drops a factor 12 from the force). The particle radius plays no part.
+#include <limits>
+
 #include "forcefield/external_potential.hpp"
 
 namespace structmd {
@@ -17,6 +19,20 @@ struct Plates {
         R epsilon;
         R sigma;
     };
+
+    static std::vector<Parameter> parameters() {
+        return {number("platesSeparation", "length", Must::be_positive),
+                with_default(number("platesEpsilon", "energy"), 1.0),
+                with_default(number("platesSigma", "length"), 1.0),
+                with_default(number("compressionVelocity", "length/time"), 0.0),
+                with_default(number("minPlatesSeparation", "length"), 0.0),
+                with_default(number("maxPlatesSeparation", "length"), std::numeric_limits<double>::infinity())};
+    }
+    template <class R>
+    static Params<R> make_params(const ParameterValues& v, const Constants&) {
+        return make_params<R>(v["platesSeparation"], v["platesEpsilon"], v["platesSigma"], v["compressionVelocity"],
+                              v["minPlatesSeparation"], v["maxPlatesSeparation"]);
+    }
 
     template <class R>
     static Params<R> make_params(double platesSeparation, double platesEpsilon, double platesSigma,

@@ -1,5 +1,6 @@
 #pragma once
 #include "core/logger.hpp"
+#include "forcefield/component_registry.hpp"
 #include "forcefield/forcefield_spec.hpp"
 #include "input/description.hpp"
 
@@ -8,6 +9,7 @@ namespace structmd {
 // Reads every topology.forceField entry through the component registry. Throws Error(ERR_INPUT)
 // naming the path for an unknown component, a bad parameter, a bond to a missing particle or a
 // cutoff longer than half the box.
-ForceFieldSpec read_forcefield(const input::SystemDescription& system, const Logger& log);
+ForceFieldSpec read_forcefield(const input::SystemDescription& system, const Logger& log,
+                               const Registry<ForceFieldComponent>& registry = forcefield_registry());
 
 }  // namespace structmd

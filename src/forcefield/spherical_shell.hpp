@@ -5,6 +5,8 @@
 //   U = eps [(sigma + a) / (d - R(t))]^12,   F = -grad U = 12 U / ((d - R(t)) d) (r - c),
 // the exact gradient (the reference leaves the radius out of the force). At the centre the direction is
 // undefined and the force is taken as zero.
+#include <limits>
+
 #include "forcefield/external_potential.hpp"
 
 namespace structmd {
@@ -20,6 +22,22 @@ struct SphericalShell {
         R epsilon;
         R sigma;
     };
+
+    static std::vector<Parameter> parameters() {
+        return {numbers("shellCenter", 3, "length"),
+                number("shellRadius", "length", Must::be_positive),
+                with_default(number("shellEpsilon", "energy"), 1.0),
+                with_default(number("shellSigma", "length"), 1.0),
+                with_default(number("minShellRadius", "length"), 0.0),
+                with_default(number("maxShellRadius", "length"), std::numeric_limits<double>::infinity()),
+                with_default(number("radiusVelocity", "length/time"), 0.0)};
+    }
+    template <class R>
+    static Params<R> make_params(const ParameterValues& v, const Constants&) {
+        const std::array<double, 3> c = v.vec3("shellCenter");
+        return make_params<R>({c[0], c[1], c[2]}, v["shellRadius"], v["shellEpsilon"], v["shellSigma"],
+                              v["minShellRadius"], v["maxShellRadius"], v["radiusVelocity"]);
+    }
 
     template <class R>
     static Params<R> make_params(Vec3<double> shellCenter, double shellRadius, double shellEpsilon, double shellSigma,

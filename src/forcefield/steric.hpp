@@ -8,7 +8,8 @@
 namespace structmd {
 
 template <int Exponent>
-struct Steric {
+struct Steric : EpsilonSigmaPair<Steric<Exponent>> {
+    using EpsilonSigmaPair<Steric<Exponent>>::make_pair_params;
     static_assert(Exponent > 0 && Exponent % 2 == 0, "the power is taken of (s/r)^2");
 
     template <class R>
@@ -26,10 +27,12 @@ struct Steric {
         return {R(epsilon), R(sigma * sigma), R(cutoff * cutoff), R(shift)};
     }
 
-    // values: epsilon, sigma
+    static std::vector<Parameter> bond_parameters() { return Steric::pair_parameters(); }
+
+    // A bond has no cutoff.
     template <class R>
-    static Params<R> make_bond_params(const double* values, const Constants&) {
-        return {R(values[0]), R(values[1] * values[1]), std::numeric_limits<R>::infinity(), R(0)};
+    static Params<R> make_bond_params(const ParameterValues& v, const Constants&) {
+        return {R(v["epsilon"]), R(v["sigma"] * v["sigma"]), std::numeric_limits<R>::infinity(), R(0)};
     }
 
     template <class R>

@@ -7,11 +7,13 @@ namespace structmd::input {
 namespace {
 
 double checked(const TrackedNode& node, Must must) {
+    if (must == Must::be_boolean) return node.as<bool>() ? 1.0 : 0.0;
     const double value = node.as<double>();
     const auto fail = [&](const char* what) { return input_error(node.path(), what); };
     if (!std::isfinite(value)) throw fail("expected a finite number");
     switch (must) {
-        case Must::be_finite: break;
+        case Must::be_finite:
+        case Must::be_boolean: break;
         case Must::be_positive:
             if (!(value > 0.0)) throw fail("expected a positive number");
             break;

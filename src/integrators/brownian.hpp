@@ -8,6 +8,11 @@
 
 namespace structmd {
 
+struct BrownianInputs : IntegratorInputs {
+    static std::vector<Parameter> parameters() { return {number("viscosity", "mass/(length time)", Must::be_positive)}; }
+    static constexpr bool needsRadius = true;  // mobility 1 / (6 pi eta a)
+};
+
 template <class R>
 struct EulerMaruyamaStep {
     Real4<R>* pos;
@@ -47,8 +52,8 @@ struct StopParticles {
 template <class B, class R>
 class BrownianEulerMaruyama : public Integrator<B, R> {
 public:
-    BrownianEulerMaruyama(const B& backend, const IntegratorScope& scope, double viscosity)
-        : Integrator<B, R>(scope), backend_(backend), viscosity_(viscosity) {}
+    BrownianEulerMaruyama(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
+        : Integrator<B, R>(scope), backend_(backend), viscosity_(v["viscosity"]) {}
 
     // Overdamped particles have no velocity of their own: the kinetic energy reads 0.
     void begin(Particles<B, R>& p, ForceSource&) override {

@@ -2,8 +2,10 @@
 // An integrator advances the particles by one step; it asks the engine for forces (and, for a
 // minimiser, energies) at the positions it needs them, and the engine evaluates only what is stale.
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "core/parameters.hpp"
 #include "simulation/particles.hpp"
 
 namespace structmd {
@@ -40,6 +42,17 @@ SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {
     v.z += halfDtOverM * f.z;
     return v;
 }
+
+// What an integrator reads from its input entry besides timeStep, temperature and group (which every
+// integrator takes): its own parameters, by name, and what it needs of the system. Each integrator
+// declares a struct derived from this one beside its class.
+struct IntegratorInputs {
+    static std::vector<Parameter> parameters() { return {}; }
+    static constexpr bool minimiser = false;    // moves no time forward: needs no time step
+    static constexpr bool needsRadius = false;  // its mobility uses each particle's radius
+    // Rejects values the integrator cannot run with (beyond each parameter's own rule).
+    static void validate(const ParameterValues&, const std::string&) {}
+};
 
 // What every integrator is given: its time step, its thermal energy and the particles it moves.
 struct IntegratorScope {

@@ -1,28 +1,40 @@
 #pragma once
-// Integrators and their schedule as read from the integrator section: plain data.
+// Integrators and their schedule as read from the integrator section: plain data, each integrator
+// naming its component by key and holding its own parameters by name.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
+
+#include "core/parameters.hpp"
+#include "core/registry.hpp"
 
 namespace structmd {
 
 struct IntegratorSpec {
     std::string name;
     std::string path;
-    std::string kind;  // VelocityVerlet, BBK, GJF, EulerMaruyama or SteepestDescent
+    ComponentKey key;
     double timeStep = 0.0;
     double temperature = 0.0;  // k_B T, in energy units
-    std::string group;         // empty: every particle
-    double frictionConstant = 0.0;   // Langevin
-    bool resetVelocities = true;     // Langevin
-    double viscosity = 0.0;          // Brownian
-    double h = 0.0;                  // SteepestDescent: initial step
-    double maxObjectiveForce = 0.0;  // SteepestDescent
+    int group = -1;            // index into ForceFieldSpec::groups; -1: every particle
+    ParameterValues parameters;  // the integrator's own (IntegratorInputs::parameters())
 };
 
 struct ScheduleStage {
     int integrator = 0;  // index into the integrator list
     int64_t steps = 0;
 };
+
+// What the reader knows of an integrator (from its IntegratorInputs).
+struct IntegratorComponent {
+    ComponentKey key;
+    std::vector<Parameter> parameters;
+    bool minimiser = false;
+    bool needsRadius = false;
+    std::function<void(const ParameterValues&, const std::string& path)> validate;
+};
+
+const Registry<IntegratorComponent>& integrator_registry();
 
 }  // namespace structmd

@@ -5,10 +5,24 @@
 // Velocities are the half-step ones. begin() turns full-step velocities v(0) into v(-1/2) with half a
 // kick back, so positions move once per step from the start.
 #include "integrators/integrator.hpp"
+#include "integrators/langevin_inputs.hpp"
 #include "integrators/thermal_noise.hpp"
 #include "simulation/fault.hpp"
 
 namespace structmd {
+
+struct LangevinBBKInputs : LangevinInputs {
+    static std::vector<Parameter> parameters() {
+        std::vector<Parameter> all = LangevinInputs::parameters();
+        all.push_back(with_default(number("stopTransRotSteps", "step", Must::be_integer), 0.0));
+        return all;
+    }
+    static void validate(const ParameterValues& v, const std::string& path) {
+        if (v["stopTransRotSteps"] != 0.0)
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ".parameters.stopTransRotSteps: removing the centre-of-mass "
+                                                         "motion is not supported yet; leave it 0");
+    }
+};
 
 template <class R>
 struct HalfKickBack {
@@ -57,8 +71,11 @@ struct BbkStep {
 template <class B, class R>
 class LangevinBBK : public Integrator<B, R> {
 public:
-    LangevinBBK(const B& backend, const IntegratorScope& scope, double friction, bool resetVelocities)
-        : Integrator<B, R>(scope), backend_(backend), friction_(friction), resetVelocities_(resetVelocities) {}
+    LangevinBBK(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
+        : Integrator<B, R>(scope),
+          backend_(backend),
+          friction_(v["frictionConstant"]),
+          resetVelocities_(v["resetVelocities"] != 0.0) {}
 
     void begin(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();

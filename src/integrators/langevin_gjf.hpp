@@ -5,6 +5,7 @@
 //   v(n+1) = a v + dt/(2m) (a F + F(n+1)) + (b/m) beta
 // Configurational sampling is correct at any stable time step.
 #include "integrators/integrator.hpp"
+#include "integrators/langevin_inputs.hpp"
 #include "integrators/thermal_noise.hpp"
 #include "simulation/fault.hpp"
 
@@ -65,8 +66,11 @@ struct GjfKick {
 template <class B, class R>
 class LangevinGJF : public Integrator<B, R> {
 public:
-    LangevinGJF(const B& backend, const IntegratorScope& scope, double friction, bool resetVelocities)
-        : Integrator<B, R>(scope), backend_(backend), friction_(friction), resetVelocities_(resetVelocities) {}
+    LangevinGJF(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
+        : Integrator<B, R>(scope),
+          backend_(backend),
+          friction_(v["frictionConstant"]),
+          resetVelocities_(v["resetVelocities"] != 0.0) {}
 
     void begin(Particles<B, R>& p, ForceSource&) override {
         const IntegratorScope& s = this->scope();

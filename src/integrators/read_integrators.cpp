@@ -1,85 +1,73 @@
 #include "integrators/read_integrators.hpp"
 
 #include <cmath>
-#include <map>
 
 #include "core/error.hpp"
+#include "input/read_parameters.hpp"
+#include "integrators/integrators.hpp"
 
 namespace structmd {
 
 namespace {
 
-// [Class, SubClass] -> kind; the minimiser is also known by the reference's two spellings.
-const std::map<std::pair<std::string, std::string>, std::string>& kinds() {
-    static const std::map<std::pair<std::string, std::string>, std::string> known = {
-        {{"Verlet", "VelocityVerlet"}, "VelocityVerlet"},
-        {{"Langevin", "BBK"}, "BBK"},
-        {{"Langevin", "GJF"}, "GJF"},
-        {{"Brownian", "EulerMaruyama"}, "EulerMaruyama"},
-        {{"SteepestDescent", "SteepestDescent"}, "SteepestDescent"},
-        {{"Minimization", "SteepestDescent"}, "SteepestDescent"},
-        {{"Mininimization", "SteepestDescent"}, "SteepestDescent"},
-    };
-    return known;
-}
+struct ReaderEntries {
+    Registry<IntegratorComponent> registry;
 
-double positive(const input::TrackedNode& params, const std::string& key) {
-    const double value = params.get<double>(key);
-    if (!(value > 0.0) || !std::isfinite(value)) throw input_error(params.path() + "." + key, "expected a positive number");
-    return value;
-}
+    template <template <class, class> class Integrator, class Inputs>
+    void integrator(ComponentKey key) {
+        registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate});
+    }
+};
 
 }  // namespace
 
+const Registry<IntegratorComponent>& integrator_registry() {
+    static const Registry<IntegratorComponent> builtin = [] {
+        ReaderEntries entries;
+        visit_builtin_integrators(entries);
+        return std::move(entries.registry);
+    }();
+    return builtin;
+}
+
 std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& system,
-                                             std::vector<ScheduleStage>& schedule) {
+                                             const std::vector<GroupSpec>& groups,
+                                             std::vector<ScheduleStage>& schedule,
+                                             const Registry<IntegratorComponent>& registry) {
     std::vector<IntegratorSpec> integrators;
     for (const input::ComponentEntry& entry : system.integrators) {
         IntegratorSpec spec;
         spec.name = entry.name;
         spec.path = entry.node.path();
-        auto kind = kinds().find({entry.cls, entry.subclass});
-        if (kind == kinds().end()) {
-            std::string known;
-            for (const auto& [key, value] : kinds()) known += " [\"" + key.first + "\", \"" + key.second + "\"]";
-            throw input_error(spec.path + ".type", "unknown integrator [\"" + entry.cls + "\", \"" + entry.subclass +
-                                                       "\"]; known:" + known);
-        }
-        spec.kind = kind->second;
-        const bool minimiser = spec.kind == "SteepestDescent";
-        auto found = entry.node.find("parameters");
-        if (!found && spec.kind != "VelocityVerlet")
-            throw input_error(spec.path + ".parameters", "missing the integrator's parameters");
-        const input::TrackedNode params = found ? *found : input::TrackedNode();
+        const IntegratorComponent& component =
+            registry.at({entry.cls, entry.subclass}, spec.path + ".type", "integrator");
+        spec.key = component.key;
+        const input::TrackedNode params = input::parameters_of(entry.node);
 
         std::optional<double> dt = system.timeStep;
-        if (found)
+        if (params.valid())
             if (auto own = params.find("timeStep")) dt = own->as<double>();
-        if (!dt && !minimiser)
+        if (!dt && !component.minimiser)
             throw input_error(spec.path + ".parameters.timeStep", "missing time step (give it here or in global.fundamental)");
         if (dt && (!(*dt > 0.0) || !std::isfinite(*dt)))
             throw input_error(spec.path + ".parameters.timeStep", "expected a positive time step");
         spec.timeStep = dt.value_or(0.0);
-        const double temperature = found ? params.get_or<double>("temperature", system.temperature) : system.temperature;
+        const double temperature = params.valid() ? params.get_or<double>("temperature", system.temperature)
+                                                  : system.temperature;
         if (!(temperature >= 0.0)) throw input_error(spec.path + ".parameters.temperature", "expected a temperature >= 0");
         spec.temperature = system.units.boltzmann * temperature;
-        if (found) spec.group = params.get_or<std::string>("group", "");
-        if (spec.group == "All") spec.group.clear();
+        spec.group = group_index(groups, params.valid() ? params.get_or<std::string>("group", "All") : "All",
+                                 spec.path + ".parameters.group");
+        spec.parameters = input::read_parameters(entry.node, component.parameters);
+        component.validate(spec.parameters, spec.path);
 
-        if (spec.kind == "BBK" || spec.kind == "GJF") {
-            spec.frictionConstant = positive(params, "frictionConstant");
-            spec.resetVelocities = params.get_or<bool>("resetVelocities", true);
-            if (spec.kind == "BBK" && params.get_or<int64_t>("stopTransRotSteps", 0) != 0)
-                throw Error(STRUCTMD_ERR_UNSUPPORTED,
-                            spec.path + ".parameters.stopTransRotSteps: removing the centre-of-mass motion is not "
-                                        "supported yet; leave it 0");
-        } else if (spec.kind == "EulerMaruyama") {
-            spec.viscosity = positive(params, "viscosity");
-        } else if (minimiser) {
-            spec.h = positive(params, "h");
-            spec.maxObjectiveForce = positive(params, "maxObjectiveForce");
-        }
-        integrators.push_back(spec);
+        if (component.needsRadius)
+            for (int64_t i = 0; i < system.numParticles(); ++i)
+                if ((spec.group < 0 || groups[spec.group].members[i]) && !(system.radius[i] > 0.0))
+                    throw input_error(spec.path, "particle id " + std::to_string(i) + " has radius " +
+                                                     std::to_string(system.radius[i]) + ": " + entry.cls + " " +
+                                                     entry.subclass + " needs a positive radius");
+        integrators.push_back(std::move(spec));
     }
     schedule.clear();
     for (const input::ScheduleRow& row : system.schedule) {

@@ -12,6 +12,13 @@
 
 namespace structmd {
 
+struct SteepestDescentInputs : IntegratorInputs {
+    static std::vector<Parameter> parameters() {
+        return {number("h", "length", Must::be_positive), number("maxObjectiveForce", "force", Must::be_positive)};
+    }
+    static constexpr bool minimiser = true;
+};
+
 template <class R>
 struct ForceMagnitude {
     const Real4<R>* force;
@@ -61,8 +68,12 @@ struct UndoMove {
 template <class B, class R>
 class SteepestDescent : public Integrator<B, R> {
 public:
-    SteepestDescent(const B& backend, const IntegratorScope& scope, double h, double maxObjectiveForce)
-        : Integrator<B, R>(scope), backend_(backend), initialH_(h), h_(h), maxObjectiveForce_(maxObjectiveForce) {}
+    SteepestDescent(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
+        : Integrator<B, R>(scope),
+          backend_(backend),
+          initialH_(v["h"]),
+          h_(initialH_),
+          maxObjectiveForce_(v["maxObjectiveForce"]) {}
 
     double time_advance() const override { return 0.0; }
     std::vector<double> state() const override { return {h_}; }

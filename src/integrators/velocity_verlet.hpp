@@ -4,6 +4,8 @@
 
 namespace structmd {
 
+struct VelocityVerletInputs : IntegratorInputs {};
+
 template <class R>
 struct VerletKickDrift {
     const uint8_t* group;
@@ -46,7 +48,8 @@ struct VerletKick {
 template <class B, class R>
 class VelocityVerlet : public Integrator<B, R> {
 public:
-    VelocityVerlet(const B& backend, const IntegratorScope& scope) : Integrator<B, R>(scope), backend_(backend) {}
+    VelocityVerlet(const B& backend, const IntegratorScope& scope, const ParameterValues&)
+        : Integrator<B, R>(scope), backend_(backend) {}
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const R dt = R(this->time_step());

@@ -15,11 +15,7 @@
 #include "core/logger.hpp"
 #include "core/random.hpp"
 #include "forcefield/make_interactors.hpp"
-#include "integrators/brownian.hpp"
-#include "integrators/langevin_bbk.hpp"
-#include "integrators/langevin_gjf.hpp"
-#include "integrators/steepest_descent.hpp"
-#include "integrators/velocity_verlet.hpp"
+#include "integrators/make_integrator.hpp"
 #include "simulation/checkpoint_file.hpp"
 #include "simulation/engine_functors.hpp"
 #include "simulation/simulation.hpp"
@@ -80,9 +76,13 @@ public:
         context.constants = spec.constants;
         context.batch = p_.batch.empty() ? nullptr : p_.batch.data();
         context.model = p_.model.data();
-        forceField_ = make_interactors<B, R, PairR>(backend_, spec.forceField, context);
+        forceField_ = make_interactors<B, R>(backend_, spec.forceField, context,
+                                             builtin_interactor_factories<B, R, PairR>());
+        largestCutoff_ = spec.forceField.largest_cutoff();
         for (const IntegratorSpec& integrator : spec.integrators)
-            integrators_.push_back(make_integrator(integrator, spec.forceField.groups));
+            integrators_.push_back(make_integrator<B, R>(
+                backend_, integrator, integrator.group >= 0 ? forceField_.group(integrator.group) : nullptr,
+                builtin_integrator_factories<B, R>()));
         const double skin = forceField_.smallest_skin();
         p_.maxMove2 = std::isfinite(skin) ? skin * skin : 1e300;
         backend_.synchronize();
@@ -260,10 +260,10 @@ public:
             if (!(lengths[d] > 0.0 && lengths[d] <= 1e15))
                 throw Error(STRUCTMD_ERR_ARGUMENT, "lengths[" + std::to_string(d) + "]: expected a box length > 0 and "
                                                    "<= 1e15, got " + precise(lengths[d]));
-        const double halfBox = 0.5 * std::min({lengths[0], lengths[1], lengths[2]});
-        if (forceField_.largest_cutoff() >= halfBox)
-            throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the largest cutoff (" + precise(forceField_.largest_cutoff()) +
-                                                   ") must be shorter than half the box (" + precise(halfBox) + ")");
+        if (!cutoff_fits_box(largestCutoff_, {lengths[0], lengths[1], lengths[2]}))
+            throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the largest cutoff (" + precise(largestCutoff_) +
+                                                   ") must be shorter than half the box (" +
+                                                   precise(0.5 * std::min({lengths[0], lengths[1], lengths[2]})) + ")");
         std::vector<double> xyz(3 * p_.count);
         get_unwrapped_positions(xyz.data());
         for (int64_t i = 0; i < p_.count; ++i)
@@ -547,21 +547,6 @@ private:
         throw Error(STRUCTMD_ERR_INTERNAL, "no integrator scheduled at step " + std::to_string(step_));
     }
 
-    std::unique_ptr<Integrator<B, R>> make_integrator(const IntegratorSpec& spec, const std::vector<GroupSpec>& groups) {
-        IntegratorScope scope{spec.timeStep, spec.temperature, nullptr};
-        for (size_t g = 0; g < groups.size(); ++g)
-            if (groups[g].name == spec.group) scope.group = forceField_.group(static_cast<int>(g));
-        if (spec.kind == "BBK")
-            return std::make_unique<LangevinBBK<B, R>>(backend_, scope, spec.frictionConstant, spec.resetVelocities);
-        if (spec.kind == "GJF")
-            return std::make_unique<LangevinGJF<B, R>>(backend_, scope, spec.frictionConstant, spec.resetVelocities);
-        if (spec.kind == "EulerMaruyama")
-            return std::make_unique<BrownianEulerMaruyama<B, R>>(backend_, scope, spec.viscosity);
-        if (spec.kind == "SteepestDescent")
-            return std::make_unique<SteepestDescent<B, R>>(backend_, scope, spec.h, spec.maxObjectiveForce);
-        return std::make_unique<VelocityVerlet<B, R>>(backend_, scope);
-    }
-
     // Simulation steps see the state before the step is taken; the final state of the schedule
     // is given to every step whose window holds it.
     void fire_steps(bool final) {
@@ -668,6 +653,7 @@ private:
     std::vector<std::string> typeNames_;
     std::array<double, 3> boxLengths_{};
     double boltzmann_ = 1.0;
+    double largestCutoff_ = 0.0;  // of the pair terms: the box may not shrink below twice it
     int64_t step_ = 0;
     int64_t firstStep_ = 0;
     int activeStage_ = -1;  // the schedule row whose integrator has begun

@@ -1,7 +1,5 @@
 #include "simulation/read_simulation.hpp"
 
-#include <algorithm>
-
 #include "core/error.hpp"
 #include "steps/backup_step.hpp"
 
@@ -19,25 +17,7 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log) {
 
     SimulationSpec spec;
     spec.forceField = read_forcefield(system, log);
-    spec.integrators = read_integrators(system, spec.schedule);
-    const auto& groups = spec.forceField.groups;
-    for (const IntegratorSpec& integrator : spec.integrators) {
-        const GroupSpec* group = nullptr;
-        if (!integrator.group.empty()) {
-            auto it = std::find_if(groups.begin(), groups.end(), [&](const GroupSpec& g) { return g.name == integrator.group; });
-            if (it == groups.end())
-                throw input_error(integrator.path + ".parameters.group",
-                                  "no group named '" + integrator.group + "' (define it in a [\"Groups\", \"GroupsList\"] entry)");
-            group = &*it;
-        }
-        // Brownian mobility is 1 / (6 pi eta a): every particle it moves needs a radius.
-        if (integrator.kind == "EulerMaruyama")
-            for (int64_t i = 0; i < system.numParticles(); ++i)
-                if ((!group || group->members[i]) && !(system.radius[i] > 0.0))
-                    throw input_error(integrator.path, "particle id " + std::to_string(i) +
-                                                           " has radius " + std::to_string(system.radius[i]) +
-                                                           ": Brownian dynamics needs a positive radius");
-    }
+    spec.integrators = read_integrators(system, spec.forceField.groups, spec.schedule);
     spec.steps = read_simulation_steps(system, spec.forceField.groups, log);
     if (const auto& b = system.backup)
         spec.steps.push_back(std::make_unique<BackupStep>(b->intervalStep, b->startStep, b->endStep, b->filePath));

@@ -160,8 +160,8 @@ struct FloatAgreement {
 template <class Term>
 inline FloatAgreement float_agreement(const V* r, const double* values, double energy_scale, double force_scale) {
     constexpr int N = Term::arity;
-    const auto pd = Term::template make_params<double>(values, kConstants);
-    const auto pf = Term::template make_params<float>(values, kConstants);
+    const auto pd = Term::template make_params<double>(values_in_order(Term::parameters(), values), kConstants);
+    const auto pf = Term::template make_params<float>(values_in_order(Term::parameters(), values), kConstants);
     const Box<float> box_f = Box<float>::make(kBox.length.x, kBox.length.y, kBox.length.z);
     Vec3<float> rf[N], ff[N];
     V fd[N];

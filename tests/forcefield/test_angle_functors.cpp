@@ -17,7 +17,7 @@ namespace structmd {
 namespace bonded_test {
 namespace {
 
-// Parameter values per sample, in the order make_params reads them: K, theta0.
+// Parameter values per sample, in the order of the term's declared parameters: K, theta0.
 std::vector<double> harmonic_angle_values(std::mt19937_64& rng) {
     std::uniform_real_distribution<double> K(0.5, 20.0), theta0(0.3, kPi);
     return {K(rng), theta0(rng)};
@@ -33,7 +33,7 @@ TEST(HarmonicAngle, ForceIsMinusGradientOfEnergy) {
     double worst = 0.0;
     for (const Chain<3>& c : angle_chains(1)) {
         const std::vector<double> v = harmonic_angle_values(rng);
-        const auto p = HarmonicAngle::make_params<double>(v.data(), kConstants);
+        const auto p = HarmonicAngle::make_params<double>(values_in_order(HarmonicAngle::parameters(), v.data()), kConstants);
         const double error = finite_difference_error<HarmonicAngle>(c.r, p, 1e-3 * v[0]);
         EXPECT_LT(error, kForceTolerance);
         worst = std::max(worst, error);
@@ -46,7 +46,7 @@ TEST(HarmonicAngle, EnergyMatchesAngleFromArcCosine) {
     double worst = 0.0;
     for (const Chain<3>& c : angle_chains(2)) {
         const std::vector<double> v = harmonic_angle_values(rng);
-        const auto p = HarmonicAngle::make_params<double>(v.data(), kConstants);
+        const auto p = HarmonicAngle::make_params<double>(values_in_order(HarmonicAngle::parameters(), v.data()), kConstants);
         V force[3];
         const double energy = HarmonicAngle::compute(c.r, p, kBox, force);
         const double theta = angle_by_arc_cosine(c.unwrapped[0], c.unwrapped[1], c.unwrapped[2]);
@@ -64,7 +64,7 @@ TEST(HarmonicAngle, ForcesAndTorquesSumToZero) {
     for (const Chain<3>& c : angle_chains(3)) {
         const std::vector<double> v = harmonic_angle_values(rng);
         V force[3];
-        HarmonicAngle::compute(c.r, HarmonicAngle::make_params<double>(v.data(), kConstants), kBox, force);
+        HarmonicAngle::compute(c.r, HarmonicAngle::make_params<double>(values_in_order(HarmonicAngle::parameters(), v.data()), kConstants), kBox, force);
         const Balance b = balance_of<3>(c.r, force);
         EXPECT_LT(b.net_force, kBalanceTolerance);
         EXPECT_LT(b.torque, kBalanceTolerance);
@@ -121,7 +121,7 @@ TEST(HarmonicAngle, NearlyStraightChainHasFiniteExactForces) {
     std::mt19937_64 rng(15);
     const double K = 7.0, theta0 = 2.0, arm0 = 1.1, arm2 = 0.8;
     const double values[] = {K, theta0};
-    const auto p = HarmonicAngle::make_params<double>(values, kConstants);
+    const auto p = HarmonicAngle::make_params<double>(values_in_order(HarmonicAngle::parameters(), values), kConstants);
     double worst = 0.0;
     for (int sample = 0; sample < 20; ++sample) {
         const double theta = kPi - 1e-6 * (0.05 + 0.95 * sample / 20.0);
@@ -148,7 +148,7 @@ TEST(HarmonicAngle, StraightOrFoldedChainForceIsAOneSidedLimit) {
     const double K = 3.0, arm0 = 1.1, arm2 = 0.7;
     for (const double theta0 : {0.5, 2.5}) {
         const double values[] = {K, theta0};
-        const auto p = HarmonicAngle::make_params<double>(values, kConstants);
+        const auto p = HarmonicAngle::make_params<double>(values_in_order(HarmonicAngle::parameters(), values), kConstants);
         for (const double theta : {0.0, kPi}) {
             const V along = unit(V{0.3, -0.8, 0.5});
             const V vertex{0.1, 0.2, -0.3};
@@ -181,7 +181,7 @@ TEST(HarmonicAngle, StraightChainAtItsRestAngleFeelsNoForce) {
     const double values[] = {4.0, kPi};
     const V r[3] = {{1.0, 0.5, 0.0}, {0.0, 0.0, 0.0}, {-2.0, -1.0, 0.0}};
     V force[3];
-    EXPECT_DOUBLE_EQ(HarmonicAngle::compute(r, HarmonicAngle::make_params<double>(values, kConstants), kBox, force), 0.0);
+    EXPECT_DOUBLE_EQ(HarmonicAngle::compute(r, HarmonicAngle::make_params<double>(values_in_order(HarmonicAngle::parameters(), values), kConstants), kBox, force), 0.0);
     for (const V& f : force) EXPECT_EQ(max_abs(f), 0.0);
 }
 
@@ -189,7 +189,7 @@ TEST(HarmonicAngle, ZeroLengthArmHasNoAngle) {
     const double values[] = {4.0, 1.0};
     const V r[3] = {{0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, {1.0, 0.0, 0.0}};
     V force[3];
-    EXPECT_TRUE(std::isnan(HarmonicAngle::compute(r, HarmonicAngle::make_params<double>(values, kConstants), kBox, force)));
+    EXPECT_TRUE(std::isnan(HarmonicAngle::compute(r, HarmonicAngle::make_params<double>(values_in_order(HarmonicAngle::parameters(), values), kConstants), kBox, force)));
     for (const V& f : force) EXPECT_TRUE(std::isnan(f.x));
 }
 
@@ -200,7 +200,7 @@ TEST(KratkyPorod, ForceIsMinusGradientOfEnergy) {
     for (const Chain<3>& c : angle_chains(5)) {
         const double values[] = {K(rng)};
         const double error =
-            finite_difference_error<KratkyPorod>(c.r, KratkyPorod::make_params<double>(values, kConstants), 1e-3 * values[0]);
+            finite_difference_error<KratkyPorod>(c.r, KratkyPorod::make_params<double>(values_in_order(KratkyPorod::parameters(), values), kConstants), 1e-3 * values[0]);
         EXPECT_LT(error, kForceTolerance);
         worst = std::max(worst, error);
     }
@@ -214,7 +214,7 @@ TEST(KratkyPorod, EnergyMatchesAngleFromArcCosine) {
     for (const Chain<3>& c : angle_chains(6)) {
         const double values[] = {K(rng)};
         V force[3];
-        const double energy = KratkyPorod::compute(c.r, KratkyPorod::make_params<double>(values, kConstants), kBox, force);
+        const double energy = KratkyPorod::compute(c.r, KratkyPorod::make_params<double>(values_in_order(KratkyPorod::parameters(), values), kConstants), kBox, force);
         const double theta = angle_by_arc_cosine(c.unwrapped[0], c.unwrapped[1], c.unwrapped[2]);
         const double expected = values[0] * (1.0 + std::cos(theta));
         const double error = std::fabs(energy - expected) / std::max(expected, 1e-3 * values[0]);
@@ -231,7 +231,7 @@ TEST(KratkyPorod, ForcesAndTorquesSumToZero) {
     for (const Chain<3>& c : angle_chains(7)) {
         const double values[] = {K(rng)};
         V force[3];
-        KratkyPorod::compute(c.r, KratkyPorod::make_params<double>(values, kConstants), kBox, force);
+        KratkyPorod::compute(c.r, KratkyPorod::make_params<double>(values_in_order(KratkyPorod::parameters(), values), kConstants), kBox, force);
         const Balance b = balance_of<3>(c.r, force);
         EXPECT_LT(b.net_force, kBalanceTolerance);
         EXPECT_LT(b.torque, kBalanceTolerance);
@@ -262,7 +262,7 @@ TEST(KratkyPorod, NearlyStraightChainIsSmooth) {
     std::mt19937_64 rng(25);
     const double K = 5.0, arm0 = 1.1, arm2 = 0.8;
     const double values[] = {K};
-    const auto p = KratkyPorod::make_params<double>(values, kConstants);
+    const auto p = KratkyPorod::make_params<double>(values_in_order(KratkyPorod::parameters(), values), kConstants);
     const V straight[3] = {{1.0, 0.5, 0.0}, {0.0, 0.0, 0.0}, {-2.0, -1.0, 0.0}};
     V force[3];
     EXPECT_NEAR(KratkyPorod::compute(straight, p, kBox, force), 0.0, 1e-15);

@@ -16,7 +16,7 @@ namespace structmd {
 namespace bonded_test {
 namespace {
 
-// Parameter values per sample, in the order make_params reads them: n, K, phi0 and K1..K4,
+// Parameter values per sample, in the order of the term's declared parameters: n, K, phi0 and K1..K4,
 // phi0_1..phi0_4.
 std::vector<double> dihedral_values(std::mt19937_64& rng) {
     std::uniform_int_distribution<int> n(1, 6);
@@ -65,19 +65,19 @@ TEST(Dihedral, IupacSignConvention) {
         // and its sign through the energy alone.
         V force[4];
         const double probe[] = {1.0, 1.0, c.phi};
-        EXPECT_NEAR(Dihedral::compute(r, Dihedral::make_params<double>(probe, kConstants), kBox, force), 2.0, 1e-12)
+        EXPECT_NEAR(Dihedral::compute(r, Dihedral::make_params<double>(values_in_order(Dihedral::parameters(), probe), kConstants), kBox, force), 2.0, 1e-12)
             << "phi " << c.phi;
         const double opposite[] = {1.0, 1.0, c.phi + kPi};
-        EXPECT_NEAR(Dihedral::compute(r, Dihedral::make_params<double>(opposite, kConstants), kBox, force), 0.0, 1e-12)
+        EXPECT_NEAR(Dihedral::compute(r, Dihedral::make_params<double>(values_in_order(Dihedral::parameters(), opposite), kConstants), kBox, force), 0.0, 1e-12)
             << "phi " << c.phi;
     }
     // +90 and -90 differ: U = 1 + sin(phi) (phi0 = pi/2) is 2 and 0.
     const double sine[] = {1.0, 1.0, 0.5 * kPi};
     V r[4], force[4];
     iupac_chain(0.5 * kPi, r);
-    EXPECT_NEAR(Dihedral::compute(r, Dihedral::make_params<double>(sine, kConstants), kBox, force), 2.0, 1e-12);
+    EXPECT_NEAR(Dihedral::compute(r, Dihedral::make_params<double>(values_in_order(Dihedral::parameters(), sine), kConstants), kBox, force), 2.0, 1e-12);
     iupac_chain(-0.5 * kPi, r);
-    EXPECT_NEAR(Dihedral::compute(r, Dihedral::make_params<double>(sine, kConstants), kBox, force), 0.0, 1e-12);
+    EXPECT_NEAR(Dihedral::compute(r, Dihedral::make_params<double>(values_in_order(Dihedral::parameters(), sine), kConstants), kBox, force), 0.0, 1e-12);
 }
 
 TEST(Dihedral, ForceIsMinusGradientOfEnergy) {
@@ -86,7 +86,7 @@ TEST(Dihedral, ForceIsMinusGradientOfEnergy) {
     for (const Chain<4>& c : dihedral_chains(9)) {
         const std::vector<double> v = dihedral_values(rng);
         const double error =
-            finite_difference_error<Dihedral>(c.r, Dihedral::make_params<double>(v.data(), kConstants), 1e-3 * v[1]);
+            finite_difference_error<Dihedral>(c.r, Dihedral::make_params<double>(values_in_order(Dihedral::parameters(), v.data()), kConstants), 1e-3 * v[1]);
         EXPECT_LT(error, kForceTolerance);
         worst = std::max(worst, error);
     }
@@ -99,7 +99,7 @@ TEST(Dihedral, EnergyMatchesProjectedDihedral) {
     for (const Chain<4>& c : dihedral_chains(10)) {
         const std::vector<double> v = dihedral_values(rng);
         V force[4];
-        const double energy = Dihedral::compute(c.r, Dihedral::make_params<double>(v.data(), kConstants), kBox, force);
+        const double energy = Dihedral::compute(c.r, Dihedral::make_params<double>(values_in_order(Dihedral::parameters(), v.data()), kConstants), kBox, force);
         const double phi = dihedral_by_projection(c.unwrapped[0], c.unwrapped[1], c.unwrapped[2], c.unwrapped[3]);
         const double expected = dihedral_energy(v, phi);
         const double error = std::fabs(energy - expected) / std::max(expected, 1e-3 * v[1]);
@@ -115,7 +115,7 @@ TEST(Dihedral, ForcesAndTorquesSumToZero) {
     for (const Chain<4>& c : dihedral_chains(11)) {
         const std::vector<double> v = dihedral_values(rng);
         V force[4];
-        Dihedral::compute(c.r, Dihedral::make_params<double>(v.data(), kConstants), kBox, force);
+        Dihedral::compute(c.r, Dihedral::make_params<double>(values_in_order(Dihedral::parameters(), v.data()), kConstants), kBox, force);
         const Balance b = balance_of<4>(c.r, force);
         EXPECT_LT(b.net_force, kBalanceTolerance);
         EXPECT_LT(b.torque, kBalanceTolerance);
@@ -141,7 +141,7 @@ TEST(Dihedral, FloatAgreesWithDouble) {
 
 TEST(Dihedral, CollinearTripleFeelsNoForce) {
     const double values[] = {2.0, 3.0, 0.4};
-    const auto p = Dihedral::make_params<double>(values, kConstants);
+    const auto p = Dihedral::make_params<double>(values_in_order(Dihedral::parameters(), values), kConstants);
     // r0, r1, r2 on a line; then r1, r2, r3 on a line.
     const V first[4] = {{-1.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {1.5, 0.8, 0.1}};
     const V second[4] = {{-0.5, 0.7, 0.2}, {0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {2.0, 0.0, 0.0}};
@@ -158,7 +158,7 @@ TEST(Dihedral4, ForceIsMinusGradientOfEnergy) {
     for (const Chain<4>& c : dihedral_chains(13)) {
         const std::vector<double> v = dihedral4_values(rng);
         const double error =
-            finite_difference_error<Dihedral4>(c.r, Dihedral4::make_params<double>(v.data(), kConstants), 1e-3);
+            finite_difference_error<Dihedral4>(c.r, Dihedral4::make_params<double>(values_in_order(Dihedral4::parameters(), v.data()), kConstants), 1e-3);
         EXPECT_LT(error, kForceTolerance);
         worst = std::max(worst, error);
     }
@@ -171,7 +171,7 @@ TEST(Dihedral4, EnergyMatchesProjectedDihedral) {
     for (const Chain<4>& c : dihedral_chains(14)) {
         const std::vector<double> v = dihedral4_values(rng);
         V force[4];
-        const double energy = Dihedral4::compute(c.r, Dihedral4::make_params<double>(v.data(), kConstants), kBox, force);
+        const double energy = Dihedral4::compute(c.r, Dihedral4::make_params<double>(values_in_order(Dihedral4::parameters(), v.data()), kConstants), kBox, force);
         const double phi = dihedral_by_projection(c.unwrapped[0], c.unwrapped[1], c.unwrapped[2], c.unwrapped[3]);
         const double expected = dihedral4_energy(v, phi);
         const double error = std::fabs(energy - expected) / std::max(std::fabs(expected), 1e-3);
@@ -193,8 +193,8 @@ TEST(Dihedral4, EachTermIsTheDihedralOfThatMultiplicity) {
             four[3 + n] = phi0;
             const double single[] = {double(n), K, phi0};
             V f4[4], f1[4];
-            const double e4 = Dihedral4::compute(c.r, Dihedral4::make_params<double>(four, kConstants), kBox, f4);
-            const double e1 = Dihedral::compute(c.r, Dihedral::make_params<double>(single, kConstants), kBox, f1);
+            const double e4 = Dihedral4::compute(c.r, Dihedral4::make_params<double>(values_in_order(Dihedral4::parameters(), four), kConstants), kBox, f4);
+            const double e1 = Dihedral::compute(c.r, Dihedral::make_params<double>(values_in_order(Dihedral::parameters(), single), kConstants), kBox, f1);
             EXPECT_NEAR(e4, e1, 1e-12 * K);
             for (int k = 0; k < 4; ++k) EXPECT_LT(max_abs(f4[k] - f1[k]), 1e-12 * K * (1.0 + max_abs(f1[k])));
         }
@@ -206,7 +206,7 @@ TEST(Dihedral4, ForcesAndTorquesSumToZero) {
     for (const Chain<4>& c : dihedral_chains(16)) {
         const std::vector<double> v = dihedral4_values(rng);
         V force[4];
-        Dihedral4::compute(c.r, Dihedral4::make_params<double>(v.data(), kConstants), kBox, force);
+        Dihedral4::compute(c.r, Dihedral4::make_params<double>(values_in_order(Dihedral4::parameters(), v.data()), kConstants), kBox, force);
         const Balance b = balance_of<4>(c.r, force);
         EXPECT_LT(b.net_force, kBalanceTolerance);
         EXPECT_LT(b.torque, kBalanceTolerance);

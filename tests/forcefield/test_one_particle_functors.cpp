@@ -57,7 +57,7 @@ TEST(FixedHarmonic, ForceIsMinusGradientOfEnergy) {
     double worst = 0.0;
     for (const Tether& t : tethers(51)) {
         const double error = finite_difference_error<FixedHarmonic>(
-            t.r, FixedHarmonic::make_params<double>(t.values.data(), kConstants), 1e-3 * t.values[0]);
+            t.r, FixedHarmonic::make_params<double>(values_in_order(FixedHarmonic::parameters(), t.values.data()), kConstants), 1e-3 * t.values[0]);
         EXPECT_LT(error, kForceTolerance);
         worst = std::max(worst, error);
     }
@@ -70,7 +70,7 @@ TEST(FixedHarmonic, EnergyUsesTheNearestImageOfThePoint) {
     for (const Tether& t : tethers(52)) {
         V force[1];
         const double energy =
-            FixedHarmonic::compute(t.r, FixedHarmonic::make_params<double>(t.values.data(), kConstants), kBox, force);
+            FixedHarmonic::compute(t.r, FixedHarmonic::make_params<double>(values_in_order(FixedHarmonic::parameters(), t.values.data()), kConstants), kBox, force);
         const V point{t.values[2], t.values[3], t.values[4]};
         const double d = nearest_image_distance(point, t.r[0]);
         across += d < length(point - t.r[0]) - 1e-9;
@@ -88,8 +88,8 @@ TEST(FixedHarmonic, PointOutsideTheBoxActsThroughItsImage) {
     const double outside[] = {3.0, 0.2, 0.4 + 2.0 * kBox.length.x, -0.3 - kBox.length.y, 0.9 + 3.0 * kBox.length.z};
     const V r[1] = {{-0.1, 0.2, 0.3}};
     V f_in[1], f_out[1];
-    const double e_in = FixedHarmonic::compute(r, FixedHarmonic::make_params<double>(inside, kConstants), kBox, f_in);
-    const double e_out = FixedHarmonic::compute(r, FixedHarmonic::make_params<double>(outside, kConstants), kBox, f_out);
+    const double e_in = FixedHarmonic::compute(r, FixedHarmonic::make_params<double>(values_in_order(FixedHarmonic::parameters(), inside), kConstants), kBox, f_in);
+    const double e_out = FixedHarmonic::compute(r, FixedHarmonic::make_params<double>(values_in_order(FixedHarmonic::parameters(), outside), kConstants), kBox, f_out);
     EXPECT_NEAR(e_out, e_in, 1e-12);
     EXPECT_LT(max_abs(f_out[0] - f_in[0]), 1e-12);
 }
@@ -111,11 +111,11 @@ TEST(FixedHarmonic, ParticleOnThePoint) {
     V force[1];
     // r0 = 0: the minimum of U, no force.
     const double at_rest[] = {3.0, 0.0, 0.4, -0.3, 0.9};
-    EXPECT_EQ(FixedHarmonic::compute(r, FixedHarmonic::make_params<double>(at_rest, kConstants), kBox, force), 0.0);
+    EXPECT_EQ(FixedHarmonic::compute(r, FixedHarmonic::make_params<double>(values_in_order(FixedHarmonic::parameters(), at_rest), kConstants), kBox, force), 0.0);
     EXPECT_EQ(max_abs(force[0]), 0.0);
     // r0 > 0: no direction to push along; zero force and the finite energy 1/2 K r0^2.
     const double stretched[] = {3.0, 0.5, 0.4, -0.3, 0.9};
-    EXPECT_DOUBLE_EQ(FixedHarmonic::compute(r, FixedHarmonic::make_params<double>(stretched, kConstants), kBox, force),
+    EXPECT_DOUBLE_EQ(FixedHarmonic::compute(r, FixedHarmonic::make_params<double>(values_in_order(FixedHarmonic::parameters(), stretched), kConstants), kBox, force),
                      0.5 * 3.0 * 0.25);
     EXPECT_EQ(max_abs(force[0]), 0.0);
 }
@@ -124,7 +124,7 @@ TEST(ConstantForceBond, AppliesTheGivenForceWithNoEnergy) {
     const double values[] = {0.25, -1.5, 3.0};
     const V r[1] = {{0.4, -0.3, 0.9}};
     V force[1];
-    EXPECT_EQ(ConstantForceBond::compute(r, ConstantForceBond::make_params<double>(values, kConstants), kBox, force), 0.0);
+    EXPECT_EQ(ConstantForceBond::compute(r, ConstantForceBond::make_params<double>(values_in_order(ConstantForceBond::parameters(), values), kConstants), kBox, force), 0.0);
     EXPECT_EQ(force[0].x, 0.25);
     EXPECT_EQ(force[0].y, -1.5);
     EXPECT_EQ(force[0].z, 3.0);

@@ -140,7 +140,7 @@ void check_shifted_lennard_jones(Formula formula) {
 template <class Potential>
 void check_bonded_lennard_jones(Formula formula) {
     const double values[] = {kEps, kSigma};
-    const auto p = Potential::template make_bond_params<double>(values, Constants{});
+    const auto p = Potential::template make_bond_params<double>(values_in_order(Potential::bond_parameters(), values), Constants{});
     std::vector<double> radii = lennard_jones_radii();
     radii.push_back(3.0 * kSigma);  // beyond any NonBonded cutoff: a bond has none
     radii.push_back(40.0 * kSigma);
@@ -280,7 +280,7 @@ void check_steric(int n) {
     const auto shifted = Potential::template make_pair_params<double>(kEps, kSigma, kCutoff, true);
     expect_energy_and_derivative<Potential>(shifted, [&](double r) { return formula(r) - formula(kCutoff); }, radii);
     const double values[] = {kEps, kSigma};
-    const auto bond = Potential::template make_bond_params<double>(values, Constants{});
+    const auto bond = Potential::template make_bond_params<double>(values_in_order(Potential::bond_parameters(), values), Constants{});
     expect_energy_and_derivative<Potential>(bond, formula, {0.7 * kSigma, kSigma, 3.0 * kSigma, 20.0 * kSigma});
 }
 
@@ -345,7 +345,7 @@ TEST(DebyeHuckel, BondFormFoldsTheChargeProductIn) {
     const double charge_product = -0.8;
     const double bond_cutoff = 20.0;
     const double values[] = {charge_product, kDielectric, kDebyeLength, bond_cutoff};
-    const auto p = DebyeHuckel::make_bond_params<double>(values, kKcalMolA);
+    const auto p = DebyeHuckel::make_bond_params<double>(values_in_order(DebyeHuckel::bond_parameters(), values), kKcalMolA);
     expect_energy_and_derivative<DebyeHuckel>(p, [&](double r) { return debye_huckel(charge_product, r); },
                                               {1.0, 4.0, 9.0, 15.0, 19.5});
     expect_no_interaction<DebyeHuckel>(p, {bond_cutoff, 25.0});
@@ -354,7 +354,7 @@ TEST(DebyeHuckel, BondFormFoldsTheChargeProductIn) {
 TEST(Morse, MatchesTheFormula) {
     const double r0 = 1.5, depth = 2.2, width = 0.4;
     const double values[] = {r0, depth, width};
-    const auto p = MorseBond::make_bond_params<double>(values, Constants{});
+    const auto p = MorseBond::make_bond_params<double>(values_in_order(MorseBond::bond_parameters(), values), Constants{});
     const auto formula = [&](double r) {
         const double x = 1.0 - std::exp(-(r - r0) / width);
         return depth * (x * x - 1.0);
@@ -367,7 +367,7 @@ TEST(Morse, MatchesTheFormula) {
 TEST(Gaussian, MatchesTheFormula) {
     const double depth = 3.1, r0 = 2.0, variance = 0.3;
     const double values[] = {depth, r0, variance};
-    const auto p = GaussianBond::make_bond_params<double>(values, Constants{});
+    const auto p = GaussianBond::make_bond_params<double>(values_in_order(GaussianBond::bond_parameters(), values), Constants{});
     const auto formula = [&](double r) { return -depth * std::exp(-(r - r0) * (r - r0) / (2.0 * variance)); };
     expect_energy_and_derivative<GaussianBond>(p, formula, {0.5, 1.2, 1.8, 2.3, 3.0, 4.5});
     EXPECT_NEAR(at<GaussianBond>(r0, p).energy, -depth, 1e-14);
@@ -384,7 +384,7 @@ void check_single_precision_pair(double epsilon, const std::vector<double>& radi
 template <class Potential>
 void check_single_precision_bond(std::vector<double> values, const std::vector<double>& radii) {
     expect_float_matches_double(
-        [&](auto tag) { return Potential::template make_bond_params<decltype(tag)>(values.data(), kKcalMolA); },
+        [&](auto tag) { return Potential::template make_bond_params<decltype(tag)>(values_in_order(Potential::bond_parameters(), values.data()), kKcalMolA); },
         [](auto r2, const auto& p) { return Potential::evaluate(r2, p); }, radii);
 }
 

@@ -138,13 +138,17 @@ def known_force_field_components(sim):
 
 
 def known_list_conditions(sim):
+    """The list conditions of the engine's registry, from its message for an unknown one."""
     doc = base_document()
     doc["topology"]["forceField"]["nl"]["type"] = ["VerletConditionalListSet", "noSuchCondition"]
     with pytest.raises(structmd.InputError):
         sim.load(doc)
-    match = re.search(r"\(expected ([^)]*)\)", sim.last_error)
-    assert match, sim.last_error
-    return set(re.split(r", | or ", match.group(1)))
+    message = sim.last_error
+    assert "known neighbour lists:" in message, message
+    listed = message.split("known neighbour lists:", 1)[1].splitlines()
+    known = {REGISTRY_LINE.match(line).group(2) for line in listed if REGISTRY_LINE.match(line)}
+    assert known, message
+    return known
 
 
 def test_every_force_field_component_of_the_engine_is_documented(sim):

@@ -1,0 +1,30 @@
+#pragma once
+// What the input reader knows of each force-field component: its kind, its parameters by name (with
+// units, defaults and rules) and, for pair terms, the distance at which given values stop acting.
+// Made from the built-in list (components.hpp); a handle may add components to its own copy.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/parameters.hpp"
+#include "core/registry.hpp"
+#include "forcefield/pair_potential.hpp"
+
+namespace structmd {
+
+enum class InteractionKind { pair, bond, external };
+
+struct ForceFieldComponent {
+    ComponentKey key;
+    InteractionKind kind = InteractionKind::bond;
+    int arity = 0;                           // bonds: particles per bond
+    std::vector<Parameter> parameters;       // pairs: per type pair; bonds: per bond; externals: the entry's
+    std::vector<Parameter> entryParameters;  // pairs: given once in the entry's "parameters"
+    std::vector<std::string> common;         // bonds: given once for every bond (the Common_ variants)
+    // Pairs: the largest distance at which the term acts with these values (shared and one row's).
+    std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
+};
+
+const Registry<ForceFieldComponent>& forcefield_registry();
+
+}  // namespace structmd

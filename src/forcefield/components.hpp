@@ -1,0 +1,97 @@
+#pragma once
+// The built-in force-field components: the one place where an input name ["Class", "SubClass"]
+// meets the functor that computes it. The reader's registry (component_registry.cpp: parameter
+// schemas, tables) and each engine's factories (make_interactors.hpp) are both made by visiting this
+// list, so a new potential is its functor file plus one line here.
+//
+// A visitor has
+//   template <class Potential> void pair(ComponentKey key);                 // NonBonded, over a list
+//   template <class Potential> void bond(ComponentKey key, std::vector<std::string> common = {});
+//   template <class Potential> void external(ComponentKey key);
+// `common` names the bond parameters given once in the entry's "parameters" for every bond (the
+// Common_ variants) rather than as table columns.
+#include <string>
+#include <vector>
+
+#include "core/registry.hpp"
+#include "forcefield/constant_force_bond.hpp"
+#include "forcefield/debye_huckel.hpp"
+#include "forcefield/dihedral.hpp"
+#include "forcefield/external_constant_force.hpp"
+#include "forcefield/fene_bond.hpp"
+#include "forcefield/fixed_harmonic.hpp"
+#include "forcefield/gaussian_bond.hpp"
+#include "forcefield/harmonic_angle.hpp"
+#include "forcefield/harmonic_bond.hpp"
+#include "forcefield/kratky_porod.hpp"
+#include "forcefield/lennard_jones.hpp"
+#include "forcefield/lennard_jones_general.hpp"
+#include "forcefield/lennard_jones_wca.hpp"
+#include "forcefield/morse.hpp"
+#include "forcefield/plates.hpp"
+#include "forcefield/spherical_shell.hpp"
+#include "forcefield/steric.hpp"
+
+namespace structmd {
+
+template <class Visitor>
+void visit_builtin_forcefield(Visitor& v) {
+    v.template pair<LennardJonesType1>({"NonBonded", "LennardJonesType1"});
+    v.template pair<LennardJonesType2>({"NonBonded", "LennardJonesType2"});
+    v.template pair<LennardJonesType3>({"NonBonded", "LennardJonesType3"});
+    v.template pair<WCAType1>({"NonBonded", "WCAType1"});
+    v.template pair<WCAType2>({"NonBonded", "WCAType2"});
+    v.template pair<WCAType3>({"NonBonded", "WCAType3"});
+    v.template pair<GeneralLennardJonesType1>({"NonBonded", "GeneralLennardJonesType1"});
+    v.template pair<GeneralLennardJonesType2>({"NonBonded", "GeneralLennardJonesType2"});
+    v.template pair<GeneralLennardJonesType3>({"NonBonded", "GeneralLennardJonesType3"});
+    v.template pair<Steric6>({"NonBonded", "Steric6"});
+    v.template pair<Steric12>({"NonBonded", "Steric12"});
+    v.template pair<DebyeHuckel>({"NonBonded", "DebyeHuckel"});
+
+    v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});
+    v.template bond<ConstantForceBond>({"Bond1", "ConstantForce"});
+
+    using Harmonic = RadialBond<HarmonicBond>;
+    v.template bond<Harmonic>({"Bond2", "Harmonic"});
+    v.template bond<Harmonic>({"Bond2", "HarmonicCommon_K"}, {"K"});
+    v.template bond<Harmonic>({"Bond2", "HarmonicCommon_K_r0"}, {"K", "r0"});
+    using Fene = RadialBond<FeneBond>;
+    v.template bond<Fene>({"Bond2", "Fene"});
+    v.template bond<Fene>({"Bond2", "FeneCommon_K_R0"}, {"K", "R0"});
+    v.template bond<Fene>({"Bond2", "FeneCommon_r0_K_R0"}, {"r0", "K", "R0"});
+    using Morse = RadialBond<MorseBond>;
+    v.template bond<Morse>({"Bond2", "Morse"});
+    v.template bond<Morse>({"Bond2", "MorseCommon_D"}, {"D"});
+    v.template bond<Morse>({"Bond2", "MorseCommon_r0_E_D"}, {"r0", "E", "D"});
+    v.template bond<RadialBond<LennardJonesType1>>({"Bond2", "LennardJonesType1"});
+    v.template bond<RadialBond<LennardJonesType1>>({"Bond2", "LennardJonesType1Common_epsilon"}, {"epsilon"});
+    v.template bond<RadialBond<LennardJonesType2>>({"Bond2", "LennardJonesType2"});
+    v.template bond<RadialBond<LennardJonesType2>>({"Bond2", "LennardJonesType2Common_epsilon"}, {"epsilon"});
+    v.template bond<RadialBond<LennardJonesType3>>({"Bond2", "LennardJonesType3"});
+    v.template bond<RadialBond<LennardJonesType3>>({"Bond2", "LennardJonesType3Common_epsilon"}, {"epsilon"});
+    using Gaussian = RadialBond<GaussianBond>;
+    v.template bond<Gaussian>({"Bond2", "Gaussian"});
+    v.template bond<Gaussian>({"Bond2", "GaussianCommon_E_r0_D"}, {"E", "r0", "D"});
+    v.template bond<RadialBond<Steric6>>({"Bond2", "Steric6"});
+    v.template bond<RadialBond<Steric6>>({"Bond2", "Steric6Common_epsilon_sigma"}, {"epsilon", "sigma"});
+    v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12"});
+    v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12Common_epsilon_sigma"}, {"epsilon", "sigma"});
+    v.template bond<RadialBond<DebyeHuckel>>({"Bond2", "DebyeHuckel"});
+
+    v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngular"});
+    v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngularCommon_K"}, {"K"});
+    v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngularCommon_K_theta0"}, {"K", "theta0"});
+    v.template bond<KratkyPorod>({"Bond3", "KratkyPorod"});
+    v.template bond<KratkyPorod>({"Bond3", "KratkyPorodCommon_K"}, {"K"});
+
+    v.template bond<Dihedral>({"Bond4", "Dihedral"});
+    v.template bond<Dihedral>({"Bond4", "DihedralCommon_n_K_phi0"}, {"n", "K", "phi0"});
+    v.template bond<Dihedral4>({"Bond4", "Dihedral4"});
+
+    v.template external<ExternalConstantForce>({"External", "ConstantForce"});
+    v.template external<Plates>({"External", "Plates"});
+    v.template external<SphericalShell>({"External", "SphericalShell"});
+}
+
+}  // namespace structmd

@@ -1,0 +1,27 @@
+#pragma once
+// The built-in integrators: the one place where an integrator's input name meets its class and its
+// inputs. The reader's registry (read_integrators.cpp) and each engine's factories
+// (make_integrator.hpp) are both made by visiting this list. A visitor has
+//   template <template <class B, class R> class Integrator, class Inputs> void integrator(ComponentKey key);
+#include "core/registry.hpp"
+#include "integrators/brownian.hpp"
+#include "integrators/langevin_bbk.hpp"
+#include "integrators/langevin_gjf.hpp"
+#include "integrators/steepest_descent.hpp"
+#include "integrators/velocity_verlet.hpp"
+
+namespace structmd {
+
+template <class Visitor>
+void visit_builtin_integrators(Visitor& v) {
+    v.template integrator<VelocityVerlet, VelocityVerletInputs>({"Verlet", "VelocityVerlet"});
+    v.template integrator<LangevinBBK, LangevinBBKInputs>({"Langevin", "BBK"});
+    v.template integrator<LangevinGJF, LangevinInputs>({"Langevin", "GJF"});
+    v.template integrator<BrownianEulerMaruyama, BrownianInputs>({"Brownian", "EulerMaruyama"});
+    // The minimiser is also known by the reference's two spellings.
+    v.template integrator<SteepestDescent, SteepestDescentInputs>({"SteepestDescent", "SteepestDescent"});
+    v.template integrator<SteepestDescent, SteepestDescentInputs>({"Minimization", "SteepestDescent"});
+    v.template integrator<SteepestDescent, SteepestDescentInputs>({"Mininimization", "SteepestDescent"});
+}
+
+}  // namespace structmd
