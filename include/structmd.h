@@ -1,5 +1,10 @@
-/*
- * structmd.h - the public C ABI of structmd, a GPU molecular dynamics engine.
+/**
+ * @file
+ * @brief The public C ABI of structmd, a GPU molecular dynamics engine.
+ *
+ * This header is the reference of the interface: each function is documented where it is declared,
+ * and the HTML reference is rendered from it by Doxygen (docs/Doxyfile). docs/c-api.md explains how
+ * the pieces fit together.
  *
  * A host program (C, C++, Fortran through iso_c_binding, Python through ctypes or cffi) creates an
  * opaque handle, loads a simulation described in the UAMMD-structured JSON format, steps it, reads
@@ -11,11 +16,17 @@
  *   what went wrong, where (JSON path, argument name, particle id and step) and what was expected.
  *   A failed call leaves the handle usable and its previous state intact, unless the message says
  *   the state was lost.
+ * - A NULL handle is STRUCTMD_ERR_ARGUMENT, with the message under structmd_last_error(NULL) on the
+ *   calling thread (structmd_destroy and structmd_last_error accept NULL). A NULL output pointer is
+ *   STRUCTMD_ERR_ARGUMENT unless the function says it is optional. A function that needs a loaded
+ *   simulation returns STRUCTMD_ERR_STATE before a successful load.
  * - No global mutable state: two handles in one process are independent. One thread at a time per
- *   handle; different handles may be driven from different threads at once.
- * - Arrays are owned by the caller. Vector quantities are double[3*n] (x0,y0,z0,x1,...), scalars
- *   double[n], always in ascending particle-id order whatever order the engine keeps internally.
- *   n must equal the number of particles, otherwise STRUCTMD_ERR_ARGUMENT and nothing is written.
+ *   handle; different handles may be driven from different threads at once. Every call returns
+ *   when its work is complete.
+ * - Arrays are owned by the caller: the library reads or writes them during the call and keeps no
+ *   pointer to them. Vector quantities are double[3*n] (x0,y0,z0,x1,...), scalars double[n], always
+ *   in ascending particle-id order whatever order the engine keeps internally. n must equal the
+ *   number of particles, otherwise STRUCTMD_ERR_ARGUMENT and nothing is written.
  * - Values returned are consistent with the current state: a getter evaluates what is stale (forces
  *   after positions changed, say) and nothing more. Energies and virials are computed only when
  *   someone asks for them.
@@ -42,22 +53,28 @@ extern "C" {
 /** Version of the binary interface; raised whenever a name or a meaning below changes. */
 #define STRUCTMD_ABI_VERSION 1
 
-/* Status codes: the values are fixed. */
-#define STRUCTMD_OK 0               /* success */
-#define STRUCTMD_ERR_ARGUMENT 1     /* null pointer, wrong array length, unknown name, bad option */
-#define STRUCTMD_ERR_INPUT 2        /* the JSON input is malformed or inconsistent (message names the path) */
-#define STRUCTMD_ERR_STATE 3        /* call not valid now (for example step before load) */
-#define STRUCTMD_ERR_NUMERICAL 4    /* NaN, Inf or blow-up detected (message names particle id and step) */
-#define STRUCTMD_ERR_IO 5           /* a file could not be read or written */
-#define STRUCTMD_ERR_DEVICE 6       /* GPU error, or a GPU was demanded and none is usable */
-#define STRUCTMD_ERR_MEMORY 7       /* out of host or device memory */
-#define STRUCTMD_ERR_UNSUPPORTED 8  /* a valid request this build or backend cannot do */
-#define STRUCTMD_ERR_INTERNAL 9     /* a bug: please report */
+/** @name Status codes
+ *  The values are fixed and part of the ABI.
+ *  @{ */
+#define STRUCTMD_OK 0               /**< success */
+#define STRUCTMD_ERR_ARGUMENT 1     /**< null pointer, wrong array length, unknown name, bad option */
+#define STRUCTMD_ERR_INPUT 2        /**< the JSON input is malformed or inconsistent (message names the path) */
+#define STRUCTMD_ERR_STATE 3        /**< call not valid now (for example step before load) */
+#define STRUCTMD_ERR_NUMERICAL 4    /**< NaN, Inf or blow-up detected (message names particle id and step) */
+#define STRUCTMD_ERR_IO 5           /**< a file could not be read or written */
+#define STRUCTMD_ERR_DEVICE 6       /**< GPU error, or a GPU was demanded and none is usable */
+#define STRUCTMD_ERR_MEMORY 7       /**< out of host or device memory */
+#define STRUCTMD_ERR_UNSUPPORTED 8  /**< a valid request this build or backend cannot do */
+#define STRUCTMD_ERR_INTERNAL 9     /**< a bug: please report */
+/** @} */
 
-/* Compute flags for structmd_compute, combined with bitwise or. */
-#define STRUCTMD_FORCES 1u
-#define STRUCTMD_ENERGY 2u
-#define STRUCTMD_VIRIAL 4u
+/** @name Compute flags
+ *  For structmd_compute, combined with bitwise or.
+ *  @{ */
+#define STRUCTMD_FORCES 1u  /**< the force on every particle */
+#define STRUCTMD_ENERGY 2u  /**< energies: every term and the per-particle split */
+#define STRUCTMD_VIRIAL 4u  /**< the virial tensor */
+/** @} */
 
 /** A status code, one of the STRUCTMD_OK / STRUCTMD_ERR_* values. */
 typedef int32_t structmd_status;
@@ -65,173 +82,353 @@ typedef int32_t structmd_status;
 /** The opaque simulation handle. Create with structmd_create, release with structmd_destroy. */
 typedef struct structmd_sim structmd_sim;
 
+/** @name Version
+ *  @{ */
+
 /**
  * @return STRUCTMD_ABI_VERSION of the library actually loaded; a host compares it with the value of
- *         the header it was compiled against.
+ *         the header it was compiled against. Never fails.
  */
 STRUCTMD_API int structmd_abi_version(void);
 
-/** @return the library version, "MAJOR.MINOR.PATCH"; a static string, never freed. */
+/**
+ * @return the library version, "MAJOR.MINOR.PATCH"; a static string, valid for the life of the
+ *         process, never freed. Never fails.
+ */
 STRUCTMD_API const char* structmd_version(void);
 
+/** @} */
+
+/** @name Handle and errors
+ *  @{ */
+
 /**
- * Creates a handle holding no simulation yet.
+ * Creates a handle holding no simulation yet, on the backend and precision the options select.
+ * May be called from any thread at any time.
  *
  * @param options_json  NULL, "" or a JSON object with the optional keys
  *                      "backend": "auto" (default: CUDA if a usable GPU exists, else CPU) | "cpu" | "cuda";
  *                      "device": GPU ordinal (default 0);
  *                      "precision": "single" (default) | "mixed" | "double"
  *                      (mixed: state, forces and sums in double, pair potentials in single);
- *                      "threads": CPU threads (default: all the OpenMP runtime offers);
+ *                      "threads": CPU threads, >= 1 (default: all the OpenMP runtime offers);
  *                      "log": "quiet" | "warning" (default) | "info" | "debug";
- *                      "log_file": path (default: standard error).
- *                      An unknown key or a bad value is STRUCTMD_ERR_ARGUMENT.
- * @param[out] out      receives the new handle; set to NULL on failure.
- * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for bad options or out == NULL; STRUCTMD_ERR_DEVICE when
- *         "cuda" is demanded and no GPU is usable; STRUCTMD_ERR_UNSUPPORTED when "cuda" is demanded
- *         from a CPU-only build. On failure structmd_last_error(NULL) says why, on this thread.
+ *                      "log_file": path, appended to (default: standard error).
+ *                      Read during the call only.
+ * @param[out] out      receives the new handle, owned by the caller until structmd_destroy; set to
+ *                      NULL on failure.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for malformed options, an unknown key, a bad value, a
+ *         "device" that does not exist, or out == NULL; STRUCTMD_ERR_DEVICE when "cuda" is demanded
+ *         and no GPU is usable; STRUCTMD_ERR_UNSUPPORTED when "cuda" is demanded from a CPU-only
+ *         build; STRUCTMD_ERR_IO when "log_file" cannot be opened; STRUCTMD_ERR_MEMORY. On failure
+ *         structmd_last_error(NULL) says why, on this thread.
  */
 STRUCTMD_API structmd_status structmd_create(const char* options_json, structmd_sim** out);
 
-/** Releases the handle and everything it owns (host and device memory, open files). NULL is fine. */
+/**
+ * Releases the handle and everything it owns (host and device memory, open files, flushed and
+ * closed). The handle must not be used afterwards, and no other thread may be using it meanwhile.
+ *
+ * @param sim  the handle; NULL does nothing.
+ */
 STRUCTMD_API void structmd_destroy(structmd_sim* sim);
 
 /**
- * @param sim  a handle, or NULL for the last failed structmd_create on the calling thread.
+ * The explanation of the last failure. A successful call does not clear it: check the status first,
+ * then read the message.
+ *
+ * @param sim  a handle, or NULL for the last failure on the calling thread that had no handle to hold
+ *             its message (a failed structmd_create, a call given a NULL handle).
  * @return the message of the last failed call on this handle, "" if none. The string is owned by the
  *         library and stays valid until the next call on the same handle (or, for NULL, the next
- *         structmd_create on this thread).
+ *         failure without a handle on this thread); copy it to keep it.
  */
 STRUCTMD_API const char* structmd_last_error(const structmd_sim* sim);
 
+/** @} */
+
+/** @name Loading
+ *  @{ */
+
 /**
  * Builds the simulation from a whole input document (UAMMD-structured JSON, comments allowed) and
- * puts it at its initial state (step and time from global.fundamental, else 0). Loading again
- * replaces the previous simulation. On failure the handle holds no simulation and says why.
+ * puts it at its initial state: step and time from global.fundamental, else 0; velocities from the
+ * state, else drawn from Maxwell-Boltzmann at the first integrator's temperature. Loading again
+ * replaces the previous simulation (closing its output files) and clears the external forces. On
+ * failure the handle holds no simulation, says why, and can load again.
  *
- * @param path  a file path.
+ * @param sim   the handle.
+ * @param path  a file path, read during the call.
  * @return STRUCTMD_OK; STRUCTMD_ERR_IO if the file cannot be read; STRUCTMD_ERR_INPUT if the document
  *         is malformed (line and column) or inconsistent (JSON path and what was expected);
- *         STRUCTMD_ERR_MEMORY if the system does not fit.
+ *         STRUCTMD_ERR_UNSUPPORTED for a valid input this build or backend cannot run;
+ *         STRUCTMD_ERR_MEMORY if the system does not fit; STRUCTMD_ERR_DEVICE for a GPU failure.
  */
 STRUCTMD_API structmd_status structmd_load_file(structmd_sim* sim, const char* path);
 
-/** As structmd_load_file, from a NUL-terminated JSON string. */
+/**
+ * As structmd_load_file, from text held by the caller. Relative output paths in the document are
+ * relative to the process's working directory, as for structmd_load_file.
+ *
+ * @param sim   the handle.
+ * @param json  the whole document, NUL-terminated, read during the call.
+ * @return as structmd_load_file, less STRUCTMD_ERR_IO for reading the input.
+ */
 STRUCTMD_API structmd_status structmd_load_string(structmd_sim* sim, const char* json);
+
+/** @} */
+
+/** @name Advancing
+ *  @{ */
 
 /**
  * Advances nsteps integration steps along integrator.schedule, switching integrators where the
- * schedule says, firing each simulationStep at its interval.
+ * schedule says, firing each simulationStep at its interval. Needs a load. Returns when the steps
+ * are finished on the device, so wall-clock time around the call is the time of the steps.
  *
- * @param nsteps  number of steps, >= 0.
+ * @param sim     the handle.
+ * @param nsteps  number of steps, >= 0; 0 does nothing.
  * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load, or when the schedule ends before nsteps
- *         (no step is taken then); STRUCTMD_ERR_ARGUMENT for nsteps < 0; STRUCTMD_ERR_IO when an
- *         output cannot be written; STRUCTMD_ERR_MEMORY when the device cannot hold what a step
- *         needs; STRUCTMD_ERR_NUMERICAL when a position, velocity or force became non-finite or a
- *         particle moved farther than the neighbour-list skin in one step: the message names the
- *         step, particle id and quantity, and the state is back where the call started.
+ *         (no step is taken then; structmd_get_info gives the step at which it ends);
+ *         STRUCTMD_ERR_ARGUMENT for nsteps < 0; STRUCTMD_ERR_IO when an output cannot be written;
+ *         STRUCTMD_ERR_MEMORY when the device cannot hold what a step needs (a neighbour list, say);
+ *         STRUCTMD_ERR_DEVICE for a GPU failure; STRUCTMD_ERR_NUMERICAL when a position, velocity
+ *         or force became non-finite or a particle moved farther than the neighbour-list skin in
+ *         one step: the message names the step, particle id and quantity, and the state (positions,
+ *         velocities, step, time, the integrators' own state) is back where the call started; files
+ *         that measures wrote during the call stay written.
  */
 STRUCTMD_API structmd_status structmd_step(structmd_sim* sim, int64_t nsteps);
 
-/** Advances until the schedule ends. Same statuses as structmd_step. */
+/**
+ * Advances until the schedule ends; at its end, does nothing. Needs a load.
+ *
+ * @param sim  the handle.
+ * @return as structmd_step.
+ */
 STRUCTMD_API structmd_status structmd_run(structmd_sim* sim);
 
 /**
- * Evaluates now, without advancing time, what flags asks for (STRUCTMD_FORCES, STRUCTMD_ENERGY,
- * STRUCTMD_VIRIAL), unless it is already current. Getters do this themselves; this call lets a host
- * choose when the work happens.
+ * Evaluates now, without advancing time, what flags asks for, unless it is already current (then it
+ * costs nothing). Getters do this themselves; this call lets a host choose when the work happens.
+ * Needs a load.
  *
+ * @param sim    the handle.
+ * @param flags  STRUCTMD_FORCES, STRUCTMD_ENERGY and STRUCTMD_VIRIAL, combined with bitwise or.
  * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for unknown bits; STRUCTMD_ERR_STATE before a load.
  */
 STRUCTMD_API structmd_status structmd_compute(structmd_sim* sim, uint32_t flags);
 
-/** @param[out] n  number of particles of the loaded simulation. */
+/** @} */
+
+/** @name Reading particle data
+ *  Each needs a load. The arrays are the caller's, in ascending particle-id order; n must equal the
+ *  number of particles (STRUCTMD_ERR_ARGUMENT otherwise, and nothing is written).
+ *  @{ */
+
+/**
+ * @param sim      the handle.
+ * @param[out] n   number of particles of the loaded simulation.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load.
+ */
 STRUCTMD_API structmd_status structmd_get_num_particles(const structmd_sim* sim, int64_t* n);
 
-/** @param[out] ids  int64_t[n], the particle ids in ascending order (0..n-1). */
+/**
+ * @param sim        the handle.
+ * @param[out] ids   int64_t[n], the particle ids in ascending order (0..n-1).
+ * @param n          the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_get_ids(structmd_sim* sim, int64_t* ids, int64_t n);
 
-/** @param[out] xyz  double[3n], positions wrapped into the box [-L/2, L/2). */
+/**
+ * @param sim        the handle.
+ * @param[out] xyz   double[3n], positions wrapped into the box [-L/2, L/2) (length).
+ * @param n          the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_get_positions(structmd_sim* sim, double* xyz, int64_t n);
 
-/** @param[out] v  double[3n], velocities. */
+/**
+ * @param sim      the handle.
+ * @param[out] v   double[3n], velocities (length/time).
+ * @param n        the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_get_velocities(structmd_sim* sim, double* v, int64_t n);
 
-/** @param[out] f  double[3n], the total force on each particle, external forces included. */
+/**
+ * The forces are evaluated first when stale (after a load, structmd_set_positions or
+ * structmd_set_box); otherwise they are those the integrator computed at the current positions, so
+ * reading them after a step costs only the copy.
+ *
+ * @param sim      the handle.
+ * @param[out] f   double[3n], the total force on each particle, external forces included
+ *                 (energy/length).
+ * @param n        the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE; STRUCTMD_ERR_NUMERICAL when a force
+ *         is not finite (overlapping particles, say), and nothing is written.
+ */
 STRUCTMD_API structmd_status structmd_get_forces(structmd_sim* sim, double* f, int64_t n);
 
 /**
- * @param[out] e  double[n], potential energy per particle: each interaction's energy is split equally
- *                among the particles it involves, so the values sum to the potential energy.
+ * @param sim      the handle.
+ * @param[out] e   double[n], potential energy per particle (energy): each interaction's energy is
+ *                 split equally among the particles it involves, so the values sum to the potential
+ *                 energy.
+ * @param n        the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_get_particle_energies(structmd_sim* sim, double* e, int64_t n);
 
-/** @param[out] m  double[n], masses. */
+/**
+ * @param sim      the handle.
+ * @param[out] m   double[n], masses, after the state's per-particle overrides (mass).
+ * @param n        the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_get_masses(structmd_sim* sim, double* m, int64_t n);
 
-/** @param[out] type_index  int32_t[n], each particle's row in global.types (0-based). */
+/**
+ * @param sim               the handle.
+ * @param[out] type_index   int32_t[n], each particle's row in global.types (0-based).
+ * @param n                 the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_get_types(structmd_sim* sim, int32_t* type_index, int64_t n);
 
+/** @} */
+
+/** @name Reading global quantities
+ *  Each needs a load (STRUCTMD_ERR_STATE before one).
+ *  @{ */
+
 /**
- * @param term      "potential", "kinetic", "total", or the name of a topology.forceField entry (its
- *                  share of the potential energy).
+ * @param sim         the handle.
+ * @param term        "potential", "kinetic", "total", or the name of a topology.forceField entry (its
+ *                    share of the potential energy). Any term may end in "@batch:K" for the share of
+ *                    the particles whose batchId is K, for example "potential@batch:2".
  * @param[out] value  the energy, in the input's energy unit.
- * @return STRUCTMD_ERR_ARGUMENT for an unknown term.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for an unknown term (the message lists the known ones) or
+ *         a K that no particle has; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_get_energy(structmd_sim* sim, const char* term, double* value);
 
 /**
- * @param[out] w  the virial tensor W = sum over pair terms of (r_i - r_j) (x) F_ij (minimum image;
- *                multi-body terms add sum_k d_k (x) F_k), row-major 3x3: the convention of LAMMPS's
- *                pressure virial.
+ * @param sim      the handle.
+ * @param[out] w   the virial tensor W = sum over pair terms of (r_i - r_j) (x) F_ij (minimum image;
+ *                 multi-body terms add sum_k d_k (x) F_k), row-major 3x3 (w[3a + b] = W_ab, energy):
+ *                 the convention of LAMMPS's pressure virial. External forces set by the host are
+ *                 not part of it.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_get_virial(structmd_sim* sim, double w[9]);
 
-/** @param[out] p  pressure P = (2K + trace W) / (3V), K the kinetic energy, V the box volume. */
+/**
+ * @param sim      the handle.
+ * @param[out] p   pressure P = (2K + trace W) / (3V), K the kinetic energy, V the box volume
+ *                 (energy/length^3).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_get_pressure(structmd_sim* sim, double* p);
 
-/** @param[out] lengths  box edge lengths Lx, Ly, Lz; the box spans [-L/2, L/2). */
+/**
+ * @param sim            the handle.
+ * @param[out] lengths   box edge lengths Lx, Ly, Lz; the box is orthorhombic, periodic in x, y and
+ *                       z, and spans [-L/2, L/2).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_get_box(structmd_sim* sim, double lengths[3]);
 
-/** @param[out] step  the current step number. */
+/**
+ * @param sim         the handle.
+ * @param[out] step   the current step number: global.fundamental's currentStep, else 0, plus one
+ *                    per integration step taken.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_get_step(const structmd_sim* sim, int64_t* step);
 
-/** @param[out] t  the current simulation time. */
+/**
+ * @param sim      the handle.
+ * @param[out] t   the current simulation time: the initial simulationTime plus the time step of
+ *                 every step taken.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_get_time(const structmd_sim* sim, double* t);
 
+/** @} */
+
+/** @name Changing the state
+ *  Each needs a load; none advances time.
+ *  @{ */
+
 /**
- * Replaces all positions (wrapped into the box) and marks forces, energies and the neighbour list
- * stale. Nothing is changed if any value is not finite (STRUCTMD_ERR_ARGUMENT).
+ * Replaces all positions (wrapped into the box) and marks forces, energies, virial and the
+ * neighbour list stale.
+ *
+ * @param sim  the handle.
+ * @param xyz  double[3n], the new positions (length).
+ * @param n    the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if any value is not finite (the
+ *         message names the particle) or n is wrong; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_set_positions(structmd_sim* sim, const double* xyz, int64_t n);
 
-/** Replaces all velocities. Nothing is changed if any value is not finite. */
+/**
+ * Replaces all velocities.
+ *
+ * @param sim  the handle.
+ * @param v    double[3n], the new velocities (length/time).
+ * @param n    the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if any value is not finite or n is
+ *         wrong; STRUCTMD_ERR_STATE.
+ */
 STRUCTMD_API structmd_status structmd_set_velocities(structmd_sim* sim, const double* v, int64_t n);
 
 /**
- * Sets the box edge lengths, keeping fractional coordinates (particles are scaled with the box).
- * @return STRUCTMD_ERR_ARGUMENT if a length is not positive, or if a cutoff would exceed half the box.
+ * Sets the box edge lengths, keeping fractional coordinates (particles are scaled with the box, as
+ * a barostat would).
+ *
+ * @param sim      the handle.
+ * @param lengths  the new edges Lx, Ly, Lz.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if a length is not positive and
+ *         finite, or if a cutoff of the force field would exceed half the box; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_set_box(structmd_sim* sim, const double lengths[3]);
 
 /**
- * Adds f (double[3n]) to each particle's force at every force evaluation until replaced; NULL with
- * n = 0 clears it. This is how a coupled code applies its field. The energy of this field is the
- * host's business: it is not part of any energy term, nor of the virial.
+ * Adds f to each particle's force at every force evaluation, during steps and in getters, until
+ * replaced. This is how a coupled code applies its field. The array is copied. The energy of this
+ * field is the host's business: it is not part of any energy term, nor of the virial. A new load
+ * clears it.
+ *
+ * @param sim  the handle.
+ * @param f    double[3n], the forces (energy/length); NULL with n = 0 clears them.
+ * @param n    the number of particles, or 0 with f = NULL.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if any value is not finite or n is
+ *         wrong; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_set_external_forces(structmd_sim* sim, const double* f, int64_t n);
 
+/** @} */
+
 /* ---- structmd additions to the contract ---- */
+
+/** @name Checkpoints
+ *  @{ */
 
 /**
  * Writes the dynamic state to a file: step, time, box, positions (with their periodic images),
  * velocities, external forces and the integrators' own state, in the engine's working precision.
  * The file is written beside the target and renamed over it once complete, so an interrupted write
  * never replaces a good checkpoint. The forces are not stored: they are recomputed from the
- * positions, so a restarted run continues the same trajectory (bit for bit on the CPU backend).
+ * positions, so a restarted run continues the same trajectory (bit for bit on the CPU backend, to
+ * rounding on CUDA).
  *
+ * @param sim   the handle.
  * @param path  the file; it carries a format version and a checksum.
- * @return STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_IO if the file cannot be written.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_IO if the file cannot be
+ *         written.
  */
 STRUCTMD_API structmd_status structmd_save_checkpoint(structmd_sim* sim, const char* path);
 
@@ -240,21 +437,33 @@ STRUCTMD_API structmd_status structmd_save_checkpoint(structmd_sim* sim, const c
  * (same particles, precision and schedule start). The whole file is read and checked before
  * anything changes: on failure the handle keeps its state.
  *
- * @return STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_IO for a missing, truncated or corrupt
- *         file, another format version, or a checkpoint of another simulation (the message says
- *         which).
+ * @param sim   the handle.
+ * @param path  the file.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_IO for a missing, truncated or
+ *         corrupt file, another format version, or a checkpoint of another simulation (the message
+ *         says which).
  */
 STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const char* path);
 
+/** @} */
+
+/** @name Introspection
+ *  @{ */
+
 /**
- * Describes the handle as a JSON object written into buffer (NUL-terminated):
- * {"backend": "cpu"|"cuda", "precision": "single"|"double", "device": name, "threads": n,
- *  "loaded": bool, "particles": n, "final_step": step at which the schedule ends (-1 if none)}.
+ * Describes the handle as a JSON object written into buffer (NUL-terminated), with or without a
+ * load: {"version": as structmd_version, "backend": "cpu" | "cuda" (the one chosen, also under
+ * "auto"), "precision": "single" | "mixed" | "double", "device": the GPU's name or "host CPU",
+ * "threads": CPU threads of the CPU backend (0 on CUDA), "loaded": bool, "particles": n (0 before
+ * a load), "final_step": step at which the schedule ends (-1 before a load)}. Keys may be added in
+ * later versions.
  *
- * @param buffer       receives the text; may be NULL when size is 0.
+ * @param sim          the handle.
+ * @param[out] buffer  receives the text; may be NULL when size is 0.
  * @param size         capacity of buffer in bytes.
- * @param[out] needed  optional (may be NULL): bytes the text needs, NUL included.
- * @return STRUCTMD_ERR_ARGUMENT if buffer is too small (nothing useful is written then).
+ * @param[out] needed  optional (may be NULL): bytes the text needs, NUL included; set also when
+ *                     size is too small, so a host may call once with size 0, then with needed.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT if buffer is too small (nothing useful is written then).
  */
 STRUCTMD_API structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t size,
                                                size_t* needed);
@@ -265,17 +474,21 @@ STRUCTMD_API structmd_status structmd_get_info(const structmd_sim* sim, char* bu
  * the force field that evaluated each quantity; "neighbour_list_builds"; "host_to_device_bytes",
  * "device_to_host_bytes": bytes copied between the host and the backend's buffers (on the CPU
  * backend, between the caller's arrays and the engine's); "device_memory_bytes": bytes the
- * handle's buffers hold on its backend now (GPU memory on CUDA); "step_graphs_captured",
- * "step_graphs_replayed": batches of steps captured as CUDA graphs, and batches that replayed one
- * (0 on the CPU)}. It shows that work a scene does not
+ * handle's buffers hold on its backend now (GPU memory on CUDA, the CUDA context not counted);
+ * "step_graphs_captured", "step_graphs_replayed": batches of up to 16 steps captured as CUDA
+ * graphs, and batches that replayed one (0 on the CPU)}. It shows that work a scene does not
  * need is skipped: no list without pair terms, no energy between the steps that read it, no
  * particle data leaving the device while stepping.
  *
- * @param buffer  receives the text; 512 bytes always suffice.
- * @return STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_ARGUMENT if buffer is NULL or too small
- *         (the message gives the size needed).
+ * @param sim          the handle.
+ * @param[out] buffer  receives the text; 512 bytes always suffice.
+ * @param size         capacity of buffer in bytes.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_ARGUMENT if buffer is NULL or
+ *         too small (the message gives the size needed).
  */
 STRUCTMD_API structmd_status structmd_get_counters(structmd_sim* sim, char* buffer, size_t size);
+
+/** @} */
 
 #ifdef __cplusplus
 }

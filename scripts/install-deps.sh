@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev googletest
           lammps python3 python3-pip
+          doxygen  # the API reference rendered from include/structmd.h: test api_reference
           clang libclang-rt-dev libomp-dev)  # clang, libFuzzer and clang's OpenMP: scripts/fuzz.sh
 missing=()
 for p in "${packages[@]}"; do

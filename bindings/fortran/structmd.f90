@@ -9,8 +9,8 @@
 !>   allocatable Fortran characters.
 !> Every function that can fail returns the C status, an integer(c_int32_t) equal to one of the
 !> STRUCTMD_OK / STRUCTMD_ERR_* parameters below; structmd_last_error_f(sim) says why it failed.
-!> The constants mirror the #defines of the header; tests/hosts/check_fortran_binding.py checks that
-!> the two agree and that every C function has an interface here.
+!> The constants mirror the #defines of the header and the interfaces its prototypes;
+!> tests/api/test_fortran_binding.py checks them against the header, kind by kind.
 module structmd
   use, intrinsic :: iso_c_binding, only: c_ptr, c_associated, c_f_pointer, c_char, &
                                          c_null_char, c_int, c_int32_t, c_int64_t, c_size_t, c_double
