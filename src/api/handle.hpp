@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/logger.hpp"
-#include "simulation/engine_options.hpp"
+#include "engines/engine_options.hpp"
 #include "simulation/simulation.hpp"
 #include "structmd.h"
 

@@ -12,11 +12,11 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
     return with_handle(sim, [&](const structmd_sim& s) {
         nlohmann::json info;
         info["version"] = STRUCTMD_VERSION_STRING;
-        info["backend"] = s.options.backend;
-        info["precision"] = s.options.precision;
+        info["backend"] = name_of(s.options.backend);
+        info["precision"] = name_of(s.options.precision);
         info["loaded"] = static_cast<bool>(s.simulation);
         info["device"] = device_description(s.options);
-        info["threads"] = s.options.backend == "cpu" ? cpu_thread_count(s.options) : 0;
+        info["threads"] = s.options.backend == BackendKind::cpu ? cpu_thread_count(s.options) : 0;
         if (s.simulation) {
             info["particles"] = s.simulation->particle_count();
             info["final_step"] = s.simulation->final_step();

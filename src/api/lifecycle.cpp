@@ -5,8 +5,7 @@
 #include <sstream>
 
 #include "api/handle.hpp"
-#include "backends/backend_engines.hpp"
-#include "simulation/read_simulation.hpp"
+#include "engines/make_engine.hpp"
 
 namespace structmd::api {
 
@@ -17,22 +16,9 @@ std::string& thread_error() {
 
 namespace {
 
-std::unique_ptr<Simulation> make_engine(const structmd_sim& sim, SimulationSpec spec) {
-    const EngineOptions& o = sim.options;
-    if (o.backend == "cuda") {
-#ifdef STRUCTMD_HAVE_CUDA
-        return make_cuda_engine(o.precision, o.device, std::move(spec), sim.log);
-#else
-        throw Error(STRUCTMD_ERR_UNSUPPORTED, "this build of structmd has no CUDA backend");
-#endif
-    }
-    return make_cpu_engine(o.precision, o.threads, std::move(spec), sim.log);
-}
-
 void load_text(structmd_sim& sim, const std::string& text) {
     sim.simulation.reset();  // a failed load leaves no simulation, and the old one's memory is freed first
-    SimulationSpec spec = read_simulation(text, sim.log);
-    sim.simulation = make_engine(sim, std::move(spec));
+    sim.simulation = load_simulation(sim.options, text, sim.log);
     sim.log.info("loaded " + std::to_string(sim.simulation->particle_count()) + " particles on " +
                  sim.simulation->backend_name() + " (" + sim.simulation->device_name() + "), " +
                  sim.simulation->precision_name() + " precision");

@@ -46,7 +46,7 @@ public:
     // Prepares the terms active now: only their neighbour lists are kept up to date.
     void prepare(Particles<B, R>& p) {
         for (auto& it : interactors_)
-            if (it->active(p.step)) it->prepare(p);
+            if (it->active(p.timeline.evaluating_step())) it->prepare(p);
     }
     void invalidate_lists() {
         for (auto& list : lists_) list->invalidate();
@@ -63,19 +63,19 @@ public:
     // Adds the terms active at the particles' step; an inactive term costs nothing.
     void compute_all(Particles<B, R>& p, const ForceOutputs<R>& out) {
         for (auto& it : interactors_)
-            if (it->active(p.step)) it->compute(p, out);
+            if (it->active(p.timeline.evaluating_step())) it->compute(p, out);
     }
     // Adds only the active non-bonded pair terms.
     void compute_pairwise(Particles<B, R>& p, const ForceOutputs<R>& out) {
         for (auto& it : interactors_)
-            if (it->pairwise() && it->active(p.step)) {
+            if (it->pairwise() && it->active(p.timeline.evaluating_step())) {
                 it->prepare(p);
                 it->compute(p, out);
             }
     }
     void compute_one(int index, Particles<B, R>& p, const ForceOutputs<R>& out) {
         Interactor<B, R>& it = *interactors_[index];
-        if (!it.active(p.step)) return;
+        if (!it.active(p.timeline.evaluating_step())) return;
         it.prepare(p);
         it.compute(p, out);
     }

@@ -7,7 +7,7 @@
 #include <type_traits>
 
 #include "core/vec.hpp"
-#include "simulation/particles.hpp"
+#include "state/particles.hpp"
 
 namespace structmd {
 

@@ -4,7 +4,7 @@
 //   x += dt M F + sqrt(2 kT M dt) xi.
 #include "integrators/integrator.hpp"
 #include "integrators/thermal_noise.hpp"
-#include "simulation/fault.hpp"
+#include "state/fault.hpp"
 
 namespace structmd {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/parameters.hpp"
-#include "simulation/particles.hpp"
+#include "state/particles.hpp"
 
 namespace structmd {
 

@@ -7,7 +7,7 @@
 #include "integrators/integrator.hpp"
 #include "integrators/langevin_inputs.hpp"
 #include "integrators/thermal_noise.hpp"
-#include "simulation/fault.hpp"
+#include "state/fault.hpp"
 
 namespace structmd {
 

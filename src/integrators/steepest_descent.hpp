@@ -8,7 +8,7 @@
 
 #include "core/error.hpp"
 #include "integrators/integrator.hpp"
-#include "simulation/fault.hpp"
+#include "state/fault.hpp"
 
 namespace structmd {
 
@@ -89,7 +89,7 @@ public:
         forces.update_forces();
         const double largest = backend_.maximum(p.count, ForceMagnitude<R>{p.force.data(), this->scope().group});
         if (!std::isfinite(largest))
-            throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(p.step) +
+            throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(p.timeline.evaluating_step()) +
                                                     ": a force is not finite, steepest descent cannot move "
                                                     "(overlapping particles?)");
         if (largest < maxObjectiveForce_ || largest == 0.0) return;  // converged

@@ -7,7 +7,7 @@
 
 #include "core/random.hpp"
 #include "core/vec.hpp"
-#include "simulation/step_clock.hpp"
+#include "state/step_clock.hpp"
 
 namespace structmd {
 

@@ -51,6 +51,7 @@ public:
         offset_ += size;
     }
     bool at_end() const { return offset_ == bytes_.size(); }
+    size_t remaining() const { return bytes_.size() - offset_; }
     const std::string& path() const { return path_; }
 
 private:

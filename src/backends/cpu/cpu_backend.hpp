@@ -67,6 +67,7 @@ public:
     void synchronize() const {}
     // Steps run as they are issued: there are no launches to replay.
     void begin_steps() const {}
+    void begin_step() const {}
     void end_steps() const {}
     uint64_t graphs_captured() const { return 0; }
     uint64_t graphs_replayed() const { return 0; }

@@ -140,8 +140,20 @@ public:
         cuda_check(cudaStreamSynchronize(stream_), "running on the GPU");
     }
 
-    // Steps between begin_steps and end_steps run as one CUDA graph (see step_graphs.cuh).
-    void begin_steps() const { graphs_.open(); }
+    // The steps between begin_steps and end_steps run as CUDA graphs of kStepsPerGraph steps each
+    // (step_graphs.cuh); begin_step opens the next graph when one is full.
+    void begin_steps() const {
+        graphs_.open();
+        stepsInGraph_ = 0;
+    }
+    void begin_step() const {
+        if (stepsInGraph_ == kStepsPerGraph) {
+            graphs_.close(stream_);
+            graphs_.open();
+            stepsInGraph_ = 0;
+        }
+        ++stepsInGraph_;
+    }
     void end_steps() const { graphs_.close(stream_); }
     uint64_t graphs_captured() const { return graphs_.captured(); }
     uint64_t graphs_replayed() const { return graphs_.replayed(); }
@@ -262,6 +274,10 @@ public:
     int64_t memory_bytes() const { return memory_.bytes; }
 
 private:
+    // Enough steps to make the launch of a graph negligible, few enough that the graph stays small
+    // and the last, shorter batch of a call is cheap to capture.
+    static constexpr int kStepsPerGraph = 16;
+
     void issue_recorded() const {
         if (graphs_.recording()) graphs_.flush(stream_);
     }
@@ -282,6 +298,7 @@ private:
 
     int device_;
     mutable StepGraphs graphs_;
+    mutable int stepsInGraph_ = 0;
     mutable TransferCounters transfers_;
     mutable MemoryAccount memory_;
     int64_t residentThreads_ = 0;  // threads the device holds at once

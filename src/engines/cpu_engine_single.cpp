@@ -1,7 +1,6 @@
-// Engine<CpuBackend, float>, in a translation unit of its own so the two precisions compile in
-// parallel.
-#include "backends/backend_engines.hpp"
+// Engine<CpuBackend, float> (single precision), in a translation unit of its own.
 #include "backends/cpu/cpu_backend.hpp"
+#include "engines/engine_instances.hpp"
 #include "simulation/engine.hpp"
 
 namespace structmd {

@@ -1,7 +1,6 @@
-// Engine<CpuBackend, double, float>: state and sums in double, pair terms evaluated in single; in a
-// translation unit of its own so the precisions compile in parallel.
-#include "backends/backend_engines.hpp"
+// Engine<CpuBackend, double, float> (mixed precision), in a translation unit of its own.
 #include "backends/cpu/cpu_backend.hpp"
+#include "engines/engine_instances.hpp"
 #include "simulation/engine.hpp"
 
 namespace structmd {

@@ -1,7 +1,6 @@
-// Engine<CudaBackend, double, float>: state and sums in double, pair terms evaluated in single; in
-// a translation unit of its own so the precisions compile in parallel.
-#include "backends/backend_engines.hpp"
+// Engine<CudaBackend, double, float> (mixed precision), in a translation unit of its own.
 #include "backends/cuda/cuda_backend.cuh"
+#include "engines/engine_instances.hpp"
 #include "simulation/engine.hpp"
 
 namespace structmd {

@@ -5,14 +5,14 @@
 #include <string>
 
 #include "core/logger.hpp"
+#include "engines/engine_kind.hpp"
 
 namespace structmd {
 
 struct EngineOptions {
-    std::string backend = "cpu";  // resolved: "cpu" or "cuda"
+    BackendKind backend = BackendKind::cpu;  // "auto" resolved
     int device = 0;
-    // "single", "mixed" (state and sums in double, pair terms evaluated in single) or "double"
-    std::string precision = "single";
+    Precision precision = Precision::single;
     int threads = 0;  // 0: all the OpenMP runtime offers
     LogLevel logLevel = LogLevel::warning;
     std::string logFile;  // empty: standard error
@@ -22,8 +22,6 @@ struct EngineOptions {
 // for unknown keys or bad values, ERR_DEVICE / ERR_UNSUPPORTED when "cuda" cannot be had.
 EngineOptions parse_engine_options(const char* json);
 
-bool cuda_backend_compiled();
-int usable_gpu_count();
 
 // What the options run on, before any simulation is loaded.
 std::string device_description(const EngineOptions& options);

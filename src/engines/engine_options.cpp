@@ -1,34 +1,14 @@
-#include "simulation/engine_options.hpp"
+#include "engines/engine_options.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include "backends/backend_engines.hpp"
 #include "core/error.hpp"
+#include "engines/devices.hpp"
 
 namespace structmd {
 
-bool cuda_backend_compiled() {
-#ifdef STRUCTMD_HAVE_CUDA
-    return true;
-#else
-    return false;
-#endif
-}
-
-int usable_gpu_count() {
-#ifdef STRUCTMD_HAVE_CUDA
-    return cuda_device_count();
-#else
-    return 0;
-#endif
-}
-
 std::string device_description(const EngineOptions& options) {
-#ifdef STRUCTMD_HAVE_CUDA
-    if (options.backend == "cuda") return cuda_device_name(options.device);
-#endif
-    (void)options;
-    return "host CPU";
+    return options.backend == BackendKind::cuda ? gpu_name(options.device) : "host CPU";
 }
 
 int cpu_thread_count(const EngineOptions& options) {
@@ -74,9 +54,10 @@ EngineOptions parse_engine_options(const char* text) {
                 options.device = int_option(value, key, 0);
             } else if (key == "precision") {
                 const std::string precision = string_option(value, key);
-                if (precision != "single" && precision != "mixed" && precision != "double")
-                    throw option_error(key, "expected \"single\", \"mixed\" or \"double\", got \"" + precision + "\"");
-                options.precision = precision;
+                if (precision == "single") options.precision = Precision::single;
+                else if (precision == "mixed") options.precision = Precision::mixed;
+                else if (precision == "double") options.precision = Precision::double_;
+                else throw option_error(key, "expected \"single\", \"mixed\" or \"double\", got \"" + precision + "\"");
             } else if (key == "threads") {
                 options.threads = int_option(value, key, 1);
             } else if (key == "log") {
@@ -94,7 +75,7 @@ EngineOptions parse_engine_options(const char* text) {
         }
     }
     if (backend == "auto") {
-        options.backend = usable_gpu_count() > 0 ? "cuda" : "cpu";
+        options.backend = usable_gpu_count() > 0 ? BackendKind::cuda : BackendKind::cpu;
     } else if (backend == "cuda") {
         if (!cuda_backend_compiled())
             throw Error(STRUCTMD_ERR_UNSUPPORTED, "option \"backend\": this build of structmd has no CUDA backend");
@@ -103,9 +84,9 @@ EngineOptions parse_engine_options(const char* text) {
         if (options.device >= gpus)
             throw option_error("device", "GPU " + std::to_string(options.device) + " does not exist (found " +
                                              std::to_string(gpus) + ")");
-        options.backend = "cuda";
+        options.backend = BackendKind::cuda;
     } else {
-        options.backend = "cpu";
+        options.backend = BackendKind::cpu;
     }
     return options;
 }

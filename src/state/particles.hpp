@@ -6,8 +6,8 @@
 
 #include "core/box.hpp"
 #include "core/vec.hpp"
-#include "simulation/fault.hpp"
-#include "simulation/step_clock.hpp"
+#include "state/fault.hpp"
+#include "state/timeline.hpp"
 
 namespace structmd {
 
@@ -31,13 +31,11 @@ struct Particles {
     Buffer<int> model;  // modelId by particle
     Buffer<unsigned long long> fault;  // one word, kNoFault when all is well
     Buffer<StepClock> clock;           // one entry: the step and time on the backend
+    Timeline timeline;                 // the step and time, as the host knows them
     int64_t version = 0;               // changes whenever positions or the box change
-    int64_t step = 0;                  // the step being computed
-    double time = 0.0;                 // its simulation time
-    StepClock clockAtLaunch;           // what `clock` holds when the next kernel runs
     uint64_t seed = 0;                 // the system's seed, for counter-based noise
 
-    ClockView now() { return {clock.data(), step - clockAtLaunch.step, time - clockAtLaunch.time}; }
+    ClockView now() const { return timeline.view(clock.data()); }
     double maxMove2 = 1e300;           // see FaultSlot; no limit without neighbour lists
     // ahead = 1 in kernels that produce the next step's state before the engine moves on to it: a
     // fault is reported at the step whose state went wrong.

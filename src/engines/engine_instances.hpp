@@ -1,8 +1,7 @@
 #pragma once
-// Entry points of the compiled backends: each instantiates Engine<Backend, state real, pair real>
-// for single, mixed and double precision in its own translation unit (the CUDA one compiled by nvcc), so nothing else includes backend headers.
+// One factory per (backend, precision), each defined in a translation unit of its own
+// (cpu_engine_*.cpp, cuda_engine_*.cu) so the six compile in parallel; make_engine.cpp picks one.
 #include <memory>
-#include <string>
 
 #include "core/logger.hpp"
 #include "simulation/simulation.hpp"
@@ -10,19 +9,11 @@
 
 namespace structmd {
 
-// precision: "single", "mixed" or "double" (validated by the options).
-std::unique_ptr<Simulation> make_cpu_engine(const std::string& precision, int threads, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cpu_engine_single(int threads, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cpu_engine_mixed(int threads, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cpu_engine_double(int threads, SimulationSpec spec, const Logger& log);
-int cpu_default_threads();
-
-// Present only in builds with the CUDA backend (STRUCTMD_HAVE_CUDA).
-std::unique_ptr<Simulation> make_cuda_engine(const std::string& precision, int device, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cuda_engine_single(int device, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cuda_engine_mixed(int device, SimulationSpec spec, const Logger& log);
 std::unique_ptr<Simulation> make_cuda_engine_double(int device, SimulationSpec spec, const Logger& log);
-int cuda_device_count();
-std::string cuda_device_name(int device);
 
 }  // namespace structmd

@@ -1,7 +1,6 @@
-// Engine<CudaBackend, double>, in a translation unit of its own so the two precisions compile in
-// parallel.
-#include "backends/backend_engines.hpp"
+// Engine<CudaBackend, double> (double precision), in a translation unit of its own.
 #include "backends/cuda/cuda_backend.cuh"
+#include "engines/engine_instances.hpp"
 #include "simulation/engine.hpp"
 
 namespace structmd {

@@ -1,7 +1,6 @@
-// Engine<CudaBackend, float>, in a translation unit of its own so the two precisions compile in
-// parallel.
-#include "backends/backend_engines.hpp"
+// Engine<CudaBackend, float> (single precision), in a translation unit of its own.
 #include "backends/cuda/cuda_backend.cuh"
+#include "engines/engine_instances.hpp"
 #include "simulation/engine.hpp"
 
 namespace structmd {

@@ -1,0 +1,26 @@
+#include "engines/make_engine.hpp"
+
+#include "core/error.hpp"
+#include "engines/engine_instances.hpp"
+#include "simulation/read_simulation.hpp"
+
+namespace structmd {
+
+std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const std::string& text, const Logger& log) {
+    SimulationSpec spec = read_simulation(text, log);
+    if (options.backend == BackendKind::cuda) {
+        switch (options.precision) {
+            case Precision::single: return make_cuda_engine_single(options.device, std::move(spec), log);
+            case Precision::mixed: return make_cuda_engine_mixed(options.device, std::move(spec), log);
+            case Precision::double_: return make_cuda_engine_double(options.device, std::move(spec), log);
+        }
+    }
+    switch (options.precision) {
+        case Precision::single: return make_cpu_engine_single(options.threads, std::move(spec), log);
+        case Precision::mixed: return make_cpu_engine_mixed(options.threads, std::move(spec), log);
+        case Precision::double_: return make_cpu_engine_double(options.threads, std::move(spec), log);
+    }
+    throw Error(STRUCTMD_ERR_INTERNAL, "no engine for the options given");
+}
+
+}  // namespace structmd

@@ -1,0 +1,17 @@
+#pragma once
+// The composition root: the one place where an engine is built for a (backend, precision) pair.
+// Nothing above this layer includes a backend, and nothing below it chooses one.
+#include <memory>
+#include <string>
+
+#include "core/logger.hpp"
+#include "engines/engine_options.hpp"
+#include "simulation/simulation.hpp"
+
+namespace structmd {
+
+// Reads an input document and builds its engine as the options say. Throws Error with the JSON
+// path for bad input, ERR_DEVICE / ERR_MEMORY when the backend fails.
+std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const std::string& text, const Logger& log);
+
+}  // namespace structmd

@@ -1,0 +1,65 @@
+#pragma once
+// What is current: forces, per-particle energies and virials, each tagged with the positions
+// version (Particles::version) it was computed at. evaluate() brings the stale ones up to date in
+// one pass over the force field, so nothing is computed twice and energies and virials only when
+// someone asks.
+#include <cstdint>
+
+#include "forcefield/force_field.hpp"
+#include "simulation/engine_functors.hpp"
+#include "simulation/simulation.hpp"
+
+namespace structmd {
+
+template <class B, class R>
+class ForceCache {
+public:
+    // flags: ComputeFlags. Counts each evaluated quantity in `counters`.
+    void evaluate(unsigned flags, const B& backend, Particles<B, R>& p, ForceField<B, R>& forceField,
+                  Counters& counters) {
+        ForceOutputs<R> out;
+        if ((flags & kForces) && forces_ != p.version) {
+            backend.for_each(p.count, InitForces<R>{p.force.data(), p.externalForce.empty() ? nullptr
+                                                                                           : p.externalForce.data()});
+            out.force = p.force.data();
+        }
+        if ((flags & kEnergy) && energy_ != p.version) {
+            backend.resize(p.energy, p.count);
+            backend.fill(p.energy, R(0));
+            out.energy = p.energy.data();
+        }
+        if ((flags & kVirial) && virial_ != p.version) {
+            backend.resize(p.virial, p.count);
+            backend.fill(p.virial, zero_tensor<R>());
+            out.virial = p.virial.data();
+        }
+        if (!out.force && !out.energy && !out.virial) return;
+        forceField.prepare(p);
+        forceField.compute_all(p, out);
+        count(out, counters);
+        if (out.force) forces_ = p.version;
+        if (out.energy) energy_ = p.version;
+        if (out.virial) virial_ = p.version;
+    }
+
+    // The buffers were overwritten with something else (one term, the pair terms only).
+    void energy_overwritten() { energy_ = kStale; }
+    void virial_overwritten() { virial_ = kStale; }
+    // The external forces changed: forces must be computed again at the same positions.
+    void forces_changed() { forces_ = kStale; }
+    void invalidate() { forces_ = energy_ = virial_ = kStale; }
+
+    static void count(const ForceOutputs<R>& out, Counters& counters) {
+        counters.forceEvaluations += out.force != nullptr;
+        counters.energyEvaluations += out.energy != nullptr;
+        counters.virialEvaluations += out.virial != nullptr;
+    }
+
+private:
+    static constexpr int64_t kStale = -1;
+    int64_t forces_ = kStale;
+    int64_t energy_ = kStale;
+    int64_t virial_ = kStale;
+};
+
+}  // namespace structmd

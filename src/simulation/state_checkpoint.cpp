@@ -1,0 +1,91 @@
+#include "simulation/state_checkpoint.hpp"
+
+#include "core/error.hpp"
+#include "simulation/checkpoint_file.hpp"
+
+namespace structmd {
+
+namespace {
+
+template <class T>
+void put_vector(ByteWriter& out, const std::vector<T>& values) {
+    out.put_bytes(values.data(), values.size() * sizeof(T));
+}
+
+// A count read from the file is checked against what the file holds before anything is allocated.
+template <class T>
+std::vector<T> get_vector(ByteReader& in, size_t count) {
+    if (count > in.remaining() / sizeof(T))
+        throw Error(STRUCTMD_ERR_IO, "checkpoint '" + in.path() + "': the payload ends early");
+    std::vector<T> values(count);
+    in.get_bytes(values.data(), count * sizeof(T));
+    return values;
+}
+
+}  // namespace
+
+template <class R>
+std::vector<unsigned char> encode_state(const DynamicState<R>& s) {
+    ByteWriter out;
+    out.put(static_cast<uint32_t>(sizeof(R)));
+    out.put(static_cast<int64_t>(s.pos.size()));
+    out.put(s.firstStep);
+    out.put(s.step);
+    out.put(s.time);
+    out.put(s.activeStage);
+    for (double length : s.box) out.put(length);
+    put_vector(out, s.pos);
+    put_vector(out, s.image);
+    put_vector(out, s.vel);
+    out.put(static_cast<uint8_t>(!s.externalForce.empty()));
+    if (!s.externalForce.empty()) put_vector(out, s.externalForce);
+    for (const std::vector<double>& state : s.integrators) {
+        out.put(static_cast<uint32_t>(state.size()));
+        put_vector(out, state);
+    }
+    return out.bytes();
+}
+
+template <class R>
+DynamicState<R> decode_state(const std::vector<unsigned char>& payload, const std::string& path, const StateShape& shape) {
+    ByteReader in(payload, path);
+    const auto mismatch = [&](const std::string& what) {
+        return Error(STRUCTMD_ERR_IO, "checkpoint '" + path + "' does not fit this simulation: " + what);
+    };
+    const uint32_t realSize = in.get<uint32_t>();
+    if (realSize != sizeof(R))
+        throw mismatch(std::string("it was written in ") + (realSize == 4 ? "single" : "double") +
+                       " precision, this simulation runs in " + shape.precision);
+    const int64_t count = in.get<int64_t>();
+    if (count != shape.particles)
+        throw mismatch("it holds " + std::to_string(count) + " particles, this simulation " +
+                       std::to_string(shape.particles));
+    DynamicState<R> s;
+    s.firstStep = in.get<int64_t>();
+    if (s.firstStep != shape.firstStep)
+        throw mismatch("its schedule starts at step " + std::to_string(s.firstStep) + ", this one at " +
+                       std::to_string(shape.firstStep));
+    s.step = in.get<int64_t>();
+    s.time = in.get<double>();
+    s.activeStage = in.get<int32_t>();
+    for (double& length : s.box) length = in.get<double>();
+    if (s.step < shape.firstStep || s.step > shape.finalStep || s.activeStage < -1 || s.activeStage >= shape.stages ||
+        !(s.box[0] > 0 && s.box[1] > 0 && s.box[2] > 0))
+        throw mismatch("its step, schedule stage or box is out of range");
+    s.pos = get_vector<Real4<R>>(in, count);
+    s.image = get_vector<Image>(in, count);
+    s.vel = get_vector<Real4<R>>(in, count);
+    if (in.get<uint8_t>()) s.externalForce = get_vector<Real4<R>>(in, count);
+    s.integrators.resize(shape.integrators);
+    for (auto& state : s.integrators) state = get_vector<double>(in, in.get<uint32_t>());
+    if (!in.at_end()) throw mismatch("it has more data than this simulation's integrators hold");
+    return s;
+}
+
+template std::vector<unsigned char> encode_state<float>(const DynamicState<float>&);
+template std::vector<unsigned char> encode_state<double>(const DynamicState<double>&);
+template DynamicState<float> decode_state<float>(const std::vector<unsigned char>&, const std::string&, const StateShape&);
+template DynamicState<double> decode_state<double>(const std::vector<unsigned char>&, const std::string&,
+                                                   const StateShape&);
+
+}  // namespace structmd

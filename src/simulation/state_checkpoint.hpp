@@ -1,0 +1,44 @@
+#pragma once
+// The dynamic state a checkpoint holds, and its byte layout inside the checkpoint file
+// (checkpoint_file.hpp). Host code, compiled once per precision (state_checkpoint.cpp).
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/box.hpp"
+#include "core/vec.hpp"
+
+namespace structmd {
+
+template <class R>
+struct DynamicState {
+    int64_t firstStep = 0;  // where the schedule starts: a checkpoint fits only its own input
+    int64_t step = 0;
+    double time = 0.0;
+    int32_t activeStage = -1;
+    std::array<double, 3> box{};
+    std::vector<Real4<R>> pos, vel;
+    std::vector<Image> image;
+    std::vector<Real4<R>> externalForce;  // empty when the host set none
+    std::vector<std::vector<double>> integrators;
+};
+
+template <class R>
+std::vector<unsigned char> encode_state(const DynamicState<R>& state);
+
+// What the simulation a checkpoint is loaded into looks like; a checkpoint that does not fit it is
+// ERR_IO naming the path and the mismatch, before anything changes.
+struct StateShape {
+    std::string precision;  // "single", "mixed" or "double", for the message
+    int64_t particles = 0;
+    int64_t firstStep = 0;
+    int64_t finalStep = 0;
+    int stages = 0;
+    size_t integrators = 0;
+};
+
+template <class R>
+DynamicState<R> decode_state(const std::vector<unsigned char>& payload, const std::string& path, const StateShape& shape);
+
+}  // namespace structmd
