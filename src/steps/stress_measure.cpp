@@ -142,4 +142,29 @@ void StressMeasure::run(Simulation& sim) {
     file_.flush();
 }
 
+namespace {
+
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    const double radius = in.parameters.number("radiusCutOff");
+    const auto& box = in.system.box;
+    const double halfBox = 0.5 * std::min({box[0], box[1], box[2]});
+    if (radius >= halfBox) {
+        std::ostringstream what;
+        what << "radiusCutOff " << radius << " is not shorter than half the box (" << halfBox << ")";
+        throw input_error(in.parameters.path("radiusCutOff"), what.str());
+    }
+    return std::make_unique<StressMeasure>(in.name, in.interval(), in.start(), in.end(),
+                                           in.parameters.text("outputFilePath"), radius, in.members);
+}
+
+}  // namespace
+
+SimulationStepEntry stress_measure_entry() {
+    return {{"MechanicalMeasure", "StressMeasure"},
+            step_parameters({{"outputFilePath", StepValue::text, nullptr},
+                             {"radiusCutOff", StepValue::number, nullptr, Must::be_positive, "length",
+                              "shorter than half the shortest box edge"}}),
+            make};
+}
+
 }  // namespace structmd

@@ -48,4 +48,21 @@ void ThermodynamicMeasure::run(Simulation& sim) {
                                          "': " + std::strerror(errno));
 }
 
+namespace {
+
+// The measure covers the whole system: a group other than "All" is refused.
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    in.require_all_particles();
+    return std::make_unique<ThermodynamicMeasure>(in.name, in.interval(), in.start(), in.end(),
+                                                  in.parameters.text("outputFilePath"));
+}
+
+}  // namespace
+
+SimulationStepEntry thermodynamic_measure_entry() {
+    return {{"ThermodynamicMeasure", "ThermodynamicQuantityMeasure"},
+            step_parameters({{"outputFilePath", StepValue::text, nullptr}}),
+            make};
+}
+
 }  // namespace structmd

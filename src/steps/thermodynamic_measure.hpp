@@ -7,6 +7,7 @@
 #include <string>
 
 #include "steps/simulation_step.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
@@ -21,5 +22,7 @@ private:
     std::string outputPath_;
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
 };
+
+SimulationStepEntry thermodynamic_measure_entry();
 
 }  // namespace structmd
