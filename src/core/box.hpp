@@ -6,6 +6,10 @@
 
 namespace structmd {
 
+// The longest box edge accepted, from the input and from set_box alike: it keeps every count derived
+// from the box (cells of a grid, images) finite.
+inline constexpr double kLargestBoxLength = 1e15;
+
 // How many box lengths a particle has crossed along each axis since its position was set.
 struct Image {
     int x, y, z;

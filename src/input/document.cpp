@@ -6,6 +6,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/box.hpp"
 #include "core/error.hpp"
 #include "input/description.hpp"
 
@@ -18,10 +19,9 @@ using nlohmann::json;
 // reference does) seeds every random stream.
 constexpr uint64_t kDefaultSeed = 0x5EED;
 
-// Bounds that keep every derived count finite: cell grids of a box, the step counter after a whole
-// schedule, and the nesting the parser follows (deeper documents are junk, and building paths and
-// messages for them costs time and stack).
-constexpr double kLargestBoxLength = 1e15;
+// Bounds that keep every derived count finite: the step counter after a whole schedule, and the
+// nesting the parser follows (deeper documents are junk, and building paths and messages for them
+// costs time and stack). The box's bound, kLargestBoxLength, is in core/box.hpp.
 constexpr int64_t kLargestStepCount = 1000000000000000;
 constexpr size_t kDeepestNesting = 64;
 
