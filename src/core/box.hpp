@@ -76,8 +76,6 @@ struct Box {
         if (d < R(-0.5) * length) return d + length;
         return d;
     }
-
-    R volume() const { return length.x * length.y * length.z; }
 };
 
 }  // namespace structmd

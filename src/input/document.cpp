@@ -418,14 +418,12 @@ void read_structure(const TrackedNode& structure, SystemDescription& description
     description.mass.assign(n, 0.0);
     description.radius.assign(n, 0.0);
     description.charge.assign(n, 0.0);
-    description.resId.assign(n, 0);
-    description.chainId.assign(n, 0);
     description.modelId.assign(n, 0);
     description.batchId.assign(n, 0);
-    const std::pair<const char*, std::vector<int32_t>*> groupings[] = {{"resId", &description.resId},
-                                                                       {"chainId", &description.chainId},
-                                                                       {"modelId", &description.modelId},
-                                                                       {"batchId", &description.batchId}};
+    // UAMMD-structured files carry resId and chainId too; they must be integers, but no component
+    // reads them, so they are checked and dropped.
+    const std::pair<const char*, std::vector<int32_t>*> groupings[] = {
+        {"resId", nullptr}, {"chainId", nullptr}, {"modelId", &description.modelId}, {"batchId", &description.batchId}};
     for (size_t row = 0; row < table.rows(); ++row) {
         const auto id = static_cast<size_t>(idOfRow[row]);
         const TrackedNode typeCell = table.cell(row, "type");
@@ -438,8 +436,11 @@ void read_structure(const TrackedNode& structure, SystemDescription& description
         description.mass[id] = description.types[static_cast<size_t>(type)].mass;
         description.radius[id] = description.types[static_cast<size_t>(type)].radius;
         description.charge[id] = description.types[static_cast<size_t>(type)].charge;
-        for (const auto& [label, values] : groupings)
-            if (table.has(label)) (*values)[id] = table.cell(row, label).as<int32_t>();
+        for (const auto& [label, values] : groupings) {
+            if (!table.has(label)) continue;
+            const int32_t value = table.cell(row, label).as<int32_t>();
+            if (values) (*values)[id] = value;
+        }
     }
 }
 
