@@ -1,10 +1,19 @@
 #pragma once
 // Orthorhombic periodic box spanning [-L/2, L/2) in each direction.
+#include <algorithm>
 #include <cmath>
 
 #include "core/vec.hpp"
 
 namespace structmd {
+
+// The longest box edge accepted, from the input and from set_box alike: it keeps every count derived
+// from the box (cells of a grid, images) finite.
+inline constexpr double kLargestBoxLength = 1e15;
+
+// The minimum-image rule: a cutoff (of a pair term, of a measure's neighbourhood) must be shorter than
+// this, half the shortest edge, so that each pair is seen through one image only.
+inline double half_shortest_edge(double lx, double ly, double lz) { return 0.5 * std::min({lx, ly, lz}); }
 
 // How many box lengths a particle has crossed along each axis since its position was set.
 struct Image {
@@ -67,8 +76,6 @@ struct Box {
         if (d < R(-0.5) * length) return d + length;
         return d;
     }
-
-    R volume() const { return length.x * length.y * length.z; }
 };
 
 }  // namespace structmd

@@ -21,7 +21,6 @@ public:
     }
     void warning(const std::string& m) const { write(LogLevel::warning, m); }
     void info(const std::string& m) const { write(LogLevel::info, m); }
-    void debug(const std::string& m) const { write(LogLevel::debug, m); }
 
 private:
     LogLevel level_ = LogLevel::warning;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/box.hpp"
 #include "core/error.hpp"
 #include "input/description.hpp"
 
@@ -18,10 +19,9 @@ using nlohmann::json;
 // reference does) seeds every random stream.
 constexpr uint64_t kDefaultSeed = 0x5EED;
 
-// Bounds that keep every derived count finite: cell grids of a box, the step counter after a whole
-// schedule, and the nesting the parser follows (deeper documents are junk, and building paths and
-// messages for them costs time and stack).
-constexpr double kLargestBoxLength = 1e15;
+// Bounds that keep every derived count finite: the step counter after a whole schedule, and the
+// nesting the parser follows (deeper documents are junk, and building paths and messages for them
+// costs time and stack). The box's bound, kLargestBoxLength, is in core/box.hpp.
 constexpr int64_t kLargestStepCount = 1000000000000000;
 constexpr size_t kDeepestNesting = 64;
 
@@ -418,14 +418,12 @@ void read_structure(const TrackedNode& structure, SystemDescription& description
     description.mass.assign(n, 0.0);
     description.radius.assign(n, 0.0);
     description.charge.assign(n, 0.0);
-    description.resId.assign(n, 0);
-    description.chainId.assign(n, 0);
     description.modelId.assign(n, 0);
     description.batchId.assign(n, 0);
-    const std::pair<const char*, std::vector<int32_t>*> groupings[] = {{"resId", &description.resId},
-                                                                       {"chainId", &description.chainId},
-                                                                       {"modelId", &description.modelId},
-                                                                       {"batchId", &description.batchId}};
+    // UAMMD-structured files carry resId and chainId too; they must be integers, but no component
+    // reads them, so they are checked and dropped.
+    const std::pair<const char*, std::vector<int32_t>*> groupings[] = {
+        {"resId", nullptr}, {"chainId", nullptr}, {"modelId", &description.modelId}, {"batchId", &description.batchId}};
     for (size_t row = 0; row < table.rows(); ++row) {
         const auto id = static_cast<size_t>(idOfRow[row]);
         const TrackedNode typeCell = table.cell(row, "type");
@@ -438,8 +436,11 @@ void read_structure(const TrackedNode& structure, SystemDescription& description
         description.mass[id] = description.types[static_cast<size_t>(type)].mass;
         description.radius[id] = description.types[static_cast<size_t>(type)].radius;
         description.charge[id] = description.types[static_cast<size_t>(type)].charge;
-        for (const auto& [label, values] : groupings)
-            if (table.has(label)) (*values)[id] = table.cell(row, label).as<int32_t>();
+        for (const auto& [label, values] : groupings) {
+            if (!table.has(label)) continue;
+            const int32_t value = table.cell(row, label).as<int32_t>();
+            if (values) (*values)[id] = value;
+        }
     }
 }
 

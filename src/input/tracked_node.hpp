@@ -89,7 +89,6 @@ public:
     bool has(const std::string& label) const;
     // The cell of a row under a label; the label must be present (has()).
     TrackedNode cell(size_t row, const std::string& label) const;
-    const std::string& path() const { return entry_.path(); }
     TrackedNode row(size_t row) const;
 
 private:

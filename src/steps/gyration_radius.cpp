@@ -41,4 +41,19 @@ void GyrationRadius::run(Simulation& sim) {
     file_.flush();
 }
 
+namespace {
+
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    return std::make_unique<GyrationRadius>(in.name, in.interval(), in.start(), in.end(),
+                                            in.parameters.text("outputFilePath"), in.members);
+}
+
+}  // namespace
+
+SimulationStepEntry gyration_radius_entry() {
+    return {{"GeometricalMeasure", "GyrationRadius"},
+            step_parameters({{"outputFilePath", StepValue::text, nullptr}}),
+            make};
+}
+
 }  // namespace structmd

@@ -8,6 +8,7 @@
 
 #include "steps/measure_file.hpp"
 #include "steps/simulation_step.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
@@ -24,5 +25,7 @@ private:
     MeasureFile file_;
     std::vector<uint8_t> members_;
 };
+
+SimulationStepEntry gyration_radius_entry();
 
 }  // namespace structmd

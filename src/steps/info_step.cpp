@@ -44,4 +44,15 @@ void InfoStep::run(Simulation& sim) {
     previous_ = now;
 }
 
+namespace {
+
+// The log line is about the whole run, so a group, which must exist, changes nothing.
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    return std::make_unique<InfoStep>(in.name, in.interval(), in.start(), in.end(), in.log, in.system.currentStep);
+}
+
+}  // namespace
+
+SimulationStepEntry info_step_entry() { return {{"UtilsStep", "InfoStep"}, step_parameters({}), make}; }
+
 }  // namespace structmd

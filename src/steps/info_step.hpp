@@ -7,6 +7,7 @@
 
 #include "core/logger.hpp"
 #include "steps/simulation_step.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
@@ -28,5 +29,7 @@ private:
     int64_t scheduleStart_;
     std::optional<Mark> previous_;
 };
+
+SimulationStepEntry info_step_entry();
 
 }  // namespace structmd

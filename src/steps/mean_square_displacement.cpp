@@ -29,4 +29,19 @@ void MeanSquareDisplacement::run(Simulation& sim) {
     file_.flush();
 }
 
+namespace {
+
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    return std::make_unique<MeanSquareDisplacement>(in.name, in.interval(), in.start(), in.end(),
+                                                    in.parameters.text("outputFilePath"), in.members);
+}
+
+}  // namespace
+
+SimulationStepEntry mean_square_displacement_entry() {
+    return {{"GeometricalMeasure", "MeanSquareDisplacement"},
+            step_parameters({{"outputFilePath", StepValue::text, nullptr}}),
+            make};
+}
+
 }  // namespace structmd

@@ -8,6 +8,7 @@
 
 #include "steps/measure_file.hpp"
 #include "steps/simulation_step.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
@@ -25,5 +26,7 @@ private:
     std::vector<uint8_t> members_;
     std::vector<double> reference_;  // unwrapped positions at the first firing; empty before it
 };
+
+SimulationStepEntry mean_square_displacement_entry();
 
 }  // namespace structmd

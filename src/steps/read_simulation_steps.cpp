@@ -1,11 +1,10 @@
 #include "steps/read_simulation_steps.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 #include "core/error.hpp"
+#include "input/read_parameters.hpp"
 #include "steps/gyration_radius.hpp"
 #include "steps/info_step.hpp"
 #include "steps/mean_square_displacement.hpp"
@@ -15,144 +14,164 @@
 
 namespace structmd {
 
+const Registry<SimulationStepEntry>& simulation_step_registry() {
+    static const Registry<SimulationStepEntry> registry = [] {
+        Registry<SimulationStepEntry> steps;
+        // Every simulation step the engine knows, one line each, in the order the docs list them.
+        steps.add(thermodynamic_measure_entry());
+        steps.add(info_step_entry());
+        steps.add(mean_square_displacement_entry());
+        steps.add(gyration_radius_entry());
+        steps.add(stress_measure_entry());
+        steps.add(write_step_entry());
+        return steps;
+    }();
+    return registry;
+}
+
+std::vector<StepParameter> step_parameters(std::initializer_list<StepParameter> own) {
+    std::vector<StepParameter> parameters = {
+        {"intervalStep", StepValue::integer, nullptr, Must::be_positive, "steps"},
+        {"startStep", StepValue::integer, int64_t{0}, Must::be_finite, "steps"},
+        {"endStep", StepValue::integer, std::numeric_limits<int64_t>::max(), Must::be_finite, "steps",
+         "the step fires for startStep <= step <= endStep; by default to the end of the run"},
+        {"group", StepValue::text, "All", Must::be_finite, "",
+         "the name of a [\"Groups\",\"GroupsList\"] group, or \"All\""},
+    };
+    parameters.insert(parameters.end(), own.begin(), own.end());
+    return parameters;
+}
+
 namespace {
 
-struct StepContext {
-    const input::SystemDescription& system;
-    const std::vector<GroupSpec>& groups;
-    const Logger& log;
-};
-
-// The parameters every simulation step shares.
-struct CommonParameters {
-    input::TrackedNode params;
-    std::string path;  // of the parameters object
-    int64_t interval = 0;
-    int64_t start = 0;
-    int64_t end = 0;
-    std::string group;             // "All" unless given
-    std::vector<uint8_t> members;  // by particle id; empty for "All"
-};
-
-CommonParameters read_common(const input::ComponentEntry& entry, const StepContext& context) {
-    CommonParameters common;
-    common.params = entry.node.at("parameters");
-    common.path = common.params.path();
-    common.interval = common.params.get<int64_t>("intervalStep");
-    if (common.interval <= 0) throw input_error(common.path + ".intervalStep", "expected a positive integer");
-    common.start = common.params.get_or<int64_t>("startStep", 0);
-    common.end = common.params.get_or<int64_t>("endStep", std::numeric_limits<int64_t>::max());
-    common.group = common.params.get_or<std::string>("group", "All");
-    if (common.group != "All") {
-        auto found = std::find_if(context.groups.begin(), context.groups.end(),
-                                  [&](const GroupSpec& g) { return g.name == common.group; });
-        if (found == context.groups.end())
-            throw input_error(common.path + ".group", "no group named '" + common.group +
-                                                          "' (define it in a [\"Groups\", \"GroupsList\"] entry)");
-        common.members = found->members;
+const char* kind_text(StepValue kind) {
+    switch (kind) {
+        case StepValue::integer: return "integer";
+        case StepValue::number: return "number";
+        case StepValue::text: return "text";
+        case StepValue::flag: return "flag";
     }
-    return common;
+    return "?";
 }
 
-// For steps that describe the whole system and cannot restrict themselves to a group.
-void require_all_particles(const CommonParameters& common) {
-    if (common.group != "All")
-        throw Error(STRUCTMD_ERR_UNSUPPORTED, common.path + ".group: this step measures the whole system; a group "
-                                                            "other than \"All\" is not supported");
-}
-
-std::unique_ptr<SimulationStep> read_thermodynamic_measure(const input::ComponentEntry& entry,
-                                                           const StepContext& context) {
-    const CommonParameters common = read_common(entry, context);
-    require_all_particles(common);
-    return std::make_unique<ThermodynamicMeasure>(entry.name, common.interval, common.start, common.end,
-                                                  common.params.get<std::string>("outputFilePath"));
-}
-
-// The log line is about the whole run, so a group, which must exist, changes nothing.
-std::unique_ptr<SimulationStep> read_info_step(const input::ComponentEntry& entry, const StepContext& context) {
-    const CommonParameters common = read_common(entry, context);
-    return std::make_unique<InfoStep>(entry.name, common.interval, common.start, common.end, context.log,
-                                      context.system.currentStep);
-}
-
-std::unique_ptr<SimulationStep> read_mean_square_displacement(const input::ComponentEntry& entry,
-                                                              const StepContext& context) {
-    CommonParameters common = read_common(entry, context);
-    return std::make_unique<MeanSquareDisplacement>(entry.name, common.interval, common.start, common.end,
-                                                    common.params.get<std::string>("outputFilePath"),
-                                                    std::move(common.members));
-}
-
-std::unique_ptr<SimulationStep> read_gyration_radius(const input::ComponentEntry& entry, const StepContext& context) {
-    CommonParameters common = read_common(entry, context);
-    return std::make_unique<GyrationRadius>(entry.name, common.interval, common.start, common.end,
-                                            common.params.get<std::string>("outputFilePath"),
-                                            std::move(common.members));
-}
-
-std::unique_ptr<SimulationStep> read_stress_measure(const input::ComponentEntry& entry, const StepContext& context) {
-    CommonParameters common = read_common(entry, context);
-    const std::string output = common.params.get<std::string>("outputFilePath");
-    const double radius = common.params.get<double>("radiusCutOff");
-    const std::string radiusPath = common.path + ".radiusCutOff";
-    if (!(radius > 0.0) || !std::isfinite(radius)) throw input_error(radiusPath, "expected a positive length");
-    const auto& box = context.system.box;
-    const double halfBox = 0.5 * std::min({box[0], box[1], box[2]});
-    if (radius >= halfBox) {
-        std::ostringstream what;
-        what << "radiusCutOff " << radius << " is not shorter than half the box (" << halfBox << ")";
-        throw input_error(radiusPath, what.str());
+// The rule of a number, checked after its kind: "expected a positive integer", "... length", ...
+void check_rule(const input::TrackedNode& node, const StepParameter& parameter, double value) {
+    const std::string what = parameter.kind == StepValue::integer ? "integer"
+                             : *parameter.units                   ? parameter.units
+                                                                  : "number";
+    if (!std::isfinite(value)) throw input_error(node.path(), "expected a finite " + what);
+    switch (parameter.must) {
+        case Must::be_finite: break;
+        case Must::be_positive:
+            if (!(value > 0.0)) throw input_error(node.path(), "expected a positive " + what);
+            break;
+        case Must::be_non_negative:
+            if (!(value >= 0.0)) throw input_error(node.path(), "expected a " + what + " >= 0");
+            break;
+        case Must::be_integer:
+            if (value != std::floor(value)) throw input_error(node.path(), "expected an integer");
+            break;
+        case Must::be_at_least_one:
+            if (!(value >= 1.0)) throw input_error(node.path(), "expected a " + what + " >= 1");
+            break;
     }
-    return std::make_unique<StressMeasure>(entry.name, common.interval, common.start, common.end, output, radius,
-                                           std::move(common.members));
 }
 
-std::unique_ptr<SimulationStep> read_write_step(const input::ComponentEntry& entry, const StepContext& context) {
-    CommonParameters common = read_common(entry, context);
-    return make_write_step(entry.name, common.params, common.interval, common.start, common.end,
-                           std::move(common.members), context.system);
+nlohmann::json read_value(const input::TrackedNode& node, const StepParameter& parameter) {
+    switch (parameter.kind) {
+        case StepValue::integer: {
+            const int64_t value = node.as<int64_t>();
+            check_rule(node, parameter, static_cast<double>(value));
+            return value;
+        }
+        case StepValue::number: {
+            const double value = node.as<double>();
+            check_rule(node, parameter, value);
+            return value;
+        }
+        case StepValue::text: return node.as<std::string>();
+        case StepValue::flag: return node.as<bool>();
+    }
+    throw Error(STRUCTMD_ERR_INTERNAL, node.path() + ": parameter of no known kind");
 }
-
-using StepReader = std::unique_ptr<SimulationStep> (*)(const input::ComponentEntry&, const StepContext&);
-
-struct RegisteredStep {
-    const char* cls;
-    const char* subclass;
-    StepReader read;
-};
-
-// Every simulation step the engine knows, one line each.
-const RegisteredStep kRegistry[] = {
-    {"ThermodynamicMeasure", "ThermodynamicQuantityMeasure", read_thermodynamic_measure},
-    {"UtilsStep", "InfoStep", read_info_step},
-    {"GeometricalMeasure", "MeanSquareDisplacement", read_mean_square_displacement},
-    {"GeometricalMeasure", "GyrationRadius", read_gyration_radius},
-    {"MechanicalMeasure", "StressMeasure", read_stress_measure},
-    {"WriteStep", "WriteStep", read_write_step},
-};
 
 }  // namespace
+
+StepParameters::StepParameters(const input::TrackedNode& entry, const std::vector<StepParameter>& schema)
+    : entryPath_(entry.path()) {
+    const input::TrackedNode params = input::parameters_of(entry);
+    for (const StepParameter& parameter : schema) {
+        const auto node = params.valid() ? params.find(parameter.name) : std::nullopt;
+        if (node)
+            values_.push_back({&parameter, read_value(*node, parameter)});
+        else if (parameter.required())
+            throw input_error(path(parameter.name), "missing required parameter");
+        else
+            values_.push_back({&parameter, parameter.fallback});
+    }
+}
+
+const StepParameters::Value* StepParameters::find(const std::string& name) const {
+    for (const Value& value : values_)
+        if (name == value.parameter->name) return &value;
+    return nullptr;
+}
+
+const nlohmann::json& StepParameters::value(const std::string& name, StepValue kind) const {
+    const Value* found = find(name);
+    if (!found)
+        throw Error(STRUCTMD_ERR_INTERNAL, path(name) + ": read by the step but not declared in its registry entry");
+    if (found->parameter->kind != kind)
+        throw Error(STRUCTMD_ERR_INTERNAL,
+                    path(name) + ": declared as " + kind_text(found->parameter->kind) + ", read as " + kind_text(kind));
+    return found->value;
+}
+
+int64_t StepParameters::integer(const std::string& name) const {
+    return value(name, StepValue::integer).get<int64_t>();
+}
+double StepParameters::number(const std::string& name) const { return value(name, StepValue::number).get<double>(); }
+std::string StepParameters::text(const std::string& name) const {
+    return value(name, StepValue::text).get<std::string>();
+}
+bool StepParameters::flag(const std::string& name) const { return value(name, StepValue::flag).get<bool>(); }
+std::string StepParameters::path(const std::string& name) const { return entryPath_ + ".parameters." + name; }
+
+void StepInput::require_all_particles() const {
+    if (group != -1)
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, parameters.path("group") +
+                                                  ": this step measures the whole system; a group other than "
+                                                  "\"All\" is not supported");
+}
+
+std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registry<SimulationStepEntry>& registry,
+                                                                   const input::SystemDescription& system,
+                                                                   const std::vector<GroupSpec>& groups,
+                                                                   const Logger& log) {
+    static const std::vector<uint8_t> everyParticle;
+    std::vector<std::unique_ptr<SimulationStep>> steps;
+    for (const input::ComponentEntry& entry : system.simulationSteps) {
+        const SimulationStepEntry& step =
+            registry.at({entry.cls, entry.subclass}, entry.node.path() + ".type", "simulation step");
+        const StepParameters parameters(entry.node, step.parameters);
+        const int group =
+            parameters.declares("group") ? group_index(groups, parameters.text("group"), parameters.path("group")) : -1;
+        const StepInput input{entry.name,
+                              entry.node.path(),
+                              parameters,
+                              group,
+                              group < 0 ? everyParticle : groups[static_cast<size_t>(group)].members,
+                              system,
+                              log};
+        steps.push_back(step.make(input));
+    }
+    return steps;
+}
 
 std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const input::SystemDescription& system,
                                                                    const std::vector<GroupSpec>& groups,
                                                                    const Logger& log) {
-    const StepContext context{system, groups, log};
-    std::vector<std::unique_ptr<SimulationStep>> steps;
-    for (const input::ComponentEntry& entry : system.simulationSteps) {
-        const auto registered = std::find_if(std::begin(kRegistry), std::end(kRegistry), [&](const RegisteredStep& r) {
-            return entry.cls == r.cls && entry.subclass == r.subclass;
-        });
-        if (registered == std::end(kRegistry)) {
-            std::string known;
-            for (const RegisteredStep& r : kRegistry)
-                known += std::string(known.empty() ? "" : ", ") + "[\"" + r.cls + "\", \"" + r.subclass + "\"]";
-            throw input_error(entry.node.path() + ".type", "unknown simulation step [\"" + entry.cls + "\", \"" +
-                                                               entry.subclass + "\"]; known: " + known);
-        }
-        steps.push_back(registered->read(entry, context));
-    }
-    return steps;
+    return read_simulation_steps(simulation_step_registry(), system, groups, log);
 }
 
 }  // namespace structmd

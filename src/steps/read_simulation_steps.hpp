@@ -6,13 +6,21 @@
 #include "forcefield/forcefield_spec.hpp"
 #include "input/description.hpp"
 #include "steps/simulation_step.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
-// Builds the simulationStep entries. groups: those of the force field, which a step's `group` names;
-// log: the handle's log, which ["UtilsStep","InfoStep"] writes to. Throws Error(ERR_INPUT) naming the
-// path for an unknown step, a bad parameter or an unknown group, and Error(ERR_UNSUPPORTED) for a
-// group on a step that cannot restrict itself to one.
+// Builds the simulationStep entries from the steps of `registry`. groups: those of the force field,
+// which a step's `group` names; log: the handle's log, which ["UtilsStep","InfoStep"] writes to.
+// Throws Error(ERR_INPUT) naming the path for an unknown step (<entry>.type, with the known ones), a
+// bad or missing parameter (<entry>.parameters.<name>) or an unknown group, and Error(ERR_UNSUPPORTED)
+// for a group on a step that cannot restrict itself to one.
+std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registry<SimulationStepEntry>& registry,
+                                                                   const input::SystemDescription& system,
+                                                                   const std::vector<GroupSpec>& groups,
+                                                                   const Logger& log);
+
+// The same with the built-in steps (simulation_step_registry()).
 std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const input::SystemDescription& system,
                                                                    const std::vector<GroupSpec>& groups,
                                                                    const Logger& log);

@@ -20,6 +20,7 @@
 
 #include "steps/measure_file.hpp"
 #include "steps/simulation_step.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
@@ -42,5 +43,7 @@ private:
 // half of every box edge, so each pair is seen once, through its minimum image.
 std::vector<double> neighbour_volumes(const std::vector<double>& xyz, const std::array<double, 3>& box,
                                       double radiusCutOff);
+
+SimulationStepEntry stress_measure_entry();
 
 }  // namespace structmd

@@ -1,12 +1,13 @@
 #pragma once
 // ["ThermodynamicMeasure","ThermodynamicQuantityMeasure"]: one line per firing with step, particle
 // number, volume, the energy of each forceField entry (alphabetical), kinetic, potential and total
-// energy, temperature T = 2K / (3 N k_B), the virial trace and the pressure.
-#include <cstdio>
-#include <memory>
+// energy, temperature T = 2K / (3 N k_B), the virial trace and the pressure (core/thermodynamics.hpp).
+#include <optional>
 #include <string>
 
+#include "steps/measure_file.hpp"
 #include "steps/simulation_step.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
@@ -19,7 +20,9 @@ protected:
 
 private:
     std::string outputPath_;
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
+    std::optional<MeasureFile> file_;  // made at the first firing, when the energy terms are known
 };
+
+SimulationStepEntry thermodynamic_measure_entry();
 
 }  // namespace structmd

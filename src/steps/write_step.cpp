@@ -66,26 +66,36 @@ std::string known_formats() {
     return list;
 }
 
-}  // namespace
-
-std::unique_ptr<SimulationStep> make_write_step(const std::string& name, const input::TrackedNode& params,
-                                                int64_t interval, int64_t start, int64_t end,
-                                                std::vector<uint8_t> members, const input::SystemDescription& system) {
-    const input::TrackedNode formatNode = params.at("outputFormat");
-    const std::string format = formatNode.as<std::string>();
-
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    const std::string format = in.parameters.text("outputFormat");
     TrajectoryOptions options;
-    options.path = params.get<std::string>("outputFilePath") + "." + format;
-    options.owner = "simulationStep." + name;
-    options.append = params.get_or<bool>("append", false);
-    options.interval = interval;
-    options.timeStep = first_time_step(system);
-    const bool wrapped = params.get_or<bool>("pbc", true);
+    options.path = in.parameters.text("outputFilePath") + "." + format;
+    options.owner = in.path;
+    options.append = in.parameters.flag("append");
+    options.interval = in.interval();
+    options.timeStep = first_time_step(in.system);
 
     std::unique_ptr<TrajectoryWriter> writer = make_trajectory_writer(format, std::move(options));
     if (!writer)
-        throw input_error(formatNode.path(), "unknown output format '" + format + "'; known: " + known_formats());
-    return std::make_unique<WriteStep>(name, interval, start, end, wrapped, std::move(members), std::move(writer));
+        throw input_error(in.parameters.path("outputFormat"),
+                          "unknown output format '" + format + "'; known: " + known_formats());
+    return std::make_unique<WriteStep>(in.name, in.interval(), in.start(), in.end(), in.parameters.flag("pbc"),
+                                       in.members, std::move(writer));
+}
+
+}  // namespace
+
+SimulationStepEntry write_step_entry() {
+    return {{"WriteStep", "WriteStep"},
+            step_parameters({{"outputFilePath", StepValue::text, nullptr, Must::be_finite, "",
+                              "the file written is <outputFilePath>.<outputFormat>"},
+                             {"outputFormat", StepValue::text, nullptr, Must::be_finite, "",
+                              "a trajectory format (trajectory_formats()), which is also the extension"},
+                             {"pbc", StepValue::flag, true, Must::be_finite, "",
+                              "true: positions wrapped into the box; false: unwrapped"},
+                             {"append", StepValue::flag, false, Must::be_finite, "",
+                              "extend an existing file instead of replacing it"}}),
+            make};
 }
 
 }  // namespace structmd

@@ -7,6 +7,7 @@
 
 #include "input/description.hpp"
 #include "steps/simulation_step.hpp"
+#include "steps/simulation_step_registry.hpp"
 #include "steps/trajectory_writer.hpp"
 
 namespace structmd {
@@ -31,11 +32,8 @@ private:
     TrajectoryFrame frame_;
 };
 
-// Builds the step from its parameters object once the shared ones (intervalStep, startStep, endStep,
-// group) are read: outputFilePath, outputFormat, pbc and append. Throws Error(ERR_INPUT) naming
-// parameters.outputFormat, with the known formats, for an unknown one.
-std::unique_ptr<SimulationStep> make_write_step(const std::string& name, const input::TrackedNode& params,
-                                                int64_t interval, int64_t start, int64_t end,
-                                                std::vector<uint8_t> members, const input::SystemDescription& system);
+// The registry's entry: outputFilePath, outputFormat (an unknown one is an input error naming
+// parameters.outputFormat, with the known formats), pbc and append beside the shared parameters.
+SimulationStepEntry write_step_entry();
 
 }  // namespace structmd

@@ -231,6 +231,26 @@ TEST(Document, StructureMissingUnknownOrDuplicatedId) {
                         "(first at topology.structure.data[0])"});
 }
 
+// UAMMD-structured files carry resId and chainId; they are accepted when they are integers (nothing
+// uses them), while modelId and batchId are kept.
+TEST(Document, StructureGroupingColumns) {
+    json document = valid_document();
+    document["topology"]["structure"] = {{"labels", {"id", "type", "resId", "chainId", "modelId", "batchId"}},
+                                         {"data", {{0, "A", 4, 1, 0, 2}, {1, "B", 5, 1, 1, 0}, {2, "B", 6, 2, 1, 1}}}};
+    const ParsedDocument parsed = parse_document(document.dump());
+    EXPECT_EQ(parsed.system.modelId, (std::vector<int32_t>{0, 1, 1}));
+    EXPECT_EQ(parsed.system.batchId, (std::vector<int32_t>{2, 0, 1}));
+    consume_components(parsed);
+    EXPECT_NO_THROW(parsed.root.check_all_used());
+
+    for (const char* label : {"resId", "chainId"}) {
+        json bad = valid_document();
+        bad["topology"]["structure"] = {{"labels", {"id", "type", label}},
+                                        {"data", {{0, "A", 0}, {1, "B", "x"}, {2, "B", 0}}}};
+        expect_input_error(bad, {"topology.structure.data[1][2]: expected a 32-bit integer"});
+    }
+}
+
 TEST(Document, BoxLengthsMustBePositive) {
     json document = valid_document();
     document["global"]["ensemble"]["data"][0][0] = {10, -20, 30};

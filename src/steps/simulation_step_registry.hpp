@@ -1,0 +1,99 @@
+#pragma once
+// The simulation steps the engine knows, one registry entry each: the key ["Class","SubClass"], every
+// parameter the step reads (the shared intervalStep, startStep, endStep and group included) with its
+// kind, default, units and rule, and the factory that builds the step from the values read. The
+// reader (read_simulation_steps), the docs check and structmd_get_info iterate the registry, and a
+// step's factory can only read the parameters its entry declares. A new step is its class file (with
+// its entry function) and one line in simulation_step_registry().
+#include <cstdint>
+#include <initializer_list>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/logger.hpp"
+#include "core/parameters.hpp"
+#include "core/registry.hpp"
+#include "input/description.hpp"
+#include "steps/simulation_step.hpp"
+
+namespace structmd {
+
+// What a step parameter holds in JSON.
+enum class StepValue { integer, number, text, flag };
+
+struct StepParameter {
+    const char* name;
+    StepValue kind;
+    nlohmann::json fallback;      // the value an absent parameter takes; null: required
+    Must must = Must::be_finite;  // integers and numbers: the rule checked on reading
+    const char* units = "";       // what the number measures ("steps", "length"), for docs and messages
+    const char* note = "";        // rules the factory checks beyond `must`, for the docs
+
+    bool required() const { return fallback.is_null(); }
+};
+
+// The values of a step entry's parameters, read and checked against its schema. Asking for a
+// parameter the schema does not declare, or as another kind, is an internal error.
+class StepParameters {
+public:
+    // Reads every parameter of `schema` from the "parameters" object of `entry`. An absent required
+    // parameter is an input error at <entry>.parameters.<name>, as is a value of the wrong kind or
+    // one that breaks its rule.
+    StepParameters(const input::TrackedNode& entry, const std::vector<StepParameter>& schema);
+
+    bool declares(const std::string& name) const { return find(name) != nullptr; }
+    int64_t integer(const std::string& name) const;
+    double number(const std::string& name) const;
+    std::string text(const std::string& name) const;
+    bool flag(const std::string& name) const;
+    // <entry>.parameters.<name>, for the factory's own messages.
+    std::string path(const std::string& name) const;
+
+private:
+    struct Value {
+        const StepParameter* parameter;
+        nlohmann::json value;
+    };
+    const Value* find(const std::string& name) const;
+    const nlohmann::json& value(const std::string& name, StepValue kind) const;
+
+    std::string entryPath_;
+    std::vector<Value> values_;
+};
+
+// What a factory builds its step from.
+struct StepInput {
+    const std::string& name;  // the entry's key
+    const std::string& path;  // the entry's JSON path, "simulationStep.<name>"
+    const StepParameters& parameters;
+    int group;                            // the `group` parameter's index in the force field's groups; -1: "All"
+    const std::vector<uint8_t>& members;  // that group's members by particle id; empty for "All"
+    const input::SystemDescription& system;
+    const Logger& log;
+
+    int64_t interval() const { return parameters.integer("intervalStep"); }
+    int64_t start() const { return parameters.integer("startStep"); }
+    int64_t end() const { return parameters.integer("endStep"); }
+    // For a step that measures the whole system: ERR_UNSUPPORTED at <path>.group unless it is "All".
+    void require_all_particles() const;
+};
+
+using StepFactory = std::unique_ptr<SimulationStep> (*)(const StepInput&);
+
+struct SimulationStepEntry {
+    ComponentKey key;
+    std::vector<StepParameter> parameters;  // every parameter the step reads, in the order read
+    StepFactory make;
+};
+
+// The parameters every step reads (intervalStep, startStep, endStep, group) followed by its own.
+std::vector<StepParameter> step_parameters(std::initializer_list<StepParameter> own);
+
+// The built-in steps. A handle that adds steps at run time copies it and passes its copy to
+// read_simulation_steps.
+const Registry<SimulationStepEntry>& simulation_step_registry();
+
+}  // namespace structmd
