@@ -4,6 +4,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-bash scripts/build.sh
+STRUCTMD_TARGETS=structmd_launcher bash scripts/build.sh
 cd examples
 ../build/src/launcher/structmd run lj_liquid.json "$@"

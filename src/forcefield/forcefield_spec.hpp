@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/box.hpp"
 #include "core/error.hpp"
 #include "core/parameters.hpp"
 #include "core/registry.hpp"
@@ -35,7 +36,7 @@ inline int group_index(const std::vector<GroupSpec>& groups, const std::string& 
 // The one rule between pair terms and the box: minimum images are exact only for interactions
 // shorter than half the shortest box length.
 inline bool cutoff_fits_box(double cutoff, const std::array<double, 3>& box) {
-    return cutoff < 0.5 * std::min({box[0], box[1], box[2]});
+    return cutoff < half_shortest_edge(box[0], box[1], box[2]);
 }
 
 // What every interaction entry shares: its name, where it was read, which component it is, when it

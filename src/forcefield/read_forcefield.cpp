@@ -235,7 +235,7 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
         std::ostringstream what;
         what.precision(17);  // a box just below 2 r_c must not print as if it were 2 r_c
         what << "cutoff " << pair.cutoff << " is not shorter than half the box ("
-             << 0.5 * std::min({system.box[0], system.box[1], system.box[2]}) << ")";
+             << half_shortest_edge(system.box[0], system.box[1], system.box[2]) << ")";
         throw input_error(parameter_path(entry, "cutOffFactor"), what.str());
     }
     ff.pairs.push_back(std::move(pair));

@@ -232,13 +232,13 @@ public:
     void set_box(const double lengths[3]) override {
         backend_.activate();
         for (int d = 0; d < 3; ++d)
-            if (!(lengths[d] > 0.0 && lengths[d] <= 1e15))
+            if (!(lengths[d] > 0.0 && lengths[d] <= kLargestBoxLength))
                 throw Error(STRUCTMD_ERR_ARGUMENT, "lengths[" + std::to_string(d) + "]: expected a box length > 0 and "
                                                    "<= 1e15, got " + precise(lengths[d]));
         if (!cutoff_fits_box(largestCutoff_, {lengths[0], lengths[1], lengths[2]}))
             throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the largest cutoff (" + precise(largestCutoff_) +
                                                    ") must be shorter than half the box (" +
-                                                   precise(0.5 * std::min({lengths[0], lengths[1], lengths[2]})) + ")");
+                                                   precise(half_shortest_edge(lengths[0], lengths[1], lengths[2])) + ")");
         std::vector<double> xyz(3 * p_.count);
         get_unwrapped_positions(xyz.data());
         for (int64_t i = 0; i < p_.count; ++i)

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/thermodynamics.hpp"
+
 namespace structmd {
 
 enum ComputeFlags : unsigned { kForces = 1u, kEnergy = 2u, kVirial = 4u };
@@ -83,7 +85,7 @@ public:
 
     double pressure() {
         const std::array<double, 9> w = virial();
-        return (2.0 * energy("kinetic") + w[0] + w[4] + w[8]) / (3.0 * volume());
+        return virial_pressure(energy("kinetic"), w[0] + w[4] + w[8], volume());
     }
 };
 
