@@ -21,13 +21,14 @@ namespace {
 struct NeighbourCondition {
     ComponentKey key;
     std::vector<std::pair<std::string, PairCondition>> conditions;
+    bool excludes = false;  // reads an id/id_list table of pairs that never interact
 };
 
 const Registry<NeighbourCondition>& neighbour_conditions() {
     static const Registry<NeighbourCondition> known = [] {
         Registry<NeighbourCondition> r;
         r.add({{"VerletConditionalListSet", "all"}, {{"all", PairCondition::all}}});
-        r.add({{"VerletConditionalListSet", "nonExcluded"}, {{"nonExcluded", PairCondition::nonExcluded}}});
+        r.add({{"VerletConditionalListSet", "nonExcluded"}, {{"nonExcluded", PairCondition::nonExcluded}}, true});
         r.add({{"VerletConditionalListSet", "intra_inter"},
                {{"intra", PairCondition::intra}, {"inter", PairCondition::inter}}});
         return r;
@@ -137,15 +138,16 @@ void read_neighbour_list(const ComponentEntry& entry, const SystemDescription& s
     NeighbourListSpec list;
     list.name = entry.name;
     list.path = entry.node.path();
-    list.key = neighbour_conditions().at({entry.cls, entry.subclass}, list.path + ".type", "neighbour list").key;
+    const NeighbourCondition& condition =
+        neighbour_conditions().at({entry.cls, entry.subclass}, list.path + ".type", "neighbour list");
+    list.key = condition.key;
     const ParameterValues values = input::read_parameters(
         entry.node, {with_default(number("cutOffVerletFactor", "1", Must::be_at_least_one), 1.1),
                      with_default(number("cutOff", "length", Must::be_non_negative), 0.0)});
     list.verletFactor = values["cutOffVerletFactor"];
     list.minimumCutoff = values["cutOff"];
-    const bool excludes = entry.subclass == "nonExcluded";
-    if (excludes) list.excluded.assign(system.numParticles(), {});
-    if (excludes && entry.node.has("data")) {
+    if (condition.excludes) list.excluded.assign(system.numParticles(), {});
+    if (condition.excludes && entry.node.has("data")) {
         const input::Table table = input::read_table(entry.node, {"id", "id_list"});
         for (size_t r = 0; r < table.rows(); ++r) {
             const int64_t id = checked_id(system, table.cell(r, "id"));
