@@ -4,8 +4,8 @@
 // named in the section of the one it repeats), and that section's table has a row for each
 // parameter of the entry's schema, which says, where the table has the columns, whether the
 // parameter goes in "parameters" or in the "labels" of the table, and whether it is required.
-// (That every documented section is a registry entry is tests/python/test_docs_components.py's part.)
-// Simulation steps have no registry yet, so they are not walked here.
+// The simulation steps' registry is walked alike. (That every documented section is a registry entry
+// is tests/python/test_docs_components.py's part.)
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -21,6 +21,7 @@
 #include "input/description.hpp"
 #include "integrators/integrator_spec.hpp"
 #include "registry_inputs.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd::registry_test {
 namespace {
@@ -204,6 +205,22 @@ TEST(RegistryDocs, EveryIntegratorIsDocumentedWithEachOfItsParameters) {
         std::vector<Documented> parameters;
         for (const Parameter& p : c.parameters) parameters.push_back({p.name, "parameters", p.required()});
         expect_documented(*section, parameters);
+    }
+}
+
+TEST(RegistryDocs, EverySimulationStepIsDocumentedWithEachOfItsParameters) {
+    EXPECT_FALSE(simulation_step_registry().entries().empty());
+    for (const SimulationStepEntry& step : simulation_step_registry().entries()) {
+        SCOPED_TRACE(step.key.text());
+        const auto section = sections().find(heading_of(step.key));
+        if (section == sections().end()) {
+            ADD_FAILURE() << "docs/input-format.md has no section ### " << heading_of(step.key);
+            continue;
+        }
+        SCOPED_TRACE("docs/input-format.md:" + std::to_string(section->second.line));
+        std::vector<Documented> parameters;
+        for (const StepParameter& p : step.parameters) parameters.push_back({p.name, "parameters", p.required()});
+        expect_documented(section->second, parameters);
     }
 }
 
