@@ -1,0 +1,68 @@
+#include "cpu_harness.hpp"
+
+#include "core/logger.hpp"
+#include "forcefield/make_interactors.hpp"
+#include "forcefield/read_forcefield.hpp"
+#include "state/fault.hpp"
+#include "state/particles.hpp"
+
+namespace structmd::registry_test {
+
+const CpuFactories& cpu_factories() { return builtin_interactor_factories<CpuBackend, double, double>(); }
+
+Scene read_scene(const std::string& text, const Registry<ForceFieldComponent>& registry) {
+    Scene scene;
+    scene.parsed = std::make_shared<const input::ParsedDocument>(input::parse_document(text));
+    scene.spec = read_forcefield(scene.parsed->system, Logger(LogLevel::quiet, nullptr), registry);
+    return scene;
+}
+
+std::vector<double> evaluate(const Scene& scene, const ForceFieldSpec& spec, const std::vector<double>& times,
+                             const CpuFactories& factories) {
+    const input::SystemDescription& system = scene.system();
+    const int64_t n = system.numParticles();
+    const CpuBackend backend(1);
+    ForceFieldContext context;
+    context.ntypes = system.types.size();
+    context.particles = n;
+    context.constants = {system.units.boltzmann, system.units.electricConversion};
+    ForceField<CpuBackend, double> forceField = make_interactors<CpuBackend, double>(backend, spec, context, factories);
+
+    Particles<CpuBackend, double> p;
+    p.count = n;
+    p.box = Box<double>::make(system.box[0], system.box[1], system.box[2]);
+    std::vector<Real4<double>> pos;
+    for (int64_t i = 0; i < n; ++i)
+        pos.push_back({system.positions[i][0], system.positions[i][1], system.positions[i][2],
+                       static_cast<double>(system.typeIndex[i])});
+    backend.upload(p.pos, pos.data(), pos.size());
+    backend.upload(p.radius, system.radius.data(), system.radius.size());
+    backend.upload(p.charge, system.charge.data(), system.charge.size());
+    const unsigned long long noFault = kNoFault;
+    backend.upload(p.fault, &noFault, 1);
+    backend.resize(p.force, n);
+    backend.resize(p.energy, n);
+    p.version = 1;
+
+    std::vector<double> result;
+    for (double time : times) {
+        // Step 0 at `time`, on the host and on the backend's clock alike.
+        p.timeline.reset(0, time);
+        const StepClock clock{0, time};
+        backend.upload(p.clock, &clock, 1);
+        backend.fill(p.force, Real4<double>{0, 0, 0, 0});
+        backend.fill(p.energy, 0.0);
+        forceField.prepare(p);
+        forceField.compute_all(p, ForceOutputs<double>{p.force.data(), p.energy.data(), nullptr});
+        double energy = 0.0;
+        for (int64_t i = 0; i < n; ++i) energy += p.energy.data()[i];
+        result.push_back(energy);
+        for (int64_t i = 0; i < n; ++i) {
+            const Real4<double>& f = p.force.data()[i];
+            result.insert(result.end(), {f.x, f.y, f.z});
+        }
+    }
+    return result;
+}
+
+}  // namespace structmd::registry_test
