@@ -9,15 +9,20 @@ namespace structmd {
 
 namespace {
 
+ForceFieldComponent component(ComponentKey key, InteractionKind kind, std::vector<Parameter> parameters) {
+    ForceFieldComponent c;
+    c.key = std::move(key);
+    c.kind = kind;
+    c.parameters = std::move(parameters);
+    return c;
+}
+
 struct ReaderEntries {
     Registry<ForceFieldComponent> registry;
 
     template <class Potential>
     void pair(ComponentKey key) {
-        ForceFieldComponent c;
-        c.key = std::move(key);
-        c.kind = InteractionKind::pair;
-        c.parameters = Potential::pair_parameters();
+        ForceFieldComponent c = component(std::move(key), InteractionKind::pair, Potential::pair_parameters());
         c.entryParameters = Potential::entry_parameters();
         c.actingCutoff = [](const ParameterValues& v, const Constants& constants, double cutOffFactor, bool shift) {
             return std::sqrt(
@@ -28,11 +33,8 @@ struct ReaderEntries {
 
     template <class Potential>
     void bond(ComponentKey key, std::vector<std::string> common = {}) {
-        ForceFieldComponent c;
-        c.key = std::move(key);
-        c.kind = InteractionKind::bond;
+        ForceFieldComponent c = component(std::move(key), InteractionKind::bond, Potential::parameters());
         c.arity = Potential::arity;
-        c.parameters = Potential::parameters();
         for (const std::string& name : common)
             if (std::none_of(c.parameters.begin(), c.parameters.end(), [&](const Parameter& p) { return name == p.name; }))
                 throw Error(STRUCTMD_ERR_INTERNAL, c.key.text() + ": common parameter '" + name + "' is not declared");
@@ -42,11 +44,7 @@ struct ReaderEntries {
 
     template <class Potential>
     void external(ComponentKey key) {
-        ForceFieldComponent c;
-        c.key = std::move(key);
-        c.kind = InteractionKind::external;
-        c.parameters = Potential::parameters();
-        registry.add(std::move(c));
+        registry.add(component(std::move(key), InteractionKind::external, Potential::parameters()));
     }
 };
 

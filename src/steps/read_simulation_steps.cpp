@@ -61,7 +61,8 @@ void check_rule(const input::TrackedNode& node, const StepParameter& parameter, 
                                                                   : "number";
     if (!std::isfinite(value)) throw input_error(node.path(), "expected a finite " + what);
     switch (parameter.must) {
-        case Must::be_finite: break;
+        case Must::be_finite:
+        case Must::be_boolean: break;  // true/false values are StepValue::flag, never a number
         case Must::be_positive:
             if (!(value > 0.0)) throw input_error(node.path(), "expected a positive " + what);
             break;

@@ -26,10 +26,9 @@ def _line_of(text, offset):
     return text.count("\n", 0, offset) + 1
 
 
-def _arguments(text, start):
-    """The text between the parenthesis at text[start] and its match, quotes respected; None when
-    it is not closed."""
-    depth, quote, index = 0, None, start
+def _unquoted(text, start=0):
+    """(index, char) for each character of text[start:] outside string and character literals."""
+    quote, index = None, start
     while index < len(text):
         char = text[index]
         if quote:
@@ -39,13 +38,22 @@ def _arguments(text, start):
                 quote = None
         elif char in "\"'":
             quote = char
-        elif char == "(":
+        else:
+            yield index, char
+        index += 1
+
+
+def _arguments(text, start):
+    """The text between the parenthesis at text[start] and its match, quotes respected; None when
+    it is not closed."""
+    depth = 0
+    for index, char in _unquoted(text, start):
+        if char == "(":
             depth += 1
         elif char == ")":
             depth -= 1
             if depth == 0:
                 return text[start + 1:index]
-        index += 1
     return None
 
 
@@ -53,23 +61,14 @@ def _count_arguments(arguments):
     """Top-level arguments of a call: 'sim, "a, b", f(x, y)' -> 3."""
     if not arguments.strip():
         return 0
-    depth, quote, count, index = 0, None, 1, 0
-    while index < len(arguments):
-        char = arguments[index]
-        if quote:
-            if char == "\\":
-                index += 1
-            elif char == quote:
-                quote = None
-        elif char in "\"'":
-            quote = char
-        elif char in "([{":
+    depth, count = 0, 1
+    for _, char in _unquoted(arguments):
+        if char in "([{":
             depth += 1
         elif char in ")]}":
             depth -= 1
         elif char == "," and depth == 0:
             count += 1
-        index += 1
     return count
 
 
