@@ -62,12 +62,6 @@ public:
         values_.emplace_back(std::move(name), std::move(values));
     }
 
-    bool has(const std::string& name) const {
-        for (const auto& held : values_)
-            if (held.first == name) return true;
-        return false;
-    }
-
     const std::vector<double>& vector(const std::string& name) const {
         for (const auto& [key, held] : values_)
             if (key == name) return held;

@@ -71,6 +71,13 @@ struct PairSpec : InteractionSpec {
     ParameterValues shared;  // the component's parameters given once for every type pair
     std::vector<Row> rows;   // each unordered type pair at most once; none for a term of every type pair
     double cutoff = 0.0;     // the largest distance at which the term acts, from its functor
+
+    // What the functor is given for one type pair: the shared parameters and the row's.
+    ParameterValues values_of(const Row& row) const {
+        ParameterValues values = shared;
+        for (const auto& [name, numbers] : row.values.all()) values.set(name, numbers);
+        return values;
+    }
 };
 
 struct BondSpec : InteractionSpec {

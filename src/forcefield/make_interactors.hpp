@@ -63,9 +63,8 @@ std::vector<typename Potential::template Params<PairR>> pair_table(const PairSpe
             ntypes * ntypes, Potential::template make_pair_params<PairR>(pair.shared, constants, pair.cutOffFactor, pair.shift));
     std::vector<Params> table(ntypes * ntypes, Params{});
     for (const PairSpec::Row& row : pair.rows) {
-        ParameterValues merged = pair.shared;
-        for (const auto& [name, numbers] : row.values.all()) merged.set(name, numbers);
-        const Params p = Potential::template make_pair_params<PairR>(merged, constants, pair.cutOffFactor, pair.shift);
+        const Params p =
+            Potential::template make_pair_params<PairR>(pair.values_of(row), constants, pair.cutOffFactor, pair.shift);
         table[row.typeI * ntypes + row.typeJ] = p;
         table[row.typeJ * ntypes + row.typeI] = p;
     }

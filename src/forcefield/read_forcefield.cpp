@@ -227,9 +227,8 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
                 row.values.set(p.name, input::read_parameter(table.cell(r, p.name), p));
             if (!seen.insert(std::minmax(row.typeI, row.typeJ)).second)
                 throw input_error(table.row(r).path(), "type pair listed twice");
-            ParameterValues merged = pair.shared;
-            for (const auto& [name, numbers] : row.values.all()) merged.set(name, numbers);
-            pair.cutoff = std::max(pair.cutoff, component.actingCutoff(merged, constants, pair.cutOffFactor, pair.shift));
+            pair.cutoff = std::max(pair.cutoff, component.actingCutoff(pair.values_of(row), constants,
+                                                                       pair.cutOffFactor, pair.shift));
             pair.rows.push_back(std::move(row));
         }
     }

@@ -4,29 +4,33 @@
 
 namespace structmd::input {
 
+void check_rule(const TrackedNode& node, double value, Must must, const std::string& what) {
+    const auto fail = [&](const std::string& expected) { return input_error(node.path(), "expected " + expected); };
+    if (!std::isfinite(value)) throw fail("a finite " + what);
+    switch (must) {
+        case Must::be_finite:
+        case Must::be_boolean: break;
+        case Must::be_positive:
+            if (!(value > 0.0)) throw fail("a positive " + what);
+            break;
+        case Must::be_non_negative:
+            if (!(value >= 0.0)) throw fail("a " + what + " >= 0");
+            break;
+        case Must::be_integer:
+            if (value != std::floor(value)) throw fail("an integer");
+            break;
+        case Must::be_at_least_one:
+            if (!(value >= 1.0)) throw fail("a " + what + " >= 1");
+            break;
+    }
+}
+
 namespace {
 
 double checked(const TrackedNode& node, Must must) {
     if (must == Must::be_boolean) return node.as<bool>() ? 1.0 : 0.0;
     const double value = node.as<double>();
-    const auto fail = [&](const char* what) { return input_error(node.path(), what); };
-    if (!std::isfinite(value)) throw fail("expected a finite number");
-    switch (must) {
-        case Must::be_finite:
-        case Must::be_boolean: break;
-        case Must::be_positive:
-            if (!(value > 0.0)) throw fail("expected a positive number");
-            break;
-        case Must::be_non_negative:
-            if (!(value >= 0.0)) throw fail("expected a number >= 0");
-            break;
-        case Must::be_integer:
-            if (value != std::floor(value)) throw fail("expected an integer");
-            break;
-        case Must::be_at_least_one:
-            if (!(value >= 1.0)) throw fail("expected a number >= 1");
-            break;
-    }
+    check_rule(node, value, must);
     return value;
 }
 

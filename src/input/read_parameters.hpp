@@ -9,6 +9,10 @@
 
 namespace structmd::input {
 
+// Throws an input error at the node's path unless `value` is finite and keeps `must`; `what` names
+// the kind of value in the message ("expected a positive number").
+void check_rule(const TrackedNode& node, double value, Must must, const std::string& what = "number");
+
 // The numbers of one parameter: a number, or a list of `size` numbers.
 std::vector<double> read_parameter(const TrackedNode& node, const Parameter& parameter);
 

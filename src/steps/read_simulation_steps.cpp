@@ -54,40 +54,22 @@ const char* kind_text(StepValue kind) {
     return "?";
 }
 
-// The rule of a number, checked after its kind: "expected a positive integer", "... length", ...
-void check_rule(const input::TrackedNode& node, const StepParameter& parameter, double value) {
-    const std::string what = parameter.kind == StepValue::integer ? "integer"
-                             : *parameter.units                   ? parameter.units
-                                                                  : "number";
-    if (!std::isfinite(value)) throw input_error(node.path(), "expected a finite " + what);
-    switch (parameter.must) {
-        case Must::be_finite:
-        case Must::be_boolean: break;  // true/false values are StepValue::flag, never a number
-        case Must::be_positive:
-            if (!(value > 0.0)) throw input_error(node.path(), "expected a positive " + what);
-            break;
-        case Must::be_non_negative:
-            if (!(value >= 0.0)) throw input_error(node.path(), "expected a " + what + " >= 0");
-            break;
-        case Must::be_integer:
-            if (value != std::floor(value)) throw input_error(node.path(), "expected an integer");
-            break;
-        case Must::be_at_least_one:
-            if (!(value >= 1.0)) throw input_error(node.path(), "expected a " + what + " >= 1");
-            break;
-    }
+// What a number is called in its rule's message: "expected a positive integer", "... length", ...
+std::string what_of(const StepParameter& parameter) {
+    if (parameter.kind == StepValue::integer) return "integer";
+    return *parameter.units ? parameter.units : "number";
 }
 
 nlohmann::json read_value(const input::TrackedNode& node, const StepParameter& parameter) {
     switch (parameter.kind) {
         case StepValue::integer: {
             const int64_t value = node.as<int64_t>();
-            check_rule(node, parameter, static_cast<double>(value));
+            input::check_rule(node, static_cast<double>(value), parameter.must, what_of(parameter));
             return value;
         }
         case StepValue::number: {
             const double value = node.as<double>();
-            check_rule(node, parameter, value);
+            input::check_rule(node, value, parameter.must, what_of(parameter));
             return value;
         }
         case StepValue::text: return node.as<std::string>();
