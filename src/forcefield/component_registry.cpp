@@ -46,6 +46,11 @@ struct ReaderEntries {
     void external(ComponentKey key) {
         registry.add(component(std::move(key), InteractionKind::external, Potential::parameters()));
     }
+
+    template <class Component>
+    void configurable(ComponentKey key) {
+        registry.add(Component::reader_entry(std::move(key)));
+    }
 };
 
 }  // namespace

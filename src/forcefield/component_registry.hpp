@@ -3,12 +3,15 @@
 // units, defaults and rules) and, for pair terms, the distance at which given values stop acting.
 // Made from the built-in list (components.hpp); a handle may add components to its own copy.
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/parameters.hpp"
 #include "core/registry.hpp"
+#include "forcefield/forcefield_spec.hpp"
 #include "forcefield/pair_potential.hpp"
+#include "input/description.hpp"
 
 namespace structmd {
 
@@ -23,6 +26,14 @@ struct ForceFieldComponent {
     std::vector<std::string> common;         // bonds: given once for every bond (the Common_ variants)
     // Pairs: the largest distance at which the term acts with these values (shared and one row's).
     std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
+    bool readsCutOffFactor = true;  // pairs: the entry gives "cutOffFactor" (else its own cut-off parameter)
+
+    // A configurable component's parameters depend on its entry (an expression names its own
+    // columns; a table reads a file). configure() reads what it needs from the entry and returns the
+    // component as configured for it, with `config` set for the engine's factory; input errors name
+    // the entry's path.
+    std::function<ForceFieldComponent(const input::ComponentEntry&, const input::SystemDescription&)> configure;
+    std::shared_ptr<const ComponentConfig> config;
 };
 
 const Registry<ForceFieldComponent>& forcefield_registry();

@@ -8,8 +8,15 @@
 //   template <class Potential> void pair(ComponentKey key);                 // NonBonded, over a list
 //   template <class Potential> void bond(ComponentKey key, std::vector<std::string> common = {});
 //   template <class Potential> void external(ComponentKey key);
+//   template <class Component> void configurable(ComponentKey key);
 // `common` names the bond parameters given once in the entry's "parameters" for every bond (the
-// Common_ variants) rather than as table columns.
+// Common_ variants) rather than as table columns. A configurable component (an expression, a
+// table: its parameters depend on its entry) has
+//   static ForceFieldComponent reader_entry(ComponentKey key);   // with configure() set
+//   template <class B, class R, class PairR>
+//   static std::unique_ptr<Interactor<B, R>> make_interactor(const InteractorBuild<B, R>&,
+//                                                            const InteractionSpec&);
+// and reads its own ComponentConfig from the spec.
 #include <string>
 #include <vector>
 

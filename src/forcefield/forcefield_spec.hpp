@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,13 @@ inline bool cutoff_fits_box(double cutoff, const std::array<double, 3>& box) {
     return cutoff < half_shortest_edge(box[0], box[1], box[2]);
 }
 
+// What a configurable component (an expression, a table) derives from its entry when it is read,
+// for its engine factory: a compiled expression, a table's coefficients. Each such component
+// defines its own derived type.
+struct ComponentConfig {
+    virtual ~ComponentConfig() = default;
+};
+
 // What every interaction entry shares: its name, where it was read, which component it is, when it
 // is active (startStep <= step < endStep) and which particles it acts on.
 struct InteractionSpec {
@@ -48,6 +56,7 @@ struct InteractionSpec {
     int64_t startStep = 0;
     int64_t endStep = std::numeric_limits<int64_t>::max();
     int group = -1;  // index into ForceFieldSpec::groups; -1: all particles
+    std::shared_ptr<const ComponentConfig> config;  // set by configurable components only
 };
 
 struct NeighbourListSpec {
@@ -70,6 +79,7 @@ struct PairSpec : InteractionSpec {
     bool shift = false;
     ParameterValues shared;  // the component's parameters given once for every type pair
     std::vector<Row> rows;   // each unordered type pair at most once; none for a term of every type pair
+    bool everyTypePair = false;  // the component has no per-type-pair parameters
     double cutoff = 0.0;     // the largest distance at which the term acts, from its functor
 
     // What the functor is given for one type pair: the shared parameters and the row's.

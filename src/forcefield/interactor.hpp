@@ -3,7 +3,9 @@
 // outputs are requested (a null pointer means "not wanted"), so energies and virials cost nothing on
 // steps where nobody reads them.
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 #include <type_traits>
 
 #include "core/vec.hpp"
@@ -78,8 +80,13 @@ public:
     virtual void prepare(Particles<B, R>&) {}
     virtual void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) = 0;
 
+    // Keeps alive backend data that the term's parameters point into (a compiled expression, a
+    // table's coefficients) for as long as the interactor lives.
+    void own(std::shared_ptr<const void> data) { owned_.push_back(std::move(data)); }
+
 private:
     InteractorScope scope_;
+    std::vector<std::shared_ptr<const void>> owned_;
 };
 
 }  // namespace structmd

@@ -88,6 +88,12 @@ void read_common(const ComponentEntry& entry, const ForceFieldSpec& ff, Interact
     spec.group = group_index(ff.groups, parameter_or<std::string>(entry, "group", "All"), parameter_path(entry, "group"));
 }
 
+void read_common(const ForceFieldComponent& component, const ComponentEntry& entry, const ForceFieldSpec& ff,
+                 InteractionSpec& spec) {
+    read_common(entry, ff, spec);
+    spec.config = component.config;
+}
+
 // ---- groups -----------------------------------------------------------------------------------
 
 void read_groups(const ComponentEntry& entry, const SystemDescription& system, ForceFieldSpec& ff) {
@@ -203,16 +209,17 @@ void choose_list(const ComponentEntry& entry, ForceFieldSpec& ff, PairSpec& pair
 void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry, const SystemDescription& system,
                ForceFieldSpec& ff) {
     PairSpec pair;
-    read_common(entry, ff, pair);
+    read_common(component, entry, ff, pair);
     choose_list(entry, ff, pair);
     std::vector<Parameter> own = component.entryParameters;
-    own.push_back(number("cutOffFactor", "1", Must::be_positive));
+    if (component.readsCutOffFactor) own.push_back(number("cutOffFactor", "1", Must::be_positive));
     const ParameterValues values = input::read_parameters(entry.node, own);
-    pair.cutOffFactor = values["cutOffFactor"];
+    if (component.readsCutOffFactor) pair.cutOffFactor = values["cutOffFactor"];
     pair.shift = parameter_or<bool>(entry, "shift", false);
     for (const Parameter& p : component.entryParameters) pair.shared.set(p.name, values.vector(p.name));
     const Constants constants = constants_of(system);
-    if (component.parameters.empty()) {
+    pair.everyTypePair = component.parameters.empty();
+    if (pair.everyTypePair) {
         pair.cutoff = component.actingCutoff(pair.shared, constants, pair.cutOffFactor, pair.shift);
     } else {
         std::vector<std::string> columns = {"name_i", "name_j"};
@@ -237,7 +244,7 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
         what.precision(17);  // a box just below 2 r_c must not print as if it were 2 r_c
         what << "cutoff " << pair.cutoff << " is not shorter than half the box ("
              << half_shortest_edge(system.box[0], system.box[1], system.box[2]) << ")";
-        throw input_error(parameter_path(entry, "cutOffFactor"), what.str());
+        throw input_error(parameter_path(entry, component.readsCutOffFactor ? "cutOffFactor" : "cutOff"), what.str());
     }
     ff.pairs.push_back(std::move(pair));
 }
@@ -251,7 +258,7 @@ void read_bonds(const ForceFieldComponent& component, const ComponentEntry& entr
                 ForceFieldSpec& ff) {
     static const char* const idLabels[] = {"id_i", "id_j", "id_k", "id_l"};
     BondSpec bonds;
-    read_common(entry, ff, bonds);
+    read_common(component, entry, ff, bonds);
     bonds.arity = component.arity;
     bonds.schema = component.parameters;
     const auto is_common = [&](const Parameter& p) {
@@ -292,16 +299,15 @@ void read_bonds(const ForceFieldComponent& component, const ComponentEntry& entr
 void read_external(const ForceFieldComponent& component, const ComponentEntry& entry, const SystemDescription&,
                    ForceFieldSpec& ff) {
     ExternalSpec external;
-    read_common(entry, ff, external);
+    read_common(component, entry, ff, external);
     external.values = input::read_parameters(entry.node, component.parameters);
     ff.externals.push_back(std::move(external));
 }
 
-void warn_unlisted_type_pairs(const SystemDescription& system, const ForceFieldSpec& ff,
-                              const Registry<ForceFieldComponent>& registry, const Logger& log) {
+void warn_unlisted_type_pairs(const SystemDescription& system, const ForceFieldSpec& ff, const Logger& log) {
     const int ntypes = static_cast<int>(system.types.size());
     for (const PairSpec& pair : ff.pairs) {
-        if (registry.find(pair.key)->parameters.empty()) continue;  // acts on every type pair
+        if (pair.everyTypePair) continue;
         for (int a = 0; a < ntypes; ++a)
             for (int b = a; b < ntypes; ++b) {
                 const bool listed = std::any_of(pair.rows.begin(), pair.rows.end(), [&](const PairSpec::Row& r) {
@@ -330,8 +336,9 @@ ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& lo
         if (entry.cls == "VerletConditionalListSet") read_neighbour_list(entry, system, ff);
     for (const ComponentEntry& entry : system.forceField) {
         if (entry.cls == "VerletConditionalListSet" || entry.cls == "Groups") continue;
-        const ForceFieldComponent& component =
+        const ForceFieldComponent& registered =
             registry.at({entry.cls, entry.subclass}, entry.node.path() + ".type", "component");
+        const ForceFieldComponent component = registered.configure ? registered.configure(entry, system) : registered;
         switch (component.kind) {
             case InteractionKind::pair: read_pair(component, entry, system, ff); break;
             case InteractionKind::bond: read_bonds(component, entry, system, ff); break;
@@ -339,7 +346,7 @@ ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& lo
         }
         ff.entryNames.push_back(entry.name);
     }
-    warn_unlisted_type_pairs(system, ff, registry, log);
+    warn_unlisted_type_pairs(system, ff, log);
     return ff;
 }
 
