@@ -1,19 +1,23 @@
 #pragma once
 // Orthorhombic periodic box spanning [-L/2, L/2) in each direction.
+#include "core/vec.hpp"
+
+#if SMD_HOST_CODE
 #include <algorithm>
 #include <cmath>
-
-#include "core/vec.hpp"
+#endif
 
 namespace structmd {
 
 // The longest box edge accepted, from the input and from set_box alike: it keeps every count derived
 // from the box (cells of a grid, images) finite.
+#if SMD_HOST_CODE
 inline constexpr double kLargestBoxLength = 1e15;
 
 // The minimum-image rule: a cutoff (of a pair term, of a measure's neighbourhood) must be shorter than
 // this, half the shortest edge, so that each pair is seen through one image only.
 inline double half_shortest_edge(double lx, double ly, double lz) { return 0.5 * std::min({lx, ly, lz}); }
+#endif
 
 // How many box lengths a particle has crossed along each axis since its position was set.
 struct Image {
@@ -25,9 +29,11 @@ struct Box {
     Vec3<R> length;
     Vec3<R> inverse;  // 1 / length, so that wrapping needs no division
 
+#if SMD_HOST_CODE
     static Box make(double lx, double ly, double lz) {
         return {{R(lx), R(ly), R(lz)}, {R(1.0 / lx), R(1.0 / ly), R(1.0 / lz)}};
     }
+#endif
 
     // The image of d closest to the origin, for d the difference of two wrapped positions (so
     // |d| < L along each axis): one compare per axis instead of a rounding call.

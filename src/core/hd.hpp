@@ -1,6 +1,21 @@
 #pragma once
 // Marks code that runs both on the host (CPU backend, tests) and on the device (CUDA backend).
 // The physics is written once with these markers; no backend-specific copy of a formula exists.
+// Kernels compiled at run time (NVRTC: expression potentials) include these same headers without a
+// standard library: under __CUDACC_RTC__ the fixed-width integers come from here, and host-only
+// code is left out between `#if SMD_HOST_CODE` and `#endif`.
+#if defined(__CUDACC_RTC__)
+#define SMD_HOST_CODE 0
+typedef signed char int8_t;
+typedef unsigned char uint8_t;
+typedef int int32_t;
+typedef unsigned int uint32_t;
+typedef long long int64_t;
+typedef unsigned long long uint64_t;
+#else
+#define SMD_HOST_CODE 1
+#endif
+
 #if defined(__CUDACC__)
 #define SMD_HD __host__ __device__
 #define SMD_INLINE __forceinline__

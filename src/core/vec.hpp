@@ -1,8 +1,9 @@
 #pragma once
 // Small vector and tensor types shared by host and device code.
-#include <cmath>
-
 #include "core/hd.hpp"
+#if SMD_HOST_CODE
+#include <cmath>
+#endif
 
 namespace structmd {
 

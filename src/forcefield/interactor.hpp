@@ -9,16 +9,10 @@
 #include <type_traits>
 
 #include "core/vec.hpp"
+#include "forcefield/force_outputs.hpp"
 #include "state/particles.hpp"
 
 namespace structmd {
-
-template <class R>
-struct ForceOutputs {
-    Real4<R>* force = nullptr;
-    R* energy = nullptr;
-    Tensor3<R>* virial = nullptr;
-};
 
 // Calls launch(want_force, want_energy, want_virial) with std::bool_constant arguments, so a kernel
 // can be instantiated with the unwanted outputs compiled out.
@@ -37,20 +31,6 @@ void dispatch_outputs(const ForceOutputs<R>& out, Launch&& launch) {
         case 7: launch(T{}, T{}, T{}); break;
         default: break;
     }
-}
-
-// Adds one particle's sums to the requested outputs; each particle is written by one thread only.
-template <bool WantForce, bool WantEnergy, bool WantVirial, class R>
-SMD_HD SMD_INLINE void add_to_outputs(const ForceOutputs<R>& out, int64_t i, const Vec3<R>& f, R e,
-                                      const Tensor3<R>& w) {
-    if (WantForce) {
-        Real4<R>& fi = out.force[i];
-        fi.x += f.x;
-        fi.y += f.y;
-        fi.z += f.z;
-    }
-    if (WantEnergy) out.energy[i] += e;
-    if (WantVirial) out.virial[i] += w;
 }
 
 // Where and when an interactor acts: active for startStep <= step < endStep, on the particles whose

@@ -21,14 +21,9 @@
 
 #include "core/hd.hpp"
 #include "core/parameters.hpp"
+#include "forcefield/pair_term.hpp"
 
 namespace structmd {
-
-template <class R>
-struct PairTerm {
-    R dudr_over_r;
-    R energy;
-};
 
 // Physical constants of the input's units, for potentials that need them.
 struct Constants {

@@ -1,11 +1,13 @@
 #pragma once
 // Division of the periodic box into cells at least as wide as the list radius, so that every
 // neighbour of a particle lies in its own cell or an adjacent one.
+#include "core/box.hpp"
+
+#if SMD_HOST_CODE
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-
-#include "core/box.hpp"
+#endif
 
 namespace structmd {
 
@@ -14,6 +16,7 @@ struct CellGrid {
     int nx = 1, ny = 1, nz = 1;
     Vec3<R> cellsPerLength{1, 1, 1};  // cells per unit length along each axis
 
+#if SMD_HOST_CODE
     int count() const { return nx * ny * nz; }
 
     // Cells no narrower than minWidth, and not many more cells than about twice the particles so a
@@ -35,6 +38,7 @@ struct CellGrid {
                                R(grid.nz / static_cast<double>(box.length.z))};
         return grid;
     }
+#endif
 
 
     // The cell along an axis of n cells; a coordinate outside the box (a particle that blew up,

@@ -72,6 +72,9 @@ public:
     uint64_t graphs_captured() const { return 0; }
     uint64_t graphs_replayed() const { return 0; }
 
+    // Every kernel is compiled with the library: a potential known only at run time is interpreted.
+    static constexpr bool compiles_at_run_time = false;
+
     // Loops shorter than this run on the calling thread: waking a team costs more than they do.
     static constexpr int64_t kParallelThreshold = 2048;
 

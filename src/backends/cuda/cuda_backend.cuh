@@ -7,10 +7,14 @@
 #include <thrust/transform_reduce.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "backends/cuda/cuda_check.hpp"
+#include "backends/cuda/launch_kernels.cuh"
+#include "backends/cuda/runtime_compiler.hpp"
 #include "backends/cuda/step_graphs.cuh"
 #include "backends/transfer_counters.hpp"
 #include "core/lanes.hpp"
@@ -61,29 +65,6 @@ private:
     size_t size_ = 0;
     MemoryAccount* account_ = nullptr;
 };
-
-template <class F>
-__global__ void for_each_kernel(int64_t n, F f) {
-    const int64_t i = static_cast<int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
-    if (i < n) f(i);
-}
-
-// Item i gets `lanes` consecutive threads (a power of two dividing the warp), so the lanes of an
-// item share a warp and can exchange values through shuffles.
-// 128 threads and 8 blocks per multiprocessor: at most 64 registers, so that the pair kernel keeps
-// half of the device's warps resident.
-template <class F>
-__global__ void __launch_bounds__(128, 8) for_each_lanes_kernel(int64_t n, int lanes, F f) {
-    const int64_t thread = static_cast<int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
-    const int64_t i = thread / lanes;
-    if (i >= n) return;
-    Lanes group;
-    group.count = lanes;
-    group.lane = static_cast<int>(thread % lanes);
-    group.warpLane = static_cast<int>(threadIdx.x % 32);
-    group.mask = lanes == 32 ? 0xffffffffu : ((1u << lanes) - 1u) << (group.warpLane - group.lane);
-    f(i, group);
-}
 
 template <class T>
 struct ReducePlus {
@@ -197,6 +178,29 @@ public:
         }
         graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_lanes_kernel<F>), blocks, threads, true, n,
                                 lanes, f));
+    }
+
+    // Kernels compiled at load time (runtime_compiler.hpp) for this handle's GPU.
+    static constexpr bool compiles_at_run_time = true;
+    using CompiledKernels = std::shared_ptr<const RuntimeKernels>;
+    std::shared_ptr<const RuntimeKernels> compile(const std::string& source, const std::vector<std::string>& kernels) const {
+        activate();
+        return std::make_shared<const RuntimeKernels>(device_, source, kernels);
+    }
+
+    // for_each_lanes(n, f) through `kernel`, a for_each_lanes_kernel compiled at run time whose
+    // functor has the layout of F.
+    template <class F>
+    void for_each_lanes_compiled(const void* kernel, int64_t n, const F& f) const {
+        if (n <= 0) return;
+        const int lanes = lanes_for(n);
+        constexpr int threads = 128;
+        const int64_t blocks = (n * lanes + threads - 1) / threads;
+        KernelLaunch launch = recorded(kernel, blocks, threads, true, n, lanes, f);
+        if (graphs_.recording())
+            graphs_.record(std::move(launch));
+        else
+            launch.issue(stream_);
     }
 
     template <class T, class F>

@@ -1,0 +1,33 @@
+#pragma once
+// The two kernels every launch of the CUDA backend goes through: f(i) for each item, and f(i, lanes)
+// with several threads per item. Free of the standard library, so that kernels compiled at run time
+// (runtime_compiler.hpp) instantiate these same templates.
+#include "core/hd.hpp"
+#include "core/lanes.hpp"
+
+namespace structmd {
+
+template <class F>
+__global__ void for_each_kernel(int64_t n, F f) {
+    const int64_t i = static_cast<int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+    if (i < n) f(i);
+}
+
+// Item i gets `lanes` consecutive threads (a power of two dividing the warp), so the lanes of an
+// item share a warp and can exchange values through shuffles.
+// 128 threads and 8 blocks per multiprocessor: at most 64 registers, so that the pair kernel keeps
+// half of the device's warps resident.
+template <class F>
+__global__ void __launch_bounds__(128, 8) for_each_lanes_kernel(int64_t n, int lanes, F f) {
+    const int64_t thread = static_cast<int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+    const int64_t i = thread / lanes;
+    if (i >= n) return;
+    Lanes group;
+    group.count = lanes;
+    group.lane = static_cast<int>(thread % lanes);
+    group.warpLane = static_cast<int>(threadIdx.x % 32);
+    group.mask = lanes == 32 ? 0xffffffffu : ((1u << lanes) - 1u) << (group.warpLane - group.lane);
+    f(i, group);
+}
+
+}  // namespace structmd

@@ -1,0 +1,76 @@
+#pragma once
+// The kernel of a non-bonded pair term over a Verlet list, generic in its potential. Each particle
+// sums the forces of all its neighbours (a full list): no atomics, the same code on every backend,
+// and a summation order fixed by the list. Energy and virial of a pair are split equally between
+// the two. Free of the standard library, so that kernels compiled at run time (an expression
+// potential on CUDA) instantiate this same traversal.
+#include "core/hd.hpp"
+#include "core/lanes.hpp"
+#include "core/vec.hpp"
+#include "forcefield/force_outputs.hpp"
+#include "forcefield/pair_term.hpp"
+#include "neighbour/neighbour_view.hpp"
+
+namespace structmd {
+
+// Potentials of charges (Debye-Hueckel) declare `static constexpr bool uses_charges = true`.
+template <class Potential>
+SMD_HD constexpr auto uses_charges(int) -> decltype(bool(Potential::uses_charges)) {
+    return Potential::uses_charges;
+}
+template <class Potential>
+SMD_HD constexpr bool uses_charges(long) {
+    return false;
+}
+
+template <class Potential, class R>
+SMD_HD SMD_INLINE PairTerm<R> evaluate_pair(R r2, const typename Potential::template Params<R>& p, R chargeProduct) {
+    if constexpr (uses_charges<Potential>(0))
+        return Potential::evaluate(r2, p, chargeProduct);
+    else
+        return Potential::evaluate(r2, p);
+}
+
+// Positions, separations and sums in R; the potential itself in PairR (float under mixed precision:
+// the separation is taken in double, so its accuracy does not fall with the size of the box).
+template <class Potential, class R, class PairR, bool WantForce, bool WantEnergy, bool WantVirial>
+struct PairKernel {
+    using Params = typename Potential::template Params<PairR>;
+    const Real4<R>* pos;
+    const R* charge;       // read only by potentials of charges
+    const uint8_t* group;  // null: every particle takes part
+    NeighbourView<R> neighbours;
+    const Params* table;  // ntypes x ntypes
+    int ntypes;
+    ForceOutputs<R> out;
+
+    SMD_HD void operator()(int64_t i, Lanes lanes) const {
+        if (group && !group[i]) return;
+        const Real4<R> pi = pos[i];
+        const Vec3<R> ri = xyz(pi);
+        const Params* row = table + static_cast<int>(pi.w) * ntypes;
+        Vec3<R> f{0, 0, 0};
+        R e = 0;
+        Tensor3<R> w = zero_tensor<R>();
+        const Box<R>& box = neighbours.box;
+        neighbours.for_each_neighbour(static_cast<int>(i), ri, [&](int j) {
+            const Real4<R> pj = pos[j];
+            const Vec3<R> rij = box.minimum_image(xyz(pj) - ri);
+            const PairR r2 = PairR(dot(rij, rij));
+            const Params& p = row[static_cast<int>(pj.w)];
+            if (!(r2 < p.cutoff2) || (group && !group[j])) return;
+            const PairTerm<PairR> t = evaluate_pair<Potential>(
+                r2, p, uses_charges<Potential>(0) ? PairR(charge[i] * charge[j]) : PairR(0));
+            const R dudrOverR = R(t.dudr_over_r);
+            if (WantForce) f += dudrOverR * rij;
+            if (WantEnergy) e += R(0.5) * R(t.energy);
+            if (WantVirial) w += (R(-0.5) * dudrOverR) * outer(rij, rij);
+        }, lanes);
+        if (WantForce) f = lanes.sum(f);
+        if (WantEnergy) e = lanes.sum(e);
+        if (WantVirial) w = lanes.sum(w);
+        if (lanes.leader()) add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
+    }
+};
+
+}  // namespace structmd
