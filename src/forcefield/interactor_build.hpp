@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 
+#include "core/logger.hpp"
 #include "core/registry.hpp"
 #include "forcefield/force_field.hpp"
 #include "forcefield/forcefield_spec.hpp"
@@ -20,6 +21,7 @@ struct ForceFieldContext {
     Constants constants;
     const int* batch = nullptr;  // backend arrays by particle, or null where not needed
     const int* model = nullptr;
+    const Logger* log = nullptr;  // for what the build reports (a kernel's compile time)
 };
 
 // What a factory is given: the backend, the engine data, and the force field under construction

@@ -79,6 +79,7 @@ public:
         context.constants = spec.constants;
         context.batch = p_.batch.empty() ? nullptr : p_.batch.data();
         context.model = p_.model.data();
+        context.log = &log_;
         forceField_ = make_interactors<B, R>(backend_, spec.forceField, context,
                                              builtin_interactor_factories<B, R, PairR>());
         for (const IntegratorSpec& integrator : spec.integrators)
