@@ -116,14 +116,16 @@ Program compile(const Expression& e, const std::vector<int>& roots) {
                 if (program.constants.size() > static_cast<size_t>(kMaxConstants))
                     throw ExpressionError(0, "the expression has more than " + std::to_string(kMaxConstants) +
                                                  " distinct numbers");
-                in.code = Code::constant;
+                in.op = Op::constant;
                 in.a = small(slot->second);
                 break;
             }
-            case Op::input: in.code = Code::input; in.a = small(n.index); break;
-            case Op::column: in.code = Code::column; in.a = small(n.index); break;
+            case Op::input:
+            case Op::column:
+                in.op = n.op;
+                in.a = small(n.index);
+                break;
             default:
-                in.code = Code::operation;
                 in.op = n.op;
                 in.a = small(registerOf[n.a]);
                 in.b = small(n.b >= 0 ? registerOf[n.b] : registerOf[n.a]);
@@ -147,7 +149,7 @@ Program compile(const Expression& e, const std::vector<int>& roots) {
     }
     for (size_t k = 0; k < roots.size(); ++k) {
         Instruction out{};
-        out.code = Code::output;
+        out.op = Op::output;
         out.dst = small(static_cast<int>(k));
         out.a = small(registerOf[roots[k]]);
         program.code.push_back(out);

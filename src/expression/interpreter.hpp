@@ -2,10 +2,11 @@
 // The bytecode of a compiled expression and its interpreter, one source for the CPU backend and
 // CUDA kernels, in float or double.
 //
-// A program is a list of register instructions. Each writes one register (dst) from up to three
-// registers (a, b, c), or loads a register from the constant table (constant[a]), an input
-// (inputs[a]: r, theta, phi or x, y, z) or a data column (columns[a]: the values of the type pair,
-// bond or entry); `output` copies register a to outputs[dst]. Registers are reused once their value
+// A program is a list of register instructions, one operation each (one dispatch per instruction).
+// Each writes one register (dst) from up to three registers (a, b, c), or loads a register from the
+// constant table (Op::constant: constants[a]), an input (Op::input: inputs[a], r, theta, phi or
+// x, y, z, t) or a data column (Op::column: columns[a], the values of the type pair, bond or entry);
+// Op::output copies register a to outputs[dst]. Registers are reused once their value
 // is dead, so a program needs at most kMaxRegisters of them, whatever its length.
 #include <cstdint>
 
@@ -18,15 +19,12 @@ inline constexpr int kMaxRegisters = 32;
 inline constexpr int kMaxConstants = 256;
 inline constexpr int kMaxColumns = 8;  // data columns an expression may name
 
-enum class Code : uint8_t { constant, input, column, output, operation };
-
 struct Instruction {
-    Code code;
-    Op op;        // for Code::operation
-    uint8_t dst;  // a register; for Code::output, the output index
+    Op op;
+    uint8_t dst;  // a register; for Op::output, the output index
     uint8_t a, b, c;
     int8_t exponent;  // powi
-    uint8_t unused = 0;
+    uint8_t unused[2];
 };
 static_assert(sizeof(Instruction) == 8, "an instruction is 8 bytes");
 
@@ -44,14 +42,12 @@ SMD_HD SMD_INLINE void run_program(const ProgramView<R>& program, const R* input
     R reg[kMaxRegisters];
     for (int pc = 0; pc < program.length; ++pc) {
         const Instruction in = program.code[pc];
-        switch (in.code) {
-            case Code::constant: reg[in.dst] = program.constants[in.a]; break;
-            case Code::input: reg[in.dst] = inputs[in.a]; break;
-            case Code::column: reg[in.dst] = columns[in.a]; break;
-            case Code::output: outputs[in.dst] = reg[in.a]; break;
-            case Code::operation:
-                reg[in.dst] = apply<R>(in.op, reg[in.a], reg[in.b], reg[in.c], in.exponent);
-                break;
+        switch (in.op) {
+            case Op::constant: reg[in.dst] = program.constants[in.a]; break;
+            case Op::input: reg[in.dst] = inputs[in.a]; break;
+            case Op::column: reg[in.dst] = columns[in.a]; break;
+            case Op::output: outputs[in.dst] = reg[in.a]; break;
+            default: reg[in.dst] = apply<R>(in.op, reg[in.a], reg[in.b], reg[in.c], in.exponent); break;
         }
     }
 }

@@ -12,7 +12,8 @@ enum class Op : uint8_t {
     constant, input, column,
     add, sub, mul, div, neg, pow, powi,  // powi: an integer exponent (Node::index)
     sqrt, exp, log, sin, cos, tan, acos, asin, atan, tanh, cosh, sinh, abs,
-    min, max, step, select
+    min, max, step, select,
+    output  // bytecode only (interpreter.hpp): copies a register to an output
 };
 
 // Operand count of an operation (0 for leaves).
