@@ -24,6 +24,7 @@
 #include "forcefield/constant_force_bond.hpp"
 #include "forcefield/debye_huckel.hpp"
 #include "forcefield/dihedral.hpp"
+#include "forcefield/expression_component.hpp"
 #include "forcefield/external_constant_force.hpp"
 #include "forcefield/fene_bond.hpp"
 #include "forcefield/fixed_harmonic.hpp"
@@ -99,6 +100,12 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template external<ExternalConstantForce>({"External", "ConstantForce"});
     v.template external<Plates>({"External", "Plates"});
     v.template external<SphericalShell>({"External", "SphericalShell"});
+
+    v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
+    v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});
+    v.template configurable<ExpressionBondComponent<3>>({"Bond3", "Expression"});
+    v.template configurable<ExpressionBondComponent<4>>({"Bond4", "Expression"});
+    v.template configurable<ExpressionExternalComponent>({"External", "Expression"});
 }
 
 }  // namespace structmd

@@ -16,29 +16,10 @@
 #include "forcefield/force_field.hpp"
 #include "forcefield/forcefield_spec.hpp"
 #include "forcefield/interactor_build.hpp"
+#include "forcefield/interactor_tables.hpp"
 #include "forcefield/pair_interaction.hpp"
 
 namespace structmd {
-
-// The parameter table of a pair term: one entry per ordered type pair. Unlisted type pairs keep
-// value-initialised parameters (zero cutoff) and so never interact; a term without per-type-pair
-// parameters gives every type pair the same.
-template <class Potential, class PairR>
-std::vector<typename Potential::template Params<PairR>> pair_table(const PairSpec& pair, size_t ntypes,
-                                                                   const Constants& constants) {
-    using Params = typename Potential::template Params<PairR>;
-    if (Potential::pair_parameters().empty())
-        return std::vector<Params>(
-            ntypes * ntypes, Potential::template make_pair_params<PairR>(pair.shared, constants, pair.cutOffFactor, pair.shift));
-    std::vector<Params> table(ntypes * ntypes, Params{});
-    for (const PairSpec::Row& row : pair.rows) {
-        const Params p =
-            Potential::template make_pair_params<PairR>(pair.values_of(row), constants, pair.cutOffFactor, pair.shift);
-        table[row.typeI * ntypes + row.typeJ] = p;
-        table[row.typeJ * ntypes + row.typeI] = p;
-    }
-    return table;
-}
 
 // Pair terms evaluate in PairR (float for mixed precision); everything else in R.
 template <class B, class R, class PairR>
@@ -50,34 +31,24 @@ struct FactoryEntries {
     void pair(ComponentKey key) {
         registry.add({std::move(key), [](const Build& build, const InteractionSpec& s) -> std::unique_ptr<Interactor<B, R>> {
                           const auto& pair = static_cast<const PairSpec&>(s);
-                          const auto table = pair_table<Potential, PairR>(pair, build.context.ntypes, build.context.constants);
-                          return std::make_unique<PairInteraction<B, R, Potential, PairR>>(
-                              build.backend, build.scope(pair), build.listFor(pair), table,
-                              static_cast<int>(build.context.ntypes));
+                          const Constants& constants = build.context.constants;
+                          const auto table = pair_table_of<typename Potential::template Params<PairR>>(
+                              pair, build.context.ntypes, [&](const ParameterValues& v) {
+                                  return Potential::template make_pair_params<PairR>(v, constants, pair.cutOffFactor,
+                                                                                     pair.shift);
+                              });
+                          return make_pair_interaction<B, R, Potential, PairR>(build, pair, table);
                       }});
     }
 
     template <class Potential>
     void bond(ComponentKey key, const std::vector<std::string>& = {}) {
         registry.add({std::move(key), [](const Build& build, const InteractionSpec& s) -> std::unique_ptr<Interactor<B, R>> {
-                          const auto& bond = static_cast<const BondSpec&>(s);
-                          using Params = typename Potential::template Params<R>;
-                          const std::vector<uint8_t>* inGroup =
-                              bond.group >= 0 ? &build.spec.groups[bond.group].members : nullptr;
-                          const size_t width = width_of(bond.schema);
-                          std::vector<int> members;
-                          std::vector<Params> params;
-                          ParameterValues values;
-                          for (size_t b = 0; b * bond.arity < bond.members.size(); ++b) {
-                              const int* ids = &bond.members[b * bond.arity];
-                              if (inGroup && !std::all_of(ids, ids + bond.arity, [&](int id) { return (*inGroup)[id]; }))
-                                  continue;
-                              members.insert(members.end(), ids, ids + bond.arity);
-                              values.assign(bond.schema, &bond.values[b * width]);
-                              params.push_back(Potential::template make_params<R>(values, build.context.constants));
-                          }
-                          return std::make_unique<BondInteraction<B, R, Potential>>(
-                              build.backend, build.scope(bond), build.context.particles, members, params);
+                          const Constants& constants = build.context.constants;
+                          return make_bond_interaction<B, R, Potential>(
+                              build, static_cast<const BondSpec&>(s), [&](const ParameterValues& v) {
+                                  return Potential::template make_params<R>(v, constants);
+                              });
                       }});
     }
 

@@ -130,6 +130,19 @@ inline std::string input_document(double box_length, const std::vector<Vec3>& po
            "  \"forceField\": {\n" + force_field + "}}}\n";
 }
 
+// The main() of a test that needs the CUDA backend: GTEST_SKIP would report success to CTest, so a
+// missing GPU must read as "skipped" (exit 77, SKIP_RETURN_CODE) instead.
+inline int run_tests_if_cuda(int argc, char** argv) {
+    structmd_sim* probe = nullptr;
+    if (structmd_create(create_options("cuda", "double").c_str(), &probe) != STRUCTMD_OK) {
+        std::printf("skipped: no usable CUDA backend: %s\n", structmd_last_error(nullptr));
+        return 77;
+    }
+    structmd_destroy(probe);
+    ::testing::InitGoogleTest(&argc, argv);
+    return RUN_ALL_TESTS();
+}
+
 }  // namespace structmd_physics
 
 #endif

@@ -100,14 +100,4 @@ INSTANTIATE_TEST_SUITE_P(Precisions, BackendAgreement,
 }  // namespace
 }  // namespace structmd_physics
 
-// GTEST_SKIP would report success to CTest; a missing GPU must read as "skipped" (exit 77) instead.
-int main(int argc, char** argv) {
-    structmd_sim* probe = nullptr;
-    if (structmd_create(structmd_physics::create_options("cuda", "double").c_str(), &probe) != STRUCTMD_OK) {
-        std::printf("skipped: no usable CUDA backend: %s\n", structmd_last_error(nullptr));
-        return 77;
-    }
-    structmd_destroy(probe);
-    ::testing::InitGoogleTest(&argc, argv);
-    return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return structmd_physics::run_tests_if_cuda(argc, argv); }

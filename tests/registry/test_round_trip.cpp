@@ -24,7 +24,10 @@ const Logger kQuiet(LogLevel::quiet, nullptr);
 
 std::vector<ComponentKey> forcefield_keys() {
     std::vector<ComponentKey> keys;
-    for (const ForceFieldComponent& c : forcefield_registry().entries()) keys.push_back(c.key);
+    // A configurable component (an expression) has no schema to walk before it reads its entry:
+    // tests/forcefield_expression covers those.
+    for (const ForceFieldComponent& c : forcefield_registry().entries())
+        if (!c.configure) keys.push_back(c.key);
     return keys;
 }
 
@@ -201,6 +204,7 @@ std::vector<double> held(const ForceFieldSpec& spec, const std::string& name) {
 TEST(ForceFieldRoundTripDefaults, OmittedParametersTakeTheirDefaultOrAreAskedFor) {
     int defaults = 0, required = 0;
     for (const ForceFieldComponent& c : forcefield_registry().entries()) {
+        if (c.configure) continue;  // no schema before its entry is read (tests/forcefield_expression)
         SCOPED_TRACE(c.key.text());
         const Json entry = forcefield_entry(c);
         for (const Parameter& p : given_once(c)) {

@@ -1,0 +1,60 @@
+#pragma once
+// What the factories of the built-in components (make_interactors.hpp) and of the configurable
+// ones (expression_component.hpp) share: the parameter table of a pair term, one entry per ordered
+// type pair, and the bonds of a bond entry that act in its group, each with its parameters.
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include "forcefield/bond_interaction.hpp"
+#include "forcefield/interactor_build.hpp"
+#include "forcefield/pair_interaction.hpp"
+
+namespace structmd {
+
+// make(values) gives the Params of a type pair from its parameters (the shared ones and its row's).
+// Unlisted type pairs keep value-initialised parameters (zero cutoff) and so never interact; a term
+// without per-type-pair parameters gives every type pair the same.
+template <class Params, class Make>
+std::vector<Params> pair_table_of(const PairSpec& pair, size_t ntypes, Make&& make) {
+    if (pair.everyTypePair) return std::vector<Params>(ntypes * ntypes, make(pair.shared));
+    std::vector<Params> table(ntypes * ntypes, Params{});
+    for (const PairSpec::Row& row : pair.rows) {
+        const Params p = make(pair.values_of(row));
+        table[row.typeI * ntypes + row.typeJ] = p;
+        table[row.typeJ * ntypes + row.typeI] = p;
+    }
+    return table;
+}
+
+template <class B, class R, class Potential, class PairR>
+std::unique_ptr<PairInteraction<B, R, Potential, PairR>> make_pair_interaction(
+    const InteractorBuild<B, R>& build, const PairSpec& pair,
+    const std::vector<typename Potential::template Params<PairR>>& table) {
+    return std::make_unique<PairInteraction<B, R, Potential, PairR>>(build.backend, build.scope(pair),
+                                                                     build.listFor(pair), table,
+                                                                     static_cast<int>(build.context.ntypes));
+}
+
+// The bonds of `bond` whose particles all belong to its group, each with make(values) as its Params.
+template <class B, class R, class Potential, class Make>
+std::unique_ptr<BondInteraction<B, R, Potential>> make_bond_interaction(const InteractorBuild<B, R>& build,
+                                                                        const BondSpec& bond, Make&& make) {
+    using Params = typename Potential::template Params<R>;
+    const std::vector<uint8_t>* inGroup = bond.group >= 0 ? &build.spec.groups[bond.group].members : nullptr;
+    const size_t width = width_of(bond.schema);
+    std::vector<int> members;
+    std::vector<Params> params;
+    ParameterValues values;
+    for (size_t b = 0; b * bond.arity < bond.members.size(); ++b) {
+        const int* ids = &bond.members[b * bond.arity];
+        if (inGroup && !std::all_of(ids, ids + bond.arity, [&](int id) { return (*inGroup)[id]; })) continue;
+        members.insert(members.end(), ids, ids + bond.arity);
+        values.assign(bond.schema, &bond.values[b * width]);
+        params.push_back(make(values));
+    }
+    return std::make_unique<BondInteraction<B, R, Potential>>(build.backend, build.scope(bond),
+                                                              build.context.particles, members, params);
+}
+
+}  // namespace structmd
