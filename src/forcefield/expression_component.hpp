@@ -13,6 +13,7 @@
 
 #include "expression/compiler.hpp"
 #include "expression/expression.hpp"
+#include "forcefield/expression_compiled_pair.hpp"
 #include "forcefield/expression_potentials.hpp"
 #include "forcefield/external_interaction.hpp"
 #include "forcefield/interactor_tables.hpp"
@@ -85,6 +86,9 @@ struct ExpressionPairComponent {
             set_columns<PairR>(p, columns);
             return p;
         });
+        if constexpr (B::compiles_at_run_time)
+            return make_compiled_expression_pair<B, R, PairR>(build, pair, config.graph, config.roots,
+                                                              config.columns.size(), table);
         auto interactor = make_pair_interaction<B, R, ExpressionPair, PairR>(build, pair, table);
         interactor->own(program);
         return interactor;

@@ -16,7 +16,7 @@ import sys
 import tempfile
 
 LJ_COLUMNS = ["n", "backend", "precision", "steps_per_call", "steps_per_second", "particle_steps_per_second",
-              "list_builds_per_1000_steps", "device_memory_mib", "setup_seconds"]
+              "list_builds_per_1000_steps", "device_memory_mib", "setup_seconds", "pair"]
 ACCURACY_COLUMNS = ["precision", "dt", "skin", "n", "backend", "steps", "steps_per_second", "seconds_per_tau",
                     "energy_drift", "relative_force_error", "list_builds_per_1000_steps"]
 # Force-error bounds per precision (the forces' arithmetic), see the docstring.
@@ -55,8 +55,11 @@ def check_lj(program):
     # The adaptive path (steps per call from a probe) and the fixed one.
     for arguments in (["--seconds", "0.05"], ["--steps", "10"]):
         rows = run(program, ["--n", "500", "--backend", "cpu", "--precision", "single", "--precision", "double",
-                             "--repeats", "3", "--warmup", "5", *arguments], LJ_COLUMNS)
-        expect([row["precision"] for row in rows] == ["single", "double"], f"rows {rows}")
+                             "--pair", "builtin", "--pair", "expression", "--repeats", "3", "--warmup", "5",
+                             *arguments], LJ_COLUMNS)
+        expect([(row["precision"], row["pair"]) for row in rows] ==
+               [("single", "builtin"), ("single", "expression"), ("double", "builtin"), ("double", "expression")],
+               f"rows {rows}")
         for row in rows:
             expect(row["n"] == "500" and row["backend"] == "cpu", f"n and backend of {row}")
             steps_per_call = int(row["steps_per_call"])

@@ -3,9 +3,12 @@
 // NVE velocity Verlet with dt = 0.005), driven through the public C API.
 //
 //   structmd_lj_benchmark [--n N]... [--backend B]... [--precision P]... [--seconds T | --steps S]
-//                         [--repeats R] [--warmup W] [--threads K] [--csv PATH]
+//                         [--repeats R] [--warmup W] [--threads K] [--pair F]... [--csv PATH]
 //
-// For every (backend, precision, N) the program builds the input in memory, loads a fresh system,
+// --pair builtin (the default) runs LJ as LennardJonesType1; --pair expression runs the same
+// potential as ["NonBonded","Expression"] (compiled at load time on CUDA, interpreted on the CPU).
+//
+// For every (backend, precision, pair form, N) the program builds the input in memory, loads a fresh system,
 // takes W untimed steps (first neighbour-list build, caches, GPU clocks), then times R calls of
 // structmd_step(S) and reports the median rate. The neighbour-list builds and the device memory come
 // from structmd_get_counters: the builds over the R timed calls per 1000 steps, the memory held by
@@ -23,7 +26,8 @@
 //
 // The table goes to standard output; --csv PATH also writes its rows as CSV (columns: n, backend,
 // precision, steps_per_call, steps_per_second, particle_steps_per_second, list_builds_per_1000_steps,
-// device_memory_mib (empty when not reported), setup_seconds). Exit status is non-zero if any
+// device_memory_mib (empty when not reported), setup_seconds, pair). setup_seconds includes the
+// compilation of an expression. Exit status is non-zero if any
 // configuration failed; its row says why and the others still run.
 #include <algorithm>
 #include <chrono>
@@ -63,6 +67,7 @@ struct BenchmarkOptions {
     int repeats = 5;
     int64_t warmup = 100;
     int threads = 0;  // 0: the engine's default
+    std::vector<std::string> pairForms{"builtin"};
     std::string csvPath;
 };
 
@@ -75,6 +80,7 @@ struct Row {
     double listBuildsPer1000Steps = 0;
     std::optional<double> deviceMemoryMiB;
     double setupSeconds = 0;
+    std::string pairForm;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -102,7 +108,7 @@ int64_t probe_steps_per_call(structmd_sim* sim, double seconds_per_call) {
 }
 
 Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::string& backend,
-            const std::string& precision) {
+            const std::string& precision, const std::string& pairForm) {
     const auto setup_start = std::chrono::steady_clock::now();
     Handle simulation(create_options(backend, precision, options.threads));
     structmd_sim* sim = simulation.get();
@@ -112,11 +118,13 @@ Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::
         liquid.timeStep = kTimeStep;
         liquid.skin = kSkin;
         liquid.scheduleSteps = kUnendingSchedule;
+        liquid.asExpression = pairForm == "expression";
         const std::string input = lj_liquid_input(liquid);  // released before stepping
         check(structmd_load_string(sim, input.c_str()), sim, "structmd_load_string");
     }
     Row row;
     row.setupSeconds = seconds_since(setup_start);
+    row.pairForm = pairForm;
 
     check(structmd_step(sim, options.warmup), sim, "structmd_step (warm-up)");
     row.stepsPerCall =
@@ -144,28 +152,28 @@ Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::
 }
 
 void print_header() {
-    std::printf("%10s  %-7s  %-9s  %10s  %10s  %16s  %14s  %10s  %7s\n", "N", "backend", "precision", "steps/call",
-                "steps/s", "particle-steps/s", "builds/1000st", "memory MiB", "setup s");
+    std::printf("%10s  %-7s  %-9s  %10s  %10s  %16s  %14s  %10s  %7s  %s\n", "N", "backend", "precision", "steps/call",
+                "steps/s", "particle-steps/s", "builds/1000st", "memory MiB", "setup s", "pair");
 }
 
 void print_row(const Row& row) {
     char memory[32] = "-";
     if (row.deviceMemoryMiB) std::snprintf(memory, sizeof memory, "%.1f", *row.deviceMemoryMiB);
-    std::printf("%10lld  %-7s  %-9s  %10lld  %10.4g  %16.4g  %14.2f  %10s  %7.2f\n",
+    std::printf("%10lld  %-7s  %-9s  %10lld  %10.4g  %16.4g  %14.2f  %10s  %7.2f  %s\n",
                 static_cast<long long>(row.particles), row.backend.c_str(), row.precision.c_str(),
                 static_cast<long long>(row.stepsPerCall), row.stepsPerSecond,
                 row.stepsPerSecond * static_cast<double>(row.particles), row.listBuildsPer1000Steps, memory,
-                row.setupSeconds);
+                row.setupSeconds, row.pairForm.c_str());
 }
 
 void write_csv_row(std::ofstream& csv, const Row& row) {
     char line[512];
     char memory[32] = "";
     if (row.deviceMemoryMiB) std::snprintf(memory, sizeof memory, "%.3f", *row.deviceMemoryMiB);
-    std::snprintf(line, sizeof line, "%lld,%s,%s,%lld,%.6g,%.6g,%.4f,%s,%.3f\n", static_cast<long long>(row.particles),
+    std::snprintf(line, sizeof line, "%lld,%s,%s,%lld,%.6g,%.6g,%.4f,%s,%.3f,%s\n", static_cast<long long>(row.particles),
                   row.backend.c_str(), row.precision.c_str(), static_cast<long long>(row.stepsPerCall),
                   row.stepsPerSecond, row.stepsPerSecond * static_cast<double>(row.particles),
-                  row.listBuildsPer1000Steps, memory, row.setupSeconds);
+                  row.listBuildsPer1000Steps, memory, row.setupSeconds, row.pairForm.c_str());
     csv << line << std::flush;
 }
 
@@ -198,6 +206,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--threads", options.threads, "CPU threads (default: all OpenMP offers)")
         ->check(CLI::PositiveNumber);
+    app.add_option("--pair", options.pairForms, "builtin or expression: the form of the LJ potential (repeatable)")
+        ->check(CLI::IsMember({"builtin", "expression"}))
+        ->capture_default_str();
     app.add_option("--csv", options.csvPath, "Also write the rows to this CSV file");
     CLI11_PARSE(app, argc, argv);
 
@@ -205,7 +216,7 @@ int main(int argc, char** argv) {
     if (!options.csvPath.empty() &&
         !open_csv(csv, options.csvPath,
                   "n,backend,precision,steps_per_call,steps_per_second,particle_steps_per_second,"
-                  "list_builds_per_1000_steps,device_memory_mib,setup_seconds"))
+                  "list_builds_per_1000_steps,device_memory_mib,setup_seconds,pair"))
         return 2;
 
     if (options.fixedSteps > 0)
@@ -221,9 +232,10 @@ int main(int argc, char** argv) {
     int failures = 0;
     for (const auto& backend : options.backends)
         for (const auto& precision : options.precisions)
+            for (const auto& pairForm : options.pairForms)
             for (const int64_t size : options.sizes) {
                 try {
-                    const Row row = measure(options, size, backend, precision);
+                    const Row row = measure(options, size, backend, precision, pairForm);
                     print_row(row);
                     if (csv.is_open()) write_csv_row(csv, row);
                 } catch (const Failure& failure) {

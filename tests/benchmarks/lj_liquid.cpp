@@ -104,7 +104,12 @@ std::string lj_liquid_input(const LjLiquid& liquid) {
     json += R"("forceField": {"nl": {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": )";
     append_number(json, (kCutOff + liquid.skin) / kCutOff);
     json += "}},";
-    json += R"("lj": {"type": ["NonBonded", "LennardJonesType1"], "parameters": {"cutOffFactor": )";
+    if (liquid.asExpression) {
+        json += R"("lj": {"type": ["NonBonded", "Expression"], "parameters": {"energy": )"
+                R"json("4*epsilon*((sigma/r)^12 - (sigma/r)^6)", "cutOff": )json";
+    } else {
+        json += R"("lj": {"type": ["NonBonded", "LennardJonesType1"], "parameters": {"cutOffFactor": )";
+    }
     append_number(json, kCutOff);
     json += R"(, "condition": "all", "shift": )";
     json += liquid.shiftEnergy ? "true" : "false";

@@ -25,6 +25,7 @@ struct LjLiquid {
     double timeStep = 0.005;     // tau
     double skin = 0.3;           // sigma, added to the cutoff for the Verlet list
     bool shiftEnergy = false;    // the LJ entry's "shift": energy continuous at the cutoff
+    bool asExpression = false;   // LJ as ["NonBonded","Expression"] instead of LennardJonesType1
     int64_t scheduleSteps = 0;   // the schedule's length: structmd_step cannot go past it
 };
 
