@@ -113,14 +113,17 @@ STRUCTMD_API const char* structmd_version(void);
  *                      (mixed: state, forces and sums in double, pair potentials in single);
  *                      "threads": CPU threads, >= 1 (default: all the OpenMP runtime offers);
  *                      "log": "quiet" | "warning" (default) | "info" | "debug";
- *                      "log_file": path, appended to (default: standard error).
+ *                      "log_file": path, appended to (default: standard error);
+ *                      "plugins": an array of paths of plugin libraries this handle loads, after
+ *                      those loaded by structmd_load_plugin (docs/plugins.md).
  *                      Read during the call only.
  * @param[out] out      receives the new handle, owned by the caller until structmd_destroy; set to
  *                      NULL on failure.
  * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for malformed options, an unknown key, a bad value, a
  *         "device" that does not exist, or out == NULL; STRUCTMD_ERR_DEVICE when "cuda" is demanded
  *         and no GPU is usable; STRUCTMD_ERR_UNSUPPORTED when "cuda" is demanded from a CPU-only
- *         build; STRUCTMD_ERR_IO when "log_file" cannot be opened; STRUCTMD_ERR_MEMORY. On failure
+ *         build; STRUCTMD_ERR_IO when "log_file" cannot be opened; for "plugins", the statuses of
+ *         structmd_load_plugin, the message naming the option; STRUCTMD_ERR_MEMORY. On failure
  *         structmd_last_error(NULL) says why, on this thread.
  */
 STRUCTMD_API structmd_status structmd_create(const char* options_json, structmd_sim** out);
@@ -175,6 +178,33 @@ STRUCTMD_API structmd_status structmd_load_file(structmd_sim* sim, const char* p
  * @return as structmd_load_file, less STRUCTMD_ERR_IO for reading the input.
  */
 STRUCTMD_API structmd_status structmd_load_string(structmd_sim* sim, const char* json);
+
+/** @} */
+
+/** @name Plugins
+ *  @{ */
+
+/**
+ * Loads a plugin library: a shared library built with structmd_add_plugin (the installed CMake
+ * package) that adds force-field components, which inputs then name like built-in ones
+ * (docs/plugins.md). The list of plugins loaded this way is process-wide and guarded by a lock, so
+ * any thread may call this at any time: every handle created AFTER the call knows the plugin's
+ * components; handles that exist already are not changed. A handle may also load plugins of its own
+ * through the "plugins" option of structmd_create, which no other handle sees. The plugin is checked
+ * before any of its code but two version queries runs: a plugin built for another plugin ABI or
+ * another build of structmd (version, compiler, CUDA or not) is refused and not loaded. Loading a
+ * path loaded already does nothing. An accepted library is never unloaded; a refused one is unloaded
+ * again, its registration never called.
+ *
+ * @param path  the plugin library's file path, read during the call.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for path == NULL, a library that is not a structmd
+ *         plugin, or a plugin whose component names are known already (built-in or from another
+ *         plugin); STRUCTMD_ERR_IO when the file does not exist or cannot be loaded (the message has
+ *         the loader's reason); STRUCTMD_ERR_UNSUPPORTED for a plugin built for another plugin ABI
+ *         or another build of structmd (the message says both); STRUCTMD_ERR_MEMORY. On failure
+ *         structmd_last_error(NULL) says why, on this thread.
+ */
+STRUCTMD_API structmd_status structmd_load_plugin(const char* path);
 
 /** @} */
 

@@ -45,7 +45,8 @@ module structmd
             structmd_get_energy, structmd_get_virial, structmd_get_pressure, structmd_get_box, &
             structmd_get_step, structmd_get_time, structmd_set_positions, structmd_set_velocities, &
             structmd_set_box, structmd_set_external_forces, structmd_get_info, &
-            structmd_save_checkpoint, structmd_load_checkpoint, structmd_get_counters
+            structmd_save_checkpoint, structmd_load_checkpoint, structmd_get_counters, &
+            structmd_load_plugin
 
   public :: structmd_version_f, structmd_last_error_f, structmd_create_f, structmd_load_file_f, &
             structmd_load_string_f, structmd_get_energy_f, structmd_get_ids_f, &
@@ -53,7 +54,7 @@ module structmd
             structmd_get_particle_energies_f, structmd_get_masses_f, structmd_get_types_f, &
             structmd_set_positions_f, structmd_set_velocities_f, structmd_set_external_forces_f, &
             structmd_clear_external_forces_f, structmd_get_info_f, structmd_save_checkpoint_f, &
-            structmd_load_checkpoint_f, structmd_get_counters_f
+            structmd_load_checkpoint_f, structmd_get_counters_f, structmd_load_plugin_f
 
   interface
     function structmd_abi_version() bind(C, name="structmd_abi_version") result(version)
@@ -96,6 +97,12 @@ module structmd
       import :: c_ptr, c_char, c_int32_t
       type(c_ptr), value :: sim
       character(kind=c_char), intent(in) :: json(*)
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_load_plugin(path) bind(C, name="structmd_load_plugin") result(status)
+      import :: c_char, c_int32_t
+      character(kind=c_char), intent(in) :: path(*)
       integer(c_int32_t) :: status
     end function
 
@@ -327,6 +334,12 @@ contains
     character(len=*), intent(in) :: path
     integer(c_int32_t) :: status
     status = structmd_load_file(sim, c_string(path))
+  end function
+
+  function structmd_load_plugin_f(path) result(status)
+    character(len=*), intent(in) :: path
+    integer(c_int32_t) :: status
+    status = structmd_load_plugin(c_string(path))
   end function
 
   function structmd_save_checkpoint_f(sim, path) result(status)

@@ -13,8 +13,15 @@
 #include "simulation/simulation.hpp"
 #include "structmd.h"
 
+namespace structmd {
+class ForceFieldComponents;  // forcefield/component_set.hpp, reached through engines/make_engine.hpp
+}
+
 struct structmd_sim {
     structmd::EngineOptions options;
+    // Built-ins, the plugins loaded process-wide before the handle was created, and those of its
+    // "plugins" option. Fixed at creation; shared by every load of the handle.
+    std::shared_ptr<const structmd::ForceFieldComponents> components;
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> logFile{nullptr, &std::fclose};
     structmd::Logger log;
     std::unique_ptr<structmd::Simulation> simulation;
@@ -24,8 +31,12 @@ struct structmd_sim {
 namespace structmd::api {
 
 // Message of the last failure on this thread that had no handle to hold it (a failed create, a
-// NULL handle).
+// NULL handle, structmd_load_plugin).
 std::string& thread_error();
+
+// The components of a new handle: built-ins, every plugin loaded by structmd_load_plugin so far, then
+// `paths` (its "plugins" option) in order (plugins.cpp).
+std::shared_ptr<const ForceFieldComponents> handle_components(const std::vector<std::string>& paths);
 
 template <class Body>
 structmd_status guarded(std::string& message, Body&& body) noexcept {

@@ -18,7 +18,7 @@ namespace {
 
 void load_text(structmd_sim& sim, const std::string& text) {
     sim.simulation.reset();  // a failed load leaves no simulation, and the old one's memory is freed first
-    sim.simulation = load_simulation(sim.options, text, sim.log);
+    sim.simulation = load_simulation(sim.options, text, *sim.components, sim.log);
     sim.log.info("loaded " + std::to_string(sim.simulation->particle_count()) + " particles on " +
                  sim.simulation->backend_name() + " (" + sim.simulation->device_name() + "), " +
                  sim.simulation->precision_name() + " precision");
@@ -42,6 +42,7 @@ structmd_status structmd_create(const char* options_json, structmd_sim** out) {
         *out = nullptr;
         auto sim = std::make_unique<structmd_sim>();
         sim->options = parse_engine_options(options_json);
+        sim->components = handle_components(sim->options.plugins);
         std::FILE* sink = stderr;
         if (!sim->options.logFile.empty()) {
             sim->logFile.reset(std::fopen(sim->options.logFile.c_str(), "a"));

@@ -5,8 +5,9 @@
 
 namespace structmd {
 
-std::unique_ptr<Simulation> make_cuda_engine_double(int device, SimulationSpec spec, const Logger& log) {
-    return std::make_unique<Engine<CudaBackend, double>>(std::move(spec), log, device);
+std::unique_ptr<Simulation> make_cuda_engine_double(int device, SimulationSpec spec,
+                                                    const ForceFieldComponents& components, const Logger& log) {
+    return std::make_unique<Engine<CudaBackend, double>>(std::move(spec), components, log, device);
 }
 
 }  // namespace structmd

@@ -5,8 +5,9 @@
 
 namespace structmd {
 
-std::unique_ptr<Simulation> make_cuda_engine_single(int device, SimulationSpec spec, const Logger& log) {
-    return std::make_unique<Engine<CudaBackend, float>>(std::move(spec), log, device);
+std::unique_ptr<Simulation> make_cuda_engine_single(int device, SimulationSpec spec,
+                                                    const ForceFieldComponents& components, const Logger& log) {
+    return std::make_unique<Engine<CudaBackend, float>>(std::move(spec), components, log, device);
 }
 
 }  // namespace structmd

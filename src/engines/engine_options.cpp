@@ -69,8 +69,12 @@ EngineOptions parse_engine_options(const char* text) {
                 else throw option_error(key, "expected \"quiet\", \"warning\", \"info\" or \"debug\", got \"" + level + "\"");
             } else if (key == "log_file") {
                 options.logFile = string_option(value, key);
+            } else if (key == "plugins") {
+                if (!value.is_array()) throw option_error(key, "expected an array of paths, got " + value.dump());
+                for (const auto& path : value) options.plugins.push_back(string_option(path, key));
             } else {
-                throw option_error(key, "unknown option (known: backend, device, precision, threads, log, log_file)");
+                throw option_error(
+                    key, "unknown option (known: backend, device, precision, threads, log, log_file, plugins)");
             }
         }
     }

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/logger.hpp"
 #include "engines/engine_kind.hpp"
@@ -16,6 +17,7 @@ struct EngineOptions {
     int threads = 0;  // 0: all the OpenMP runtime offers
     LogLevel logLevel = LogLevel::warning;
     std::string logFile;  // empty: standard error
+    std::vector<std::string> plugins;  // plugin libraries this handle loads, beside the process-wide ones
 };
 
 // Parses the options JSON (NULL or "" for defaults) and resolves "auto". Throws Error(ERR_ARGUMENT)

@@ -6,12 +6,16 @@
 
 #include "core/logger.hpp"
 #include "engines/engine_options.hpp"
+#include "forcefield/component_set.hpp"
 #include "simulation/simulation.hpp"
 
 namespace structmd {
 
-// Reads an input document and builds its engine as the options say. Throws Error with the JSON
-// path for bad input, ERR_DEVICE / ERR_MEMORY when the backend fails.
-std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const std::string& text, const Logger& log);
+// Reads an input document with the handle's force-field components (built-ins and its plugins') and
+// builds its engine as the options say. Throws Error with the JSON path for bad input, ERR_DEVICE /
+// ERR_MEMORY when the backend fails, ERR_UNSUPPORTED for a plugin component not compiled for the
+// engine.
+std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const std::string& text,
+                                            const ForceFieldComponents& components, const Logger& log);
 
 }  // namespace structmd

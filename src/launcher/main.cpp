@@ -1,7 +1,8 @@
 // structmd: the command-line launcher. It drives the engine through the public C API only, as any
 // host program would: create a handle, load the input, step along the schedule, report.
 //
-//   structmd run INPUT.json [--backend auto|cpu|cuda] [--precision single|mixed|double] [--threads N] [--quiet]
+//   structmd run INPUT.json [--backend auto|cpu|cuda] [--precision single|mixed|double] [--threads N]
+//                [--plugin LIBRARY.so]... [--quiet]
 //   structmd --version
 //
 // Exit status: 0 on success, the structmd_status code (1..9) when the engine reports a failure,
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <new>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -37,6 +39,7 @@ struct RunOptions {
     std::string backend = "auto";
     std::string precision = "single";
     int threads = 0;  // 0: the engine's default (all threads OpenMP offers)
+    std::vector<std::string> plugins;  // the handle's "plugins" option
     bool quiet = false;
 };
 
@@ -154,6 +157,7 @@ std::string create_options(const RunOptions& options) {
                            {"precision", options.precision},
                            {"log", options.quiet ? "warning" : "info"}};
     if (options.threads > 0) json["threads"] = options.threads;
+    if (!options.plugins.empty()) json["plugins"] = options.plugins;
     return json.dump();
 }
 
@@ -244,6 +248,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     run->add_option("--threads", options.threads, "CPU threads (default: all OpenMP offers)")
         ->check(CLI::PositiveNumber);
+    run->add_option("--plugin", options.plugins,
+                    "A plugin library whose components the input may use (docs/plugins.md); repeatable");
     run->add_flag("--quiet", options.quiet,
                   "No progress line, no summary, engine log at warning level (errors still print)");
 

@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "core/logger.hpp"
+#include "forcefield/component_set.hpp"
 #include "forcefield/make_interactors.hpp"
 #include "integrators/make_integrator.hpp"
 #include "simulation/checkpoint_file.hpp"
@@ -41,8 +42,10 @@ constexpr const char* precision_label() {
 template <class B, class R, class PairR = R>
 class Engine final : public Simulation, private ForceSource {
 public:
+    // `components`: the handle's force-field components (built-ins and its plugins'), whose
+    // factories build the force field.
     template <class... BackendArgs>
-    Engine(SimulationSpec spec, const Logger& log, BackendArgs&&... backendArgs)
+    Engine(SimulationSpec spec, const ForceFieldComponents& components, const Logger& log, BackendArgs&&... backendArgs)
         : backend_(std::forward<BackendArgs>(backendArgs)...),
           log_(log),
           schedule_(spec.currentStep, spec.schedule),
@@ -80,8 +83,10 @@ public:
         context.batch = p_.batch.empty() ? nullptr : p_.batch.data();
         context.model = p_.model.data();
         context.log = &log_;
-        forceField_ = make_interactors<B, R>(backend_, spec.forceField, context,
-                                             builtin_interactor_factories<B, R, PairR>());
+        forceField_ =
+            make_interactors<B, R>(backend_, spec.forceField, context,
+                                   components.factories<B, R, PairR>(builtin_interactor_factories<B, R, PairR>(),
+                                                                     spec.forceField, precision_label<R, PairR>()));
         for (const IntegratorSpec& integrator : spec.integrators)
             integrators_.push_back(make_integrator<B, R>(
                 backend_, integrator, integrator.group >= 0 ? forceField_.group(integrator.group) : nullptr,

@@ -10,13 +10,13 @@
 
 namespace structmd {
 
-
-SimulationSpec read_simulation(const std::string& text, const Logger& log) {
+SimulationSpec read_simulation(const std::string& text, const Logger& log,
+                               const Registry<ForceFieldComponent>& components) {
     input::ParsedDocument doc = input::parse_document(text);
     const input::SystemDescription& system = doc.system;
 
     SimulationSpec spec;
-    spec.forceField = read_forcefield(system, log);
+    spec.forceField = read_forcefield(system, log, components);
     spec.integrators = read_integrators(system, spec.forceField.groups, spec.schedule);
     spec.steps = read_simulation_steps(system, spec.forceField.groups, log);
     if (const auto& b = system.backup)

@@ -131,6 +131,19 @@ def test_bad_options_raise_argument_error_with_the_librarys_message():
         structmd.Simulation(42)
 
 
+def test_load_plugin_raises_the_class_of_its_status(tmp_path):
+    # The example plugin itself is built and loaded by tests/plugins; here, the binding's failures.
+    with pytest.raises(structmd.StructmdIOError) as raised:
+        structmd.load_plugin(tmp_path / "missing.so")
+    assert "missing.so" in raised.value.message and "cannot open" in raised.value.message
+    with pytest.raises(structmd.ArgumentError) as raised:
+        structmd.load_plugin(structmd.library_path)
+    assert "not a structmd plugin" in raised.value.message
+    with pytest.raises(structmd.StructmdIOError) as raised:
+        structmd.Simulation({"plugins": [str(tmp_path / "missing.so")]})
+    assert raised.value.message.startswith('option "plugins": ')
+
+
 def test_load_accepts_dict_json_text_and_paths(sim, tmp_path):
     doc = systems.lj_bond_system()
     path = tmp_path / "input.json"

@@ -288,6 +288,17 @@ def test_last_error_of_null_follows_the_latest_create():
     assert "loud" in create_message() or "log" in create_message()
 
 
+def test_load_plugin_reports_without_a_handle(tmp_path):
+    # The example plugin is built and loaded by tests/plugins; here, failures at the ABI.
+    assert lib.structmd_load_plugin(ffi.NULL) == ARGUMENT
+    assert "path" in create_message()
+    missing = str(tmp_path / "missing.so").encode()
+    assert lib.structmd_load_plugin(missing) == IO
+    assert "missing.so" in create_message() and "cannot open" in create_message()
+    assert lib.structmd_load_plugin(library_path().encode()) == ARGUMENT
+    assert "not a structmd plugin" in create_message()
+
+
 def test_cuda_backend_either_works_or_says_why():
     out = ffi.new("structmd_sim**")
     status = lib.structmd_create(b'{"backend": "cuda", "log": "quiet"}', out)

@@ -13,6 +13,8 @@ package, else on the system's library path; importing fails with ImportError if 
 not ABI_VERSION.
 """
 
+import os as _os
+
 from ._library import lib as _lib
 from ._library import library_path
 from .constants import ABI_VERSION, COMPUTE_FLAGS, STATUS
@@ -32,10 +34,21 @@ def version():
     return _lib.structmd_version().decode()
 
 
+def load_plugin(path):
+    """Loads a plugin library for every Simulation created afterwards (structmd_load_plugin); a
+    Simulation may also load its own through the option "plugins". Raises the StructmdError subclass
+    of the failure: StructmdIOError (no such file), ArgumentError (not a plugin), UnsupportedError
+    (built for another plugin ABI or another build of structmd)."""
+    status = _lib.structmd_load_plugin(_os.fsencode(path))
+    if status != STATUS["STRUCTMD_OK"]:
+        raise error_for_status(status, _lib.structmd_last_error(None).decode(errors="replace"))
+
+
 __version__ = version()
 
 __all__ = [
     "ABI_VERSION", "COMPUTE_FLAGS", "STATUS", "Simulation", "abi_version", "version", "library_path",
+    "load_plugin",
     "StructmdError", "ArgumentError", "InputError", "StateError", "NumericalError", "StructmdIOError",
     "DeviceError", "StructmdMemoryError", "UnsupportedError", "InternalError", "error_for_status",
 ]

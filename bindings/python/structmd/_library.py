@@ -27,6 +27,7 @@ SIGNATURES = {
     "structmd_last_error": (c_char_p, [HANDLE_T]),
     "structmd_load_file": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_load_string": (STATUS_T, [HANDLE_T, c_char_p]),
+    "structmd_load_plugin": (STATUS_T, [c_char_p]),
     "structmd_step": (STATUS_T, [HANDLE_T, c_int64]),
     "structmd_run": (STATUS_T, [HANDLE_T]),
     "structmd_compute": (STATUS_T, [HANDLE_T, c_uint32]),

@@ -41,7 +41,7 @@ class Simulation:
     (vectors) or lists (scalars). Every failure raises the StructmdError subclass of its status.
 
     options: None (all defaults), a dict or a JSON string with the keys of structmd_create
-    ("backend", "device", "precision", "threads", "log", "log_file").
+    ("backend", "device", "precision", "threads", "log", "log_file", "plugins").
     """
 
     def __init__(self, options=None):

@@ -1,0 +1,63 @@
+#pragma once
+// The reader's visitor of a force-field component list (components.hpp): what the input reader
+// knows of each component, added to a registry. The built-in registry (component_registry.cpp) and
+// plugins (engines/plugin.hpp) both add their components through it, so a plugin's potential is read
+// exactly as a built-in one is.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/error.hpp"
+#include "forcefield/component_registry.hpp"
+
+namespace structmd {
+
+struct ReaderEntries {
+    Registry<ForceFieldComponent>& registry;
+
+    template <class Potential>
+    void pair(ComponentKey key) {
+        ForceFieldComponent c = component(std::move(key), InteractionKind::pair, Potential::pair_parameters());
+        c.entryParameters = Potential::entry_parameters();
+        c.actingCutoff = [](const ParameterValues& v, const Constants& constants, double cutOffFactor, bool shift) {
+            return std::sqrt(static_cast<double>(
+                Potential::template make_pair_params<double>(v, constants, cutOffFactor, shift).cutoff2));
+        };
+        registry.add(std::move(c));
+    }
+
+    template <class Potential>
+    void bond(ComponentKey key, std::vector<std::string> common = {}) {
+        ForceFieldComponent c = component(std::move(key), InteractionKind::bond, Potential::parameters());
+        c.arity = Potential::arity;
+        for (const std::string& name : common)
+            if (std::none_of(c.parameters.begin(), c.parameters.end(),
+                             [&](const Parameter& p) { return name == p.name; }))
+                throw Error(STRUCTMD_ERR_INTERNAL, c.key.text() + ": common parameter '" + name + "' is not declared");
+        c.common = std::move(common);
+        registry.add(std::move(c));
+    }
+
+    template <class Potential>
+    void external(ComponentKey key) {
+        registry.add(component(std::move(key), InteractionKind::external, Potential::parameters()));
+    }
+
+    template <class Component>
+    void configurable(ComponentKey key) {
+        registry.add(Component::reader_entry(std::move(key)));
+    }
+
+private:
+    static ForceFieldComponent component(ComponentKey key, InteractionKind kind, std::vector<Parameter> parameters) {
+        ForceFieldComponent c;
+        c.key = std::move(key);
+        c.kind = kind;
+        c.parameters = std::move(parameters);
+        return c;
+    }
+};
+
+}  // namespace structmd
