@@ -2,10 +2,13 @@
 // What an engine's interactor factories are given (make_interactors.hpp builds the force field
 // with them): the backend, the engine data, the spec and the force field under construction.
 // Configurable components (component_registry.hpp) write their factory against this alone.
+#include <algorithm>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "core/registry.hpp"
+#include "forcefield/bond_interaction.hpp"
 #include "forcefield/force_field.hpp"
 #include "forcefield/forcefield_spec.hpp"
 #include "forcefield/pair_potential.hpp"
@@ -44,5 +47,24 @@ struct InteractorFactory {
     ComponentKey key;
     std::function<std::unique_ptr<Interactor<B, R>>(const InteractorBuild<B, R>&, const InteractionSpec&)> make;
 };
+
+// The interactor of a bond entry: its bonds whose particles all lie in the entry's group, each with
+// the Params that params_of(b) gives for bond b of the spec.
+template <class Potential, class B, class R, class ParamsOf>
+std::unique_ptr<Interactor<B, R>> make_bond_interaction(const InteractorBuild<B, R>& build, const BondSpec& bond,
+                                                        ParamsOf params_of) {
+    using Params = typename Potential::template Params<R>;
+    const std::vector<uint8_t>* inGroup = bond.group >= 0 ? &build.spec.groups[bond.group].members : nullptr;
+    std::vector<int> members;
+    std::vector<Params> params;
+    for (size_t b = 0; b * bond.arity < bond.members.size(); ++b) {
+        const int* ids = &bond.members[b * bond.arity];
+        if (inGroup && !std::all_of(ids, ids + bond.arity, [&](int id) { return (*inGroup)[id]; })) continue;
+        members.insert(members.end(), ids, ids + bond.arity);
+        params.push_back(params_of(b));
+    }
+    return std::make_unique<BondInteraction<B, R, Potential>>(build.backend, build.scope(bond),
+                                                              build.context.particles, members, params);
+}
 
 }  // namespace structmd

@@ -61,23 +61,12 @@ struct FactoryEntries {
     void bond(ComponentKey key, const std::vector<std::string>& = {}) {
         registry.add({std::move(key), [](const Build& build, const InteractionSpec& s) -> std::unique_ptr<Interactor<B, R>> {
                           const auto& bond = static_cast<const BondSpec&>(s);
-                          using Params = typename Potential::template Params<R>;
-                          const std::vector<uint8_t>* inGroup =
-                              bond.group >= 0 ? &build.spec.groups[bond.group].members : nullptr;
                           const size_t width = width_of(bond.schema);
-                          std::vector<int> members;
-                          std::vector<Params> params;
                           ParameterValues values;
-                          for (size_t b = 0; b * bond.arity < bond.members.size(); ++b) {
-                              const int* ids = &bond.members[b * bond.arity];
-                              if (inGroup && !std::all_of(ids, ids + bond.arity, [&](int id) { return (*inGroup)[id]; }))
-                                  continue;
-                              members.insert(members.end(), ids, ids + bond.arity);
+                          return make_bond_interaction<Potential>(build, bond, [&](size_t b) {
                               values.assign(bond.schema, &bond.values[b * width]);
-                              params.push_back(Potential::template make_params<R>(values, build.context.constants));
-                          }
-                          return std::make_unique<BondInteraction<B, R, Potential>>(
-                              build.backend, build.scope(bond), build.context.particles, members, params);
+                              return Potential::template make_params<R>(values, build.context.constants);
+                          });
                       }});
     }
 
