@@ -22,11 +22,7 @@ namespace {
 
 const Logger kQuiet(LogLevel::quiet, nullptr);
 
-std::vector<ComponentKey> forcefield_keys() {
-    std::vector<ComponentKey> keys;
-    for (const ForceFieldComponent& c : forcefield_registry().entries()) keys.push_back(c.key);
-    return keys;
-}
+std::vector<ComponentKey> forcefield_keys() { return schema_forcefield_keys(); }
 
 const ForceFieldComponent& component(const ComponentKey& key) {
     const ForceFieldComponent* c = forcefield_registry().find(key);

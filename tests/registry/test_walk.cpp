@@ -32,11 +32,7 @@ private:
     structmd_sim* sim_ = nullptr;
 };
 
-std::vector<ComponentKey> forcefield_keys() {
-    std::vector<ComponentKey> keys;
-    for (const ForceFieldComponent& c : forcefield_registry().entries()) keys.push_back(c.key);
-    return keys;
-}
+std::vector<ComponentKey> forcefield_keys() { return schema_forcefield_keys(); }
 
 std::vector<ComponentKey> integrator_keys() {
     std::vector<ComponentKey> keys;
