@@ -99,6 +99,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<Dihedral>({"Bond4", "Dihedral"});
     v.template bond<Dihedral>({"Bond4", "DihedralCommon_n_K_phi0"}, {"n", "K", "phi0"});
     v.template bond<Dihedral4>({"Bond4", "Dihedral4"});
+    v.template configurable<TabulatedDihedral>({"Bond4", "Tabulated"});
 
     v.template external<ExternalConstantForce>({"External", "ConstantForce"});
     v.template external<Plates>({"External", "Plates"});

@@ -65,11 +65,25 @@ TableNodes resample_linear(const TablePoints& t, int n, double lo, double hi) {
 
 }  // namespace
 
+// Solves the tridiagonal system lower[i] y[i-1] + diag[i] y[i] + upper[i] y[i+1] = rhs[i] (lower[0] and
+// upper[n-1] unused) by forward elimination and back substitution.
+std::vector<double> solve_tridiagonal(const std::vector<double>& lower, std::vector<double> diag,
+                                      const std::vector<double>& upper, std::vector<double> rhs) {
+    const size_t n = diag.size();
+    for (size_t i = 1; i < n; ++i) {
+        const double m = lower[i] / diag[i - 1];
+        diag[i] -= m * upper[i - 1];
+        rhs[i] -= m * rhs[i - 1];
+    }
+    std::vector<double> y(n);
+    y[n - 1] = rhs[n - 1] / diag[n - 1];
+    for (size_t i = n - 1; i-- > 0;) y[i] = (rhs[i] - upper[i] * y[i + 1]) / diag[i];
+    return y;
+}
+
 std::vector<double> spline_second_derivatives(const std::vector<double>& x, const std::vector<double>& y, double yp1,
                                               double ypn) {
-    // Tridiagonal system for the second derivatives M_i (continuity of the first derivative at each
-    // inner node, the given slope or M = 0 at each end), solved by forward elimination and back
-    // substitution.
+    // Continuity of the first derivative at each inner node; the given slope, or M = 0, at each end.
     const size_t n = x.size();
     std::vector<double> diag(n), upper(n), rhs(n), lower(n);
     const auto h = [&](size_t i) { return x[i + 1] - x[i]; };
@@ -90,15 +104,60 @@ std::vector<double> spline_second_derivatives(const std::vector<double>& x, cons
     } else {
         lower[n - 1] = h(n - 2), diag[n - 1] = 2.0 * h(n - 2), rhs[n - 1] = 6.0 * (ypn - slope(n - 2));
     }
-    for (size_t i = 1; i < n; ++i) {
-        const double m = lower[i] / diag[i - 1];
-        diag[i] -= m * upper[i - 1];
-        rhs[i] -= m * rhs[i - 1];
+    return solve_tridiagonal(lower, diag, upper, rhs);
+}
+
+std::vector<double> cyclic_spline_second_derivatives(const std::vector<double>& x, const std::vector<double>& y,
+                                                     double period) {
+    // The same continuity at every node, the neighbours of the ends taken across the period; the
+    // corners of the cyclic matrix are removed by the Sherman-Morrison formula.
+    const size_t n = x.size();
+    const auto h = [&](size_t i) { return i + 1 < n ? x[i + 1] - x[i] : x[0] + period - x[n - 1]; };
+    const auto slope = [&](size_t i) { return (y[(i + 1) % n] - y[i]) / h(i); };
+    std::vector<double> lower(n), diag(n), upper(n), rhs(n);
+    for (size_t i = 0; i < n; ++i) {
+        const size_t previous = (i + n - 1) % n;
+        lower[i] = h(previous);
+        diag[i] = 2.0 * (h(previous) + h(i));
+        upper[i] = h(i);
+        rhs[i] = 6.0 * (slope(i) - slope(previous));
     }
+    const double corner0 = lower[0], cornerN = upper[n - 1];  // row 0's M_{n-1}, row n-1's M_0
+    const double gamma = -diag[0];
+    diag[0] -= gamma;
+    diag[n - 1] -= corner0 * cornerN / gamma;
+    const std::vector<double> solution = solve_tridiagonal(lower, diag, upper, rhs);
+    std::vector<double> u(n, 0.0);
+    u[0] = gamma;
+    u[n - 1] = cornerN;
+    const std::vector<double> z = solve_tridiagonal(lower, diag, upper, u);
+    const double factor = (solution[0] + corner0 * solution[n - 1] / gamma) / (1.0 + z[0] + corner0 * z[n - 1] / gamma);
     std::vector<double> second(n);
-    second[n - 1] = rhs[n - 1] / diag[n - 1];
-    for (size_t i = n - 1; i-- > 0;) second[i] = (rhs[i] - upper[i] * second[i + 1]) / diag[i];
+    for (size_t i = 0; i < n; ++i) second[i] = solution[i] - factor * z[i];
     return second;
+}
+
+double cyclic_spline_value(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& y2,
+                           double period, double xq) {
+    const size_t n = x.size();
+    size_t lo, hi;
+    double xlo, xhi;
+    if (xq < x[0] || xq >= x[n - 1]) {  // the interval across the period
+        lo = n - 1, hi = 0;
+        xlo = xq < x[0] ? x[n - 1] - period : x[n - 1];
+        xhi = xq < x[0] ? x[0] : x[0] + period;
+    } else {
+        lo = 0, hi = n - 1;
+        while (hi - lo > 1) {
+            const size_t mid = (lo + hi) / 2;
+            (x[mid] > xq ? hi : lo) = mid;
+        }
+        xlo = x[lo], xhi = x[hi];
+    }
+    const double h = xhi - xlo;
+    const double a = (xhi - xq) / h;
+    const double b = (xq - xlo) / h;
+    return a * y[lo] + b * y[hi] + ((a * a * a - a) * y2[lo] + (b * b * b - b) * y2[hi]) * (h * h) / 6.0;
 }
 
 double spline_value(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& y2,
@@ -156,5 +215,27 @@ TableNodes lammps_pair_spline(const TablePoints& t, int n, double cutoff) {
 TableNodes lammps_bond_spline(const TablePoints& t, int n) { return resample_linear(t, n, t.x.front(), t.x.back()); }
 
 TableNodes lammps_angle_spline(const TablePoints& t, int n) { return resample_linear(t, n, 0.0, M_PI); }
+
+TableNodes lammps_dihedral_spline(const TablePoints& t, int n) {
+    constexpr double period = 2.0 * M_PI;
+    const bool withForce = !t.force.empty();
+    const std::vector<double> e2file = cyclic_spline_second_derivatives(t.x, t.energy, period);
+    const std::vector<double> f2file = withForce ? cyclic_spline_second_derivatives(t.x, t.force, period) : e2file;
+    const double delta = period / n;
+    std::vector<double> phi(n), e(n), f(n, 0.0);
+    for (int i = 0; i < n; ++i) {
+        phi[i] = i * delta;
+        e[i] = cyclic_spline_value(t.x, t.energy, e2file, period, phi[i]);
+        if (withForce) f[i] = cyclic_spline_value(t.x, t.force, f2file, period, phi[i]);
+    }
+    const std::vector<double> e2 = cyclic_spline_second_derivatives(phi, e, period);
+    const std::vector<double> f2 = withForce ? cyclic_spline_second_derivatives(phi, f, period) : std::vector<double>(n, 0.0);
+    // The node at 2 pi repeats the one at 0, so that every interval has its two ends in the table.
+    TableNodes nodes = interleave(0.0, delta, e, e2, f, f2);
+    nodes.coefficients.insert(nodes.coefficients.end(), nodes.coefficients.begin(), nodes.coefficients.begin() + 4);
+    nodes.n = n + 1;
+    nodes.forceFromEnergy = !withForce;
+    return nodes;
+}
 
 }  // namespace structmd

@@ -1,5 +1,5 @@
 #pragma once
-// Tabulated potentials: ["NonBonded","Tabulated"], ["Bond2","Tabulated"], ["Bond3","Tabulated"].
+// Tabulated potentials: ["NonBonded","Tabulated"] and ["Bond2"|"Bond3"|"Bond4","Tabulated"].
 // Energy and force are given on a grid, inline or in a LAMMPS table file, and interpolated as
 // LAMMPS's `table spline N` styles do (table_spline.hpp): the reader (tabulated_read.cpp) resamples
 // each table onto N even nodes and splines it once, and these functors evaluate that spline.
@@ -15,6 +15,7 @@
 #include "core/registry.hpp"
 #include "forcefield/bond_potential.hpp"
 #include "forcefield/bonded_geometry.hpp"
+#include "forcefield/dihedral.hpp"
 #include "forcefield/forcefield_spec.hpp"
 #include "forcefield/interactor_build.hpp"
 #include "forcefield/pair_interaction.hpp"
@@ -45,6 +46,13 @@ namespace table_detail {
 template <class R>
 SMD_HD SMD_INLINE R nan() {
     return std::numeric_limits<R>::quiet_NaN();
+}
+
+// A bond outside its table: NaN forces on its N particles and NaN energy, for the engine to report.
+template <int N, class R>
+SMD_HD SMD_INLINE R outside_table(Vec3<R>* force) {
+    for (int k = 0; k < N; ++k) force[k] = {nan<R>(), nan<R>(), nan<R>()};
+    return nan<R>();
 }
 
 // The coefficients of every table of a config, in R, on the backend, and where each table starts.
@@ -79,24 +87,30 @@ struct TabulatedPairPotential {
     }
 };
 
-// Two-particle bond: the spline in r over [lo, hi] of the table.
-struct TabulatedBondPotential {
-    static constexpr int arity = 2;
-    template <class R>
-    struct Params {
-        UniformSpline<R> table;
-        R upper;
-    };
+// What every bond of a bond table entry reads: the table, the largest abscissa it covers (its lowest
+// is table.x0), and whether its force is the energy's derivative (a dihedral table without forces).
+template <class R>
+struct BondTableParams {
+    UniformSpline<R> table;
+    R upper;
+    bool forceFromEnergy;
+};
 
+// What the bond table functors share: their arity and the Params every bond of the entry reads.
+template <int N>
+struct BondTable {
+    static constexpr int arity = N;
     template <class R>
-    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
+    using Params = BondTableParams<R>;
+};
+
+// Two-particle bond: the spline in r over [lo, hi] of the table.
+struct TabulatedBondPotential : BondTable<2> {
+    template <class R>
+    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const BondTableParams<R>& p, const Box<R>&, Vec3<R>* force) {
         const Vec3<R> d = r[1] - r[0];
         const R length = sqrt(dot(d, d));
-        if (!(length >= p.table.x0 && length <= p.upper)) {
-            const R nan = table_detail::nan<R>();
-            force[0] = force[1] = {nan, nan, nan};
-            return nan;
-        }
+        if (!(length >= p.table.x0 && length <= p.upper)) return table_detail::outside_table<2>(force);
         const SplineSample<R> s = evaluate_spline(p.table, length);
         // F = -U'(r) along r[1] - r[0] pushes r[1] away when positive.
         force[1] = length > R(0) ? (s.force / length) * d : Vec3<R>{0, 0, 0};
@@ -107,26 +121,31 @@ struct TabulatedBondPotential {
 
 // Angle of three particles: the spline in theta over [0, pi] (theta at the middle particle, as for
 // ["Bond3","HarmonicAngular"]; bonded_geometry.hpp).
-struct TabulatedAnglePotential {
-    static constexpr int arity = 3;
+struct TabulatedAnglePotential : BondTable<3> {
     template <class R>
-    struct Params {
-        UniformSpline<R> table;
-        R upper;
-    };
-
-    template <class R>
-    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
+    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const BondTableParams<R>& p, const Box<R>&, Vec3<R>* force) {
         const bonded_geometry::BondAngle<R> angle = bonded_geometry::bond_angle(r[0] - r[1], r[2] - r[1]);
-        if (!(angle.theta >= R(0) && angle.theta <= p.upper)) {
-            const R nan = table_detail::nan<R>();
-            force[0] = force[1] = force[2] = {nan, nan, nan};
-            return nan;
-        }
+        if (!(angle.theta >= R(0) && angle.theta <= p.upper)) return table_detail::outside_table<3>(force);
         const SplineSample<R> s = evaluate_spline(p.table, angle.theta);
         force[0] = s.force * angle.dtheta_da;  // the table's force is -dU/dtheta
         force[2] = s.force * angle.dtheta_db;
         force[1] = -(force[0] + force[2]);
+        return s.energy;
+    }
+};
+
+// Dihedral of four particles: the periodic spline in phi over [0, 2 pi), phi the IUPAC dihedral
+// (bonded_geometry.hpp) taken in [0, 2 pi) as LAMMPS's dihedral_style table does. A chain with three
+// collinear particles has no dihedral: as for ["Bond4","Dihedral"], it feels no force and its
+// energy is the table's at phi = 0.
+struct TabulatedDihedralPotential : BondTable<4> {
+    template <class R>
+    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const BondTableParams<R>& p, const Box<R>&, Vec3<R>* force) {
+        const bonded_geometry::DihedralAngle<R> angle = dihedral_detail::angle_of(r);
+        const R phi = angle.phi < R(0) ? angle.phi + R(2 * M_PI) : angle.phi;
+        const SplineSample<R> s = evaluate_spline(p.table, phi);
+        const R minusSlope = p.forceFromEnergy ? energy_spline_force(p.table, phi) : s.force;
+        dihedral_detail::write_forces(angle, -minusSlope, force);
         return s.energy;
     }
 };
@@ -165,7 +184,8 @@ std::unique_ptr<Interactor<B, R>> make_table_bond_interaction(const InteractorBu
     const auto& config = static_cast<const BondTableConfig&>(*s.config);
     std::vector<size_t> offsets;
     const auto nodes = table_detail::upload<B, R>(build.backend, {&config.nodes}, offsets);
-    const typename Potential::template Params<R> p{uniform_spline<R>(config.nodes, nodes->data()), R(config.upper)};
+    const BondTableParams<R> p{uniform_spline<R>(config.nodes, nodes->data()), R(config.upper),
+                               config.nodes.forceFromEnergy};
     auto interactor = make_bond_interaction<Potential>(build, static_cast<const BondSpec&>(s), [&](size_t) { return p; });
     interactor->own(nodes);
     return interactor;
@@ -186,6 +206,15 @@ struct TabulatedAngle {
     template <class B, class R, class PairR>
     static std::unique_ptr<Interactor<B, R>> make_interactor(const InteractorBuild<B, R>& build, const InteractionSpec& s) {
         return make_table_bond_interaction<TabulatedAnglePotential>(build, s);
+    }
+};
+
+// ["Bond4","Tabulated"]
+struct TabulatedDihedral {
+    static ForceFieldComponent reader_entry(ComponentKey key);
+    template <class B, class R, class PairR>
+    static std::unique_ptr<Interactor<B, R>> make_interactor(const InteractorBuild<B, R>& build, const InteractionSpec& s) {
+        return make_table_bond_interaction<TabulatedDihedralPotential>(build, s);
     }
 };
 

@@ -3,6 +3,8 @@
 // input error naming the JSON path that gave it.
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -36,7 +38,7 @@ int table_length(const ComponentEntry& entry) {
 void check_points(const TablePoints& t, const std::string& path) {
     if (t.x.size() < 2) throw input_error(path, "a table needs at least 2 points");
     for (size_t i = 0; i < t.x.size(); ++i) {
-        if (!std::isfinite(t.x[i]) || !std::isfinite(t.energy[i]) || !std::isfinite(t.force[i]))
+        if (!std::isfinite(t.x[i]) || !std::isfinite(t.energy[i]) || (!t.force.empty() && !std::isfinite(t.force[i])))
             throw input_error(path, "point " + std::to_string(i + 1) + " is not finite");
         if (i > 0 && !(t.x[i] > t.x[i - 1]))
             throw input_error(path, "the abscissae must increase strictly (point " + std::to_string(i + 1) + ": " +
@@ -44,13 +46,14 @@ void check_points(const TablePoints& t, const std::string& path) {
     }
 }
 
-// An inline table: three lists of numbers of one length.
-TablePoints inline_points(const TrackedNode& x, const TrackedNode& energy, const TrackedNode& force) {
+// An inline table: lists of numbers of one length (no force list: a dihedral table without forces).
+TablePoints inline_points(const TrackedNode& x, const TrackedNode& energy, const TrackedNode* force) {
     TablePoints t;
     t.x = x.as<std::vector<double>>();
     t.energy = energy.as<std::vector<double>>();
-    t.force = force.as<std::vector<double>>();
-    for (const auto* column : {&energy, &force}) {
+    if (force) t.force = force->as<std::vector<double>>();
+    for (const auto* column : {&energy, force}) {
+        if (!column) continue;
         const size_t size = column->as<std::vector<double>>().size();
         if (size != t.x.size())
             throw input_error(column->path(), "has " + std::to_string(size) + " values, the abscissae " +
@@ -133,8 +136,13 @@ ForceFieldComponent configure_pair(ForceFieldComponent c, const ComponentEntry& 
         row.typeJ = type_index(system, table.cell(r, "name_j"));
         if (!seen.insert(std::minmax(row.typeI, row.typeJ)).second)
             throw input_error(table.row(r).path(), "type pair listed twice");
-        const TablePoints t = fromFile ? pair_file_points(table.cell(r, "file"), table.cell(r, "keyword"))
-                                       : inline_points(table.cell(r, "r"), table.cell(r, "energy"), table.cell(r, "force"));
+        TablePoints t;
+        if (fromFile) {
+            t = pair_file_points(table.cell(r, "file"), table.cell(r, "keyword"));
+        } else {
+            const TrackedNode force = table.cell(r, "force");
+            t = inline_points(table.cell(r, "r"), table.cell(r, "energy"), &force);
+        }
         const double inner = t.hasRange ? t.inner : t.x.front();
         const double outer = t.hasRange ? t.outer : t.x.back();
         row.cutoff = table.has("cutOff") ? table.cell(r, "cutOff").as<double>() : outer;
@@ -154,22 +162,90 @@ ForceFieldComponent configure_pair(ForceFieldComponent c, const ComponentEntry& 
 
 // ---- bonds --------------------------------------------------------------------------------------
 
-// What differs between the bond tables: the file's keywords, the inline abscissa's name, the units
-// of a file's abscissa (angles: degrees) and the resampling.
+// What differs between the bond tables: the file's keywords and row width, the unit of a file's
+// abscissa (angles: degrees; dihedrals: degrees unless RADIANS), the inline abscissa's name, whether
+// the force may be left out, the checks of the points' range and the resampling.
 struct BondTableKind {
-    const char* abscissa;  // the inline label: "r" or "theta"
-    double fileUnit;       // file abscissa -> structmd's (1, or degrees -> radians)
+    const char* abscissa;  // the inline label: "r", "theta" or "phi"
+    std::map<std::string, int> keywords;
+    int (*columns)(const LammpsTableSection&);            // null: 4
+    double (*file_unit)(const LammpsTableSection&);       // file abscissa -> radians or length
+    bool forceOptional;
+    void (*prepare)(TablePoints&, const std::string& path);  // range checks, re-imaging
     TableNodes (*resample)(const TablePoints&, int);
-    void (*check_range)(const TablePoints&, const std::string& path);
 };
 
-void any_range(const TablePoints&, const std::string&) {}
+double unit_length(const LammpsTableSection&) { return 1.0; }
+double unit_degree(const LammpsTableSection&) { return kDegree; }
+double dihedral_unit(const LammpsTableSection& s) { return s.has("RADIANS") ? 1.0 : kDegree; }
+int dihedral_columns(const LammpsTableSection& s) { return s.has("NOF") ? 3 : 4; }
+
+void any_range(TablePoints&, const std::string&) {}
 
 // LAMMPS's angle tables span 0..180 degrees; its resampled table spans [0, pi] whatever the points.
-void angle_range(const TablePoints& t, const std::string& path) {
+void angle_range(TablePoints& t, const std::string& path) {
     constexpr double tiny = 1e-8 * kDegree;
     if (std::fabs(t.x.front()) > tiny || std::fabs(t.x.back() - M_PI) > tiny)
         throw input_error(path, "an angle table must range from 0 to 180 degrees (0 to pi radians)");
+}
+
+// A dihedral table spans less than a turn and is periodic: its points are taken into [0, 2 pi) and
+// rotated to increase again, as LAMMPS does.
+void dihedral_range(TablePoints& t, const std::string& path) {
+    constexpr double turn = 2.0 * M_PI;
+    if (t.x.size() < 3) throw input_error(path, "a dihedral table needs at least 3 points");
+    if (!(t.x.back() - t.x.front() < turn))
+        throw input_error(path, "a dihedral table must span less than 360 degrees (2 pi radians)");
+    size_t start = 0;
+    std::vector<double> x(t.x.size());
+    for (size_t i = 0; i < t.x.size(); ++i) {
+        x[i] = t.x[i] - turn * std::floor(t.x[i] / turn);
+        if (i > 0 && x[i] < x[i - 1]) start = i;
+    }
+    const auto rotate = [&](std::vector<double>& v) { std::rotate(v.begin(), v.begin() + start, v.end()); };
+    t.x = x;
+    rotate(t.x);
+    rotate(t.energy);
+    if (!t.force.empty()) rotate(t.force);
+}
+
+const BondTableKind& bond_table() {
+    static const BondTableKind kind{"r", {{"FP", 2}, {"EQ", 1}}, nullptr, &unit_length, false, &any_range,
+                                    &lammps_bond_spline};
+    return kind;
+}
+const BondTableKind& angle_table() {
+    static const BondTableKind kind{"theta", {{"FP", 2}, {"EQ", 1}}, nullptr, &unit_degree, false, &angle_range,
+                                    &lammps_angle_spline};
+    return kind;
+}
+const BondTableKind& dihedral_table() {
+    static const BondTableKind kind{"phi",
+                                    {{"NOF", 0}, {"DEGREES", 0}, {"RADIANS", 0}, {"CHECKU", 1}, {"CHECKF", 1}},
+                                    &dihedral_columns,
+                                    &dihedral_unit,
+                                    true,
+                                    &dihedral_range,
+                                    &lammps_dihedral_spline};
+    return kind;
+}
+
+TablePoints bond_file_points(const BondTableKind& kind, const TrackedNode& params) {
+    const TrackedNode file = params.at("file");
+    const std::string path = file.path();
+    const LammpsTableSection s =
+        read_lammps_table(file.as<std::string>(), params.at("keyword").as<std::string>(), kind.keywords, path, kind.columns);
+    for (const char* unsupported : {"CHECKU", "CHECKF"})
+        if (s.has(unsupported))
+            throw input_error(path, std::string(unsupported) + " (LAMMPS's diagnostic output of the table) is not supported");
+    if (s.has("DEGREES") && s.has("RADIANS")) throw input_error(path, "a table is in DEGREES or RADIANS, not both");
+    TablePoints t = file_points(s);
+    const double unit = kind.file_unit(s);
+    for (size_t i = 0; i < t.x.size(); ++i) t.x[i] *= unit;
+    for (double& f : t.force) f /= unit;
+    read_force_slopes(s, "FP", 1.0 / (unit * unit), path, t);
+    check_points(t, path);
+    return t;
 }
 
 ForceFieldComponent configure_bond(ForceFieldComponent c, const BondTableKind& kind, const ComponentEntry& entry) {
@@ -185,26 +261,18 @@ ForceFieldComponent configure_bond(ForceFieldComponent c, const BondTableKind& k
     TablePoints t;
     std::string path;
     if (fromFile) {
-        const TrackedNode file = params.at("file");
-        path = file.path();
-        const LammpsTableSection s =
-            read_lammps_table(file.as<std::string>(), params.at("keyword").as<std::string>(), {{"FP", 2}, {"EQ", 1}}, path);
-        t = file_points(s);
-        for (size_t i = 0; i < t.x.size(); ++i) {
-            t.x[i] *= kind.fileUnit;
-            t.force[i] /= kind.fileUnit;
-        }
-        read_force_slopes(s, "FP", 1.0 / (kind.fileUnit * kind.fileUnit), path, t);
-        check_points(t, path);
+        path = params.at("file").path();
+        t = bond_file_points(kind, params);
     } else {
         const TrackedNode x = params.at(kind.abscissa);
         path = x.path();
-        t = inline_points(x, params.at("energy"), params.at("force"));
+        const std::optional<TrackedNode> force = kind.forceOptional ? params.find("force") : params.at("force");
+        t = inline_points(x, params.at("energy"), force ? &*force : nullptr);
     }
-    kind.check_range(t, path);
+    kind.prepare(t, path);
     auto config = std::make_shared<BondTableConfig>();
     config->nodes = kind.resample(t, n);
-    config->upper = std::max(t.x.back(), config->nodes.x0 + (n - 1) * config->nodes.delta);
+    config->upper = std::max(t.x.back(), config->nodes.x0 + (config->nodes.n - 1) * config->nodes.delta);
     c.config = config;
     return c;
 }
@@ -215,7 +283,7 @@ ForceFieldComponent bond_entry(ComponentKey key, int arity, const BondTableKind&
     c.kind = InteractionKind::bond;
     c.arity = arity;
     c.entryParameters = {table_length_parameter()};  // read by configure (bonds read no entry parameters)
-    c.configure = [c, kind](const ComponentEntry& entry, const SystemDescription&) {
+    c.configure = [c, &kind](const ComponentEntry& entry, const SystemDescription&) {
         return configure_bond(c, kind, entry);
     };
     return c;
@@ -236,12 +304,12 @@ ForceFieldComponent TabulatedPair::reader_entry(ComponentKey key) {
     return c;
 }
 
-ForceFieldComponent TabulatedBond::reader_entry(ComponentKey key) {
-    return bond_entry(std::move(key), 2, {"r", 1.0, &lammps_bond_spline, &any_range});
-}
+ForceFieldComponent TabulatedBond::reader_entry(ComponentKey key) { return bond_entry(std::move(key), 2, bond_table()); }
 
-ForceFieldComponent TabulatedAngle::reader_entry(ComponentKey key) {
-    return bond_entry(std::move(key), 3, {"theta", kDegree, &lammps_angle_spline, &angle_range});
+ForceFieldComponent TabulatedAngle::reader_entry(ComponentKey key) { return bond_entry(std::move(key), 3, angle_table()); }
+
+ForceFieldComponent TabulatedDihedral::reader_entry(ComponentKey key) {
+    return bond_entry(std::move(key), 4, dihedral_table());
 }
 
 }  // namespace structmd

@@ -136,4 +136,12 @@ inline double finite_difference_deviation(structmd_sim* sim, std::vector<double>
     return structmd_physics::max_relative_deviation(fd, f);
 }
 
+// The finite-difference deviation of a scene of particles `x` (all of type A) in a box with `forceField`.
+inline double gradient_deviation(double box, const std::vector<structmd_physics::Vec3>& x, const Json& forceField) {
+    SimHandle sim = load(document(box, x, std::vector<std::string>(x.size(), "A"), forceField));
+    std::vector<double> flat;
+    for (const structmd_physics::Vec3& v : x) flat.insert(flat.end(), v.begin(), v.end());
+    return finite_difference_deviation(sim.get(), flat);
+}
+
 }  // namespace structmd_tabulated

@@ -68,7 +68,7 @@ TEST_P(LammpsTables, ForcesAndEnergiesAgreeToOneInTenToTheEight) {
     EXPECT_LT(energyDeviation, 1e-8);
 }
 
-INSTANTIATE_TEST_SUITE_P(Reference, LammpsTables, ::testing::Values("table_pair", "table_bonds"));
+INSTANTIATE_TEST_SUITE_P(Reference, LammpsTables, ::testing::Values("table_pair", "table_bonds", "table_dihedrals"));
 
 // ---- finite differences -------------------------------------------------------------------------
 
@@ -89,11 +89,7 @@ std::vector<Vec3> boundary_cluster() {
 
 TEST(TabulatedFiniteDifference, PairForcesAreMinusTheEnergyGradientAcrossTheBoundary) {
     const std::vector<Vec3> x = boundary_cluster();
-    SimHandle sim = load(document(7.0, x, std::vector<std::string>(x.size(), "A"),
-                                  {{"nl", neighbour_list()}, {"lj", fine_pair_entry()}}));
-    std::vector<double> flat;
-    for (const Vec3& v : x) flat.insert(flat.end(), v.begin(), v.end());
-    const double deviation = finite_difference_deviation(sim.get(), flat);
+    const double deviation = gradient_deviation(7.0, x, {{"nl", neighbour_list()}, {"lj", fine_pair_entry()}});
     std::printf("[ deviation ] pair table against central differences: %.2e\n", deviation);
     EXPECT_LT(deviation, 1e-6);
 }
@@ -108,11 +104,27 @@ TEST(TabulatedFiniteDifference, BondAndAngleForcesAreMinusTheEnergyGradientAcros
                      {"angles", {{"type", {"Bond3", "Tabulated"}},
                                  {"parameters", {{"N", 4000}, {"theta", angle.x}, {"energy", angle.energy}, {"force", angle.force}}},
                                  {"labels", {"id_i", "id_j", "id_k"}}, {"data", {{0, 1, 2}, {1, 2, 3}}}}}};
-    SimHandle sim = load(document(6.0, x, std::vector<std::string>(x.size(), "A"), ff));
-    std::vector<double> flat;
-    for (const Vec3& v : x) flat.insert(flat.end(), v.begin(), v.end());
-    const double deviation = finite_difference_deviation(sim.get(), flat);
+    const double deviation = gradient_deviation(6.0, x, ff);
     std::printf("[ deviation ] bond and angle tables against central differences: %.2e\n", deviation);
+    EXPECT_LT(deviation, 1e-6);
+}
+
+// A dihedral table with forces (periodic in phi, given on [-pi, pi)) and one without (NOF: the force is
+// the derivative of the energy's spline), over a chain across the boundary.
+TEST(TabulatedFiniteDifference, DihedralForcesAreMinusTheEnergyGradientAcrossTheBoundary) {
+    const std::vector<Vec3> x = {{2.7, 0.1, 0.0}, {-2.9, 0.4, 0.3}, {-2.3, 1.2, 0.2}, {-2.6, 1.9, -0.5}, {-1.8, 2.5, -0.9}};
+    const Points withForce = sample([](double phi) { return Sample{1.5 * (1 + std::cos(2 * phi - 0.5)), 3.0 * std::sin(2 * phi - 0.5)}; },
+                                    -M_PI, M_PI - 2 * M_PI / 1000, 1000);
+    const Points energyOnly = sample([](double phi) { return Sample{0.7 * (1 + std::cos(phi + 0.4)), 0.0}; }, 0.0,
+                                     2 * M_PI - 2 * M_PI / 1000, 1000);
+    const Json ff = {{"d1", {{"type", {"Bond4", "Tabulated"}},
+                             {"parameters", {{"N", 2000}, {"phi", withForce.x}, {"energy", withForce.energy}, {"force", withForce.force}}},
+                             {"labels", {"id_i", "id_j", "id_k", "id_l"}}, {"data", {{0, 1, 2, 3}}}}},
+                     {"d2", {{"type", {"Bond4", "Tabulated"}},
+                             {"parameters", {{"N", 2000}, {"phi", energyOnly.x}, {"energy", energyOnly.energy}}},
+                             {"labels", {"id_i", "id_j", "id_k", "id_l"}}, {"data", {{1, 2, 3, 4}}}}}};
+    const double deviation = gradient_deviation(6.0, x, ff);
+    std::printf("[ deviation ] dihedral tables against central differences: %.2e\n", deviation);
     EXPECT_LT(deviation, 1e-6);
 }
 
@@ -165,6 +177,22 @@ TEST(TabulatedInline, BondAndAngleTablesEqualTheSameFiles) {
                                              ff({{"N", 300}, {"file", bondFile}, {"keyword", "B"}},
                                                 {{"N", 300}, {"file", angleFile}, {"keyword", "A"}})), 3);
     // The angle file is in degrees: equal up to the rounding of the conversion.
+    EXPECT_LT(max_relative_deviation(fromFile, given), 1e-12);
+}
+
+TEST(TabulatedInline, DihedralTableEqualsTheSameFileInDegrees) {
+    const Points p = sample([](double phi) { return Sample{1 + std::cos(3 * phi), 3 * std::sin(3 * phi)}; }, -M_PI,
+                            M_PI - M_PI / 36, 72);
+    const std::string file = write_table_file("inline_dihedral.table", "D", p, 180.0 / M_PI);  // degrees, the default
+    const std::vector<Vec3> x = {{2.7, 0.1, 0.0}, {-2.9, 0.4, 0.3}, {-2.3, 1.2, 0.2}, {-2.6, 1.9, -0.5}};
+    const auto ff = [](const Json& table) {
+        return Json{{"d", {{"type", {"Bond4", "Tabulated"}}, {"parameters", table},
+                           {"labels", {"id_i", "id_j", "id_k", "id_l"}}, {"data", {{0, 1, 2, 3}}}}}};
+    };
+    const auto given = forces_of(document(6.0, x, {"A", "A", "A", "A"},
+                                          ff({{"N", 360}, {"phi", p.x}, {"energy", p.energy}, {"force", p.force}})), 4);
+    const auto fromFile =
+        forces_of(document(6.0, x, {"A", "A", "A", "A"}, ff({{"N", 360}, {"file", file}, {"keyword", "D"}})), 4);
     EXPECT_LT(max_relative_deviation(fromFile, given), 1e-12);
 }
 

@@ -65,7 +65,7 @@ TEST_P(Backends, AgreeWithTheCpuInDouble) {
     EXPECT_LT(moved, g_precision == "double" ? 1e-8 : 1e-3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Tables, Backends, ::testing::Values("table_pair", "table_bonds"));
+INSTANTIATE_TEST_SUITE_P(Tables, Backends, ::testing::Values("table_pair", "table_bonds", "table_dihedrals"));
 
 }  // namespace
 }  // namespace structmd_tabulated

@@ -118,5 +118,21 @@ TEST(TabulatedErrors, BondTables) {
     expect_input_error(angle, {"topology.forceField.t.parameters.file", "0 to 180 degrees"}, false);
 }
 
+TEST(TabulatedErrors, DihedralTables) {
+    const auto entry = [](const std::string& text) {
+        const std::string file = write_text("bad_dihedral.table", text);
+        return Json{{"type", {"Bond4", "Tabulated"}}, {"parameters", {{"N", 36}, {"file", file}, {"keyword", "D"}}},
+                    {"labels", {"id_i", "id_j", "id_k", "id_l"}}, {"data", {{0, 1, 2, 3}}}};
+    };
+    expect_input_error(entry("D\nN 3\n\n1 0.0 1.0 0.0\n2 180.0 0.0 0.0\n3 360.0 1.0 0.0\n"),
+                       {"topology.forceField.t.parameters.file", "less than 360 degrees"}, false);
+    expect_input_error(entry("D\nN 3 NOF\n\n1 0.0 1.0 0.0\n2 90.0 0.0 0.0\n3 180.0 1.0 0.0\n"),
+                       {"bad_dihedral.table:4", "expected 3 fields"}, false);
+    expect_input_error(entry("D\nN 3 CHECKU u.txt\n\n1 0.0 1.0 0.0\n2 90.0 0.0 0.0\n3 180.0 1.0 0.0\n"),
+                       {"topology.forceField.t.parameters.file", "CHECKU"}, false);
+    expect_input_error(entry("D\nN 3 FP 0 0\n\n1 0.0 1.0 0.0\n2 90.0 0.0 0.0\n3 180.0 1.0 0.0\n"),
+                       {"unknown keyword 'FP'"}, false);
+}
+
 }  // namespace
 }  // namespace structmd_tabulated
