@@ -39,6 +39,7 @@
 #include "forcefield/plates.hpp"
 #include "forcefield/spherical_shell.hpp"
 #include "forcefield/steric.hpp"
+#include "forcefield/tabulated.hpp"
 
 namespace structmd {
 
@@ -56,6 +57,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template pair<Steric6>({"NonBonded", "Steric6"});
     v.template pair<Steric12>({"NonBonded", "Steric12"});
     v.template pair<DebyeHuckel>({"NonBonded", "DebyeHuckel"});
+    v.template configurable<TabulatedPair>({"NonBonded", "Tabulated"});
 
     v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});
     v.template bond<ConstantForceBond>({"Bond1", "ConstantForce"});
@@ -86,16 +88,19 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12"});
     v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12Common_epsilon_sigma"}, {"epsilon", "sigma"});
     v.template bond<RadialBond<DebyeHuckel>>({"Bond2", "DebyeHuckel"});
+    v.template configurable<TabulatedBond>({"Bond2", "Tabulated"});
 
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngular"});
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngularCommon_K"}, {"K"});
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngularCommon_K_theta0"}, {"K", "theta0"});
     v.template bond<KratkyPorod>({"Bond3", "KratkyPorod"});
     v.template bond<KratkyPorod>({"Bond3", "KratkyPorodCommon_K"}, {"K"});
+    v.template configurable<TabulatedAngle>({"Bond3", "Tabulated"});
 
     v.template bond<Dihedral>({"Bond4", "Dihedral"});
     v.template bond<Dihedral>({"Bond4", "DihedralCommon_n_K_phi0"}, {"n", "K", "phi0"});
     v.template bond<Dihedral4>({"Bond4", "Dihedral4"});
+    v.template configurable<TabulatedDihedral>({"Bond4", "Tabulated"});
 
     v.template external<ExternalConstantForce>({"External", "ConstantForce"});
     v.template external<Plates>({"External", "Plates"});

@@ -56,6 +56,16 @@ inline std::vector<std::vector<int>> chain_bonds(int arity) {
     }
 }
 
+// The force-field components whose input their schema alone describes, which the walks below load.
+// A configurable component (a table, an expression) derives its parameters from its entry, so no
+// entry made from a schema loads; each such component has its own suite (tests/tabulated, ...).
+inline std::vector<ComponentKey> schema_forcefield_keys() {
+    std::vector<ComponentKey> keys;
+    for (const ForceFieldComponent& c : forcefield_registry().entries())
+        if (!c.configure) keys.push_back(c.key);
+    return keys;
+}
+
 // Values no schema can tell. Everything not listed here takes generic_numbers().
 struct Override {
     ComponentKey key;  // an empty class matches every class

@@ -25,14 +25,7 @@ namespace {
 
 const std::vector<double> kTimes = {0.0, 1.0};
 
-std::vector<ComponentKey> forcefield_keys() {
-    std::vector<ComponentKey> keys;
-    // A configurable component (an expression) has no schema to walk before it reads its entry:
-    // tests/forcefield_expression covers those.
-    for (const ForceFieldComponent& c : forcefield_registry().entries())
-        if (!c.configure) keys.push_back(c.key);
-    return keys;
-}
+std::vector<ComponentKey> forcefield_keys() { return schema_forcefield_keys(); }
 
 // Every parameter a component reads: per type pair, per bond or per entry, and a pair entry's own.
 std::vector<Parameter> all_parameters(const ForceFieldComponent& c) {

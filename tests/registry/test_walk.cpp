@@ -32,14 +32,7 @@ private:
     structmd_sim* sim_ = nullptr;
 };
 
-std::vector<ComponentKey> forcefield_keys() {
-    std::vector<ComponentKey> keys;
-    // A configurable component (an expression) has no schema to walk before it reads its entry:
-    // tests/forcefield_expression covers those.
-    for (const ForceFieldComponent& c : forcefield_registry().entries())
-        if (!c.configure) keys.push_back(c.key);
-    return keys;
-}
+std::vector<ComponentKey> forcefield_keys() { return schema_forcefield_keys(); }
 
 std::vector<ComponentKey> integrator_keys() {
     std::vector<ComponentKey> keys;
