@@ -74,24 +74,27 @@ struct ExpressionPairComponent {
                                                              const InteractionSpec& s) {
         const auto& pair = static_cast<const PairSpec&>(s);
         const ExpressionConfig& config = expression_config(s);
-        const auto program = upload_program<B, PairR>(build.backend, config.program);
         const double cutOff = pair.shared["cutOff"];
         using Params = ExpressionPair::Params<PairR>;
-        const auto table = pair_table_of<Params>(pair, build.context.ntypes, [&](const ParameterValues& v) {
+        auto table = pair_table_of<Params>(pair, build.context.ntypes, [&](const ParameterValues& v) {
             const std::vector<double> columns = config.columns_of(v);
             Params p{};
             p.cutoff2 = PairR(cutOff * cutOff);
             p.offset = pair.shift ? PairR(-config.program.run({cutOff}, columns)[0]) : PairR(0);
-            p.program = program->view();
             set_columns<PairR>(p, columns);
             return p;
         });
-        if constexpr (B::compiles_at_run_time)
+        if constexpr (B::compiles_at_run_time) {
             return make_compiled_expression_pair<B, R, PairR>(build, pair, config.graph, config.roots,
                                                               config.columns.size(), table);
-        auto interactor = make_pair_interaction<B, R, ExpressionPair, PairR>(build, pair, table);
-        interactor->own(program);
-        return interactor;
+        } else {
+            // Interpreted: every type pair runs the one uploaded program.
+            const auto program = upload_program<B, PairR>(build.backend, config.program);
+            for (Params& p : table) p.program = program->view();
+            auto interactor = make_pair_interaction<B, R, ExpressionPair, PairR>(build, pair, table);
+            interactor->own(program);
+            return interactor;
+        }
     }
 };
 

@@ -76,8 +76,10 @@ Constants constants_of(const SystemDescription& system) {
     return {system.units.boltzmann, system.units.electricConversion};
 }
 
-// startStep, endStep and group, which every interaction entry may give.
-void read_common(const ComponentEntry& entry, const ForceFieldSpec& ff, InteractionSpec& spec) {
+// startStep, endStep and group, which every interaction entry may give, and what a configurable
+// component derived from the entry.
+void read_common(const ForceFieldComponent& component, const ComponentEntry& entry, const ForceFieldSpec& ff,
+                 InteractionSpec& spec) {
     spec.name = entry.name;
     spec.path = entry.node.path();
     spec.key = {entry.cls, entry.subclass};
@@ -86,11 +88,6 @@ void read_common(const ComponentEntry& entry, const ForceFieldSpec& ff, Interact
     if (spec.endStep < spec.startStep)
         throw input_error(parameter_path(entry, "endStep"), "endStep is before startStep");
     spec.group = group_index(ff.groups, parameter_or<std::string>(entry, "group", "All"), parameter_path(entry, "group"));
-}
-
-void read_common(const ForceFieldComponent& component, const ComponentEntry& entry, const ForceFieldSpec& ff,
-                 InteractionSpec& spec) {
-    read_common(entry, ff, spec);
     spec.config = component.config;
 }
 
