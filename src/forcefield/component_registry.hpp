@@ -27,6 +27,9 @@ struct ForceFieldComponent {
     // Pairs: the largest distance at which the term acts with these values (shared and one row's).
     std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
     bool readsCutOffFactor = true;  // pairs: the entry gives "cutOffFactor" (else its own cut-off parameter)
+    // Pairs whose cutoff is not a parameter (a table's range): the path that sets the largest, for
+    // the error of a cutoff too long for the box.
+    std::string cutoffPath;
 
     // A configurable component's parameters depend on its entry (an expression names its own
     // columns; a table reads a file). configure() reads what it needs from the entry and returns the

@@ -241,7 +241,9 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
         what.precision(17);  // a box just below 2 r_c must not print as if it were 2 r_c
         what << "cutoff " << pair.cutoff << " is not shorter than half the box ("
              << half_shortest_edge(system.box[0], system.box[1], system.box[2]) << ")";
-        throw input_error(parameter_path(entry, component.readsCutOffFactor ? "cutOffFactor" : "cutOff"), what.str());
+        const std::string path = !component.cutoffPath.empty() ? component.cutoffPath
+                                 : parameter_path(entry, component.readsCutOffFactor ? "cutOffFactor" : "cutOff");
+        throw input_error(path, what.str());
     }
     ff.pairs.push_back(std::move(pair));
 }

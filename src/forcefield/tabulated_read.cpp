@@ -152,7 +152,10 @@ ForceFieldComponent configure_pair(ForceFieldComponent c, const ComponentEntry& 
             throw input_error(where, "the cutoff " + std::to_string(row.cutoff) + " must lie in the table's (" +
                                          std::to_string(inner) + ", " + std::to_string(outer) + "]");
         row.nodes = lammps_pair_spline(t, n, row.cutoff);
-        largest = std::max(largest, row.cutoff);
+        if (row.cutoff > largest) {
+            largest = row.cutoff;
+            c.cutoffPath = where;
+        }
         config->rows.push_back(std::move(row));
     }
     c.config = config;

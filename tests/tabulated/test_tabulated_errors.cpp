@@ -73,6 +73,13 @@ TEST(TabulatedErrors, NDoesNotMatchTheRows) {
     expect_input_error(pair_from_file("T\nFPRIME 0 0\n\n" + kGoodRows), {kRow + "[2]", "does not set N"});
 }
 
+TEST(TabulatedErrors, ACutoffTooLongForTheBoxNamesTheRowThatSetsIt) {
+    // The box is 8: a table reaching r = 5 is longer than half of it.
+    const std::string rows = "1 1.0 2.0 3.0\n2 3.0 1.0 2.0\n3 5.0 0.5 1.0\n";
+    expect_input_error(pair_from_file("T\nN 3\n\n" + rows), {kRow, "not shorter than half the box"});
+    expect_input_error(pair_from_file("T\nN 3\n\n" + rows, "T", 4.5), {kRow + "[4]", "not shorter than half the box"});
+}
+
 TEST(TabulatedErrors, UnknownOrUnsupportedKeyword) {
     expect_input_error(pair_from_file("T\nN 3 FOO 1\n\n" + kGoodRows), {kRow + "[2]", "unknown keyword 'FOO'"});
     expect_input_error(pair_from_file("T\nN 3 BITMAP 1 2\n\n" + kGoodRows), {kRow + "[2]", "BITMAP"});
