@@ -1,9 +1,9 @@
 #pragma once
 // Geometry shared by the angle and dihedral terms: the bond angle and the IUPAC dihedral angle with
 // their gradients, each computed once so that every functor of that angle uses the same robust form.
-#include <limits>
-
+// Free of the standard library: kernels compiled at run time (expression bonds on CUDA) include it.
 #include "core/hd.hpp"
+#include "core/real_limits.hpp"
 #include "core/vec.hpp"
 
 namespace structmd {
@@ -49,13 +49,13 @@ SMD_HD SMD_INLINE BondAngle<R> bond_angle(Vec3<R> a, Vec3<R> b) {
     const R normal_length = sqrt(dot(normal, normal));
     BondAngle<R> angle;
     if (!(aa > R(0) && bb > R(0))) {
-        const R nan = std::numeric_limits<R>::quiet_NaN();
+        const R nan = quiet_nan<R>();
         angle.theta = nan;
         angle.dtheta_da = angle.dtheta_db = {nan, nan, nan};
         return angle;
     }
     angle.theta = atan2(normal_length, dot(a, b));
-    if (normal_length <= std::numeric_limits<R>::epsilon() * sqrt(aa * bb)) normal = perpendicular_to(a);
+    if (normal_length <= machine_epsilon<R>() * sqrt(aa * bb)) normal = perpendicular_to(a);
     const R inverse_normal_length = R(1) / sqrt(dot(normal, normal));
     const Vec3<R> unit_normal = inverse_normal_length * normal;
     angle.dtheta_da = (R(-1) / aa) * cross(unit_normal, a);
@@ -88,7 +88,7 @@ SMD_HD SMD_INLINE DihedralAngle<R> dihedral_angle(Vec3<R> b1, Vec3<R> b2, Vec3<R
     const R b1b1 = dot(b1, b1);
     const R b2b2 = dot(b2, b2);
     const R b3b3 = dot(b3, b3);
-    const R eps2 = std::numeric_limits<R>::epsilon() * std::numeric_limits<R>::epsilon();
+    const R eps2 = machine_epsilon<R>() * machine_epsilon<R>();
     DihedralAngle<R> angle;
     if (!(mm > eps2 * b1b1 * b2b2) || !(nn > eps2 * b2b2 * b3b3)) {
         angle.phi = R(0);
@@ -106,6 +106,18 @@ SMD_HD SMD_INLINE DihedralAngle<R> dihedral_angle(Vec3<R> b1, Vec3<R> b2, Vec3<R
     angle.dphi_dr[2] = p * g0 - (R(1) + q) * g3;
     angle.dphi_dr[3] = g3;
     return angle;
+}
+
+// The dihedral of the chain r[0]-r[1]-r[2]-r[3].
+template <class R>
+SMD_HD SMD_INLINE DihedralAngle<R> dihedral_of(const Vec3<R>* r) {
+    return dihedral_angle(r[1] - r[0], r[2] - r[1], r[3] - r[2]);
+}
+
+// Forces -dU/dphi grad(phi) on the four particles of a dihedral.
+template <class R>
+SMD_HD SMD_INLINE void write_dihedral_forces(const DihedralAngle<R>& angle, R dudphi, Vec3<R>* force) {
+    for (int k = 0; k < 4; ++k) force[k] = (-dudphi) * angle.dphi_dr[k];
 }
 
 }  // namespace bonded_geometry

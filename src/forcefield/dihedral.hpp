@@ -10,21 +10,6 @@
 
 namespace structmd {
 
-namespace dihedral_detail {
-
-// Forces -dU/dphi grad(phi) on the four particles.
-template <class R>
-SMD_HD SMD_INLINE void write_forces(const bonded_geometry::DihedralAngle<R>& angle, R dudphi, Vec3<R>* force) {
-    for (int k = 0; k < 4; ++k) force[k] = (-dudphi) * angle.dphi_dr[k];
-}
-
-template <class R>
-SMD_HD SMD_INLINE bonded_geometry::DihedralAngle<R> angle_of(const Vec3<R>* r) {
-    return bonded_geometry::dihedral_angle(r[1] - r[0], r[2] - r[1], r[3] - r[2]);
-}
-
-}  // namespace dihedral_detail
-
 struct Dihedral {
     static constexpr int arity = 4;
 
@@ -45,9 +30,9 @@ struct Dihedral {
 
     template <class R>
     static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
-        const bonded_geometry::DihedralAngle<R> angle = dihedral_detail::angle_of(r);
+        const bonded_geometry::DihedralAngle<R> angle = bonded_geometry::dihedral_of(r);
         const R phase = p.n * angle.phi - p.phi0;
-        dihedral_detail::write_forces<R>(angle, -p.K * p.n * sin(phase), force);
+        bonded_geometry::write_dihedral_forces<R>(angle, -p.K * p.n * sin(phase), force);
         return p.K * (R(1) + cos(phase));
     }
 };
@@ -74,7 +59,7 @@ struct Dihedral4 {
 
     template <class R>
     static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
-        const bonded_geometry::DihedralAngle<R> angle = dihedral_detail::angle_of(r);
+        const bonded_geometry::DihedralAngle<R> angle = bonded_geometry::dihedral_of(r);
         R energy = 0;
         R dudphi = 0;
         for (int k = 0; k < 4; ++k) {
@@ -83,7 +68,7 @@ struct Dihedral4 {
             energy += p.K[k] * (R(1) + cos(phase));
             dudphi -= p.K[k] * n * sin(phase);
         }
-        dihedral_detail::write_forces(angle, dudphi, force);
+        bonded_geometry::write_dihedral_forces(angle, dudphi, force);
         return energy;
     }
 };

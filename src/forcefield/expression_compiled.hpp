@@ -1,67 +1,53 @@
 #pragma once
-// ["NonBonded","Expression"] on a backend that compiles kernels at run time (CUDA): the energy and
-// its derivative become C++ source (expression/source_emitter.hpp), compiled once at load into the
-// pair traversal of the built-in potentials (compiled_pair_interaction.hpp). The parameters of a
-// type pair are the interpreter's (expression_potentials.hpp) less the program pointer: cutoff2,
-// offset, then the data columns.
-#include <memory>
+// The Expression components on a backend that compiles kernels at run time (CUDA): the energy and
+// its derivatives become C++ source (expression/source_emitter.hpp), a Function of
+// expression_terms.hpp compiled once at load into the kernels of the built-in terms
+// (compiled_interaction.hpp). Its Params are the values of the data columns, nothing else: the
+// program the interpreter would run is the compiled code itself.
 #include <string>
 #include <vector>
 
 #include "core/logger.hpp"
 #include "expression/source_emitter.hpp"
-#include "forcefield/compiled_pair_interaction.hpp"
-#include "forcefield/expression_potentials.hpp"
-#include "forcefield/interactor_build.hpp"
+#include "forcefield/compiled_interaction.hpp"
 
 namespace structmd {
 
-struct ExpressionConfig;
+// Reals in the Params of the compiled Function of an expression with `columns` data columns.
+inline size_t compiled_expression_width(size_t columns) { return columns > 0 ? columns : 1; }  // no array of size 0
 
-// The RuntimePotential of an expression of r with `columns` data columns.
-inline RuntimePairPotential expression_pair_source(const expression::Expression& graph, const std::vector<int>& roots,
-                                                   size_t columns) {
+// The source of RuntimeExpression, the Function computing `roots` of `graph` (energy, then its
+// derivatives) from `inputs` inputs and `columns` data columns, and of RuntimePotential, the term
+// `potential` of expression_terms.hpp over it (such as "ExpressionBond<3, RuntimeExpression>").
+inline RuntimeSource compiled_expression_source(const expression::Expression& graph, const std::vector<int>& roots,
+                                                size_t inputs, size_t columns, const std::string& potential) {
     expression::SourceNames names;
     names.real = "R";
-    names.inputs = {"r"};
+    for (size_t k = 0; k < inputs; ++k) names.inputs.push_back("inputs[" + std::to_string(k) + "]");
     for (size_t k = 0; k < columns; ++k) names.columns.push_back("p.columns[" + std::to_string(k) + "]");
-    const size_t stored = columns > 0 ? columns : 1;  // no array of size 0
-    RuntimePairPotential potential;
-    potential.width = 2 + stored;
-    potential.definition = "struct RuntimePotential {\n"
-                           "    template <class R> struct Params { R cutoff2; R offset; R columns[" +
-                           std::to_string(stored) +
-                           "]; };\n"
-                           "    template <class R> static SMD_HD SMD_INLINE PairTerm<R> evaluate(R r2, const Params<R>& p) {\n"
-                           "        const R r = sqrt(r2);\n"
-                           "        R energy, dudr;\n" +
-                           expression::emit_source(graph, roots, {"energy", "dudr"}, names) +
-                           "        return {dudr / r, energy + p.offset};\n"
-                           "    }\n"
-                           "};\n";
-    return potential;
+    std::vector<std::string> outputs;
+    for (size_t k = 0; k < roots.size(); ++k) outputs.push_back("outputs[" + std::to_string(k) + "]");
+    RuntimeSource source;
+    source.definition =
+        "#include \"forcefield/expression_terms.hpp\"\n"
+        "struct RuntimeExpression {\n"
+        "    template <class R> struct Params { R columns[" + std::to_string(compiled_expression_width(columns)) + "]; };\n"
+        "    template <class R> static SMD_HD SMD_INLINE void evaluate(const R* inputs, const Params<R>& p, R* outputs) {\n" +
+        expression::emit_source(graph, roots, outputs, names) +
+        "    }\n"
+        "};\n"
+        "using RuntimePotential = " + potential + ";\n";
+    return source;
 }
 
-template <class B, class R, class PairR>
-std::unique_ptr<Interactor<B, R>> make_compiled_expression_pair(const InteractorBuild<B, R>& build,
-                                                                const PairSpec& pair,
-                                                                const expression::Expression& graph,
-                                                                const std::vector<int>& roots, size_t columns,
-                                                                const std::vector<ExpressionPair::Params<PairR>>& table) {
-    const RuntimePairPotential potential = expression_pair_source(graph, roots, columns);
-    std::vector<PairR> flat;
-    flat.reserve(table.size() * potential.width);
-    for (const auto& p : table) {
-        flat.push_back(p.cutoff2);
-        flat.push_back(p.offset);
-        for (size_t k = 0; k < potential.width - 2; ++k) flat.push_back(k < columns ? p.columns[k] : PairR(0));
-    }
-    auto interactor = std::make_unique<CompiledPairInteraction<B, R, PairR>>(
-        build.backend, build.scope(pair), build.listFor(pair), potential, flat, static_cast<int>(build.context.ntypes));
-    if (build.context.log)
-        build.context.log->info(pair.path + ": compiled for the GPU in " + std::to_string(interactor->compile_seconds()) +
-                                " s");
-    return interactor;
+// Appends the columns of a type pair or bond in the compiled Params' layout.
+template <class R>
+void append_columns(std::vector<R>& flat, const R* columns, size_t count) {
+    for (size_t k = 0; k < compiled_expression_width(count); ++k) flat.push_back(k < count ? columns[k] : R(0));
+}
+
+inline void log_compile_time(const Logger* log, const std::string& path, double seconds) {
+    if (log) log->info(path + ": compiled for the GPU in " + std::to_string(seconds) + " s");
 }
 
 }  // namespace structmd

@@ -13,7 +13,7 @@
 
 #include "expression/compiler.hpp"
 #include "expression/expression.hpp"
-#include "forcefield/expression_compiled_pair.hpp"
+#include "forcefield/expression_compiled.hpp"
 #include "forcefield/expression_potentials.hpp"
 #include "forcefield/external_interaction.hpp"
 #include "forcefield/interactor_tables.hpp"
@@ -39,6 +39,12 @@ struct ExpressionConfig : ComponentConfig {
 
 // The config of an Expression entry's spec (an internal error if it has none).
 const ExpressionConfig& expression_config(const InteractionSpec& spec);
+
+// The entry's expression as the RuntimeSource (expression_compiled.hpp) of the term `potential`.
+inline RuntimeSource compiled_source(const ExpressionConfig& config, const std::string& potential) {
+    return compiled_expression_source(config.graph, config.roots, config.inputs.size(), config.columns.size(),
+                                      potential);
+}
 
 // A compiled program in backend memory, in the real type of the term that runs it.
 template <class B, class R>
@@ -75,23 +81,32 @@ struct ExpressionPairComponent {
         const auto& pair = static_cast<const PairSpec&>(s);
         const ExpressionConfig& config = expression_config(s);
         const double cutOff = pair.shared["cutOff"];
-        using Params = ExpressionPair::Params<PairR>;
+        using Params = InterpretedPair::Params<PairR>;
         auto table = pair_table_of<Params>(pair, build.context.ntypes, [&](const ParameterValues& v) {
             const std::vector<double> columns = config.columns_of(v);
             Params p{};
             p.cutoff2 = PairR(cutOff * cutOff);
             p.offset = pair.shift ? PairR(-config.program.run({cutOff}, columns)[0]) : PairR(0);
-            set_columns<PairR>(p, columns);
+            set_columns<PairR>(p.function, columns);
             return p;
         });
         if constexpr (B::compiles_at_run_time) {
-            return make_compiled_expression_pair<B, R, PairR>(build, pair, config.graph, config.roots,
-                                                              config.columns.size(), table);
+            std::vector<PairR> flat;
+            for (const Params& p : table) {
+                flat.insert(flat.end(), {p.cutoff2, p.offset});
+                append_columns(flat, p.function.columns, config.columns.size());
+            }
+            auto interactor = std::make_unique<CompiledPairInteraction<B, R, PairR>>(
+                build.backend, build.scope(pair), build.listFor(pair),
+                compiled_source(config, "ExpressionPair<RuntimeExpression>"), flat,
+                static_cast<int>(build.context.ntypes));
+            log_compile_time(build.context.log, s.path, interactor->compile_seconds());
+            return interactor;
         } else {
             // Interpreted: every type pair runs the one uploaded program.
             const auto program = upload_program<B, PairR>(build.backend, config.program);
-            for (Params& p : table) p.program = program->view();
-            auto interactor = make_pair_interaction<B, R, ExpressionPair, PairR>(build, pair, table);
+            for (Params& p : table) p.function.program = program->view();
+            auto interactor = make_pair_interaction<B, R, InterpretedPair, PairR>(build, pair, table);
             interactor->own(program);
             return interactor;
         }
@@ -106,17 +121,31 @@ struct ExpressionBondComponent {
     static std::unique_ptr<Interactor<B, R>> make_interactor(const InteractorBuild<B, R>& build,
                                                              const InteractionSpec& s) {
         const ExpressionConfig& config = expression_config(s);
-        const auto program = upload_program<B, R>(build.backend, config.program);
-        using Params = typename ExpressionBond<N>::template Params<R>;
-        auto interactor = make_bond_interaction<B, R, ExpressionBond<N>>(
-            build, static_cast<const BondSpec&>(s), [&](const ParameterValues& v) {
-                Params p{};
+        const auto& bond = static_cast<const BondSpec&>(s);
+        if constexpr (B::compiles_at_run_time) {
+            const auto bonds = bonds_in_group<std::vector<double>>(
+                build, bond, [&](const ParameterValues& v) { return config.columns_of(v); });
+            std::vector<R> flat;
+            for (const std::vector<double>& columns : bonds.params) {
+                const std::vector<R> values(columns.begin(), columns.end());
+                append_columns(flat, values.data(), values.size());
+            }
+            auto interactor = std::make_unique<CompiledBondInteraction<B, R, N>>(
+                build.backend, build.scope(s), build.context.particles, bonds.members,
+                compiled_source(config, "ExpressionBond<" + std::to_string(N) + ", RuntimeExpression>"), flat);
+            log_compile_time(build.context.log, s.path, interactor->compile_seconds());
+            return interactor;
+        } else {
+            const auto program = upload_program<B, R>(build.backend, config.program);
+            auto interactor = make_bond_interaction<B, R, InterpretedBond<N>>(build, bond, [&](const ParameterValues& v) {
+                typename InterpretedBond<N>::template Params<R> p{};
                 p.program = program->view();
                 set_columns<R>(p, config.columns_of(v));
                 return p;
             });
-        interactor->own(program);
-        return interactor;
+            interactor->own(program);
+            return interactor;
+        }
     }
 };
 
@@ -127,11 +156,22 @@ struct ExpressionExternalComponent {
     static std::unique_ptr<Interactor<B, R>> make_interactor(const InteractorBuild<B, R>& build,
                                                              const InteractionSpec& s) {
         const ExpressionConfig& config = expression_config(s);
-        const auto program = upload_program<B, R>(build.backend, config.program);
-        auto interactor = std::make_unique<ExternalInteraction<B, R, ExpressionExternal>>(
-            build.backend, build.scope(s), ExpressionExternal::Params<R>{program->view()});
-        interactor->own(program);
-        return interactor;
+        if constexpr (B::compiles_at_run_time) {
+            // No data columns: the Params of the compiled field is one unused real.
+            auto interactor = std::make_unique<CompiledExternalInteraction<B, R>>(
+                build.backend, build.scope(s), compiled_source(config, "ExpressionExternal<RuntimeExpression>"),
+                R(0));
+            log_compile_time(build.context.log, s.path, interactor->compile_seconds());
+            return interactor;
+        } else {
+            const auto program = upload_program<B, R>(build.backend, config.program);
+            InterpretedExternal::Params<R> params{};
+            params.program = program->view();
+            auto interactor = std::make_unique<ExternalInteraction<B, R, InterpretedExternal>>(build.backend,
+                                                                                              build.scope(s), params);
+            interactor->own(program);
+            return interactor;
+        }
     }
 };
 

@@ -1,31 +1,14 @@
 #pragma once
-// A field acting on each particle alone (external_potential.hpp), generic in its potential. It
-// adds force and energy; an external field has no pair partner and contributes no virial.
+// A field acting on each particle alone (external_potential.hpp), generic in its potential, run by
+// the kernel of external_kernel.hpp.
 #include <cstdint>
 #include <string>
 
+#include "forcefield/external_kernel.hpp"
 #include "forcefield/external_potential.hpp"
 #include "forcefield/interactor.hpp"
 
 namespace structmd {
-
-template <class Potential, class R, bool WantForce, bool WantEnergy, bool WantVirial>
-struct ExternalKernel {
-    using Params = typename Potential::template Params<R>;
-    const Real4<R>* pos;
-    const R* radius;
-    const uint8_t* group;
-    Params params;
-    ClockView now;
-    ForceOutputs<R> out;
-
-    SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
-        Vec3<R> f{0, 0, 0};
-        const R e = Potential::compute(xyz(pos[i]), radius[i], params, R(now.time()), f);
-        add_to_outputs<WantForce, WantEnergy, false>(out, i, f, e, zero_tensor<R>());
-    }
-};
 
 template <class B, class R, class Potential>
 class ExternalInteraction : public Interactor<B, R> {

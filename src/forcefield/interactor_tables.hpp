@@ -36,25 +36,36 @@ std::unique_ptr<PairInteraction<B, R, Potential, PairR>> make_pair_interaction(
                                                                      static_cast<int>(build.context.ntypes));
 }
 
-// The bonds of `bond` whose particles all belong to its group, each with make(values) as its Params.
-template <class B, class R, class Potential, class Make>
-std::unique_ptr<BondInteraction<B, R, Potential>> make_bond_interaction(const InteractorBuild<B, R>& build,
-                                                                        const BondSpec& bond, Make&& make) {
-    using Params = typename Potential::template Params<R>;
-    const std::vector<uint8_t>* inGroup = bond.group >= 0 ? &build.spec.groups[bond.group].members : nullptr;
-    const size_t width = width_of(bond.schema);
+// The bonds of a bond entry that act in its group: N particle indices and one Params each.
+template <class Params>
+struct BondsInGroup {
     std::vector<int> members;
     std::vector<Params> params;
+};
+
+// The bonds of `bond` whose particles all belong to its group, each with make(values) as its Params.
+template <class Params, class B, class R, class Make>
+BondsInGroup<Params> bonds_in_group(const InteractorBuild<B, R>& build, const BondSpec& bond, Make&& make) {
+    const std::vector<uint8_t>* inGroup = bond.group >= 0 ? &build.spec.groups[bond.group].members : nullptr;
+    const size_t width = width_of(bond.schema);
+    BondsInGroup<Params> bonds;
     ParameterValues values;
     for (size_t b = 0; b * bond.arity < bond.members.size(); ++b) {
         const int* ids = &bond.members[b * bond.arity];
         if (inGroup && !std::all_of(ids, ids + bond.arity, [&](int id) { return (*inGroup)[id]; })) continue;
-        members.insert(members.end(), ids, ids + bond.arity);
+        bonds.members.insert(bonds.members.end(), ids, ids + bond.arity);
         values.assign(bond.schema, &bond.values[b * width]);
-        params.push_back(make(values));
+        bonds.params.push_back(make(values));
     }
+    return bonds;
+}
+
+template <class B, class R, class Potential, class Make>
+std::unique_ptr<BondInteraction<B, R, Potential>> make_bond_interaction(const InteractorBuild<B, R>& build,
+                                                                        const BondSpec& bond, Make&& make) {
+    const auto bonds = bonds_in_group<typename Potential::template Params<R>>(build, bond, make);
     return std::make_unique<BondInteraction<B, R, Potential>>(build.backend, build.scope(bond),
-                                                              build.context.particles, members, params);
+                                                              build.context.particles, bonds.members, bonds.params);
 }
 
 }  // namespace structmd

@@ -142,11 +142,11 @@ struct TabulatedAnglePotential : BondTable<3> {
 struct TabulatedDihedralPotential : BondTable<4> {
     template <class R>
     static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const BondTableParams<R>& p, const Box<R>&, Vec3<R>* force) {
-        const bonded_geometry::DihedralAngle<R> angle = dihedral_detail::angle_of(r);
+        const bonded_geometry::DihedralAngle<R> angle = bonded_geometry::dihedral_of(r);
         const R phi = angle.phi < R(0) ? angle.phi + R(2 * M_PI) : angle.phi;
         const SplineSample<R> s = evaluate_spline(p.table, phi);
         const R minusSlope = p.forceFromEnergy ? energy_spline_force(p.table, phi) : s.force;
-        dihedral_detail::write_forces(angle, -minusSlope, force);
+        bonded_geometry::write_dihedral_forces(angle, -minusSlope, force);
         return s.energy;
     }
 };

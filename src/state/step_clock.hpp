@@ -3,9 +3,12 @@
 // a kernel at the end of every step. Kernels that need the step (the counter of the thermal
 // noise, the step named in a fault report) or the time (fields that move) read it there, so their
 // arguments are the same at every step and a recorded sequence of steps can be replayed as is.
-#include <cstdint>
-
+// Free of the standard library: kernels compiled at run time (core/hd.hpp) read the clock too.
 #include "core/hd.hpp"
+
+#if SMD_HOST_CODE
+#include <cstdint>
+#endif
 
 namespace structmd {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "backends/cuda/cuda_backend.cuh"
-#include "forcefield/compiled_pair_interaction.hpp"
+#include "forcefield/compiled_interaction.hpp"
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/pair_interaction.hpp"
 
@@ -84,7 +84,7 @@ Outputs evaluate(bool compiled, bool inGraph) {
         std::vector<PairR> table;
         for (const auto& q : builtin) table.insert(table.end(), {q.cutoff2, q.epsilon, q.sigma2, q.offset});
         term = std::make_unique<CompiledPairInteraction<CudaBackend, R, PairR>>(
-            backend, InteractorScope{"lj"}, list, RuntimePairPotential{kLennardJonesSource, 4}, table, kTypes);
+            backend, InteractorScope{"lj"}, list, RuntimeSource{kLennardJonesSource}, table, kTypes);
     } else {
         term = std::make_unique<PairInteraction<CudaBackend, R, LennardJonesType1, PairR>>(
             backend, InteractorScope{"lj"}, list, builtin, kTypes);

@@ -142,14 +142,13 @@ public:
     template <class F>
     void for_each(int64_t n, const F& f) const {
         if (n <= 0) return;
-        constexpr int threads = 128;
-        const int64_t blocks = (n + threads - 1) / threads;
+        const Grid grid = grid_for(n, 1);
         if (!graphs_.recording()) {
-            for_each_kernel<<<static_cast<unsigned>(blocks), threads, 0, stream_>>>(n, f);
+            for_each_kernel<<<grid.blocks, kThreads, 0, stream_>>>(n, f);
             cuda_check(cudaGetLastError(), "launching a kernel");
             return;
         }
-        graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_kernel<F>), blocks, threads, false, n, 1, f));
+        graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_kernel<F>), grid, false, n, f));
     }
 
     // f(i, lanes) for i < n. Items get as many lanes (up to a warp) as it takes to keep the whole
@@ -168,16 +167,13 @@ public:
     template <class F>
     void for_each_lanes(int64_t n, const F& f) const {
         if (n <= 0) return;
-        const int lanes = lanes_for(n);
-        constexpr int threads = 128;
-        const int64_t blocks = (n * lanes + threads - 1) / threads;
+        const Grid grid = grid_for(n, lanes_for(n));
         if (!graphs_.recording()) {
-            for_each_lanes_kernel<<<static_cast<unsigned>(blocks), threads, 0, stream_>>>(n, lanes, f);
+            for_each_lanes_kernel<<<grid.blocks, kThreads, 0, stream_>>>(n, grid.lanes, f);
             cuda_check(cudaGetLastError(), "launching a kernel");
             return;
         }
-        graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_lanes_kernel<F>), blocks, threads, true, n,
-                                lanes, f));
+        graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_lanes_kernel<F>), grid, true, n, f));
     }
 
     // Kernels compiled at load time (runtime_compiler.hpp) for this handle's GPU.
@@ -188,19 +184,15 @@ public:
         return std::make_shared<const RuntimeKernels>(device_, source, kernels);
     }
 
-    // for_each_lanes(n, f) through `kernel`, a for_each_lanes_kernel compiled at run time whose
-    // functor has the layout of F.
+    // for_each(n, f) and for_each_lanes(n, f) through `kernel`, a for_each_kernel or
+    // for_each_lanes_kernel compiled at run time whose functor has the layout of F.
+    template <class F>
+    void for_each_compiled(const void* kernel, int64_t n, const F& f) const {
+        if (n > 0) launch(recorded(kernel, grid_for(n, 1), false, n, f));
+    }
     template <class F>
     void for_each_lanes_compiled(const void* kernel, int64_t n, const F& f) const {
-        if (n <= 0) return;
-        const int lanes = lanes_for(n);
-        constexpr int threads = 128;
-        const int64_t blocks = (n * lanes + threads - 1) / threads;
-        KernelLaunch launch = recorded(kernel, blocks, threads, true, n, lanes, f);
-        if (graphs_.recording())
-            graphs_.record(std::move(launch));
-        else
-            launch.issue(stream_);
+        if (n > 0) launch(recorded(kernel, grid_for(n, lanes_for(n)), true, n, f));
     }
 
     template <class T, class F>
@@ -286,18 +278,34 @@ private:
         if (graphs_.recording()) graphs_.flush(stream_);
     }
 
+    // 128 threads a block: what for_each_lanes_kernel's launch bounds assume.
+    static constexpr unsigned kThreads = 128;
+    struct Grid {
+        unsigned blocks;
+        int lanes;
+    };
+    static Grid grid_for(int64_t n, int lanes) {
+        return {static_cast<unsigned>((n * lanes + kThreads - 1) / kThreads), lanes};
+    }
+
     template <class F>
-    static KernelLaunch recorded(const void* kernel, int64_t blocks, int threads, bool withLanes, int64_t n, int lanes,
-                                 const F& f) {
+    static KernelLaunch recorded(const void* kernel, Grid grid, bool withLanes, int64_t n, const F& f) {
         KernelLaunch launch;
         launch.kernel = kernel;
-        launch.blocks = static_cast<unsigned>(blocks);
-        launch.threads = static_cast<unsigned>(threads);
+        launch.blocks = grid.blocks;
+        launch.threads = kThreads;
         launch.withLanes = withLanes;
         launch.n = n;
-        launch.lanes = lanes;
+        launch.lanes = grid.lanes;
         launch.functor.assign(reinterpret_cast<const char*>(&f), sizeof(F));
         return launch;
+    }
+
+    void launch(KernelLaunch&& kernel) const {
+        if (graphs_.recording())
+            graphs_.record(std::move(kernel));
+        else
+            kernel.issue(stream_);
     }
 
     int device_;

@@ -1,0 +1,30 @@
+#pragma once
+// The kernel of a field acting on each particle alone, generic in its potential: it adds force and
+// energy, no virial (an external field has no pair partner). Free of the standard library, so that
+// kernels compiled at run time (an expression field on CUDA) instantiate this same kernel.
+#include "core/hd.hpp"
+#include "core/vec.hpp"
+#include "forcefield/force_outputs.hpp"
+#include "state/step_clock.hpp"
+
+namespace structmd {
+
+template <class Potential, class R, bool WantForce, bool WantEnergy, bool WantVirial>
+struct ExternalKernel {
+    using Params = typename Potential::template Params<R>;
+    const Real4<R>* pos;
+    const R* radius;
+    const uint8_t* group;
+    Params params;
+    ClockView now;
+    ForceOutputs<R> out;
+
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
+        Vec3<R> f{0, 0, 0};
+        const R e = Potential::compute(xyz(pos[i]), radius[i], params, R(now.time()), f);
+        add_to_outputs<WantForce, WantEnergy, false>(out, i, f, e, zero_tensor<R>());
+    }
+};
+
+}  // namespace structmd
