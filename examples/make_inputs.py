@@ -6,7 +6,7 @@
 - bead_spring.json: 20 bead-spring chains of 20 beads (harmonic bonds, LJ between all pairs) at
   density 0.5 and temperature 1.0, with velocities given.
 - polymer_melt.json: a Kremer-Grest melt, 40 chains of 25 beads at density 0.85 (FENE bonds, WCA
-  between all non-bonded pairs), grown as random walks that may overlap a little; a schedule first
+  between all pairs, bonded ones included), grown as random walks that may overlap a little; a schedule first
   minimises the energy (SteepestDescent), then equilibrates at T = 1 (Langevin BBK), writing a DCD
   trajectory and the thermodynamics.
 
@@ -234,10 +234,6 @@ def polymer_melt():
     positions = [[rounded(wrapped(x, box_length)) for x in bead] for bead in walk]
     bonds = [[chain * beads_per_chain + bead, chain * beads_per_chain + bead + 1]
              for chain in range(chains) for bead in range(beads_per_chain - 1)]
-    bonded = [[] for _ in range(n)]
-    for i, j in bonds:
-        bonded[i].append(j)
-        bonded[j].append(i)
     wca_cut = round(2.0 ** (1.0 / 6.0), 12)
     return {
         "system": {"info": {"type": ["Simulation", "Information"],
@@ -260,10 +256,10 @@ def polymer_melt():
             "structure": {"labels": ["id", "type", "chainId"],
                           "data": [[index, "A", index // beads_per_chain] for index in range(n)]},
             "forceField": {
-                "nl": {"type": ["VerletConditionalListSet", "nonExcluded"], "parameters": {"cutOffVerletFactor": 1.3},
-                       "labels": ["id", "id_list"], "data": [[index, bonded[index]] for index in range(n)]},
+                # Kremer-Grest: WCA between every pair, bonded ones included (it keeps bonds near 0.97).
+                "nl": {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": 1.3}},
                 "wca": {"type": ["NonBonded", "WCAType1"], "parameters": {"cutOffFactor": wca_cut,
-                                                                          "condition": "nonExcluded"},
+                                                                          "condition": "all"},
                         "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [["A", "A", 1.0, 1.0]]},
                 "fene": {"type": ["Bond2", "FeneCommon_r0_K_R0"], "parameters": {"r0": 0.0, "K": 30.0, "R0": 1.5},
                          "labels": ["id_i", "id_j"], "data": bonds},
