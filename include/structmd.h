@@ -213,14 +213,15 @@ STRUCTMD_API structmd_status structmd_load_plugin(const char* path);
 
 /**
  * Advances nsteps integration steps along integrator.schedule, switching integrators where the
- * schedule says, firing each simulationStep at its interval. Needs a load. Returns when the steps
- * are finished on the device, so wall-clock time around the call is the time of the steps.
+ * schedule says, firing each simulationStep at its interval. Past the end of the schedule the
+ * integrator of its last stage (the last row with steps > 0) goes on, so a coupling driver decides
+ * the length of the run as it goes; the final state of the schedule is still given to the
+ * measures as when the schedule ends there. Needs a load. Returns when the steps are finished on
+ * the device, so wall-clock time around the call is the time of the steps.
  *
  * @param sim     the handle.
  * @param nsteps  number of steps, >= 0; 0 does nothing.
- * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load, or when the schedule ends before nsteps
- *         (no step is taken then; structmd_get_info gives the step at which it ends);
- *         STRUCTMD_ERR_ARGUMENT for nsteps < 0; STRUCTMD_ERR_IO when an output cannot be written;
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_ARGUMENT for nsteps < 0; STRUCTMD_ERR_IO when an output cannot be written;
  *         STRUCTMD_ERR_MEMORY when the device cannot hold what a step needs (a neighbour list, say);
  *         STRUCTMD_ERR_DEVICE for a GPU failure; STRUCTMD_ERR_NUMERICAL when a position, velocity
  *         or force became non-finite or a particle moved farther than the neighbour-list skin in
@@ -231,7 +232,7 @@ STRUCTMD_API structmd_status structmd_load_plugin(const char* path);
 STRUCTMD_API structmd_status structmd_step(structmd_sim* sim, int64_t nsteps);
 
 /**
- * Advances until the schedule ends; at its end, does nothing. Needs a load.
+ * Advances until the schedule ends; at its end or past it, does nothing. Needs a load.
  *
  * @param sim  the handle.
  * @return as structmd_step.

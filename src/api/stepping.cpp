@@ -1,4 +1,7 @@
 // Advancing time and evaluating without advancing.
+#include <algorithm>
+#include <cstdint>
+
 #include "api/handle.hpp"
 
 using namespace structmd;
@@ -13,7 +16,7 @@ structmd_status structmd_step(structmd_sim* sim, int64_t nsteps) {
 structmd_status structmd_run(structmd_sim* sim) {
     return with_handle(sim, [&](structmd_sim& s) {
         Simulation& simulation = loaded(s);
-        simulation.advance(simulation.final_step() - simulation.current_step());
+        simulation.advance(std::max<int64_t>(0, simulation.final_step() - simulation.current_step()));
     });
 }
 

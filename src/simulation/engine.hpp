@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -106,11 +107,10 @@ public:
 
     void advance(int64_t n) override {
         if (n < 0) throw Error(STRUCTMD_ERR_ARGUMENT, "nsteps: expected a count >= 0, got " + std::to_string(n));
+        if (n > std::numeric_limits<int64_t>::max() - current_step())
+            throw Error(STRUCTMD_ERR_ARGUMENT, "nsteps: " + std::to_string(n) + " steps from step " +
+                                                   std::to_string(current_step()) + " would overflow the step counter");
         const int64_t last = final_step();
-        if (current_step() + n > last)
-            throw Error(STRUCTMD_ERR_STATE, "cannot advance " + std::to_string(n) + " steps from step " +
-                                                std::to_string(current_step()) + ": the schedule ends at step " +
-                                                std::to_string(last));
         if (n == 0) return;
         backend_.activate();
         rollback_.save(backend_, p_, activeStage_, integrators_);
@@ -118,7 +118,7 @@ public:
         try {
             for (int64_t k = 0; k < n; ++k) {
                 backend_.begin_step();
-                fire_steps(false);
+                fire_steps(current_step() == last);  // the schedule's final state, passed through
                 const int stage = schedule_.stage_after(current_step());
                 Integrator<B, R>& integrator = *integrators_[schedule_.integrator_of(stage)];
                 if (stage != activeStage_) {

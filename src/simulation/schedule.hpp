@@ -23,14 +23,18 @@ public:
     int stages() const { return static_cast<int>(stages_.size()); }
     int integrator_of(int stage) const { return stages_[stage].integrator; }
 
-    // The stage the step after `step` belongs to.
+    // The stage the step after `step` belongs to. Past the end of the schedule the last stage that
+    // ran goes on (a coupling driver decides the run's length as it goes).
     int stage_after(int64_t step) const {
+        if (stages_.empty()) throw Error(STRUCTMD_ERR_INTERNAL, "a schedule without stages");
         int64_t offset = step - firstStep_;
+        int last = static_cast<int>(stages_.size()) - 1;
         for (size_t k = 0; k < stages_.size(); ++k) {
             if (offset < stages_[k].steps) return static_cast<int>(k);
             offset -= stages_[k].steps;
+            if (stages_[k].steps > 0) last = static_cast<int>(k);
         }
-        throw Error(STRUCTMD_ERR_INTERNAL, "no integrator scheduled at step " + std::to_string(step));
+        return last;
     }
 
 private:

@@ -26,12 +26,17 @@ void InfoStep::run(Simulation& sim) {
     const int64_t last = sim.final_step();
     const double span = static_cast<double>(last - scheduleStart_);
     const double percent = span > 0 ? 100.0 * static_cast<double>(now.step - scheduleStart_) / span : 100.0;
+    const bool past = now.step > last;  // structmd_step goes on with the last integrator
 
     char line[160];
-    std::snprintf(line, sizeof line, "step %lld of %lld (%.1f %%)", static_cast<long long>(now.step),
-                  static_cast<long long>(last), percent);
+    if (past)
+        std::snprintf(line, sizeof line, "step %lld, past the schedule's end at %lld", static_cast<long long>(now.step),
+                      static_cast<long long>(last));
+    else
+        std::snprintf(line, sizeof line, "step %lld of %lld (%.1f %%)", static_cast<long long>(now.step),
+                      static_cast<long long>(last), percent);
     std::string message = "simulationStep." + name() + ": " + line;
-    if (previous_ && now.step > previous_->step) {
+    if (previous_ && now.step > previous_->step && !past) {
         const double seconds = std::chrono::duration<double>(now.when - previous_->when).count();
         if (seconds > 0) {
             const double rate = static_cast<double>(now.step - previous_->step) / seconds;

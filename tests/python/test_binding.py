@@ -170,8 +170,11 @@ def test_step_run_compute_and_clock(sim):
     sim.compute(forces=False, energy=True, virial=True)
     sim.run()
     assert sim.step_number == sim.info["final_step"] == 30
-    with pytest.raises(structmd.StateError):
-        sim.step(1)
+    sim.step(2)  # past the schedule's end, on with its last integrator
+    assert sim.step_number == 32
+    assert sim.time == pytest.approx(32 * systems.BASE_TIME_STEP)
+    sim.run()  # nothing left to run
+    assert sim.step_number == 32
 
 
 # ---- properties --------------------------------------------------------------------------------

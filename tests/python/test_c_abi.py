@@ -433,18 +433,21 @@ def test_calls_before_a_load_are_state_errors(sim, function, good_input_file):
     assert_usable(sim)
 
 
-def test_stepping_past_the_schedule_end_is_a_state_error_and_takes_no_step(sim):
-    load(sim, systems.lj_bond_system(steps=20))
-    assert info(sim)["final_step"] == 20
-    before = snapshot(sim)
-    expect(sim, lib.structmd_step(sim, 21), STATE)
-    assert message(sim) != ""
-    assert_same_state(before, snapshot(sim))
+def test_stepping_past_the_schedule_end_goes_on_with_the_last_integrator(sim):
+    doc = systems.lj_bond_system()
+    doc["integrator"]["fine"] = {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 0.001}}
+    doc["integrator"]["schedule"]["data"] = [[1, "vv", 10], [2, "fine", 15], [3, "vv", 0]]
+    load(sim, doc)
+    assert info(sim)["final_step"] == 25
     check(sim, lib.structmd_step(sim, 20))
-    assert get_scalar(sim, "structmd_get_step", "int64_t") == 20
-    at_end = snapshot(sim)
-    expect(sim, lib.structmd_step(sim, 1), STATE)
-    assert_same_state(at_end, snapshot(sim))
+    check(sim, lib.structmd_step(sim, 12))  # through the end at 25, on with "fine" (the "vv" row has 0 steps)
+    assert get_scalar(sim, "structmd_get_step", "int64_t") == 32
+    expected_time = 10 * systems.BASE_TIME_STEP + 22 * 0.001
+    assert get_scalar(sim, "structmd_get_time", "double") == pytest.approx(expected_time, rel=1e-12)
+    after = snapshot(sim)
+    check(sim, lib.structmd_run(sim))  # past the end: nothing to do
+    assert_same_state(after, snapshot(sim))
+    assert info(sim)["final_step"] == 25
     assert_usable(sim)
 
 
@@ -458,7 +461,6 @@ def test_run_goes_through_every_schedule_row(sim):
     assert get_scalar(sim, "structmd_get_step", "int64_t") == 25
     expected_time = 10 * systems.BASE_TIME_STEP + 15 * 0.001
     assert get_scalar(sim, "structmd_get_time", "double") == pytest.approx(expected_time, rel=1e-12)
-    expect(sim, lib.structmd_step(sim, 1), STATE)
 
 
 def test_initial_step_and_time_come_from_the_fundamental(sim):

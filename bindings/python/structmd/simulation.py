@@ -136,7 +136,7 @@ class Simulation:
         raise TypeError(f"cannot load from a {type(source).__name__}: give a dict, a JSON string or a path")
 
     def step(self, n=1):
-        """Advances n integration steps along the integrator schedule."""
+        """Advances n integration steps along the integrator schedule (past its end, its last integrator goes on)."""
         self._call(lib.structmd_step, operator.index(n))
 
     def run(self):
