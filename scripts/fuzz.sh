@@ -8,7 +8,8 @@
 # `build-fuzz/<target> FILE`, shrink it with `build-fuzz/<target> -minimize_crash=1 -runs=10000 FILE`
 # and commit it to tests/fuzz/findings/<target>/ while the bug is open, to the corpus once it is
 # fixed (so every later run replays it). Inputs that found new coverage are kept in
-# build-fuzz/corpus/<target>/, not in the committed corpus.
+# build-fuzz/corpus/<target>/, not in the committed corpus. libFuzzer's own output goes to
+# build-fuzz/logs/<target>.log; a target prints one line, and the log's end when it fails.
 # Usage: scripts/fuzz.sh   (FUZZ_SECONDS=N per target, JOBS=N build parallelism, default 1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -32,14 +33,21 @@ status=0
 for target in "${targets[@]}"; do
   found="$build/corpus/$target"
   artifacts="$build/artifacts/$target"
-  mkdir -p "$found" "$artifacts"
+  log="$build/logs/$target.log"
+  mkdir -p "$found" "$artifacts" "$build/logs"
   # The fuzzed inputs may write files (measures, trajectories, checkpoints): they land in a scratch
   # directory, not in the repository.
   scratch=$(mktemp -d)
-  echo "== $target: ${seconds} s"
-  (cd "$scratch" && "$build/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  if (cd "$scratch" && "$build/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
       -max_len=16384 -print_final_stats=1 -artifact_prefix="$artifacts/" \
-      "$found" "$root/tests/fuzz/corpus/$target") || status=1
+      "$found" "$root/tests/fuzz/corpus/$target") > "$log" 2>&1; then
+    runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
+    echo "fuzz: $target: ${runs:-?} inputs in ${seconds} s, no finding (log: $log)"
+  else
+    status=1
+    echo "fuzz: $target FAILED; the end of $log:" >&2
+    tail -n 40 "$log" >&2
+  fi
   rm -rf "$scratch"
 done
 if [ "$status" -ne 0 ]; then
