@@ -441,8 +441,10 @@ def test_a_schedule_of_two_integrators_counts_steps_and_time_and_resets_velociti
         assert np.mean(sim.velocities[:, 0]) > 4.95 - allowed, "the reset happens once, when the stage begins"
         sim.step(18)
         assert sim.step_number == 150 and sim.time == pytest.approx(2.5 + 20 * 0.01, rel=1e-12)
-        with pytest.raises(structmd.StateError):
-            sim.step(1)
+        sim.velocities = np.tile([5.0, 0.0, 0.0], (n, 1))
+        sim.step(1)  # past the schedule's end: the thermostat goes on, without a second reset
+        assert sim.step_number == 151 and sim.time == pytest.approx(2.5 + 21 * 0.01, rel=1e-12)
+        assert np.mean(sim.velocities[:, 0]) > 4.95 - allowed, "no stage begins past the end"
 
 
 def test_a_stage_begins_the_same_whether_its_first_step_opens_a_call_or_not(options):
