@@ -33,34 +33,36 @@ SMD_HD SMD_INLINE PairTerm<R> evaluate_pair(R r2, const typename Potential::temp
 
 // Positions, separations and sums in R; the potential itself in PairR (float under mixed precision:
 // the separation is taken in double, so its accuracy does not fall with the size of the box).
+// Runs over the list's slots (neighbour_view.hpp); what belongs to a particle (charge, group,
+// outputs) is looked up through the slot's particle.
 template <class Potential, class R, class PairR, bool WantForce, bool WantEnergy, bool WantVirial>
 struct PairKernel {
     using Params = typename Potential::template Params<PairR>;
-    const Real4<R>* pos;
-    const R* charge;       // read only by potentials of charges
-    const uint8_t* group;  // null: every particle takes part
+    const R* charge;       // by particle, read only by potentials of charges
+    const uint8_t* group;  // by particle; null: every particle takes part
     NeighbourView<R> neighbours;
     const Params* table;  // ntypes x ntypes
     int ntypes;
     ForceOutputs<R> out;
 
-    SMD_HD void operator()(int64_t i, Lanes lanes) const {
+    SMD_HD void operator()(int64_t k, Lanes lanes) const {
+        const NeighbourView<R>& v = neighbours;
+        const int i = v.order[k];
         if (group && !group[i]) return;
-        const Real4<R> pi = pos[i];
+        const Real4<R> pi = v.positions[k];
         const Vec3<R> ri = xyz(pi);
         const Params* row = table + static_cast<int>(pi.w) * ntypes;
         Vec3<R> f{0, 0, 0};
         R e = 0;
         Tensor3<R> w = zero_tensor<R>();
-        const Box<R>& box = neighbours.box;
-        neighbours.for_each_neighbour(static_cast<int>(i), ri, [&](int j) {
-            const Real4<R> pj = pos[j];
-            const Vec3<R> rij = box.minimum_image(xyz(pj) - ri);
+        v.for_each_neighbour(static_cast<int>(k), [&](int s) {
+            const Real4<R> pj = v.positions[s];
+            const Vec3<R> rij = v.box.minimum_image(xyz(pj) - ri);
             const PairR r2 = PairR(dot(rij, rij));
             const Params& p = row[static_cast<int>(pj.w)];
-            if (!(r2 < p.cutoff2) || (group && !group[j])) return;
+            if (!(r2 < p.cutoff2) || (group && !group[v.order[s]])) return;
             const PairTerm<PairR> t = evaluate_pair<Potential>(
-                r2, p, uses_charges<Potential>(0) ? PairR(charge[i] * charge[j]) : PairR(0));
+                r2, p, uses_charges<Potential>(0) ? PairR(charge[i] * charge[v.order[s]]) : PairR(0));
             const R dudrOverR = R(t.dudr_over_r);
             if (WantForce) f += dudrOverR * rij;
             if (WantEnergy) e += R(0.5) * R(t.energy);

@@ -1,5 +1,11 @@
 #pragma once
 // What a pair kernel sees of a neighbour list: plain pointers, copied by value into the kernel.
+//
+// The list works in its own order of the particles, by cell of the last build, so that particles
+// close in space are close in memory: a warp's neighbours share cache lines, and a cell's members
+// are one contiguous range. Slot k holds particle order[k]; the list keeps the positions of the
+// current step in slot order (positions[k]), and its entries are slots.
+//
 // A particle whose list overflowed its capacity is served by scanning the cells directly, so the
 // result never depends on a capacity guess; the host grows the capacity for later builds.
 #include "core/lanes.hpp"
@@ -10,60 +16,58 @@ namespace structmd {
 
 template <class R>
 struct NeighbourView {
-    // Neighbour k of particle i at list[i * particleStride + k * entryStride]: by rows (a particle's
-    // entries side by side, for several lanes per particle and for CPU caches) or by columns (entry k
-    // of consecutive particles side by side, for one GPU thread per particle).
+    const Real4<R>* positions = nullptr;  // this step's positions, by slot
+    const Real4<R>* binned = nullptr;     // the positions of the last build, by slot
+    const int* order = nullptr;           // the particle in each slot
+    // Neighbour m of slot k at list[k * particleStride + m * entryStride]: by rows (a slot's entries
+    // side by side, for several lanes per particle and for CPU caches) or by columns (entry m of
+    // consecutive slots side by side, for one GPU thread per particle).
     int* list = nullptr;
     int* count = nullptr;
     int capacity = 0;
     int64_t particleStride = 0;
     int64_t entryStride = 0;
-
-    SMD_HD SMD_INLINE int* entries_of(int64_t i) const { return list + i * particleStride; }
-    int* cellCount = nullptr;
-    int* cellParticles = nullptr;  // particle s of cell c at cellParticles[c * cellCapacity + s]
-    Real4<R>* cellPositions = nullptr;  // its position when binned, in the same slot
-    int cellCapacity = 0;
-    int* overflow = nullptr;  // particles that did not fit in their cell
-    int* overflowCount = nullptr;
+    const int* cellStart = nullptr;  // cell c holds slots cellStart[c] .. cellStart[c + 1] - 1
     CellGrid<R> grid;
     Box<R> box;
     PairFilter filter;
 
-    // Calls visit(j) for every candidate neighbour j != i that the filter accepts, in an order that
-    // does not depend on thread timing; with several lanes, each lane visits its share. Candidates
-    // may lie beyond the cutoff; the caller checks the distance.
+    SMD_HD SMD_INLINE int* entries_of(int64_t k) const { return list + k * particleStride; }
+
+    // Whether the pair of slots k and s may be listed (the filter judges particles, not slots).
+    SMD_HD SMD_INLINE bool accepts(int k, int s) const {
+        return s != k && (filter.trivial() || filter.accepts(order[k], order[s]));
+    }
+
+    // Calls visit(s) for every candidate neighbour slot s of slot k that the filter accepts, in an
+    // order that does not depend on thread timing; with several lanes, each lane visits its share.
+    // Candidates may lie beyond the cutoff; the caller checks the distance.
     template <class Visit>
-    SMD_HD SMD_INLINE void for_each_neighbour(int i, Vec3<R> ri, Visit&& visit, Lanes lanes = {}) const {
-        const int n = count[i];
+    SMD_HD SMD_INLINE void for_each_neighbour(int k, Visit&& visit, Lanes lanes = {}) const {
+        const int n = count[k];
         if (n <= capacity) {
-            const int* entries = entries_of(i);
+            const int* entries = entries_of(k);
             SMD_UNROLL4
-            for (int k = lanes.lane; k < n; k += lanes.count) visit(entries[k * entryStride]);
+            for (int m = lanes.lane; m < n; m += lanes.count) visit(entries[m * entryStride]);
             return;
         }
         int candidate = 0;
-        scan_cells(i, ri, [&](int j) {
-            if (candidate++ % lanes.count == lanes.lane) visit(j);
+        scan_cells(k, [&](int s) {
+            if (candidate++ % lanes.count == lanes.lane) visit(s);
         });
     }
 
-    // Candidates from the cells binned at the last build. A particle now at ri lies within
-    // half a skin of where it was binned, so the adjacent cells of its current cell still hold
-    // every particle within the list radius.
+    // Candidates from the cells of the last build, around the cell where slot k was binned: both
+    // particles of a pair now within the list radius minus the skin were within the list radius
+    // then, so in the same or adjacent cells.
     template <class Visit>
-    SMD_HD SMD_INLINE void scan_cells(int i, Vec3<R> ri, Visit&& visit) const {
+    SMD_HD SMD_INLINE void scan_cells(int k, Visit&& visit) const {
         int cx, cy, cz;
-        grid.coordinates(ri, box, cx, cy, cz);
+        grid.coordinates(xyz(binned[k]), box, cx, cy, cz);
         grid.for_each_adjacent(cx, cy, cz, [&](int c) {
-            const int m = cellCount[c] < cellCapacity ? cellCount[c] : cellCapacity;
-            const int* members = cellParticles + static_cast<int64_t>(c) * cellCapacity;
-            for (int s = 0; s < m; ++s)
-                if (members[s] != i && filter.accepts(i, members[s])) visit(members[s]);
+            for (int s = cellStart[c]; s < cellStart[c + 1]; ++s)
+                if (accepts(k, s)) visit(s);
         });
-        const int extra = *overflowCount;
-        for (int k = 0; k < extra; ++k)
-            if (overflow[k] != i && filter.accepts(i, overflow[k])) visit(overflow[k]);
     }
 };
 

@@ -15,6 +15,9 @@ struct PairFilter {
     const int* excludedStart = nullptr;  // nonExcluded: sorted ids excluded for i in
     const int* excluded = nullptr;       // excluded[excludedStart[i] .. excludedStart[i+1])
 
+    // Whether every pair is accepted, so a caller need not look up which particles it has.
+    SMD_HD SMD_INLINE bool trivial() const { return !batch && condition == PairCondition::all; }
+
     SMD_HD SMD_INLINE bool accepts(int i, int j) const {
         if (batch && batch[i] != batch[j]) return false;
         switch (condition) {

@@ -1,7 +1,8 @@
 #pragma once
-// Cell list feeding a Verlet list with a skin. The list is rebuilt only when some particle has moved
-// more than half the skin since the last build; that test and the rebuild run on the backend
-// without a host round trip. Capacities adapt at API boundaries (adapt()), never inside the step.
+// Cell list feeding a Verlet list with a skin, over the particles sorted by cell (neighbour_view.hpp).
+// The list is rebuilt only when some particle has moved more than half the skin since the last
+// build; that test and the rebuild run on the backend without a host round trip. The list capacity
+// adapts at API boundaries (adapt()), never inside the step.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -49,31 +50,35 @@ public:
         backend_.write(control_, kRebuild, forceRebuild_ ? 1 : 0);
         if (!forceRebuild_) {
             const R halfSkin = R(0.5 * (listRadius_ - cutoff_));
-            backend_.for_each(n, CheckDisplacement<R>{pos.data(), reference_.data(), box, halfSkin * halfSkin,
-                                                      control_.data()});
+            backend_.for_each(n, RefreshPositions<R>{pos.data(), order_.data(), binned_.data(), positions_.data(),
+                                                     box_, halfSkin * halfSkin, control_.data()});
         }
         forceRebuild_ = false;
-        NeighbourView<R> v = view();
-        backend_.for_each(grid_.count(), ClearCells{control_.data(), cellCount_.data(), overflowCount()});
-        backend_.for_each(n, BinParticles<R>{pos.data(), reference_.data(), v, control_.data()});
-        backend_.for_each(grid_.count(), SortCells<R>{pos.data(), v, control_.data()});
-        backend_.for_each_lanes(n, BuildLists<R>{pos.data(), v, R(listRadius_ * listRadius_), control_.data(),
+        const int cells = grid_.count();
+        backend_.for_each(n, BinParticles<R>{pos.data(), grid_, box_, control_.data(), cellCount_.data(),
+                                             cellOf_.data(), rankInCell_.data()});
+        if (chunks_ > 1)
+            backend_.for_each(chunks_, SumCellChunks{control_.data(), cellCount_.data(), chunkTotal_.data(),
+                                                     chunkCells_, cells});
+        backend_.for_each(chunks_, StartCells{control_.data(), cellCount_.data(), chunkTotal_.data(),
+                                              cellStart_.data(), chunkCells_, cells});
+        backend_.for_each(n, PlaceParticles{control_.data(), cellOf_.data(), rankInCell_.data(), cellStart_.data(),
+                                            order_.data()});
+        backend_.for_each(cells, SortCells<R>{pos.data(), control_.data(), cellStart_.data(), order_.data(),
+                                              positions_.data(), binned_.data()});
+        backend_.for_each_lanes(n, BuildLists<R>{view(), R(listRadius_ * listRadius_), control_.data(),
                                                  B::ordered_neighbour_lists});
     }
 
-    // Reads what the last builds needed (one small copy to the host) and enlarges the capacities
-    // that were exceeded, so later builds store every neighbour in the list again.
+    // Reads what the last builds needed (one small copy to the host) and enlarges the list
+    // capacity if it was exceeded, so later builds store every neighbour in the list again.
     void adapt() {
         if (particles_ == 0) return;
         int control[kControlSlots];
         backend_.download(control_, control, kControlSlots);
         builds_ = control[kBuilds];
-        // The new capacities take effect at the next layout, together with the buffers sized for
-        // them: until then every view keeps describing the buffers as they are.
-        if (control[kMaxCellFill] > cellCapacity_) {
-            pendingCellCapacity_ = control[kMaxCellFill] + control[kMaxCellFill] / 4 + 4;
-            needsLayout_ = true;
-        }
+        // The new capacity takes effect at the next layout, together with the buffers sized for
+        // it: until then every view keeps describing the buffers as they are.
         if (control[kMaxNeighbours] > capacity_) {
             pendingCapacity_ = control[kMaxNeighbours] + control[kMaxNeighbours] / 4 + 8;
             needsLayout_ = true;
@@ -85,6 +90,9 @@ public:
 
     NeighbourView<R> view() {
         NeighbourView<R> v;
+        v.positions = positions_.data();
+        v.binned = binned_.data();
+        v.order = order_.data();
         v.list = list_.data();
         v.count = count_.data();
         v.capacity = capacity_;
@@ -95,12 +103,7 @@ public:
             v.particleStride = 1;
             v.entryStride = particles_;
         }
-        v.cellCount = cellCount_.data();
-        v.cellParticles = cellParticles_.data();
-        v.cellPositions = cellPositions_.data();
-        v.cellCapacity = cellCapacity_;
-        v.overflow = overflow_.data();
-        v.overflowCount = overflowCount();
+        v.cellStart = cellStart_.data();
         v.grid = grid_;
         v.box = box_;
         v.filter = filter_;
@@ -112,34 +115,37 @@ private:
         return box.length.x == box_.length.x && box.length.y == box_.length.y && box.length.z == box_.length.z;
     }
 
-    int* overflowCount() { return overflow_.data() + particles_; }
-
     // Sizes every buffer for n particles in this box and schedules a full rebuild.
     void layout(int64_t n, const Box<R>& box) {
         box_ = box;
         capacity_ = std::max(capacity_, pendingCapacity_);
-        cellCapacity_ = std::max(cellCapacity_, pendingCellCapacity_);
         grid_ = CellGrid<R>::make(box, listRadius_, n);
-        const double volume = static_cast<double>(box.length.x) * box.length.y * box.length.z;
-        const double density = n / volume;
         if (capacity_ == 0) {
             // No particle has more neighbours than there are particles, whatever the list radius.
-            const double expected = 4.18879 * listRadius_ * listRadius_ * listRadius_ * density;
+            const double volume = static_cast<double>(box.length.x) * box.length.y * box.length.z;
+            const double expected = 4.18879 * listRadius_ * listRadius_ * listRadius_ * n / volume;
             capacity_ = static_cast<int>(std::min(std::ceil(1.3 * expected), static_cast<double>(n))) + 16;
         }
-        if (cellCapacity_ == 0 || n != particles_) {
-            const double perCell = static_cast<double>(n) / grid_.count();
-            cellCapacity_ = std::max(cellCapacity_, static_cast<int>(std::ceil(2.0 * perCell)) + 8);
-        }
         particles_ = n;
+        // About as many chunks as cells per chunk, so both passes of the scan of the cell counts
+        // are short; a small grid is one chunk, which saves the first pass and its launch (at ten
+        // thousand particles a launch is a few percent of a step).
+        const int cells = grid_.count();
+        chunkCells_ = cells <= kOneChunkCells
+                          ? cells
+                          : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(cells))));
+        chunks_ = (cells + chunkCells_ - 1) / chunkCells_;
         backend_.resize(list_, static_cast<size_t>(capacity_) * n);
         backend_.resize(count_, n);
-        backend_.resize(reference_, n);
-        backend_.resize(cellCount_, grid_.count());
-        backend_.resize(cellParticles_, static_cast<size_t>(cellCapacity_) * grid_.count());
-        backend_.resize(cellPositions_, static_cast<size_t>(cellCapacity_) * grid_.count());
-        backend_.resize(overflow_, n + 1);  // the last slot holds the overflow count
-        backend_.fill(overflow_, 0);
+        backend_.resize(order_, n);
+        backend_.resize(positions_, n);
+        backend_.resize(binned_, n);
+        backend_.resize(cellOf_, n);
+        backend_.resize(rankInCell_, n);
+        backend_.resize(cellCount_, cells);
+        backend_.fill(cellCount_, 0);
+        backend_.resize(cellStart_, cells + 1);
+        backend_.resize(chunkTotal_, chunks_);
         needsLayout_ = false;
         forceRebuild_ = true;
     }
@@ -151,9 +157,10 @@ private:
     Box<R> box_{};
     CellGrid<R> grid_;
     int capacity_ = 0;
-    int cellCapacity_ = 0;
     int pendingCapacity_ = 0;  // raised by adapt(), applied by layout()
-    int pendingCellCapacity_ = 0;
+    static constexpr int kOneChunkCells = 4096;
+    int chunkCells_ = 1;       // cells per chunk of the scan of cell counts
+    int chunks_ = 0;
     bool needsLayout_ = true;
     bool forceRebuild_ = true;
     int64_t builds_ = 0;
@@ -161,8 +168,8 @@ private:
     PairFilter filter_;
     typename B::template Buffer<int> excludedStart_, excluded_;
     typename B::template Buffer<int> control_;
-    typename B::template Buffer<int> list_, count_, cellCount_, cellParticles_, overflow_;
-    typename B::template Buffer<Real4<R>> reference_, cellPositions_;
+    typename B::template Buffer<int> list_, count_, order_, cellOf_, rankInCell_, cellCount_, cellStart_, chunkTotal_;
+    typename B::template Buffer<Real4<R>> positions_, binned_;
 };
 
 }  // namespace structmd

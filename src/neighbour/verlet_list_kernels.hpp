@@ -2,6 +2,11 @@
 // Functors of the Verlet list build. Each runs on both backends; every one after the displacement
 // check returns at once unless the device-side rebuild flag is set, so deciding whether to rebuild
 // needs no trip to the host.
+//
+// A build is a counting sort of the particles by cell: count each cell's members (binning), turn
+// the counts into each cell's first slot (a scan in chunks of cells), place every particle in its
+// cell's range, sort each range by particle so the order does not depend on thread timing, and
+// list each slot's neighbours from the ranges of the adjacent cells.
 #include <cstdint>
 
 #include "core/atomic.hpp"
@@ -14,57 +19,102 @@ namespace structmd {
 enum ListControl : int {
     kRebuild = 0,        // 1 while a rebuild is under way this step
     kBuilds = 1,         // number of builds since load
-    kMaxCellFill = 2,    // the fullest cell seen at a build
-    kMaxNeighbours = 3,  // the longest list seen at a build
-    kControlSlots = 4
+    kMaxNeighbours = 2,  // the longest list seen at a build
+    kControlSlots = 3
 };
 
+// Every step: copies this step's positions into slot order and raises the rebuild flag when some
+// particle has moved more than half the skin since it was binned.
 template <class R>
-struct CheckDisplacement {
+struct RefreshPositions {
     const Real4<R>* pos;
-    const Real4<R>* reference;
+    const int* order;
+    const Real4<R>* binned;
+    Real4<R>* positions;
     Box<R> box;
     R halfSkin2;
     int* control;
-    SMD_HD void operator()(int64_t i) const {
-        const Vec3<R> d = box.minimum_image(xyz(pos[i]) - xyz(reference[i]));
+    SMD_HD void operator()(int64_t k) const {
+        const Real4<R> p = pos[order[k]];
+        positions[k] = p;
+        const Vec3<R> d = box.minimum_image(xyz(p) - xyz(binned[k]));
         if (dot(d, d) > halfSkin2) atomic_max(control + kRebuild, 1);
-    }
-};
-
-struct ClearCells {
-    int* control;
-    int* cellCount;
-    int* overflowCount;
-    SMD_HD void operator()(int64_t c) const {
-        if (!control[kRebuild]) return;
-        cellCount[c] = 0;
-        if (c == 0) {
-            *overflowCount = 0;
-            control[kBuilds] += 1;
-        }
     }
 };
 
 template <class R>
 struct BinParticles {
     const Real4<R>* pos;
-    Real4<R>* reference;
-    NeighbourView<R> view;
+    CellGrid<R> grid;
+    Box<R> box;
     int* control;
+    int* cellCount;
+    int* cellOf;
+    int* rankInCell;
     SMD_HD void operator()(int64_t i) const {
         if (!control[kRebuild]) return;
-        const Real4<R> p = pos[i];
-        reference[i] = p;
         int cx, cy, cz;
-        view.grid.coordinates(xyz(p), view.box, cx, cy, cz);
-        const int c = view.grid.index(cx, cy, cz);
-        const int slot = atomic_add(view.cellCount + c, 1);
-        if (slot < view.cellCapacity)
-            view.cellParticles[static_cast<int64_t>(c) * view.cellCapacity + slot] = static_cast<int>(i);
-        else
-            view.overflow[atomic_add(view.overflowCount, 1)] = static_cast<int>(i);
-        atomic_max(control + kMaxCellFill, slot + 1);
+        grid.coordinates(xyz(pos[i]), box, cx, cy, cz);
+        const int c = grid.index(cx, cy, cz);
+        cellOf[i] = c;
+        rankInCell[i] = atomic_add(cellCount + c, 1);
+    }
+};
+
+// The members of each chunk of cells, summed.
+struct SumCellChunks {
+    const int* control;
+    const int* cellCount;
+    int* chunkTotal;
+    int chunkCells;
+    int cells;
+    SMD_HD void operator()(int64_t chunk) const {
+        if (!control[kRebuild]) return;
+        const int first = static_cast<int>(chunk) * chunkCells;
+        const int last = first + chunkCells < cells ? first + chunkCells : cells;
+        int total = 0;
+        for (int c = first; c < last; ++c) total += cellCount[c];
+        chunkTotal[chunk] = total;
+    }
+};
+
+// The first slot of every cell of a chunk: the members of the chunks before it (summed here, one
+// pass over the chunk totals each) and of the cells before it in the chunk. The counts are cleared
+// for the next build on the way.
+struct StartCells {
+    int* control;
+    int* cellCount;
+    const int* chunkTotal;
+    int* cellStart;
+    int chunkCells;
+    int cells;
+    SMD_HD void operator()(int64_t chunk) const {
+        if (!control[kRebuild]) return;
+        int start = 0;
+        for (int64_t before = 0; before < chunk; ++before) start += chunkTotal[before];
+        const int first = static_cast<int>(chunk) * chunkCells;
+        const int last = first + chunkCells < cells ? first + chunkCells : cells;
+        for (int c = first; c < last; ++c) {
+            cellStart[c] = start;
+            start += cellCount[c];
+            cellCount[c] = 0;
+        }
+        if (last == cells) {
+            cellStart[cells] = start;
+            control[kBuilds] += 1;
+        }
+    }
+};
+
+struct PlaceParticles {
+    const int* control;
+    const int* cellOf;
+    const int* rankInCell;
+    const int* cellStart;
+    int* order;
+    SMD_HD void operator()(int64_t i) const {
+        if (!control[kRebuild]) return;
+        order[cellStart[cellOf[i]] + rankInCell[i]] = static_cast<int>(i);
     }
 };
 
@@ -80,87 +130,102 @@ SMD_HD SMD_INLINE void insertion_sort(int* a, int n) {
     }
 }
 
-// Binning order depends on thread timing; sorting each cell makes the lists, and so the order of
-// force sums, the same on every run and every thread count. Each cell then keeps a copy of its
-// members' positions beside their indices, so the list build reads candidates contiguously
-// instead of gathering them from all over the position array.
+// In place and in n log n, for the rare crowded cell (a collapsed or badly started system) where
+// insertion sort's n^2 would stall the build.
+SMD_HD SMD_INLINE void heap_sort(int* a, int n) {
+    const auto sift_down = [a](int root, int end) {
+        while (2 * root + 1 < end) {
+            int child = 2 * root + 1;
+            if (child + 1 < end && a[child] < a[child + 1]) ++child;
+            if (!(a[root] < a[child])) return;
+            const int t = a[root];
+            a[root] = a[child];
+            a[child] = t;
+            root = child;
+        }
+    };
+    for (int root = n / 2 - 1; root >= 0; --root) sift_down(root, n);
+    for (int end = n - 1; end > 0; --end) {
+        const int t = a[0];
+        a[0] = a[end];
+        a[end] = t;
+        sift_down(0, end);
+    }
+}
+
+// Each cell's range sorted by particle, so the slots, the lists and the order of force sums are
+// the same on every run and every thread count; then the positions copied into slot order, as
+// this step's and as the reference for the displacement check.
 template <class R>
 struct SortCells {
     const Real4<R>* pos;
-    NeighbourView<R> view;
-    int* control;
+    const int* control;
+    const int* cellStart;
+    int* order;
+    Real4<R>* positions;
+    Real4<R>* binned;
     SMD_HD void operator()(int64_t c) const {
         if (!control[kRebuild]) return;
-        const int m = view.cellCount[c] < view.cellCapacity ? view.cellCount[c] : view.cellCapacity;
-        int* members = view.cellParticles + c * view.cellCapacity;
-        insertion_sort(members, m);
-        Real4<R>* positions = view.cellPositions + c * view.cellCapacity;
-        for (int s = 0; s < m; ++s) positions[s] = pos[members[s]];
-        if (c == 0) insertion_sort(view.overflow, *view.overflowCount);
+        const int first = cellStart[c], members = cellStart[c + 1] - first;
+        if (members <= 32)
+            insertion_sort(order + first, members);
+        else
+            heap_sort(order + first, members);
+        for (int s = first; s < first + members; ++s) {
+            const Real4<R> p = pos[order[s]];
+            positions[s] = p;
+            binned[s] = p;
+        }
     }
 };
 
-// Each particle's lanes take the candidates of a cell in rounds, one candidate per lane, and append
+// Each slot's lanes take the candidates of a cell in rounds, one candidate per lane, and append
 // those within the list radius in lane order: the list comes out in cell order, independent of
 // thread timing.
 template <class R>
 struct BuildLists {
-    const Real4<R>* pos;
     NeighbourView<R> view;
     R listRadius2;
     int* control;
-    bool ordered;  // sort each list by index (see below)
+    bool byParticle;  // sort each list by particle (see below)
 
-    SMD_HD void operator()(int64_t i, Lanes lanes) const {
+    SMD_HD void operator()(int64_t k, Lanes lanes) const {
         if (!control[kRebuild]) return;
         const NeighbourView<R>& v = view;
-        const Vec3<R> ri = xyz(pos[i]);
-        int* entries = v.entries_of(i);
+        const Vec3<R> rk = xyz(v.positions[k]);
+        int* entries = v.entries_of(k);
         int n = 0;
-        const auto consider = [&](bool exists, int j, const Real4<R>& pj) {
-            bool accepted = false;
-            if (exists && j != i && v.filter.accepts(static_cast<int>(i), j)) {
-                const Vec3<R> d = v.box.minimum_image(xyz(pj) - ri);
-                accepted = dot(d, d) < listRadius2;
-            }
-            int found = 0;
-            const int slot = n + lanes.rank_among(accepted, found);
-            if (accepted && slot < v.capacity) entries[slot * v.entryStride] = j;
-            n += found;
-        };
         int cx, cy, cz;
-        v.grid.coordinates(ri, v.box, cx, cy, cz);
+        v.grid.coordinates(rk, v.box, cx, cy, cz);
         v.grid.for_each_adjacent(cx, cy, cz, [&](int c) {
-            const int m = v.cellCount[c] < v.cellCapacity ? v.cellCount[c] : v.cellCapacity;
-            const int64_t first = static_cast<int64_t>(c) * v.cellCapacity;
-            for (int base = 0; base < m; base += lanes.count) {
+            const int end = v.cellStart[c + 1];
+            for (int base = v.cellStart[c]; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
-                const bool exists = s < m;
-                consider(exists, exists ? v.cellParticles[first + s] : -1,
-                         exists ? v.cellPositions[first + s] : Real4<R>{});
+                bool accepted = false;
+                if (s < end && v.accepts(static_cast<int>(k), s)) {
+                    const Vec3<R> d = v.box.minimum_image(xyz(v.positions[s]) - rk);
+                    accepted = dot(d, d) < listRadius2;
+                }
+                int found = 0;
+                const int slot = n + lanes.rank_among(accepted, found);
+                if (accepted && slot < v.capacity) entries[slot * v.entryStride] = s;
+                n += found;
             }
         });
-        const int extra = *v.overflowCount;
-        for (int base = 0; base < extra; base += lanes.count) {
-            const int k = base + lanes.lane;
-            const bool exists = k < extra;
-            const int j = exists ? v.overflow[k] : -1;
-            consider(exists, j, exists ? pos[j] : Real4<R>{});
-        }
         if (!lanes.leader()) return;
-        // In index order, so a particle's force sum does not depend on which cells the particles
-        // happened to occupy at this build: a restarted run repeats the same sums bit for bit.
-        const int stored = !ordered ? 0 : (n < v.capacity ? n : v.capacity);
-        for (int k = 1; k < stored; ++k) {
-            const int value = entries[k * v.entryStride];
-            int m = k - 1;
-            while (m >= 0 && entries[m * v.entryStride] > value) {
-                entries[(m + 1) * v.entryStride] = entries[m * v.entryStride];
-                --m;
+        // In particle order, so a particle's force sum does not depend on where the particles
+        // happened to be at this build: a restarted run repeats the same sums bit for bit.
+        const int stored = !byParticle ? 0 : (n < v.capacity ? n : v.capacity);
+        for (int m = 1; m < stored; ++m) {
+            const int value = entries[m * v.entryStride];
+            int before = m - 1;
+            while (before >= 0 && v.order[entries[before * v.entryStride]] > v.order[value]) {
+                entries[(before + 1) * v.entryStride] = entries[before * v.entryStride];
+                --before;
             }
-            entries[(m + 1) * v.entryStride] = value;
+            entries[(before + 1) * v.entryStride] = value;
         }
-        v.count[i] = n;
+        v.count[k] = n;
         atomic_max(control + kMaxNeighbours, n);
     }
 };

@@ -1,8 +1,10 @@
 // The Verlet list against an all-pairs search: every pair within the cutoff must be visited, after
-// builds, after moves that stay under the rebuild threshold, when the list or the cells overflow
-// their capacity, and in boxes with fewer than three cells per side.
+// builds, after moves that stay under the rebuild threshold, when the list overflows its capacity
+// or a cell is crowded, and in boxes with fewer than three cells per side. The particles' order by
+// cell must be a permutation that keeps each cell contiguous and does not depend on thread timing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <set>
 #include <vector>
@@ -16,13 +18,14 @@ namespace {
 using List = VerletList<CpuBackend, double>;
 
 struct System {
-    CpuBackend backend{2};
+    CpuBackend backend;
     Box<double> box;
     HostBuffer<Real4<double>> pos;
     int64_t n = 0;
     int64_t version = 0;  // every visit sees positions that may have changed
 
-    System(int64_t count, double lx, double ly, double lz, unsigned seed) : box(Box<double>::make(lx, ly, lz)), n(count) {
+    System(int64_t count, double lx, double ly, double lz, unsigned seed, int threads = 2)
+        : backend(threads), box(Box<double>::make(lx, ly, lz)), n(count) {
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(-0.5, 0.5);
         backend.resize(pos, n);
@@ -53,16 +56,31 @@ struct System {
         return pairs;
     }
 
+    // Pairs of particles, as the list offers them through its slots.
     std::set<std::pair<int, int>> visited(List& list) {
         list.update(pos, n, box, ++version);
         const NeighbourView<double> view = list.view();
         std::set<std::pair<int, int>> seen;
-        for (int i = 0; i < n; ++i)
-            view.for_each_neighbour(i, xyz(pos.data()[i]), [&](int j) {
+        for (int k = 0; k < n; ++k) {
+            const int i = view.order[k];
+            EXPECT_EQ(xyz(view.positions[k]).x, xyz(pos.data()[i]).x) << "slot " << k << " holds a stale position";
+            view.for_each_neighbour(k, [&](int s) {
+                const int j = view.order[s];
                 EXPECT_NE(i, j) << "a particle was offered as its own neighbour";
                 EXPECT_TRUE(seen.insert({i, j}).second) << "pair (" << i << ", " << j << ") visited twice";
             });
+        }
         return seen;
+    }
+
+    // The particle in each slot, and each slot's list as particles in list order.
+    std::pair<std::vector<int>, std::vector<std::vector<int>>> slots_and_lists(List& list) {
+        list.update(pos, n, box, ++version);
+        const NeighbourView<double> view = list.view();
+        std::vector<int> order(view.order, view.order + n);
+        std::vector<std::vector<int>> lists(n);
+        for (int k = 0; k < n; ++k) view.for_each_neighbour(k, [&](int s) { lists[k].push_back(view.order[s]); });
+        return {order, lists};
     }
 };
 
@@ -115,8 +133,9 @@ TEST(VerletList, ForcedRebuildAfterInvalidate) {
 }
 
 TEST(VerletList, CompleteWhenEveryParticleSitsInOneCell) {
-    // All particles within a small blob: cells and lists overflow their first capacity guesses, and
-    // the fallback paths must still find every pair; the next build fits in the enlarged capacity.
+    // All particles within a small blob: one crowded cell (sorted by the heap sort) and lists that
+    // overflow their first capacity guess, so the cell-scan fallback must still find every pair;
+    // the next build fits in the enlarged capacity.
     System s(400, 20.0, 20.0, 20.0, 5);
     for (int64_t i = 0; i < s.n; ++i) {
         Real4<double>& p = s.pos.data()[i];
@@ -144,6 +163,60 @@ TEST(VerletList, DiluteSystemInALargeBoxKeepsTheGridSmall) {
     for (int64_t i = 0; i < 10; ++i) s.pos.data()[i] = {0.3 * i, 0.0, 0.0, 0.0};  // a close cluster
     List list(s.backend, 2.5, 1.1, PairCondition::all, {}, nullptr, nullptr);
     expect_complete(s.pairs_within(2.5), s.visited(list));
+}
+
+TEST(VerletList, SlotsAreAPermutationInCellOrder) {
+    System s(900, 11.0, 12.0, 13.0, 9);
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
+    s.visited(list);
+    const NeighbourView<double> view = list.view();
+    std::vector<int> seen(s.n, 0);
+    int previousCell = -1, previousParticle = -1;
+    for (int64_t k = 0; k < s.n; ++k) {
+        const int i = view.order[k];
+        ASSERT_GE(i, 0);
+        ASSERT_LT(i, s.n);
+        ++seen[i];
+        int cx, cy, cz;
+        view.grid.coordinates(xyz(s.pos.data()[i]), s.box, cx, cy, cz);
+        const int cell = view.grid.index(cx, cy, cz);
+        EXPECT_GE(k, view.cellStart[cell]) << "particle " << i << " lies outside its cell's slots";
+        EXPECT_LT(k, view.cellStart[cell + 1]) << "particle " << i << " lies outside its cell's slots";
+        EXPECT_GE(cell, previousCell) << "slots are not in cell order";
+        if (cell == previousCell) EXPECT_GT(i, previousParticle) << "a cell's slots are not in particle order";
+        previousCell = cell;
+        previousParticle = i;
+    }
+    for (int64_t i = 0; i < s.n; ++i) EXPECT_EQ(seen[i], 1) << "particle " << i;
+    EXPECT_EQ(view.cellStart[view.grid.count()], s.n);
+}
+
+TEST(VerletList, CompleteWithAGridScannedInChunks) {
+    // 17^3 cells: more than VerletList's single-chunk limit (4096), so the cell counts are scanned
+    // in chunks, as in large systems.
+    System s(6000, 19.0, 19.0, 19.0, 11);
+    List list(s.backend, 1.0, 1.1, PairCondition::all, {}, nullptr, nullptr);
+    expect_complete(s.pairs_within(1.0), s.visited(list));
+    EXPECT_GT(list.view().grid.count(), 4096);
+    EXPECT_EQ(list.view().cellStart[list.view().grid.count()], s.n);
+}
+
+TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
+    // Enough particles that the CPU backend's loops run in parallel (kParallelThreshold).
+    System one(6000, 19.0, 19.0, 19.0, 10, 1);
+    System four(6000, 19.0, 19.0, 19.0, 10, 4);
+    List a(one.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
+    List b(four.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
+    for (int round = 0; round < 3; ++round) {
+        const auto x = one.slots_and_lists(a);
+        const auto y = four.slots_and_lists(b);
+        EXPECT_EQ(x.first, y.first) << "round " << round;
+        EXPECT_EQ(x.second, y.second) << "round " << round;
+        for (const auto& entries : x.second)
+            EXPECT_TRUE(std::is_sorted(entries.begin(), entries.end())) << "the CPU's lists run in particle order";
+        one.jiggle(0.4, 20 + round);  // past half the skin: every round rebuilds
+        four.jiggle(0.4, 20 + round);
+    }
 }
 
 }  // namespace
