@@ -197,6 +197,8 @@ def valid_arguments(sim, prototype, n, good_input_file):
         "lengths": lambda: ffi.new("double[]", [systems.BASE_BOX] * 3),
         "xyz": lambda: ffi.new("double[]", np.ravel(systems.BASE_POSITIONS).tolist()),
         "v": lambda: ffi.new("double[]", np.ravel(systems.BASE_VELOCITIES).tolist()),
+        "ids": lambda: ffi.new("int64_t[]", list(range(max(1, n)))),
+        "energy": lambda: 0.5,
     }
     by_type = {
         "structmd_sim*": lambda: sim,
