@@ -553,6 +553,53 @@ STRUCTMD_API structmd_status structmd_set_external_forces_of(structmd_sim* sim, 
 
 /** @} */
 
+/** @name Run-time parameters
+ *  Parameters of the loaded input changed between steps, named by their path in the input's own
+ *  terms: "global.ensemble.temperature" (the default temperature of every integrator that does not
+ *  give its own), "integrator.NAME.parameters.KEY" (timeStep, frictionConstant, temperature, ...
+ *  of the integrator entry NAME; not the schedule) and "topology.forceField.NAME.parameters.KEY"
+ *  (every number an entry takes under "parameters": a Common_ bond's K, a neighbour list's
+ *  cutOffVerletFactor, a pair term's cutOffFactor, an Expression entry's constant, startStep ...).
+ *  Values in tables (per-bond or per-type-pair columns), strings, booleans and the box
+ *  (structmd_set_box) are not run-time parameters. Each needs a load.
+ *  @{ */
+
+/**
+ * Changes one parameter from the next force evaluation or step on. The value is written into the
+ * loaded input and the force field and the integrators are read again from it with every check of
+ * a load, then made again, keeping the positions, velocities, step, time, external forces and the
+ * integrators' own state; cached forces, energies and virial are dropped. A cutoff that grows is
+ * honoured: the neighbour lists are made again for the new cutoffs (a cutoff not shorter than half
+ * the present box is refused). An Expression entry is compiled again (on CUDA this takes seconds
+ * for a NonBonded entry). The call costs about what reading the input costs, so it is meant for
+ * changes between chunks of steps, not for every step. A new load forgets the changes.
+ *
+ * @param sim    the handle.
+ * @param path   the parameter, as above; a key the entry does not give yet is added, if its component
+ *               takes it.
+ * @param value  the new value, in the input's units; it must satisfy the rule the input states for
+ *               that parameter (a time step > 0, say).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, for a path that names no run-time
+ *         parameter (no such entry, a key its component does not take, a string, a table column, the
+ *         schedule) or a value the input's rules refuse, the message naming the path and why;
+ *         STRUCTMD_ERR_STATE; STRUCTMD_ERR_UNSUPPORTED, STRUCTMD_ERR_DEVICE or STRUCTMD_ERR_MEMORY
+ *         when the force field cannot be made again, changing nothing.
+ */
+STRUCTMD_API structmd_status structmd_set_parameter(structmd_sim* sim, const char* path, double value);
+
+/**
+ * Reads a parameter as the loaded input gives it, or as structmd_set_parameter last set it.
+ *
+ * @param sim         the handle.
+ * @param path        the parameter, as for structmd_set_parameter.
+ * @param[out] value  its value, in the input's units.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for a path that names no run-time parameter, or one the
+ *         input leaves to its default (the message says so); STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_get_parameter(structmd_sim* sim, const char* path, double* value);
+
+/** @} */
+
 /* ---- structmd additions to the contract ---- */
 
 /** @name Checkpoints

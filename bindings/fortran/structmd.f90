@@ -48,7 +48,8 @@ module structmd
             structmd_save_checkpoint, structmd_load_checkpoint, structmd_get_counters, &
             structmd_load_plugin, structmd_set_external_energy, structmd_get_positions_of, &
             structmd_get_velocities_of, structmd_get_forces_of, structmd_set_positions_of, &
-            structmd_set_velocities_of, structmd_set_external_forces_of
+            structmd_set_velocities_of, structmd_set_external_forces_of, structmd_set_parameter, &
+            structmd_get_parameter
 
   public :: structmd_version_f, structmd_last_error_f, structmd_create_f, structmd_load_file_f, &
             structmd_load_string_f, structmd_get_energy_f, structmd_get_ids_f, &
@@ -58,7 +59,8 @@ module structmd
             structmd_clear_external_forces_f, structmd_get_info_f, structmd_save_checkpoint_f, &
             structmd_load_checkpoint_f, structmd_get_counters_f, structmd_load_plugin_f, &
             structmd_get_positions_of_f, structmd_get_velocities_of_f, structmd_get_forces_of_f, &
-            structmd_set_positions_of_f, structmd_set_velocities_of_f, structmd_set_external_forces_of_f
+            structmd_set_positions_of_f, structmd_set_velocities_of_f, structmd_set_external_forces_of_f, &
+            structmd_set_parameter_f, structmd_get_parameter_f
 
   interface
     function structmd_abi_version() bind(C, name="structmd_abi_version") result(version)
@@ -270,6 +272,22 @@ module structmd
       integer(c_int32_t) :: status
     end function
 
+    function structmd_set_parameter(sim, path, value) bind(C, name="structmd_set_parameter") result(status)
+      import :: c_ptr, c_char, c_int32_t, c_double
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: path(*)
+      real(c_double), value :: value
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_get_parameter(sim, path, value) bind(C, name="structmd_get_parameter") result(status)
+      import :: c_ptr, c_char, c_int32_t, c_double
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: path(*)
+      real(c_double), intent(out) :: value
+      integer(c_int32_t) :: status
+    end function
+
     function structmd_set_external_energy(sim, energy) bind(C, name="structmd_set_external_energy") &
         result(status)
       import :: c_ptr, c_int32_t, c_double
@@ -442,6 +460,24 @@ contains
     real(c_double), intent(out) :: value
     integer(c_int32_t) :: status
     status = structmd_get_energy(sim, c_string(term), value)
+  end function
+
+  !> path: "global.ensemble.temperature", "integrator.<name>.parameters.<key>" or
+  !> "topology.forceField.<name>.parameters.<key>".
+  function structmd_set_parameter_f(sim, path, value) result(status)
+    type(c_ptr), intent(in) :: sim
+    character(len=*), intent(in) :: path
+    real(c_double), intent(in) :: value
+    integer(c_int32_t) :: status
+    status = structmd_set_parameter(sim, c_string(path), value)
+  end function
+
+  function structmd_get_parameter_f(sim, path, value) result(status)
+    type(c_ptr), intent(in) :: sim
+    character(len=*), intent(in) :: path
+    real(c_double), intent(out) :: value
+    integer(c_int32_t) :: status
+    status = structmd_get_parameter(sim, c_string(path), value)
   end function
 
   !> ids(n), n the number of particles.

@@ -25,6 +25,7 @@
 #include "simulation/fault_report.hpp"
 #include "simulation/force_cache.hpp"
 #include "simulation/host_transfer.hpp"
+#include "simulation/read_simulation.hpp"
 #include "simulation/rollback.hpp"
 #include "simulation/schedule.hpp"
 #include "simulation/simulation.hpp"
@@ -77,21 +78,14 @@ public:
             backend_.upload(p_.batch, batchId_.data(), batchId_.size());
         backend_.upload(p_.model, spec.modelId.data(), spec.modelId.size());
 
-        ForceFieldContext context;
-        context.ntypes = spec.typeNames.size();
-        context.particles = p_.count;
-        context.constants = spec.constants;
-        context.batch = p_.batch.empty() ? nullptr : p_.batch.data();
-        context.model = p_.model.data();
-        context.log = &log_;
-        forceField_ =
-            make_interactors<B, R>(backend_, spec.forceField, context,
-                                   components.factories<B, R, PairR>(builtin_interactor_factories<B, R, PairR>(),
-                                                                     spec.forceField, precision_label<R, PairR>()));
-        for (const IntegratorSpec& integrator : spec.integrators)
-            integrators_.push_back(make_integrator<B, R>(
-                backend_, integrator, integrator.group >= 0 ? forceField_.group(integrator.group) : nullptr,
-                builtin_integrator_factories<B, R>()));
+        context_.ntypes = spec.typeNames.size();
+        context_.particles = p_.count;
+        context_.constants = spec.constants;
+        context_.batch = p_.batch.empty() ? nullptr : p_.batch.data();
+        context_.model = p_.model.data();
+        context_.log = &log_;
+        forceField_ = make_force_field(spec.forceField, components, nullptr);
+        integrators_ = make_integrators(spec.integrators, forceField_);
         const double skin = forceField_.smallest_skin();
         p_.maxMove2 = std::isfinite(skin) ? skin * skin : 1e300;
         backend_.synchronize();
@@ -316,6 +310,31 @@ public:
     void set_external_energy(double energy) override { externalEnergy_ = energy; }
     double external_energy() const override { return externalEnergy_; }
 
+    void change_parameters(const RuntimeSpec& spec, const ForceFieldComponents& components) override {
+        backend_.activate();
+        if (spec.integrators.size() != integrators_.size())
+            throw Error(STRUCTMD_ERR_INTERNAL, "a parameter change altered the list of integrators");
+        const double cutoff = spec.forceField.largest_cutoff();
+        if (!cutoff_fits_box(cutoff, boxLengths_))
+            throw Error(STRUCTMD_ERR_ARGUMENT, "the largest cutoff (" + precise(cutoff) +
+                                                   ") must be shorter than half the box (" +
+                                                   precise(half_shortest_edge(boxLengths_[0], boxLengths_[1],
+                                                                              boxLengths_[2])) + ")");
+        // Built beside the present ones: a failure (a kernel that does not compile, memory) changes nothing.
+        ForceField<B, R> forceField = make_force_field(spec.forceField, components, &forceField_);
+        std::vector<std::unique_ptr<Integrator<B, R>>> integrators = make_integrators(spec.integrators, forceField);
+        for (size_t k = 0; k < integrators.size(); ++k) integrators[k]->restore(integrators_[k]->state());
+        forceField_.adapt();
+        retiredListBuilds_ += forceField_.builds();
+        forceField_ = std::move(forceField);
+        integrators_ = std::move(integrators);
+        largestCutoff_ = cutoff;
+        const double skin = forceField_.smallest_skin();
+        p_.maxMove2 = std::isfinite(skin) ? skin * skin : 1e300;
+        cache_.invalidate();  // forces, energies and virial change with the parameters; the lists are new
+        backend_.synchronize();
+    }
+
     void save_checkpoint(const std::string& path) override {
         backend_.activate();
         DynamicState<R> s;
@@ -362,7 +381,7 @@ public:
         c.stepGraphsCaptured = backend_.graphs_captured();
         c.stepGraphsReplayed = backend_.graphs_replayed();
         forceField_.adapt();  // reads the lists' build counts (after the transfers were taken)
-        c.neighbourListBuilds = static_cast<uint64_t>(forceField_.builds());
+        c.neighbourListBuilds = static_cast<uint64_t>(retiredListBuilds_ + forceField_.builds());
         return c;
     }
 
@@ -372,6 +391,24 @@ public:
     int threads() const override { return backend_.threads(); }
 
 private:
+    // groupsOf: the force field whose group buffers the new one shares (null at construction).
+    ForceField<B, R> make_force_field(const ForceFieldSpec& spec, const ForceFieldComponents& components,
+                                      const ForceField<B, R>* groupsOf) {
+        return make_interactors<B, R>(backend_, spec, context_,
+                                      components.factories<B, R, PairR>(builtin_interactor_factories<B, R, PairR>(),
+                                                                        spec, precision_label<R, PairR>()),
+                                      groupsOf);
+    }
+    std::vector<std::unique_ptr<Integrator<B, R>>> make_integrators(const std::vector<IntegratorSpec>& specs,
+                                                                    const ForceField<B, R>& forceField) {
+        std::vector<std::unique_ptr<Integrator<B, R>>> made;
+        for (const IntegratorSpec& integrator : specs)
+            made.push_back(make_integrator<B, R>(backend_, integrator,
+                                                 integrator.group >= 0 ? forceField.group(integrator.group) : nullptr,
+                                                 builtin_integrator_factories<B, R>()));
+        return made;
+    }
+
     // The timeline and the backend's clock at (step, time).
     void set_clock(int64_t step, double time) {
         p_.timeline.reset(step, time);
@@ -495,6 +532,8 @@ private:
     Rollback<B, R> rollback_;
     ForceCache<B, R> cache_;
     Counters evaluations_;  // the evaluation counts; counters() adds builds and transfers
+    ForceFieldContext context_;  // what the force field is made with, kept to make it again
+    int64_t retiredListBuilds_ = 0;  // builds of the lists of force fields replaced by change_parameters
     double externalEnergy_ = 0.0;  // the host's field energy (structmd_set_external_energy)
     // Staging of the subset getters and setters: ids and packed values, m entries each.
     typename B::template Buffer<int64_t> subsetIds_;

@@ -11,6 +11,9 @@
 
 namespace structmd {
 
+struct RuntimeSpec;           // simulation/read_simulation.hpp
+class ForceFieldComponents;  // forcefield/component_set.hpp
+
 enum ComputeFlags : unsigned { kForces = 1u, kEnergy = 2u, kVirial = 4u };
 
 // What the engine has done since the simulation was loaded: passes over the force field that
@@ -85,6 +88,12 @@ public:
     // part of "total" and of the thermodynamic outputs.
     virtual void set_external_energy(double energy) = 0;
     virtual double external_energy() const = 0;
+
+    // Makes the force field and the integrators again from `spec` (the loaded input read again with
+    // a parameter changed), keeping the particles, step, time, external forces and the integrators'
+    // own state. Everything new is built before anything is replaced: on failure nothing changed.
+    // Throws ERR_ARGUMENT when a cutoff would not fit the present box.
+    virtual void change_parameters(const RuntimeSpec& spec, const ForceFieldComponents& components) = 0;
 
     // The dynamic state (step, time, box, positions, images, velocities, external forces, integrator
     // state) to a file, and back into a simulation loaded from the same input. Loading validates

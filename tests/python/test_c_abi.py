@@ -204,6 +204,7 @@ def valid_arguments(sim, prototype, n, good_input_file):
         "structmd_sim*": lambda: sim,
         "int64_t": lambda: n,
         "uint32_t": lambda: DEFINES["STRUCTMD_FORCES"],
+        "double": lambda: 1.0,
         "size_t": lambda: 4096,
         "double*": lambda: ffi.new("double[]", 64),
         "int64_t*": lambda: ffi.new("int64_t[]", 64),

@@ -3,8 +3,6 @@ host's external field energy (structmd_set_external_energy) and run-time paramet
 (structmd_set_parameter / structmd_get_parameter). Each result is compared with what the whole-array
 calls, or a freshly loaded input, give for the same state."""
 
-import copy
-import json
 
 import numpy as np
 import pytest
@@ -299,3 +297,145 @@ def test_external_energy_of_one_batch_of_several_is_refused(options):
         with pytest.raises(structmd.ArgumentError, match="belongs to no batch"):
             sim.energy("external@batch:1")
         assert sim.energy("total@batch:0") + sim.energy("total@batch:1") + 2.0 == pytest.approx(sim.energy("total"))
+
+
+# ---- run-time parameters -----------------------------------------------------------------------
+
+def same_state(source, target):
+    """Puts the positions and velocities of source into target (a freshly loaded handle)."""
+    target.positions = source.positions
+    target.velocities = source.velocities
+
+
+def test_get_parameter_returns_what_the_input_gives(handles):
+    sim = handles(lattice(bond_k=20.0))
+    assert sim.get_parameter("topology.forceField.bonds.parameters.K") == 20.0
+    assert sim.get_parameter("topology.forceField.bonds.parameters.r0") == SPACING
+    assert sim.get_parameter("topology.forceField.lj.parameters.cutOffFactor") == 2.5
+    assert sim.get_parameter("topology.forceField.nl.parameters.cutOffVerletFactor") == 1.2
+    assert sim.get_parameter("integrator.vv.parameters.timeStep") == 0.002
+    assert sim.get_parameter("global.ensemble.temperature") == 1.0
+    with pytest.raises(structmd.ArgumentError, match="does not give it"):
+        sim.get_parameter("integrator.vv.parameters.temperature")
+
+
+def test_a_common_bond_constant_changes_force_and_energy_as_a_fresh_load_would(handles):
+    sim = handles(lattice(bond_k=20.0))
+    sim.step(20)
+    bonds_before = sim.energy("bonds")
+    sim.set_parameter("topology.forceField.bonds.parameters.K", 35.0)
+    assert sim.get_parameter("topology.forceField.bonds.parameters.K") == 35.0
+    assert sim.energy("bonds") == pytest.approx(bonds_before * 35.0 / 20.0, rel=1e-12)
+
+    fresh = handles(lattice(bond_k=35.0))
+    same_state(sim, fresh)
+    np.testing.assert_allclose(sim.forces, fresh.forces, rtol=1e-12, atol=1e-12)
+    assert sim.energy("bonds") == pytest.approx(fresh.energy("bonds"), rel=1e-12)
+    assert sim.energy("potential") == pytest.approx(fresh.energy("potential"), rel=1e-12)
+    np.testing.assert_allclose(sim.virial, fresh.virial, rtol=1e-12, atol=1e-12)
+    sim.step(30)
+    fresh.step(30)
+    np.testing.assert_allclose(sim.positions, fresh.positions, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(sim.velocities, fresh.velocities, rtol=1e-12, atol=1e-12)
+
+
+def test_an_expression_constant_changes_as_a_fresh_load_would(handles):
+    def with_expression(k):
+        doc = lattice(side=6)
+        doc["topology"]["forceField"]["spring"] = {
+            "type": ["Bond2", "Expression"],
+            "parameters": {"energy": "0.5 * k * (r - r0)^2", "k": k, "r0": 1.0},
+            "labels": ["id_i", "id_j"], "data": [[i, i + 6] for i in range(0, 200, 7)]}
+        return doc
+
+    sim = handles(with_expression(4.0))
+    sim.step(10)
+    sim.set_parameter("topology.forceField.spring.parameters.k", 9.5)
+    fresh = handles(with_expression(9.5))
+    same_state(sim, fresh)
+    np.testing.assert_allclose(sim.forces, fresh.forces, rtol=1e-12, atol=1e-12)
+    assert sim.energy("spring") == pytest.approx(fresh.energy("spring"), rel=1e-12)
+
+
+def test_a_larger_cutoff_remakes_the_neighbour_list(handles):
+    sim = handles(lattice())
+    sim.step(10)
+    builds = sim.counters["neighbour_list_builds"]
+    sim.set_parameter("topology.forceField.lj.parameters.cutOffFactor", 3.5)
+    fresh_doc = lattice()
+    fresh_doc["topology"]["forceField"]["lj"]["parameters"]["cutOffFactor"] = 3.5
+    fresh = handles(fresh_doc)
+    same_state(sim, fresh)
+    np.testing.assert_allclose(sim.forces, fresh.forces, rtol=1e-12, atol=1e-12)
+    assert sim.energy("lj") == pytest.approx(fresh.energy("lj"), rel=1e-12)
+    assert sim.counters["neighbour_list_builds"] > builds  # counted on, not reset
+    sim.step(20)
+    fresh.step(20)
+    np.testing.assert_allclose(sim.positions, fresh.positions, rtol=1e-12, atol=1e-12)
+
+
+def test_the_time_step_of_an_integrator_changes(handles):
+    sim = handles(lattice(side=5))
+    sim.step(5)
+    sim.set_parameter("integrator.vv.parameters.timeStep", 0.004)
+    t = sim.time
+    sim.step(10)
+    assert sim.time == pytest.approx(t + 10 * 0.004, rel=1e-12)
+
+
+def test_the_thermostat_follows_the_ensemble_temperature(handles):
+    langevin = {"type": ["Langevin", "GJF"], "parameters": {"timeStep": 0.005, "frictionConstant": 2.0}}
+    sim = handles(lattice(side=6, integrator=langevin, steps=10000))
+    n = sim.num_particles
+
+    def mean_temperature(steps, every=10):
+        samples = []
+        for _ in range(steps // every):
+            sim.step(every)
+            samples.append(2.0 * sim.energy("kinetic") / (3.0 * n))
+        return float(np.mean(samples))
+
+    mean_temperature(300)
+    assert mean_temperature(600) == pytest.approx(1.0, abs=0.08)
+    sim.set_parameter("global.ensemble.temperature", 2.5)
+    assert sim.get_parameter("global.ensemble.temperature") == 2.5
+    mean_temperature(400)  # relaxation: 1 / friction = 100 steps
+    assert mean_temperature(800) == pytest.approx(2.5, abs=0.2)
+
+
+@pytest.mark.parametrize("path, value, why", [
+    ("topology.forceField.nothing.parameters.K", 1.0, "no entry named 'nothing'"),
+    ("topology.forceField.bonds.parameters.Kay", 1.0, "Kay"),
+    ("topology.forceField.lj.parameters.condition", 1.0, "not a number"),
+    ("topology.forceField.lj.parameters.cutOffFactor", 6.0, "half the box"),
+    ("integrator.vv.parameters.timeStep", -0.1, "integrator.vv.parameters.timeStep"),
+    ("integrator.schedule.parameters.steps", 5.0, "schedule cannot change"),
+    ("global.ensemble.box", 20.0, "structmd_set_box"),
+    ("global.units", 1.0, "not a run-time parameter"),
+    ("topology.forceField.bonds.K", 1.0, "parameters"),
+    ("topology.forceField.bonds.parameters.K", float("nan"), "not a finite number"),
+])
+def test_a_parameter_that_cannot_change_is_refused_and_changes_nothing(handles, path, value, why):
+    sim = handles(lattice())
+    sim.step(5)
+    forces, energy = sim.forces, sim.energy("total")
+    with pytest.raises(structmd.ArgumentError) as failure:
+        sim.set_parameter(path, value)
+    assert path in failure.value.message and why in failure.value.message
+    np.testing.assert_array_equal(sim.forces, forces)
+    assert sim.energy("total") == energy
+    assert sim.get_parameter("topology.forceField.bonds.parameters.K") == 20.0
+    assert sim.get_parameter("integrator.vv.parameters.timeStep") == 0.002
+    t = sim.time
+    sim.step(1)
+    assert sim.time == pytest.approx(t + 0.002)
+
+
+def test_a_parameter_the_input_left_to_its_default_can_be_set(handles):
+    langevin = {"type": ["Langevin", "GJF"], "parameters": {"timeStep": 0.002, "frictionConstant": 1.0}}
+    sim = handles(lattice(side=5, integrator=langevin))
+    sim.set_parameter("integrator.vv.parameters.temperature", 3.0)
+    assert sim.get_parameter("integrator.vv.parameters.temperature") == 3.0
+    sim.load(lattice(side=5, integrator=langevin))  # a new load forgets the change
+    with pytest.raises(structmd.ArgumentError, match="does not give it"):
+        sim.get_parameter("integrator.vv.parameters.temperature")

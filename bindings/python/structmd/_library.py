@@ -56,6 +56,8 @@ SIGNATURES = {
     "structmd_set_positions_of": (STATUS_T, [HANDLE_T, POINTER(c_int64), c_int64, POINTER(c_double)]),
     "structmd_set_velocities_of": (STATUS_T, [HANDLE_T, POINTER(c_int64), c_int64, POINTER(c_double)]),
     "structmd_set_external_forces_of": (STATUS_T, [HANDLE_T, POINTER(c_int64), c_int64, POINTER(c_double)]),
+    "structmd_set_parameter": (STATUS_T, [HANDLE_T, c_char_p, c_double]),
+    "structmd_get_parameter": (STATUS_T, [HANDLE_T, c_char_p, POINTER(c_double)]),
     "structmd_save_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_load_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_get_info": (STATUS_T, [HANDLE_T, c_char_p, c_size_t, POINTER(c_size_t)]),

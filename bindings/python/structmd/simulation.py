@@ -255,6 +255,19 @@ class Simulation:
         "total" and of the thermodynamic outputs. Cleared with the external forces and by a load."""
         self._call(lib.structmd_set_external_energy, float(energy))
 
+    # ---- run-time parameters -----------------------------------------------------------------
+
+    def set_parameter(self, path, value):
+        """Changes a parameter from the next force evaluation on. path: "global.ensemble.temperature",
+        "integrator.<name>.parameters.<key>" or "topology.forceField.<name>.parameters.<key>"."""
+        self._call(lib.structmd_set_parameter, path.encode(), float(value))
+
+    def get_parameter(self, path):
+        """A parameter as the input gives it, or as set_parameter last set it."""
+        value = c_double()
+        self._call(lib.structmd_get_parameter, path.encode(), byref(value))
+        return value.value
+
     # ---- subsets by id -----------------------------------------------------------------------
     # Only the m particles named move between the host and the backend. ids: a sequence of distinct
     # particle ids (any order); values come back, and are given, as (m, 3) in the order of ids.
