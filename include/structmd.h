@@ -336,9 +336,15 @@ STRUCTMD_API structmd_status structmd_get_types(structmd_sim* sim, int32_t* type
 
 /**
  * @param sim         the handle.
- * @param term        "potential", "kinetic", "total", or the name of a topology.forceField entry (its
- *                    share of the potential energy). Any term may end in "@batch:K" for the share of
- *                    the particles whose batchId is K, for example "potential@batch:2".
+ * @param term        "potential", "kinetic", "total" (kinetic + potential + external), "external"
+ *                    (the host's field energy given by structmd_set_external_energy, 0 unless
+ *                    given; a topology.forceField entry called "external" keeps the name, and the
+ *                    host's energy is then read only as part of "total"), or the name of a
+ *                    topology.forceField entry (its share of the potential energy). Any term may
+ *                    end in "@batch:K" for the share of the particles whose batchId is K, for
+ *                    example "potential@batch:2"; the host's energy belongs to no batch, so
+ *                    "total@batch:K" leaves it out and "external@batch:K" is refused (unless every
+ *                    particle has batchId K: then "@batch:K" means the whole system).
  * @param[out] value  the energy, in the input's energy unit.
  * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for an unknown term (the message lists the known ones) or
  *         a K that no particle has; STRUCTMD_ERR_STATE.
@@ -429,17 +435,168 @@ STRUCTMD_API structmd_status structmd_set_box(structmd_sim* sim, const double le
 
 /**
  * Adds f to each particle's force at every force evaluation, during steps and in getters, until
- * replaced. This is how a coupled code applies its field. The array is copied. The energy of this
- * field is the host's business: it is not part of any energy term, nor of the virial. A new load
- * clears it.
+ * replaced. This is how a coupled code applies its field. The array is copied. The engine cannot
+ * know the energy of this field: the host may give it with structmd_set_external_energy; the field
+ * is part of no virial. A new load clears it.
  *
  * @param sim  the handle.
- * @param f    double[3n], the forces (energy/length); NULL with n = 0 clears them.
+ * @param f    double[3n], the forces (energy/length); NULL with n = 0 clears them, and the energy
+ *             given by structmd_set_external_energy with them.
  * @param n    the number of particles, or 0 with f = NULL.
  * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if any value is not finite or n is
  *         wrong; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_set_external_forces(structmd_sim* sim, const double* f, int64_t n);
+
+/**
+ * Gives the energy of the host's external field (the one whose forces structmd_set_external_forces
+ * and structmd_set_external_forces_of apply), which the engine cannot compute itself. It is the
+ * energy term "external" of structmd_get_energy, part of "total" (not of "potential" nor of the
+ * per-particle energies, which stay the force field's), and the column "external" of the
+ * thermodynamic measure, whose "total" includes it. It holds until replaced; clearing the external
+ * forces (NULL, n = 0) or a new load sets it back to 0. It is not stored in checkpoints.
+ *
+ * @param sim     the handle.
+ * @param energy  the field's energy at the current positions (energy).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if energy is not finite;
+ *         STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_set_external_energy(structmd_sim* sim, double energy);
+
+/** @} */
+
+/** @name Subsets by id
+ *  Reading and changing m particles chosen by id, without moving the others: values are double[3m]
+ *  laid out x, y, z per particle in the order of ids (not sorted). Only the m ids and m values
+ *  cross between the host and the backend (on CUDA, a kernel gathers or scatters them on the
+ *  device), so the cost follows m, not the number of particles. Each needs a load.
+ *  Every argument is checked before anything is written or changed: m < 0, ids or values NULL with
+ *  m > 0, an id that is not a particle's (0..n-1), an id given twice, or (setters) a value that is
+ *  not finite is STRUCTMD_ERR_ARGUMENT naming the argument, index and particle id, and nothing is
+ *  written or changed. m = 0 does nothing (both pointers may then be NULL).
+ *  @{ */
+
+/**
+ * @param sim        the handle.
+ * @param ids        int64_t[m], the particle ids, each at most once.
+ * @param m          the number of ids, >= 0.
+ * @param[out] xyz   double[3m], positions wrapped into the box [-L/2, L/2) (length), as
+ *                   structmd_get_positions gives them.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_get_positions_of(structmd_sim* sim, const int64_t* ids, int64_t m, double* xyz);
+
+/**
+ * @param sim      the handle.
+ * @param ids      int64_t[m], the particle ids, each at most once.
+ * @param m        the number of ids, >= 0.
+ * @param[out] v   double[3m], velocities (length/time).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_get_velocities_of(structmd_sim* sim, const int64_t* ids, int64_t m, double* v);
+
+/**
+ * The forces are evaluated first when stale, as for structmd_get_forces (all of them: a force
+ * needs every neighbour); only the m asked for are copied out.
+ *
+ * @param sim      the handle.
+ * @param ids      int64_t[m], the particle ids, each at most once.
+ * @param m        the number of ids, >= 0.
+ * @param[out] f   double[3m], the total force on each, external forces included (energy/length).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE; STRUCTMD_ERR_NUMERICAL when one
+ *         of these m forces is not finite, and nothing is written.
+ */
+STRUCTMD_API structmd_status structmd_get_forces_of(structmd_sim* sim, const int64_t* ids, int64_t m, double* f);
+
+/**
+ * Replaces the positions of the m particles as structmd_set_positions does for all: each is wrapped
+ * into the box with its image count taken from the position given (so the unwrapped position is the
+ * one given), and forces, energies, virial and the neighbour lists become stale. The other
+ * particles keep their positions and images.
+ *
+ * @param sim  the handle.
+ * @param ids  int64_t[m], the particle ids, each at most once.
+ * @param m    the number of ids, >= 0.
+ * @param xyz  double[3m], the new positions (length).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, as for the group, or for a
+ *         coordinate beyond 1e8 box lengths; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_set_positions_of(structmd_sim* sim, const int64_t* ids, int64_t m,
+                                                       const double* xyz);
+
+/**
+ * Replaces the velocities of the m particles; the others keep theirs.
+ *
+ * @param sim  the handle.
+ * @param ids  int64_t[m], the particle ids, each at most once.
+ * @param m    the number of ids, >= 0.
+ * @param v    double[3m], the new velocities (length/time).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_set_velocities_of(structmd_sim* sim, const int64_t* ids, int64_t m,
+                                                        const double* v);
+
+/**
+ * Replaces the external force of the m particles (see structmd_set_external_forces); the others
+ * keep theirs. Without external forces yet, the others get a zero force first. It composes with
+ * structmd_set_external_forces: a whole array set before is changed only at these ids, and a whole
+ * array set after replaces everything. The forces are evaluated again at the next getter or step.
+ *
+ * @param sim  the handle.
+ * @param ids  int64_t[m], the particle ids, each at most once.
+ * @param m    the number of ids, >= 0.
+ * @param f    double[3m], the forces (energy/length).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_set_external_forces_of(structmd_sim* sim, const int64_t* ids, int64_t m,
+                                                             const double* f);
+
+/** @} */
+
+/** @name Run-time parameters
+ *  Parameters of the loaded input changed between steps, named by their path in the input's own
+ *  terms: "global.ensemble.temperature" (the default temperature of every integrator that does not
+ *  give its own), "integrator.NAME.parameters.KEY" (timeStep, frictionConstant, temperature, ...
+ *  of the integrator entry NAME; not the schedule) and "topology.forceField.NAME.parameters.KEY"
+ *  (every number an entry takes under "parameters": a Common_ bond's K, a neighbour list's
+ *  cutOffVerletFactor, a pair term's cutOffFactor, an Expression entry's constant, startStep ...).
+ *  Values in tables (per-bond or per-type-pair columns), strings, booleans and the box
+ *  (structmd_set_box) are not run-time parameters. Each needs a load.
+ *  @{ */
+
+/**
+ * Changes one parameter from the next force evaluation or step on. The value is written into the
+ * loaded input and the force field and the integrators are read again from it with every check of
+ * a load, then made again, keeping the positions, velocities, step, time, external forces and the
+ * integrators' own state; cached forces, energies and virial are dropped. A cutoff that grows is
+ * honoured: the neighbour lists are made again for the new cutoffs (a cutoff not shorter than half
+ * the present box is refused). An Expression entry is compiled again (on CUDA this takes seconds
+ * for a NonBonded entry). The call costs about what reading the input costs, so it is meant for
+ * changes between chunks of steps, not for every step. A new load forgets the changes.
+ *
+ * @param sim    the handle.
+ * @param path   the parameter, as above; a key the entry does not give yet is added, if its component
+ *               takes it.
+ * @param value  the new value, in the input's units; it must satisfy the rule the input states for
+ *               that parameter (a time step > 0, say).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, for a path that names no run-time
+ *         parameter (no such entry, a key its component does not take, a string, a table column, the
+ *         schedule) or a value the input's rules refuse, the message naming the path and why;
+ *         STRUCTMD_ERR_STATE; STRUCTMD_ERR_UNSUPPORTED, STRUCTMD_ERR_DEVICE or STRUCTMD_ERR_MEMORY
+ *         when the force field cannot be made again, changing nothing.
+ */
+STRUCTMD_API structmd_status structmd_set_parameter(structmd_sim* sim, const char* path, double value);
+
+/**
+ * Reads a parameter as the loaded input gives it, or as structmd_set_parameter last set it.
+ *
+ * @param sim         the handle.
+ * @param path        the parameter, as for structmd_set_parameter.
+ * @param[out] value  its value, in the input's units.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for a path that names no run-time parameter, or one the
+ *         input leaves to its default (the message says so); STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_get_parameter(structmd_sim* sim, const char* path, double* value);
 
 /** @} */
 

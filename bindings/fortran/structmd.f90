@@ -46,7 +46,10 @@ module structmd
             structmd_get_step, structmd_get_time, structmd_set_positions, structmd_set_velocities, &
             structmd_set_box, structmd_set_external_forces, structmd_get_info, &
             structmd_save_checkpoint, structmd_load_checkpoint, structmd_get_counters, &
-            structmd_load_plugin
+            structmd_load_plugin, structmd_set_external_energy, structmd_get_positions_of, &
+            structmd_get_velocities_of, structmd_get_forces_of, structmd_set_positions_of, &
+            structmd_set_velocities_of, structmd_set_external_forces_of, structmd_set_parameter, &
+            structmd_get_parameter
 
   public :: structmd_version_f, structmd_last_error_f, structmd_create_f, structmd_load_file_f, &
             structmd_load_string_f, structmd_get_energy_f, structmd_get_ids_f, &
@@ -54,7 +57,10 @@ module structmd
             structmd_get_particle_energies_f, structmd_get_masses_f, structmd_get_types_f, &
             structmd_set_positions_f, structmd_set_velocities_f, structmd_set_external_forces_f, &
             structmd_clear_external_forces_f, structmd_get_info_f, structmd_save_checkpoint_f, &
-            structmd_load_checkpoint_f, structmd_get_counters_f, structmd_load_plugin_f
+            structmd_load_checkpoint_f, structmd_get_counters_f, structmd_load_plugin_f, &
+            structmd_get_positions_of_f, structmd_get_velocities_of_f, structmd_get_forces_of_f, &
+            structmd_set_positions_of_f, structmd_set_velocities_of_f, structmd_set_external_forces_of_f, &
+            structmd_set_parameter_f, structmd_get_parameter_f
 
   interface
     function structmd_abi_version() bind(C, name="structmd_abi_version") result(version)
@@ -266,6 +272,90 @@ module structmd
       integer(c_int32_t) :: status
     end function
 
+    function structmd_set_parameter(sim, path, value) bind(C, name="structmd_set_parameter") result(status)
+      import :: c_ptr, c_char, c_int32_t, c_double
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: path(*)
+      real(c_double), value :: value
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_get_parameter(sim, path, value) bind(C, name="structmd_get_parameter") result(status)
+      import :: c_ptr, c_char, c_int32_t, c_double
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: path(*)
+      real(c_double), intent(out) :: value
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_set_external_energy(sim, energy) bind(C, name="structmd_set_external_energy") &
+        result(status)
+      import :: c_ptr, c_int32_t, c_double
+      type(c_ptr), value :: sim
+      real(c_double), value :: energy
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_get_positions_of(sim, ids, m, xyz) bind(C, name="structmd_get_positions_of") &
+        result(status)
+      import :: c_ptr, c_int32_t, c_int64_t, c_double
+      type(c_ptr), value :: sim
+      integer(c_int64_t), intent(in) :: ids(*)
+      integer(c_int64_t), value :: m
+      real(c_double), intent(inout) :: xyz(3, *)
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_get_velocities_of(sim, ids, m, v) bind(C, name="structmd_get_velocities_of") &
+        result(status)
+      import :: c_ptr, c_int32_t, c_int64_t, c_double
+      type(c_ptr), value :: sim
+      integer(c_int64_t), intent(in) :: ids(*)
+      integer(c_int64_t), value :: m
+      real(c_double), intent(inout) :: v(3, *)
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_get_forces_of(sim, ids, m, f) bind(C, name="structmd_get_forces_of") &
+        result(status)
+      import :: c_ptr, c_int32_t, c_int64_t, c_double
+      type(c_ptr), value :: sim
+      integer(c_int64_t), intent(in) :: ids(*)
+      integer(c_int64_t), value :: m
+      real(c_double), intent(inout) :: f(3, *)
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_set_positions_of(sim, ids, m, xyz) bind(C, name="structmd_set_positions_of") &
+        result(status)
+      import :: c_ptr, c_int32_t, c_int64_t, c_double
+      type(c_ptr), value :: sim
+      integer(c_int64_t), intent(in) :: ids(*)
+      integer(c_int64_t), value :: m
+      real(c_double), intent(in) :: xyz(3, *)
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_set_velocities_of(sim, ids, m, v) bind(C, name="structmd_set_velocities_of") &
+        result(status)
+      import :: c_ptr, c_int32_t, c_int64_t, c_double
+      type(c_ptr), value :: sim
+      integer(c_int64_t), intent(in) :: ids(*)
+      integer(c_int64_t), value :: m
+      real(c_double), intent(in) :: v(3, *)
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_set_external_forces_of(sim, ids, m, f) bind(C, name="structmd_set_external_forces_of") &
+        result(status)
+      import :: c_ptr, c_int32_t, c_int64_t, c_double
+      type(c_ptr), value :: sim
+      integer(c_int64_t), intent(in) :: ids(*)
+      integer(c_int64_t), value :: m
+      real(c_double), intent(in) :: f(3, *)
+      integer(c_int32_t) :: status
+    end function
+
     !> buffer and needed may be left out (NULL); buffer only with size = 0.
     function structmd_get_info(sim, buffer, size, needed) bind(C, name="structmd_get_info") result(status)
       import :: c_ptr, c_char, c_int32_t, c_size_t
@@ -372,6 +462,24 @@ contains
     status = structmd_get_energy(sim, c_string(term), value)
   end function
 
+  !> path: "global.ensemble.temperature", "integrator.<name>.parameters.<key>" or
+  !> "topology.forceField.<name>.parameters.<key>".
+  function structmd_set_parameter_f(sim, path, value) result(status)
+    type(c_ptr), intent(in) :: sim
+    character(len=*), intent(in) :: path
+    real(c_double), intent(in) :: value
+    integer(c_int32_t) :: status
+    status = structmd_set_parameter(sim, c_string(path), value)
+  end function
+
+  function structmd_get_parameter_f(sim, path, value) result(status)
+    type(c_ptr), intent(in) :: sim
+    character(len=*), intent(in) :: path
+    real(c_double), intent(out) :: value
+    integer(c_int32_t) :: status
+    status = structmd_get_parameter(sim, c_string(path), value)
+  end function
+
   !> ids(n), n the number of particles.
   function structmd_get_ids_f(sim, ids) result(status)
     type(c_ptr), intent(in) :: sim
@@ -462,6 +570,72 @@ contains
     type(c_ptr), intent(in) :: sim
     integer(c_int32_t) :: status
     status = structmd_set_external_forces(sim, n=0_c_int64_t)
+  end function
+
+  !> ids(m), xyz(3,m) in the order of ids: particle ids count from 0, as in C.
+  function structmd_get_positions_of_f(sim, ids, xyz) result(status)
+    type(c_ptr), intent(in) :: sim
+    integer(c_int64_t), intent(in) :: ids(:)
+    real(c_double), intent(inout) :: xyz(:, :)
+    integer(c_int32_t) :: status
+    status = STRUCTMD_ERR_ARGUMENT
+    if (size(xyz, 1) == 3 .and. size(xyz, 2) == size(ids)) &
+      status = structmd_get_positions_of(sim, ids, size(ids, kind=c_int64_t), xyz)
+  end function
+
+  !> ids(m), v(3,m) in the order of ids: particle ids count from 0, as in C.
+  function structmd_get_velocities_of_f(sim, ids, v) result(status)
+    type(c_ptr), intent(in) :: sim
+    integer(c_int64_t), intent(in) :: ids(:)
+    real(c_double), intent(inout) :: v(:, :)
+    integer(c_int32_t) :: status
+    status = STRUCTMD_ERR_ARGUMENT
+    if (size(v, 1) == 3 .and. size(v, 2) == size(ids)) &
+      status = structmd_get_velocities_of(sim, ids, size(ids, kind=c_int64_t), v)
+  end function
+
+  !> ids(m), f(3,m) in the order of ids: particle ids count from 0, as in C.
+  function structmd_get_forces_of_f(sim, ids, f) result(status)
+    type(c_ptr), intent(in) :: sim
+    integer(c_int64_t), intent(in) :: ids(:)
+    real(c_double), intent(inout) :: f(:, :)
+    integer(c_int32_t) :: status
+    status = STRUCTMD_ERR_ARGUMENT
+    if (size(f, 1) == 3 .and. size(f, 2) == size(ids)) &
+      status = structmd_get_forces_of(sim, ids, size(ids, kind=c_int64_t), f)
+  end function
+
+  !> ids(m), xyz(3,m) in the order of ids: particle ids count from 0, as in C.
+  function structmd_set_positions_of_f(sim, ids, xyz) result(status)
+    type(c_ptr), intent(in) :: sim
+    integer(c_int64_t), intent(in) :: ids(:)
+    real(c_double), intent(in) :: xyz(:, :)
+    integer(c_int32_t) :: status
+    status = STRUCTMD_ERR_ARGUMENT
+    if (size(xyz, 1) == 3 .and. size(xyz, 2) == size(ids)) &
+      status = structmd_set_positions_of(sim, ids, size(ids, kind=c_int64_t), xyz)
+  end function
+
+  !> ids(m), v(3,m) in the order of ids: particle ids count from 0, as in C.
+  function structmd_set_velocities_of_f(sim, ids, v) result(status)
+    type(c_ptr), intent(in) :: sim
+    integer(c_int64_t), intent(in) :: ids(:)
+    real(c_double), intent(in) :: v(:, :)
+    integer(c_int32_t) :: status
+    status = STRUCTMD_ERR_ARGUMENT
+    if (size(v, 1) == 3 .and. size(v, 2) == size(ids)) &
+      status = structmd_set_velocities_of(sim, ids, size(ids, kind=c_int64_t), v)
+  end function
+
+  !> ids(m), f(3,m) in the order of ids: particle ids count from 0, as in C.
+  function structmd_set_external_forces_of_f(sim, ids, f) result(status)
+    type(c_ptr), intent(in) :: sim
+    integer(c_int64_t), intent(in) :: ids(:)
+    real(c_double), intent(in) :: f(:, :)
+    integer(c_int32_t) :: status
+    status = STRUCTMD_ERR_ARGUMENT
+    if (size(f, 1) == 3 .and. size(f, 2) == size(ids)) &
+      status = structmd_set_external_forces_of(sim, ids, size(ids, kind=c_int64_t), f)
   end function
 
   !> info: the JSON description of the handle (see structmd_get_info in the header).

@@ -25,6 +25,9 @@ struct structmd_sim {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> logFile{nullptr, &std::fclose};
     structmd::Logger log;
     std::unique_ptr<structmd::Simulation> simulation;
+    // The input the simulation was loaded from, with the changes of structmd_set_parameter: what
+    // structmd_get_parameter reads and what a parameter change reads again.
+    std::string document;
     std::string lastError;
 };
 

@@ -18,7 +18,9 @@ namespace {
 
 void load_text(structmd_sim& sim, const std::string& text) {
     sim.simulation.reset();  // a failed load leaves no simulation, and the old one's memory is freed first
+    sim.document.clear();
     sim.simulation = load_simulation(sim.options, text, *sim.components, sim.log);
+    sim.document = text;
     sim.log.info("loaded " + std::to_string(sim.simulation->particle_count()) + " particles on " +
                  sim.simulation->backend_name() + " (" + sim.simulation->device_name() + "), " +
                  sim.simulation->precision_name() + " precision");

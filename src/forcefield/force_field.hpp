@@ -19,10 +19,13 @@ public:
     void add(std::unique_ptr<Interactor<B, R>> interactor) { interactors_.push_back(std::move(interactor)); }
     // A group's membership bytes on the backend, shared by every interactor acting on it.
     void add_group(const B& backend, const std::vector<uint8_t>& members) {
-        groups_.emplace_back();
-        backend.upload(groups_.back(), members.data(), members.size());
+        groups_->emplace_back();
+        backend.upload(groups_->back(), members.data(), members.size());
     }
-    const uint8_t* group(int index) const { return groups_[index].data(); }
+    const uint8_t* group(int index) const { return (*groups_)[index].data(); }
+    // Uses the group buffers of `other` (a force field made again with new parameters keeps the
+    // groups, and so the group pointers integrators hold stay valid).
+    void share_groups(const ForceField& other) { groups_ = other.groups_; }
     void add_list(std::shared_ptr<VerletList<B, R>> list) { lists_.push_back(std::move(list)); }
 
     int find(const std::string& name) const {
@@ -83,7 +86,9 @@ public:
 private:
     std::vector<std::shared_ptr<VerletList<B, R>>> lists_;
     std::vector<std::unique_ptr<Interactor<B, R>>> interactors_;
-    std::deque<typename B::template Buffer<uint8_t>> groups_;  // deque: buffers never move once made
+    // deque: buffers never move once made; shared with a force field made again from this one.
+    std::shared_ptr<std::deque<typename B::template Buffer<uint8_t>>> groups_ =
+        std::make_shared<std::deque<typename B::template Buffer<uint8_t>>>();
 };
 
 }  // namespace structmd

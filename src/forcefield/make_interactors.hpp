@@ -78,11 +78,17 @@ const Registry<InteractorFactory<B, R>>& builtin_interactor_factories() {
     return builtin;
 }
 
+// `groupsOf`: a force field of the same groups whose group buffers the new one shares (the force
+// field made again with new parameters); null: the groups are uploaded.
 template <class B, class R>
 ForceField<B, R> make_interactors(const B& backend, const ForceFieldSpec& spec, const ForceFieldContext& context,
-                                  const Registry<InteractorFactory<B, R>>& factories) {
+                                  const Registry<InteractorFactory<B, R>>& factories,
+                                  const ForceField<B, R>* groupsOf = nullptr) {
     ForceField<B, R> ff;
-    for (const GroupSpec& group : spec.groups) ff.add_group(backend, group.members);
+    if (groupsOf)
+        ff.share_groups(*groupsOf);
+    else
+        for (const GroupSpec& group : spec.groups) ff.add_group(backend, group.members);
 
     // One list per (list entry, condition) that some pair term uses; its cutoff is the largest of its
     // users'. A scene without pair terms builds no list.

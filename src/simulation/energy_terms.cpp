@@ -26,9 +26,16 @@ EnergyRequest parse_energy_request(const std::string& request, const std::vector
         parsed.batch = oneBatch ? -1 : batch;
     }
     const std::string& t = parsed.term;
-    if (t == "potential" || t == "kinetic" || t == "total" || std::find(entries.begin(), entries.end(), t) != entries.end())
+    const bool entry = std::find(entries.begin(), entries.end(), t) != entries.end();
+    if (t == "external" && !entry) {
+        if (parsed.batch >= 0)
+            throw Error(STRUCTMD_ERR_ARGUMENT, "energy term '" + request +
+                                                   "': the host's external energy belongs to no batch (ask for 'external')");
+        parsed.host = true;
         return parsed;
-    std::string known = "potential, kinetic, total";
+    }
+    if (t == "potential" || t == "kinetic" || t == "total" || entry) return parsed;
+    std::string known = "potential, kinetic, total, external";
     for (const std::string& name : entries) known += ", " + name;
     throw Error(STRUCTMD_ERR_ARGUMENT,
                 "energy term '" + request + "' does not exist (terms: " + known + ", each optionally followed by @batch:K)");

@@ -1,6 +1,8 @@
 #pragma once
-// The energy terms structmd_get_energy takes: "potential", "kinetic", "total" or a forceField entry
-// name, each optionally followed by "@batch:K" for the share of the particles of batch K.
+// The energy terms structmd_get_energy takes: "potential", "kinetic", "total", "external" (the
+// host's field, structmd_set_external_energy) or a forceField entry name, each optionally followed
+// by "@batch:K" for the share of the particles of batch K. An entry named "external" keeps its name:
+// the host's energy then has no term of its own (it is still part of "total").
 #include <string>
 #include <vector>
 
@@ -9,10 +11,12 @@ namespace structmd {
 struct EnergyRequest {
     std::string term;
     int batch = -1;  // -1: every particle
+    bool host = false;  // term is the host's external energy (no entry is called "external")
 };
 
 // batchIds: the batchId of each particle. With one batch, "@batch:K" for that batch is everything.
-// Throws ERR_ARGUMENT for a batch no particle has, or a term not in `entries`.
+// Throws ERR_ARGUMENT for a batch no particle has, a term not in `entries`, or the host's
+// "external" asked for one batch of several (it belongs to no batch).
 EnergyRequest parse_energy_request(const std::string& request, const std::vector<int>& batchIds,
                                    const std::vector<std::string>& entries);
 

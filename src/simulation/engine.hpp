@@ -25,6 +25,7 @@
 #include "simulation/fault_report.hpp"
 #include "simulation/force_cache.hpp"
 #include "simulation/host_transfer.hpp"
+#include "simulation/read_simulation.hpp"
 #include "simulation/rollback.hpp"
 #include "simulation/schedule.hpp"
 #include "simulation/simulation.hpp"
@@ -77,21 +78,14 @@ public:
             backend_.upload(p_.batch, batchId_.data(), batchId_.size());
         backend_.upload(p_.model, spec.modelId.data(), spec.modelId.size());
 
-        ForceFieldContext context;
-        context.ntypes = spec.typeNames.size();
-        context.particles = p_.count;
-        context.constants = spec.constants;
-        context.batch = p_.batch.empty() ? nullptr : p_.batch.data();
-        context.model = p_.model.data();
-        context.log = &log_;
-        forceField_ =
-            make_interactors<B, R>(backend_, spec.forceField, context,
-                                   components.factories<B, R, PairR>(builtin_interactor_factories<B, R, PairR>(),
-                                                                     spec.forceField, precision_label<R, PairR>()));
-        for (const IntegratorSpec& integrator : spec.integrators)
-            integrators_.push_back(make_integrator<B, R>(
-                backend_, integrator, integrator.group >= 0 ? forceField_.group(integrator.group) : nullptr,
-                builtin_integrator_factories<B, R>()));
+        context_.ntypes = spec.typeNames.size();
+        context_.particles = p_.count;
+        context_.constants = spec.constants;
+        context_.batch = p_.batch.empty() ? nullptr : p_.batch.data();
+        context_.model = p_.model.data();
+        context_.log = &log_;
+        forceField_ = make_force_field(spec.forceField, components, nullptr);
+        integrators_ = make_integrators(spec.integrators, forceField_);
         const double skin = forceField_.smallest_skin();
         p_.maxMove2 = std::isfinite(skin) ? skin * skin : 1e300;
         backend_.synchronize();
@@ -188,9 +182,12 @@ public:
     double energy(const std::string& request) override {
         backend_.activate();
         const EnergyRequest r = parse_energy_request(request, batchId_, forceField_.names());
+        if (r.host) return externalEnergy_;
         if (r.term == "kinetic") return kinetic_energy(r.batch);
         if (r.term == "potential") return potential_energy(r.batch);
-        if (r.term == "total") return kinetic_energy(r.batch) + potential_energy(r.batch);
+        // The host's field belongs to no batch: it is part of the whole system's total only.
+        if (r.term == "total")
+            return kinetic_energy(r.batch) + potential_energy(r.batch) + (r.batch < 0 ? externalEnergy_ : 0.0);
         backend_.resize(p_.energy, p_.count);
         backend_.fill(p_.energy, R(0));
         ForceOutputs<R> out;
@@ -257,12 +254,85 @@ public:
         backend_.activate();
         if (f == nullptr) {
             p_.externalForce.release();
+            externalEnergy_ = 0.0;  // no field, no field energy
         } else {
             std::vector<Real4<R>> values(p_.count);
             for (int64_t i = 0; i < p_.count; ++i) values[i] = {R(f[3 * i]), R(f[3 * i + 1]), R(f[3 * i + 2]), R(0)};
             backend_.upload(p_.externalForce, values.data(), values.size());
         }
         cache_.forces_changed();
+    }
+
+    void get_positions_of(const int64_t* ids, int64_t m, double* xyz) override { gather_vectors(p_.pos, ids, m, xyz); }
+    void get_velocities_of(const int64_t* ids, int64_t m, double* v) override { gather_vectors(p_.vel, ids, m, v); }
+    // As get_forces: the m forces are checked before any is handed over.
+    void get_forces_of(const int64_t* ids, int64_t m, double* f) override {
+        compute(kForces);
+        std::vector<double> values(3 * m);
+        gather_vectors(p_.force, ids, m, values.data());
+        for (int64_t k = 0; k < 3 * m; ++k)
+            if (!std::isfinite(values[k]))
+                throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(current_step()) + ", particle id " +
+                                                        std::to_string(ids[k / 3]) +
+                                                        ": the force is not finite (overlapping particles?)");
+        std::copy(values.begin(), values.end(), f);
+    }
+    // As set_positions for those particles: wrapped, images counted from the positions given, and
+    // everything computed from positions made stale.
+    void set_positions_of(const int64_t* ids, int64_t m, const double* xyz) override {
+        backend_.activate();
+        std::vector<Real4<R>> values;
+        std::vector<Image> images;
+        pack_positions_of<R>(xyz, ids, m, boxLengths_, typeIndex_, values, images);
+        upload_ids(ids, m);
+        scatter(values, p_.pos, subsetVectors_);
+        scatter(images, p_.image, subsetImages_);
+        positions_changed();
+    }
+    void set_velocities_of(const int64_t* ids, int64_t m, const double* v) override {
+        backend_.activate();
+        const std::vector<Real4<R>> values = pack_velocities_of<R>(v, ids, m, masses_);
+        upload_ids(ids, m);
+        scatter(values, p_.vel, subsetVectors_);
+    }
+    void set_external_forces_of(const int64_t* ids, int64_t m, const double* f) override {
+        backend_.activate();
+        std::vector<Real4<R>> values(m);
+        for (int64_t k = 0; k < m; ++k) values[k] = {R(f[3 * k]), R(f[3 * k + 1]), R(f[3 * k + 2]), R(0)};
+        upload_ids(ids, m);
+        if (p_.externalForce.empty()) {  // no field yet: zero for the particles not given
+            backend_.resize(p_.externalForce, p_.count);
+            backend_.fill(p_.externalForce, Real4<R>{R(0), R(0), R(0), R(0)});
+        }
+        scatter(values, p_.externalForce, subsetVectors_);
+        cache_.forces_changed();
+    }
+    void set_external_energy(double energy) override { externalEnergy_ = energy; }
+    double external_energy() const override { return externalEnergy_; }
+
+    void change_parameters(const RuntimeSpec& spec, const ForceFieldComponents& components) override {
+        backend_.activate();
+        if (spec.integrators.size() != integrators_.size())
+            throw Error(STRUCTMD_ERR_INTERNAL, "a parameter change altered the list of integrators");
+        const double cutoff = spec.forceField.largest_cutoff();
+        if (!cutoff_fits_box(cutoff, boxLengths_))
+            throw Error(STRUCTMD_ERR_ARGUMENT, "the largest cutoff (" + precise(cutoff) +
+                                                   ") must be shorter than half the box (" +
+                                                   precise(half_shortest_edge(boxLengths_[0], boxLengths_[1],
+                                                                              boxLengths_[2])) + ")");
+        // Built beside the present ones: a failure (a kernel that does not compile, memory) changes nothing.
+        ForceField<B, R> forceField = make_force_field(spec.forceField, components, &forceField_);
+        std::vector<std::unique_ptr<Integrator<B, R>>> integrators = make_integrators(spec.integrators, forceField);
+        for (size_t k = 0; k < integrators.size(); ++k) integrators[k]->restore(integrators_[k]->state());
+        forceField_.adapt();
+        retiredListBuilds_ += forceField_.builds();
+        forceField_ = std::move(forceField);
+        integrators_ = std::move(integrators);
+        largestCutoff_ = cutoff;
+        const double skin = forceField_.smallest_skin();
+        p_.maxMove2 = std::isfinite(skin) ? skin * skin : 1e300;
+        cache_.invalidate();  // forces, energies and virial change with the parameters; the lists are new
+        backend_.synchronize();
     }
 
     void save_checkpoint(const std::string& path) override {
@@ -311,7 +381,7 @@ public:
         c.stepGraphsCaptured = backend_.graphs_captured();
         c.stepGraphsReplayed = backend_.graphs_replayed();
         forceField_.adapt();  // reads the lists' build counts (after the transfers were taken)
-        c.neighbourListBuilds = static_cast<uint64_t>(forceField_.builds());
+        c.neighbourListBuilds = static_cast<uint64_t>(retiredListBuilds_ + forceField_.builds());
         return c;
     }
 
@@ -321,6 +391,24 @@ public:
     int threads() const override { return backend_.threads(); }
 
 private:
+    // groupsOf: the force field whose group buffers the new one shares (null at construction).
+    ForceField<B, R> make_force_field(const ForceFieldSpec& spec, const ForceFieldComponents& components,
+                                      const ForceField<B, R>* groupsOf) {
+        return make_interactors<B, R>(backend_, spec, context_,
+                                      components.factories<B, R, PairR>(builtin_interactor_factories<B, R, PairR>(),
+                                                                        spec, precision_label<R, PairR>()),
+                                      groupsOf);
+    }
+    std::vector<std::unique_ptr<Integrator<B, R>>> make_integrators(const std::vector<IntegratorSpec>& specs,
+                                                                    const ForceField<B, R>& forceField) {
+        std::vector<std::unique_ptr<Integrator<B, R>>> made;
+        for (const IntegratorSpec& integrator : specs)
+            made.push_back(make_integrator<B, R>(backend_, integrator,
+                                                 integrator.group >= 0 ? forceField.group(integrator.group) : nullptr,
+                                                 builtin_integrator_factories<B, R>()));
+        return made;
+    }
+
     // The timeline and the backend's clock at (step, time).
     void set_clock(int64_t step, double time) {
         p_.timeline.reset(step, time);
@@ -408,6 +496,23 @@ private:
         unpack_vectors(download(buffer), out);
     }
 
+    // Subsets by id (m > 0): the ids and m packed entries cross between the host and the backend,
+    // and a backend loop gathers or scatters them.
+    void upload_ids(const int64_t* ids, int64_t m) { backend_.upload(subsetIds_, ids, static_cast<size_t>(m)); }
+    void gather_vectors(const typename B::template Buffer<Real4<R>>& from, const int64_t* ids, int64_t m, double* out) {
+        backend_.activate();
+        upload_ids(ids, m);
+        backend_.resize(subsetVectors_, static_cast<size_t>(m));
+        backend_.for_each(m, GatherById<Real4<R>>{from.data(), subsetIds_.data(), subsetVectors_.data()});
+        unpack_vectors(download(subsetVectors_), out);
+    }
+    // The ids are in subsetIds_ already.
+    template <class T>
+    void scatter(const std::vector<T>& values, typename B::template Buffer<T>& to, typename B::template Buffer<T>& staging) {
+        backend_.upload(staging, values.data(), values.size());
+        backend_.for_each(static_cast<int64_t>(values.size()), ScatterById<T>{staging.data(), subsetIds_.data(), to.data()});
+    }
+
     B backend_;
     Logger log_;
     Particles<B, R> p_;
@@ -427,6 +532,13 @@ private:
     Rollback<B, R> rollback_;
     ForceCache<B, R> cache_;
     Counters evaluations_;  // the evaluation counts; counters() adds builds and transfers
+    ForceFieldContext context_;  // what the force field is made with, kept to make it again
+    int64_t retiredListBuilds_ = 0;  // builds of the lists of force fields replaced by change_parameters
+    double externalEnergy_ = 0.0;  // the host's field energy (structmd_set_external_energy)
+    // Staging of the subset getters and setters: ids and packed values, m entries each.
+    typename B::template Buffer<int64_t> subsetIds_;
+    typename B::template Buffer<Real4<R>> subsetVectors_;
+    typename B::template Buffer<Image> subsetImages_;
 };
 
 }  // namespace structmd

@@ -50,6 +50,24 @@ struct InBatch {
     SMD_HD double operator()(int64_t i) const { return batch[i] == wanted ? sum(i) : 0.0; }
 };
 
+// A subset of particles by id, between a backend array of every particle and a packed array of m
+// entries in the order of ids: the host exchanges m entries, not the whole array.
+template <class T>
+struct GatherById {
+    const T* from;  // by particle
+    const int64_t* ids;
+    T* to;  // m entries
+    SMD_HD void operator()(int64_t k) const { to[k] = from[ids[k]]; }
+};
+
+template <class T>
+struct ScatterById {
+    const T* from;  // m entries
+    const int64_t* ids;  // distinct
+    T* to;  // by particle
+    SMD_HD void operator()(int64_t k) const { to[ids[k]] = from[k]; }
+};
+
 // Copies the dynamical state (positions, images, velocities) from one set of buffers to another:
 // the engine keeps the state a step call started from, to return to it after a blow-up.
 template <class R>

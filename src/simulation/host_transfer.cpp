@@ -11,34 +11,46 @@
 namespace structmd {
 
 template <class R>
-void pack_positions(const double* xyz, const std::array<double, 3>& lengths, const std::vector<int32_t>& types,
-                    std::vector<Real4<R>>& positions, std::vector<Image>& images) {
+void pack_positions_of(const double* xyz, const int64_t* ids, int64_t m, const std::array<double, 3>& lengths,
+                       const std::vector<int32_t>& types, std::vector<Real4<R>>& positions, std::vector<Image>& images) {
     const Box<double> box = Box<double>::make(lengths[0], lengths[1], lengths[2]);
-    const size_t n = types.size();
-    positions.resize(n);
-    images.assign(n, Image{0, 0, 0});
-    for (size_t i = 0; i < n; ++i) {
+    positions.resize(static_cast<size_t>(m));
+    images.assign(static_cast<size_t>(m), Image{0, 0, 0});
+    for (int64_t k = 0; k < m; ++k) {
+        const int64_t id = ids ? ids[k] : k;
         for (int d = 0; d < 3; ++d) {
-            const double x = xyz[3 * i + d];
+            const double x = xyz[3 * k + d];
             if (!std::isfinite(x) || std::fabs(x) > 1e8 * lengths[d]) {
                 char text[32];
                 std::snprintf(text, sizeof text, "%.17g", x);
-                throw Error(STRUCTMD_ERR_ARGUMENT, "position of particle id " + std::to_string(i) + ": coordinate " +
+                throw Error(STRUCTMD_ERR_ARGUMENT, "position of particle id " + std::to_string(id) + ": coordinate " +
                                                        std::to_string(d) + " is " + text +
                                                        ": expected a finite value within 1e8 box lengths of the box");
             }
         }
-        const Vec3<double> r = box.wrap({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, images[i]);
-        positions[i] = {R(r.x), R(r.y), R(r.z), R(types[i])};
+        const Vec3<double> r = box.wrap({xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]}, images[k]);
+        positions[k] = {R(r.x), R(r.y), R(r.z), R(types[id])};
     }
 }
 
 template <class R>
-std::vector<Real4<R>> pack_velocities(const double* v, const std::vector<double>& masses) {
-    std::vector<Real4<R>> values(masses.size());
-    for (size_t i = 0; i < masses.size(); ++i)
-        values[i] = {R(v[3 * i]), R(v[3 * i + 1]), R(v[3 * i + 2]), R(masses[i])};
+void pack_positions(const double* xyz, const std::array<double, 3>& lengths, const std::vector<int32_t>& types,
+                    std::vector<Real4<R>>& positions, std::vector<Image>& images) {
+    pack_positions_of<R>(xyz, nullptr, static_cast<int64_t>(types.size()), lengths, types, positions, images);
+}
+
+template <class R>
+std::vector<Real4<R>> pack_velocities_of(const double* v, const int64_t* ids, int64_t m,
+                                         const std::vector<double>& masses) {
+    std::vector<Real4<R>> values(static_cast<size_t>(m));
+    for (int64_t k = 0; k < m; ++k)
+        values[k] = {R(v[3 * k]), R(v[3 * k + 1]), R(v[3 * k + 2]), R(masses[ids ? ids[k] : k])};
     return values;
+}
+
+template <class R>
+std::vector<Real4<R>> pack_velocities(const double* v, const std::vector<double>& masses) {
+    return pack_velocities_of<R>(v, nullptr, static_cast<int64_t>(masses.size()), masses);
 }
 
 template <class R>
@@ -54,6 +66,14 @@ template void pack_positions<float>(const double*, const std::array<double, 3>&,
                                     std::vector<Real4<float>>&, std::vector<Image>&);
 template void pack_positions<double>(const double*, const std::array<double, 3>&, const std::vector<int32_t>&,
                                      std::vector<Real4<double>>&, std::vector<Image>&);
+template void pack_positions_of<float>(const double*, const int64_t*, int64_t, const std::array<double, 3>&,
+                                       const std::vector<int32_t>&, std::vector<Real4<float>>&, std::vector<Image>&);
+template void pack_positions_of<double>(const double*, const int64_t*, int64_t, const std::array<double, 3>&,
+                                        const std::vector<int32_t>&, std::vector<Real4<double>>&, std::vector<Image>&);
+template std::vector<Real4<float>> pack_velocities_of<float>(const double*, const int64_t*, int64_t,
+                                                             const std::vector<double>&);
+template std::vector<Real4<double>> pack_velocities_of<double>(const double*, const int64_t*, int64_t,
+                                                               const std::vector<double>&);
 template std::vector<Real4<float>> pack_velocities<float>(const double*, const std::vector<double>&);
 template std::vector<Real4<double>> pack_velocities<double>(const double*, const std::vector<double>&);
 template void unpack_vectors<float>(const std::vector<Real4<float>>&, double*);

@@ -19,8 +19,20 @@ template <class R>
 void pack_positions(const double* xyz, const std::array<double, 3>& box, const std::vector<int32_t>& types,
                     std::vector<Real4<R>>& positions, std::vector<Image>& images);
 
+// The same for the m particles ids[0..m) (valid, distinct ids): xyz holds their 3m coordinates in
+// the order of ids, and positions and images come out in that order. pack_positions is this with
+// every id in order.
+template <class R>
+void pack_positions_of(const double* xyz, const int64_t* ids, int64_t m, const std::array<double, 3>& box,
+                       const std::vector<int32_t>& types, std::vector<Real4<R>>& positions, std::vector<Image>& images);
+
 template <class R>
 std::vector<Real4<R>> pack_velocities(const double* v, const std::vector<double>& masses);
+
+// The velocities of the m particles ids[0..m), in the order of ids, each with its mass.
+template <class R>
+std::vector<Real4<R>> pack_velocities_of(const double* v, const int64_t* ids, int64_t m,
+                                         const std::vector<double>& masses);
 
 template <class R>
 void unpack_vectors(const std::vector<Real4<R>>& values, double* xyz);

@@ -43,4 +43,18 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     return spec;
 }
 
+RuntimeSpec read_runtime_spec(const std::string& text, const Logger& log,
+                              const Registry<ForceFieldComponent>& components) {
+    input::ParsedDocument doc = input::parse_document(text);
+    const input::SystemDescription& system = doc.system;
+    RuntimeSpec spec;
+    spec.forceField = read_forcefield(system, log, components);
+    spec.integrators = read_integrators(system, spec.forceField.groups, spec.schedule);
+    // The entries read here must use every key they hold (a parameter the component does not take
+    // is refused as at load); the simulation steps are not read again.
+    for (const input::ComponentEntry& entry : system.forceField) entry.node.check_all_used();
+    for (const input::ComponentEntry& entry : system.integrators) entry.node.check_all_used();
+    return spec;
+}
+
 }  // namespace structmd

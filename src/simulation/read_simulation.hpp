@@ -13,4 +13,15 @@ namespace structmd {
 SimulationSpec read_simulation(const std::string& text, const Logger& log,
                                const Registry<ForceFieldComponent>& components = forcefield_registry());
 
+// What structmd_set_parameter may change, read again from a document that differs from the loaded
+// one in a parameter: the force field and the integrators, validated as a load validates them
+// (every key of their entries must be used). The particles' state is parsed and checked, not kept.
+struct RuntimeSpec {
+    ForceFieldSpec forceField;
+    std::vector<IntegratorSpec> integrators;
+    std::vector<ScheduleStage> schedule;
+};
+RuntimeSpec read_runtime_spec(const std::string& text, const Logger& log,
+                              const Registry<ForceFieldComponent>& components);
+
 }  // namespace structmd

@@ -11,6 +11,9 @@
 
 namespace structmd {
 
+struct RuntimeSpec;           // simulation/read_simulation.hpp
+class ForceFieldComponents;  // forcefield/component_set.hpp
+
 enum ComputeFlags : unsigned { kForces = 1u, kEnergy = 2u, kVirial = 4u };
 
 // What the engine has done since the simulation was loaded: passes over the force field that
@@ -57,8 +60,8 @@ public:
     virtual void get_radii(double* r) = 0;
     virtual const std::vector<std::string>& type_names() const = 0;
 
-    // Energy terms: "potential", "kinetic", "total", or a forceField entry name; an unknown term
-    // throws ERR_ARGUMENT.
+    // Energy terms: "potential", "kinetic", "total", "external", or a forceField entry name; an
+    // unknown term throws ERR_ARGUMENT.
     virtual double energy(const std::string& term) = 0;
     virtual std::vector<std::string> energy_terms() const = 0;  // the forceField entry names
     virtual std::array<double, 9> virial() = 0;
@@ -68,7 +71,29 @@ public:
     virtual void set_positions(const double* xyz) = 0;
     virtual void set_velocities(const double* v) = 0;
     virtual void set_box(const double lengths[3]) = 0;
-    virtual void set_external_forces(const double* f) = 0;  // nullptr clears
+    virtual void set_external_forces(const double* f) = 0;  // nullptr clears (the energy too)
+
+    // Subsets by id: ids[0..m) are valid and distinct (the API layer checks), values are 3m doubles
+    // in the order of ids. Only m entries move between the host and the backend. The setters
+    // behave as the whole-array ones for those particles; set_external_forces_of makes a zero field
+    // first when there is none.
+    virtual void get_positions_of(const int64_t* ids, int64_t m, double* xyz) = 0;
+    virtual void get_velocities_of(const int64_t* ids, int64_t m, double* v) = 0;
+    virtual void get_forces_of(const int64_t* ids, int64_t m, double* f) = 0;
+    virtual void set_positions_of(const int64_t* ids, int64_t m, const double* xyz) = 0;
+    virtual void set_velocities_of(const int64_t* ids, int64_t m, const double* v) = 0;
+    virtual void set_external_forces_of(const int64_t* ids, int64_t m, const double* f) = 0;
+
+    // The energy of the host's external field, as the host gave it: the energy term "external",
+    // part of "total" and of the thermodynamic outputs.
+    virtual void set_external_energy(double energy) = 0;
+    virtual double external_energy() const = 0;
+
+    // Makes the force field and the integrators again from `spec` (the loaded input read again with
+    // a parameter changed), keeping the particles, step, time, external forces and the integrators'
+    // own state. Everything new is built before anything is replaced: on failure nothing changed.
+    // Throws ERR_ARGUMENT when a cutoff would not fit the present box.
+    virtual void change_parameters(const RuntimeSpec& spec, const ForceFieldComponents& components) = 0;
 
     // The dynamic state (step, time, box, positions, images, velocities, external forces, integrator
     // state) to a file, and back into a simulation loaded from the same input. Loading validates

@@ -16,7 +16,8 @@ void ThermodynamicMeasure::run(Simulation& sim) {
     if (!file_) {
         std::string header = "#step particles volume";
         for (const std::string& term : terms) header += " " + term;
-        header += " kinetic potential total temperature virial pressure";
+        // The host's field energy comes last, so the columns before it keep their places.
+        header += " kinetic potential total temperature virial pressure external";
         file_.emplace("simulationStep." + name(), outputPath_, std::move(header));
     }
     std::FILE* out = file_->stream();
@@ -29,11 +30,12 @@ void ThermodynamicMeasure::run(Simulation& sim) {
         std::fprintf(out, " %.10g", e);
     }
     const double kinetic = sim.energy("kinetic");
+    const double external = sim.external_energy();
     const std::array<double, 9> w = sim.virial();
     const double trace = w[0] + w[4] + w[8];
-    std::fprintf(out, " %.10g %.10g %.10g %.10g %.10g %.10g\n", kinetic, potential, kinetic + potential,
+    std::fprintf(out, " %.10g %.10g %.10g %.10g %.10g %.10g %.10g\n", kinetic, potential, kinetic + potential + external,
                  kinetic_temperature(kinetic, sim.particle_count(), sim.boltzmann()), trace,
-                 virial_pressure(kinetic, trace, sim.volume()));
+                 virial_pressure(kinetic, trace, sim.volume()), external);
     file_->flush();
 }
 

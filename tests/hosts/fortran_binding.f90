@@ -72,6 +72,7 @@ program fortran_binding
   call check_particle_data()
   call check_forces_and_energies()
   call check_setters()
+  call check_coupling()
   call structmd_destroy(sim)
 
   if (failures > 0) then
@@ -225,6 +226,45 @@ contains
     call require(structmd_get_step(sim, step), 'structmd_get_step')
     call require(structmd_get_time(sim, time), 'structmd_get_time')
     call expect(step == 5 .and. abs(time - 5*0.001_c_double) <= tolerance, 'five steps of 0.001 taken')
+  end subroutine
+
+  subroutine check_coupling()
+    real(c_double) :: all_positions(3, 3), some(3, 2), field(3, 2), forces(3, 3), forces_with_field(3, 3)
+    real(c_double) :: k, bond_energy, external, total, potential, kinetic
+    integer(c_int64_t), parameter :: ids(2) = [2_c_int64_t, 0_c_int64_t]
+
+    call require(structmd_get_positions_f(sim, all_positions), 'structmd_get_positions_f')
+    call require(structmd_get_positions_of_f(sim, ids, some), 'structmd_get_positions_of_f')
+    call expect(all(some(:, 1) == all_positions(:, 3)) .and. all(some(:, 2) == all_positions(:, 1)), &
+                'structmd_get_positions_of_f gives x(3,m) in the order of the ids')
+    call expect(structmd_get_positions_of_f(sim, [1_c_int64_t, 1_c_int64_t], some) == STRUCTMD_ERR_ARGUMENT, &
+                'an id given twice is an argument error')
+    call require(structmd_get_forces_f(sim, forces), 'structmd_get_forces_f')
+    field = reshape([1, 2, 3, 4, 5, 6], [3, 2])*0.5_c_double
+    call require(structmd_set_external_forces_of_f(sim, ids, field), 'structmd_set_external_forces_of_f')
+    call require(structmd_get_forces_f(sim, forces_with_field), 'structmd_get_forces_f with a subset field')
+    call expect(all(abs(forces_with_field(:, 3) - forces(:, 3) - field(:, 1)) <= tolerance) .and. &
+                all(abs(forces_with_field(:, 1) - forces(:, 1) - field(:, 2)) <= tolerance) .and. &
+                all(forces_with_field(:, 2) == forces(:, 2)), 'the subset field acts on those ids only')
+    call require(structmd_set_external_energy(sim, 1.5_c_double), 'structmd_set_external_energy')
+    call require(structmd_get_energy_f(sim, 'external', external), 'structmd_get_energy_f(external)')
+    call require(structmd_get_energy_f(sim, 'potential', potential), 'structmd_get_energy_f(potential)')
+    call require(structmd_get_energy_f(sim, 'kinetic', kinetic), 'structmd_get_energy_f(kinetic)')
+    call require(structmd_get_energy_f(sim, 'total', total), 'structmd_get_energy_f(total)')
+    call expect(external == 1.5_c_double .and. abs(total - potential - kinetic - 1.5_c_double) <= tolerance, &
+                'the external energy is its own term and part of the total')
+    call require(structmd_clear_external_forces_f(sim), 'structmd_clear_external_forces_f')
+
+    call require(structmd_get_energy_f(sim, 'bonds', bond_energy), 'structmd_get_energy_f(bonds)')
+    call require(structmd_get_parameter_f(sim, 'topology.forceField.bonds.parameters.K', k), &
+                 'structmd_get_parameter_f')
+    call expect(k == 100.0_c_double, 'structmd_get_parameter_f reads the input''s K')
+    call require(structmd_set_parameter_f(sim, 'topology.forceField.bonds.parameters.K', 2*k), &
+                 'structmd_set_parameter_f')
+    call require(structmd_get_energy_f(sim, 'bonds', potential), 'structmd_get_energy_f(bonds) after the change')
+    call expect(abs(potential - 2*bond_energy) <= tolerance*abs(potential), 'doubling K doubles the bond energy')
+    call expect(structmd_set_parameter_f(sim, 'integrator.vv.parameters.noSuchKey', 1.0_c_double) == &
+                STRUCTMD_ERR_ARGUMENT, 'an unknown parameter is an argument error')
   end subroutine
 
 end program fortran_binding

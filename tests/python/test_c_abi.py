@@ -197,11 +197,14 @@ def valid_arguments(sim, prototype, n, good_input_file):
         "lengths": lambda: ffi.new("double[]", [systems.BASE_BOX] * 3),
         "xyz": lambda: ffi.new("double[]", np.ravel(systems.BASE_POSITIONS).tolist()),
         "v": lambda: ffi.new("double[]", np.ravel(systems.BASE_VELOCITIES).tolist()),
+        "ids": lambda: ffi.new("int64_t[]", list(range(max(1, n)))),
+        "energy": lambda: 0.5,
     }
     by_type = {
         "structmd_sim*": lambda: sim,
         "int64_t": lambda: n,
         "uint32_t": lambda: DEFINES["STRUCTMD_FORCES"],
+        "double": lambda: 1.0,
         "size_t": lambda: 4096,
         "double*": lambda: ffi.new("double[]", 64),
         "int64_t*": lambda: ffi.new("int64_t[]", 64),
@@ -421,6 +424,44 @@ def test_set_box_rejects_bad_lengths_and_cutoffs_over_half_the_box(loaded, lengt
     assert message(loaded) != ""
     assert_same_state(before, snapshot(loaded))
     assert_usable(loaded)
+
+
+SUBSET_FUNCTIONS = sorted(name for name in PROTOTYPES if name.endswith("_of"))
+
+
+@pytest.mark.parametrize("function", SUBSET_FUNCTIONS)
+def test_subsets_refuse_a_negative_count_and_take_zero_as_nothing(loaded, function):
+    before = snapshot(loaded)
+    values = ffi.new("double[]", [7.0] * 6)
+    ids = ffi.new("int64_t[]", [0, 1])
+    expect(loaded, getattr(lib, function)(loaded, ids, -1, values), ARGUMENT)
+    assert "m: expected a count >= 0" in message(loaded)
+    check(loaded, getattr(lib, function)(loaded, ffi.NULL, 0, ffi.NULL))
+    check(loaded, getattr(lib, function)(loaded, ids, 0, values))
+    assert ffi.unpack(values, 6) == [7.0] * 6
+    assert_same_state(before, snapshot(loaded))
+
+
+@pytest.mark.parametrize("function", SUBSET_FUNCTIONS)
+def test_subsets_refuse_null_arrays_naming_them(loaded, function):
+    values = ffi.new("double[]", [7.0] * 6)
+    ids = ffi.new("int64_t[]", [0, 1])
+    expect(loaded, getattr(lib, function)(loaded, ffi.NULL, 2, values), ARGUMENT)
+    assert "ids: NULL pointer" in message(loaded)
+    expect(loaded, getattr(lib, function)(loaded, ids, 2, ffi.NULL), ARGUMENT)
+    assert "NULL pointer" in message(loaded)
+
+
+def test_parameters_round_trip_through_the_c_abi(loaded):
+    value = ffi.new("double*")
+    check(loaded, lib.structmd_get_parameter(loaded, b"integrator.vv.parameters.timeStep", value))
+    assert value[0] == systems.BASE_TIME_STEP
+    check(loaded, lib.structmd_set_parameter(loaded, b"integrator.vv.parameters.timeStep", 0.001))
+    check(loaded, lib.structmd_get_parameter(loaded, b"integrator.vv.parameters.timeStep", value))
+    assert value[0] == 0.001
+    value[0] = 5.0
+    expect(loaded, lib.structmd_get_parameter(loaded, b"integrator.nothing.parameters.timeStep", value), ARGUMENT)
+    assert "integrator.nothing.parameters.timeStep" in message(loaded) and value[0] == 5.0
 
 
 # ---- state errors ------------------------------------------------------------------------------

@@ -415,12 +415,12 @@ def test_thermodynamic_columns_match_the_api(sim, tmp_path):
         volume = float(np.prod(sim.box))
         expected.append([sim.step_number, n, volume, sim.energy("bonds"), sim.energy("lj"), kinetic,
                          sim.energy("potential"), sim.energy("total"), 2.0 * kinetic / (3.0 * n * KB_KCAL_MOL),
-                         np.trace(w), (2.0 * kinetic + np.trace(w)) / (3.0 * volume)])
+                         np.trace(w), (2.0 * kinetic + np.trace(w)) / (3.0 * volume), sim.energy("external")])
         if sim.step_number < steps:
             sim.step(interval)
     header = output.read_text().splitlines()[0].split()
     assert header == ["#step", "particles", "volume", "bonds", "lj", "kinetic", "potential", "total",
-                      "temperature", "virial", "pressure"]
+                      "temperature", "virial", "pressure", "external"]
     rows = read_rows(output)
     expected = np.array(expected)
     assert rows.shape == expected.shape

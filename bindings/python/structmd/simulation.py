@@ -250,6 +250,98 @@ class Simulation:
         buffer = self._set_vectors(lib.structmd_set_external_forces, values, "external_forces")
         self._external_forces = buffer.copy() if _np is not None else buffer
 
+    def set_external_energy(self, energy):
+        """Gives the energy of the host's external field: the energy term "external", part of
+        "total" and of the thermodynamic outputs. Cleared with the external forces and by a load."""
+        self._call(lib.structmd_set_external_energy, float(energy))
+
+    # ---- run-time parameters -----------------------------------------------------------------
+
+    def set_parameter(self, path, value):
+        """Changes a parameter from the next force evaluation on. path: "global.ensemble.temperature",
+        "integrator.<name>.parameters.<key>" or "topology.forceField.<name>.parameters.<key>"."""
+        self._call(lib.structmd_set_parameter, path.encode(), float(value))
+
+    def get_parameter(self, path):
+        """A parameter as the input gives it, or as set_parameter last set it."""
+        value = c_double()
+        self._call(lib.structmd_get_parameter, path.encode(), byref(value))
+        return value.value
+
+    # ---- subsets by id -----------------------------------------------------------------------
+    # Only the m particles named move between the host and the backend. ids: a sequence of distinct
+    # particle ids (any order); values come back, and are given, as (m, 3) in the order of ids.
+
+    def _ids_argument(self, ids):
+        """(a C int64_t[m], m, the ids as a list or array)."""
+        if _np is not None:
+            array = _np.ascontiguousarray(ids, dtype=_np.int64).reshape(-1)
+            return array.ctypes.data_as(POINTER(c_int64)), array.size, array
+        values = [operator.index(i) for i in ids]
+        return (c_int64 * max(1, len(values)))(*values), len(values), values
+
+    def _get_subset(self, function, ids):
+        pointer, m, _ = self._ids_argument(ids)
+        if _np is not None:
+            out = _np.empty((m, 3), dtype=_np.float64)
+            self._call(function, pointer, m, out.ctypes.data_as(POINTER(c_double)))
+            return out
+        buffer = (c_double * max(1, 3 * m))()
+        self._call(function, pointer, m, buffer)
+        return [tuple(buffer[3 * k:3 * k + 3]) for k in range(m)]
+
+    def _set_subset(self, function, ids, values, name):
+        pointer, m, id_values = self._ids_argument(ids)
+        if _np is not None:
+            array = _np.ascontiguousarray(values, dtype=_np.float64)
+            if array.shape not in ((m, 3), (3 * m,)):
+                raise ArgumentError(STATUS["STRUCTMD_ERR_ARGUMENT"],
+                                    f"{name}: expected shape ({m}, 3) or ({3 * m},) for {m} ids, got {array.shape}")
+            self._call(function, pointer, m, array.ctypes.data_as(POINTER(c_double)))
+            return id_values, array.reshape(m, 3)
+        rows = [tuple(float(c) for c in row) for row in values]
+        if len(rows) != m or any(len(row) != 3 for row in rows):
+            raise ArgumentError(STATUS["STRUCTMD_ERR_ARGUMENT"], f"{name}: expected {m} rows of 3 values")
+        self._call(function, pointer, m, (c_double * max(1, 3 * m))(*[c for row in rows for c in row]))
+        return id_values, rows
+
+    def positions_of(self, ids):
+        """Positions (wrapped into the box) of the particles ids, shape (m, 3)."""
+        return self._get_subset(lib.structmd_get_positions_of, ids)
+
+    def velocities_of(self, ids):
+        return self._get_subset(lib.structmd_get_velocities_of, ids)
+
+    def forces_of(self, ids):
+        """The total force on each of the particles ids, external forces included, shape (m, 3)."""
+        return self._get_subset(lib.structmd_get_forces_of, ids)
+
+    def set_positions_of(self, ids, values):
+        """Sets the positions of the particles ids as the positions setter does for all."""
+        self._set_subset(lib.structmd_set_positions_of, ids, values, "positions")
+
+    def set_velocities_of(self, ids, values):
+        self._set_subset(lib.structmd_set_velocities_of, ids, values, "velocities")
+
+    def set_external_forces_of(self, ids, values):
+        """Sets the external force of the particles ids; the others keep theirs (zero without a field)."""
+        id_values, rows = self._set_subset(lib.structmd_set_external_forces_of, ids, values, "external_forces")
+        if len(id_values) == 0:
+            return
+        n = self.num_particles
+        if _np is not None:
+            field = _np.zeros(3 * n) if self._external_forces is None else self._external_forces
+            field = field.reshape(n, 3)
+            field[_np.asarray(id_values)] = rows
+            self._external_forces = field.reshape(-1)
+        else:
+            field = [0.0] * (3 * n) if self._external_forces is None else list(self._external_forces)
+            for i, row in zip(id_values, rows):
+                field[3 * i:3 * i + 3] = row
+            self._external_forces = field
+
+    # ---- per-particle scalars ----------------------------------------------------------------
+
     @property
     def particle_energies(self):
         """Potential energy per particle; the values sum to the potential energy."""
@@ -267,7 +359,8 @@ class Simulation:
     # ---- global quantities -------------------------------------------------------------------
 
     def energy(self, term="potential"):
-        """"potential", "kinetic", "total", or a topology.forceField entry's name (its share)."""
+        """"potential", "kinetic", "total", "external" (the host's, see set_external_energy), or a
+        topology.forceField entry's name (its share)."""
         value = c_double()
         self._call(lib.structmd_get_energy, term.encode(), byref(value))
         return value.value

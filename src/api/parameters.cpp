@@ -1,0 +1,149 @@
+// Run-time parameters: structmd_get_parameter and structmd_set_parameter, with paths in the input's
+// own terms. A change writes the value into the loaded document and reads the force field and the
+// integrators again from it, with the checks of a load; the engine then makes both again, keeping
+// the particles and the integrators' state. The reader stays the one judge of what a value may be.
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "api/handle.hpp"
+#include "engines/make_engine.hpp"
+#include "simulation/read_simulation.hpp"
+
+using namespace structmd;
+using namespace structmd::api;
+
+namespace {
+
+using Json = nlohmann::ordered_json;  // keeps the document's key order, which orders the entries
+
+const char* const kForms =
+    "run-time parameters are global.ensemble.temperature, integrator.<name>.parameters.<key> and "
+    "topology.forceField.<name>.parameters.<key>";
+
+std::string precise(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", x);
+    return text;
+}
+
+Error refused(const std::string& path, const std::string& why) {
+    return Error(STRUCTMD_ERR_ARGUMENT, "parameter " + path + ": " + why);
+}
+
+// The ensemble's temperature cell: global.ensemble is a table of one row.
+Json* ensemble_temperature(Json& doc, const std::string& path) {
+    if (!doc.contains("global") || !doc["global"].contains("ensemble"))
+        throw refused(path, "the input has no global.ensemble entry");
+    Json& ensemble = doc["global"]["ensemble"];
+    if (!ensemble.contains("labels") || !ensemble.contains("data") || ensemble["data"].empty())
+        throw refused(path, "global.ensemble has no table");
+    const Json& labels = ensemble["labels"];
+    for (size_t k = 0; k < labels.size(); ++k)
+        if (labels[k] == "temperature") return &ensemble["data"][0][k];
+    throw refused(path, "global.ensemble has no temperature column");
+}
+
+// The `parameters.<key>` value of entry <name> of a section ("integrator" or "topology.forceField").
+// create: a key the entry does not give is added (as null), for the reader to accept or refuse.
+Json* entry_parameter(Json& section, const std::string& sectionPath, const std::string& path,
+                      const std::string& rest, bool create) {
+    const std::string marker = ".parameters.";
+    const size_t at = rest.rfind(marker);
+    if (at == std::string::npos || at == 0 || at + marker.size() == rest.size())
+        throw refused(path, std::string("expected ") + sectionPath + ".<name>.parameters.<key> (" + kForms + ")");
+    const std::string name = rest.substr(0, at);
+    const std::string key = rest.substr(at + marker.size());
+    if (!section.is_object() || !section.contains(name) || !section[name].is_object())
+        throw refused(path, "no entry named '" + name + "' in " + sectionPath);
+    Json& entry = section[name];
+    if (entry.contains("type") && entry["type"].is_array() && !entry["type"].empty() && entry["type"][0] == "Schedule")
+        throw refused(path, "the schedule cannot change at run time");
+    if (!entry.contains("parameters") || !entry["parameters"].contains(key)) {
+        if (!create)
+            throw refused(path, "the input does not give it (the component's default applies, if it has one); "
+                                "structmd_set_parameter can set it");
+        return &entry["parameters"][key];
+    }
+    return &entry["parameters"][key];
+}
+
+// The value `path` names in the document, or ERR_ARGUMENT naming the path when it names nothing that
+// can change at run time.
+Json* locate(Json& doc, const std::string& path, bool create) {
+    const std::string integrator = "integrator.", forceField = "topology.forceField.";
+    Json* value = nullptr;
+    if (path == "global.ensemble.temperature") {
+        value = ensemble_temperature(doc, path);
+    } else if (path == "global.ensemble.box") {
+        throw refused(path, "the box changes with structmd_set_box");
+    } else if (path.rfind(integrator, 0) == 0) {
+        if (!doc.contains("integrator")) throw refused(path, "the input has no integrator section");
+        value = entry_parameter(doc["integrator"], "integrator", path, path.substr(integrator.size()), create);
+    } else if (path.rfind(forceField, 0) == 0) {
+        if (!doc.contains("topology") || !doc["topology"].contains("forceField"))
+            throw refused(path, "the input has no topology.forceField section");
+        value = entry_parameter(doc["topology"]["forceField"], "topology.forceField", path,
+                                path.substr(forceField.size()), create);
+    } else {
+        throw refused(path, std::string("not a run-time parameter (") + kForms + ")");
+    }
+    if (!value->is_null() && !value->is_number())
+        throw refused(path, "the input gives " + value->dump() + ", not a number: it cannot change at run time");
+    return value;
+}
+
+Json parse(const std::string& text) { return Json::parse(text, nullptr, true, /*ignore_comments=*/true); }
+
+}  // namespace
+
+extern "C" {
+
+structmd_status structmd_get_parameter(structmd_sim* sim, const char* path, double* value) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        loaded(s);
+        require_pointer(path, "path");
+        require_pointer(value, "value");
+        Json doc = parse(s.document);
+        *value = locate(doc, path, false)->get<double>();
+    });
+}
+
+structmd_status structmd_set_parameter(structmd_sim* sim, const char* path, double value) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        Simulation& simulation = loaded(s);
+        require_pointer(path, "path");
+        if (!std::isfinite(value)) throw refused(path, "value: not a finite number");
+        Json doc = parse(s.document);
+        Json* node = locate(doc, path, true);
+        // Whole numbers are written as integers, so integer parameters (a step, a multiplicity) read back.
+        if (value == std::nearbyint(value) && std::fabs(value) < 9007199254740992.0)
+            *node = static_cast<int64_t>(value);
+        else
+            *node = value;
+        // The box is the present one (structmd_set_box may have changed it): cutoffs are checked against it.
+        if (Json* cell = nullptr; doc["global"].contains("ensemble") && doc["global"]["ensemble"].contains("labels")) {
+            const Json& labels = doc["global"]["ensemble"]["labels"];
+            for (size_t k = 0; k < labels.size(); ++k)
+                if (labels[k] == "box") cell = &doc["global"]["ensemble"]["data"][0][k];
+            if (cell) *cell = simulation.box();
+        }
+        const std::string text = doc.dump();
+        RuntimeSpec spec;
+        try {
+            spec = read_runtime_spec(text, Logger(LogLevel::quiet, nullptr), s.components->reader());
+        } catch (const Error& e) {
+            if (e.status() != STRUCTMD_ERR_INPUT) throw;
+            throw refused(path, precise(value) + " refused by the input's rules: " + e.what());
+        }
+        try {
+            simulation.change_parameters(spec, *s.components);
+        } catch (const Error& e) {
+            if (e.status() != STRUCTMD_ERR_ARGUMENT) throw;
+            throw refused(path, precise(value) + ": " + e.what());
+        }
+        s.document = text;
+    });
+}
+
+}  // extern "C"
