@@ -34,6 +34,22 @@ struct Lanes {
         return {sum(w.xx), sum(w.xy), sum(w.xz), sum(w.yx), sum(w.yy), sum(w.yz), sum(w.zx), sum(w.zy), sum(w.zz)};
     }
 
+    // The sum of v over the lanes below this one, and (in total) over all the item's lanes.
+    SMD_HD SMD_INLINE int exclusive_sum(int v, int& total) const {
+#if defined(__CUDA_ARCH__)
+        int inclusive = v;
+        for (int offset = 1; offset < count; offset *= 2) {
+            const int below = __shfl_up_sync(mask, inclusive, offset, count);
+            if (lane >= offset) inclusive += below;
+        }
+        total = __shfl_sync(mask, inclusive, count - 1, count);
+        return inclusive - v;
+#else
+        total = v;
+        return 0;
+#endif
+    }
+
     // For a flag raised by some lanes: how many lanes below this one raised it, and (in total) how
     // many raised it, so each can write its entry after the others without atomics.
     SMD_HD SMD_INLINE int rank_among(bool flag, int& total) const {

@@ -57,10 +57,9 @@ public:
         const int cells = grid_.count();
         backend_.for_each(n, BinParticles<R>{pos.data(), grid_, box_, control_.data(), cellCount_.data(),
                                              cellOf_.data(), rankInCell_.data()});
-        if (chunks_ > 1)
-            backend_.for_each(chunks_, SumCellChunks{control_.data(), cellCount_.data(), chunkTotal_.data(),
-                                                     chunkCells_, cells});
-        backend_.for_each(chunks_, StartCells{control_.data(), cellCount_.data(), chunkTotal_.data(),
+        backend_.for_each_lanes(chunks_, SumCellChunks{control_.data(), cellCount_.data(), chunkTotal_.data(),
+                                                       chunkCells_, cells});
+        backend_.for_each_lanes(chunks_, StartCells{control_.data(), cellCount_.data(), chunkTotal_.data(),
                                               cellStart_.data(), chunkCells_, cells});
         backend_.for_each(n, PlaceParticles{control_.data(), cellOf_.data(), rankInCell_.data(), cellStart_.data(),
                                             order_.data()});
@@ -128,12 +127,9 @@ private:
         }
         particles_ = n;
         // About as many chunks as cells per chunk, so both passes of the scan of the cell counts
-        // are short; a small grid is one chunk, which saves the first pass and its launch (at ten
-        // thousand particles a launch is a few percent of a step).
+        // are short, and whole rounds of a warp's lanes per chunk.
         const int cells = grid_.count();
-        chunkCells_ = cells <= kOneChunkCells
-                          ? cells
-                          : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(cells))));
+        chunkCells_ = 32 * static_cast<int>(std::ceil(std::sqrt(static_cast<double>(cells)) / 32));
         chunks_ = (cells + chunkCells_ - 1) / chunkCells_;
         backend_.resize(list_, static_cast<size_t>(capacity_) * n);
         backend_.resize(count_, n);
@@ -158,7 +154,6 @@ private:
     CellGrid<R> grid_;
     int capacity_ = 0;
     int pendingCapacity_ = 0;  // raised by adapt(), applied by layout()
-    static constexpr int kOneChunkCells = 4096;
     int chunkCells_ = 1;       // cells per chunk of the scan of cell counts
     int chunks_ = 0;
     bool needsLayout_ = true;

@@ -61,26 +61,28 @@ struct BinParticles {
     }
 };
 
-// The members of each chunk of cells, summed.
+// The members of each chunk of cells, summed by the chunk's lanes.
 struct SumCellChunks {
     const int* control;
     const int* cellCount;
     int* chunkTotal;
     int chunkCells;
     int cells;
-    SMD_HD void operator()(int64_t chunk) const {
+    SMD_HD void operator()(int64_t chunk, Lanes lanes) const {
         if (!control[kRebuild]) return;
         const int first = static_cast<int>(chunk) * chunkCells;
         const int last = first + chunkCells < cells ? first + chunkCells : cells;
         int total = 0;
-        for (int c = first; c < last; ++c) total += cellCount[c];
-        chunkTotal[chunk] = total;
+        for (int c = first + lanes.lane; c < last; c += lanes.count) total += cellCount[c];
+        total = lanes.sum(total);
+        if (lanes.leader()) chunkTotal[chunk] = total;
     }
 };
 
-// The first slot of every cell of a chunk: the members of the chunks before it (summed here, one
-// pass over the chunk totals each) and of the cells before it in the chunk. The counts are cleared
-// for the next build on the way.
+// The first slot of every cell of a chunk: the members of the chunks before it and of the cells
+// before it in the chunk, the lanes taking the chunk's cells in rounds. Each memory access of the
+// lanes is independent of the others, so neither pass waits on one load after another. The
+// counts are cleared for the next build on the way.
 struct StartCells {
     int* control;
     int* cellCount;
@@ -88,18 +90,25 @@ struct StartCells {
     int* cellStart;
     int chunkCells;
     int cells;
-    SMD_HD void operator()(int64_t chunk) const {
+    SMD_HD void operator()(int64_t chunk, Lanes lanes) const {
         if (!control[kRebuild]) return;
         int start = 0;
-        for (int64_t before = 0; before < chunk; ++before) start += chunkTotal[before];
+        for (int64_t before = lanes.lane; before < chunk; before += lanes.count) start += chunkTotal[before];
+        start = lanes.sum(start);
         const int first = static_cast<int>(chunk) * chunkCells;
         const int last = first + chunkCells < cells ? first + chunkCells : cells;
-        for (int c = first; c < last; ++c) {
-            cellStart[c] = start;
-            start += cellCount[c];
-            cellCount[c] = 0;
+        for (int base = first; base < last; base += lanes.count) {
+            const int c = base + lanes.lane;
+            const int members = c < last ? cellCount[c] : 0;
+            int round = 0;
+            const int below = lanes.exclusive_sum(members, round);
+            if (c < last) {
+                cellStart[c] = start + below;
+                cellCount[c] = 0;
+            }
+            start += round;
         }
-        if (last == cells) {
+        if (last == cells && lanes.leader()) {
             cellStart[cells] = start;
             control[kBuilds] += 1;
         }
