@@ -435,8 +435,10 @@ STRUCTMD_API structmd_status structmd_set_box(structmd_sim* sim, const double le
 
 /**
  * Adds f to each particle's force at every force evaluation, during steps and in getters, until
- * replaced. This is how a coupled code applies its field. The array is copied. The engine cannot
- * know the energy of this field: the host may give it with structmd_set_external_energy; the field
+ * replaced. This is how a coupled code applies its field. The array is copied. Forces already
+ * evaluated at the present positions change by the field's difference in place, without a new
+ * force evaluation (so a field set every step costs no extra evaluation; the sum may differ from
+ * a fresh evaluation in the last bit). The engine cannot know the energy of this field: the host may give it with structmd_set_external_energy; the field
  * is part of no virial. A new load clears it.
  *
  * @param sim  the handle.

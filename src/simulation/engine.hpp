@@ -253,14 +253,16 @@ public:
     void set_external_forces(const double* f) override {
         backend_.activate();
         if (f == nullptr) {
+            if (!p_.externalForce.empty()) replace_external_forces(nullptr, nullptr, p_.count);
             p_.externalForce.release();
             externalEnergy_ = 0.0;  // no field, no field energy
-        } else {
-            std::vector<Real4<R>> values(p_.count);
-            for (int64_t i = 0; i < p_.count; ++i) values[i] = {R(f[3 * i]), R(f[3 * i + 1]), R(f[3 * i + 2]), R(0)};
-            backend_.upload(p_.externalForce, values.data(), values.size());
+            return;
         }
-        cache_.forces_changed();
+        std::vector<Real4<R>> values(p_.count);
+        for (int64_t i = 0; i < p_.count; ++i) values[i] = {R(f[3 * i]), R(f[3 * i + 1]), R(f[3 * i + 2]), R(0)};
+        create_external_forces();
+        backend_.upload(subsetVectors_, values.data(), values.size());
+        replace_external_forces(nullptr, subsetVectors_.data(), p_.count);
     }
 
     void get_positions_of(const int64_t* ids, int64_t m, double* xyz) override { gather_vectors(p_.pos, ids, m, xyz); }
@@ -300,12 +302,9 @@ public:
         std::vector<Real4<R>> values(m);
         for (int64_t k = 0; k < m; ++k) values[k] = {R(f[3 * k]), R(f[3 * k + 1]), R(f[3 * k + 2]), R(0)};
         upload_ids(ids, m);
-        if (p_.externalForce.empty()) {  // no field yet: zero for the particles not given
-            backend_.resize(p_.externalForce, p_.count);
-            backend_.fill(p_.externalForce, Real4<R>{R(0), R(0), R(0), R(0)});
-        }
-        scatter(values, p_.externalForce, subsetVectors_);
-        cache_.forces_changed();
+        create_external_forces();
+        backend_.upload(subsetVectors_, values.data(), values.size());
+        replace_external_forces(subsetIds_.data(), subsetVectors_.data(), m);
     }
     void set_external_energy(double energy) override { externalEnergy_ = energy; }
     double external_energy() const override { return externalEnergy_; }
@@ -494,6 +493,18 @@ private:
     void download_vectors(const typename B::template Buffer<Real4<R>>& buffer, double* out) {
         backend_.activate();
         unpack_vectors(download(buffer), out);
+    }
+
+    // The host's field, zero until it sets one.
+    void create_external_forces() {
+        if (!p_.externalForce.empty()) return;
+        backend_.resize(p_.externalForce, p_.count);
+        backend_.fill(p_.externalForce, Real4<R>{R(0), R(0), R(0), R(0)});
+    }
+    // Current forces follow the change in place; stale ones take the new field when evaluated.
+    void replace_external_forces(const int64_t* ids, const Real4<R>* values, int64_t m) {
+        Real4<R>* force = cache_.forces_current(p_.version) ? p_.force.data() : nullptr;
+        backend_.for_each(m, ReplaceExternalForces<R>{ids, values, p_.externalForce.data(), force});
     }
 
     // Subsets by id (m > 0): the ids and m packed entries cross between the host and the backend,

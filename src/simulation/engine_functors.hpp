@@ -68,6 +68,28 @@ struct ScatterById {
     SMD_HD void operator()(int64_t k) const { to[ids[k]] = from[k]; }
 };
 
+// Replaces the host's external force on some particles (ids, or every particle when null) with
+// values (zero when null). Where the forces are current (force not null) they change by the same
+// difference, so a host that sets its field every step costs no new force evaluation.
+template <class R>
+struct ReplaceExternalForces {
+    const int64_t* ids;
+    const Real4<R>* values;
+    Real4<R>* external;
+    Real4<R>* force;
+    SMD_HD void operator()(int64_t k) const {
+        const int64_t i = ids ? ids[k] : k;
+        const Real4<R> now = values ? values[k] : Real4<R>{R(0), R(0), R(0), R(0)};
+        if (force) {
+            Real4<R>& f = force[i];
+            f.x += now.x - external[i].x;
+            f.y += now.y - external[i].y;
+            f.z += now.z - external[i].z;
+        }
+        external[i] = now;
+    }
+};
+
 // Copies the dynamical state (positions, images, velocities) from one set of buffers to another:
 // the engine keeps the state a step call started from, to return to it after a blow-up.
 template <class R>

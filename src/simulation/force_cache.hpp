@@ -45,6 +45,8 @@ public:
     // The buffers were overwritten with something else (one term, the pair terms only).
     void energy_overwritten() { energy_ = kStale; }
     void virial_overwritten() { virial_ = kStale; }
+    // Whether the forces are those of these positions.
+    bool forces_current(int64_t version) const { return forces_ == version; }
     // The external forces changed: forces must be computed again at the same positions.
     void forces_changed() { forces_ = kStale; }
     void invalidate() { forces_ = energy_ = virial_ = kStale; }

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Smoke test of the two LJ benchmarks on the CPU backend: tiny systems, a few steps. Runs one
+"""Smoke test of the LJ and coupling benchmarks on the CPU backend: tiny systems, a few steps. Runs one
 program with --csv and checks that it exits 0 and that its CSV has the expected columns, one row per
 configuration asked, and sane values: positive finite rates, finite drift, and force errors that
 test the host reference of the accuracy benchmark. In double precision the engine's forces (Verlet
@@ -7,7 +7,11 @@ list) and the reference (exact cell search, double) differ by summation order al
 relative error is ~1e-15; the bound 1e-10 fails on any missed pair, wrong image or wrong formula.
 With forces in single precision the error is ~1e-7 (float rounding), hence 1e-9 .. 1e-3.
 
-usage: check_benchmark_smoke.py lj|accuracy PROGRAM"""
+The coupling benchmark's bytes per exchange must scale with the region, not the system: ids and
+three coordinates each way for m particles are 40-100 bytes per particle (depending on the
+precision's packing), far below the 24 N bytes of one whole array.
+
+usage: check_benchmark_smoke.py lj|accuracy|coupling PROGRAM"""
 import csv
 import math
 import os
@@ -19,6 +23,8 @@ LJ_COLUMNS = ["n", "backend", "precision", "steps_per_call", "steps_per_second",
               "list_builds_per_1000_steps", "device_memory_mib", "setup_seconds", "pair"]
 ACCURACY_COLUMNS = ["precision", "dt", "skin", "n", "backend", "steps", "steps_per_second", "seconds_per_tau",
                     "energy_drift", "relative_force_error", "list_builds_per_1000_steps"]
+COUPLING_COLUMNS = ["n", "backend", "precision", "region", "iterations", "step_us", "exchange_us", "extra_us",
+                    "extra_fraction", "bytes_per_exchange"]
 # Force-error bounds per precision (the forces' arithmetic), see the docstring.
 FORCE_ERROR_BOUNDS = {"double": (0.0, 1e-10), "mixed": (1e-9, 1e-3), "single": (1e-9, 1e-3)}
 
@@ -100,7 +106,22 @@ def check_accuracy(program):
             expect(math.isfinite(builds) and 0 <= builds <= 1000, f"list builds in {row}")
 
 
+def check_coupling(program):
+    rows = run(program, ["--n", "500", "--backend", "cpu", "--precision", "single", "--precision", "double",
+                         "--fraction", "0.02", "--seconds", "0.05", "--repeats", "2", "--warmup", "5"],
+               COUPLING_COLUMNS)
+    expect([row["precision"] for row in rows] == ["single", "double"], f"rows {rows}")
+    for row in rows:
+        expect(row["n"] == "500" and row["backend"] == "cpu" and row["region"] == "10", f"n, backend, region of {row}")
+        expect(int(row["iterations"]) >= 1, f"iterations in {row}")
+        step = positive_finite(row, "step_us")
+        exchange = positive_finite(row, "exchange_us")
+        expect(math.isclose(float(row["extra_us"]), exchange - step, rel_tol=1e-3, abs_tol=1e-3), f"extra_us in {row}")
+        moved = float(row["bytes_per_exchange"])
+        expect(40 * 10 <= moved <= 100 * 10, f"{moved} bytes per exchange of 10 particles in {row}")
+
+
 kind, program = sys.argv[1], os.path.abspath(sys.argv[2])
-{"lj": check_lj, "accuracy": check_accuracy}[kind](program)
+{"lj": check_lj, "accuracy": check_accuracy, "coupling": check_coupling}[kind](program)
 if problems:
     sys.exit("\n".join(problems))

@@ -156,6 +156,31 @@ def test_external_forces_of_a_subset_start_from_zero_and_compose_with_the_whole_
     np.testing.assert_allclose(sim.forces, internal, rtol=0, atol=1e-12)
 
 
+def test_changing_the_field_updates_current_forces_without_evaluating_them_again(handles):
+    # A coupling loop sets its field every step: the forces of the present positions change by the
+    # field's difference in place (structmd_set_external_forces[_of]), with no new force evaluation.
+    sim = handles(lattice())
+    internal = sim.forces
+    n = len(internal)
+    evaluations = sim.counters["force_evaluations"]
+    f = np.random.default_rng(4).standard_normal((len(IDS), 3))
+    sim.set_external_forces_of(IDS, f)
+    whole = np.zeros((n, 3))
+    whole[IDS] = f
+    np.testing.assert_allclose(sim.forces, internal + whole, rtol=0, atol=1e-12)
+    sim.external_forces = 2 * whole
+    np.testing.assert_allclose(sim.forces, internal + 2 * whole, rtol=0, atol=1e-12)
+    sim.external_forces = None
+    np.testing.assert_allclose(sim.forces, internal, rtol=0, atol=1e-12)
+    assert sim.counters["force_evaluations"] == evaluations
+    sim.set_external_forces_of(IDS, f)
+    sim.step(1)  # new positions: the next forces are evaluated afresh, field included
+    fresh = handles(lattice())
+    fresh.positions = sim.positions
+    fresh.external_forces = whole
+    np.testing.assert_allclose(sim.forces, fresh.forces, rtol=0, atol=1e-10)
+
+
 def test_external_forces_of_a_subset_act_during_steps(handles):
     a, b = handles(lattice()), handles(lattice())
     n = a.num_particles
