@@ -6,6 +6,7 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/logger.hpp"
@@ -28,6 +29,10 @@ struct structmd_sim {
     // The input the simulation was loaded from, with the changes of structmd_set_parameter: what
     // structmd_get_parameter reads and what a parameter change reads again.
     std::string document;
+    // By particle id: the subset call that last named it (subsets.cpp), so a repeated id is found in
+    // O(m) with no allocation after the first call.
+    std::vector<uint64_t> idSeenAt;
+    uint64_t subsetCalls = 0;
     std::string lastError;
 };
 

@@ -509,7 +509,12 @@ private:
 
     // Subsets by id (m > 0): the ids and m packed entries cross between the host and the backend,
     // and a backend loop gathers or scatters them.
-    void upload_ids(const int64_t* ids, int64_t m) { backend_.upload(subsetIds_, ids, static_cast<size_t>(m)); }
+    // A coupling loop names the same region call after call: those ids are on the backend already.
+    void upload_ids(const int64_t* ids, int64_t m) {
+        if (uploadedIds_.size() == static_cast<size_t>(m) && std::equal(ids, ids + m, uploadedIds_.begin())) return;
+        backend_.upload(subsetIds_, ids, static_cast<size_t>(m));
+        uploadedIds_.assign(ids, ids + m);
+    }
     void gather_vectors(const typename B::template Buffer<Real4<R>>& from, const int64_t* ids, int64_t m, double* out) {
         backend_.activate();
         upload_ids(ids, m);
@@ -549,6 +554,7 @@ private:
     // Staging of the subset getters and setters: ids and packed values, m entries each.
     typename B::template Buffer<int64_t> subsetIds_;
     typename B::template Buffer<Real4<R>> subsetVectors_;
+    std::vector<int64_t> uploadedIds_;  // what subsetIds_ holds
     typename B::template Buffer<Image> subsetImages_;
 };
 

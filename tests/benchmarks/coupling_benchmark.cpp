@@ -13,8 +13,9 @@
 // sets are a weak pull towards the box centre (1e-3 per unit of distance), small beside the liquid's
 // own, so both loops run the same dynamics. The iterations per loop are chosen so one step loop takes
 // about T seconds. Reported: microseconds per iteration of each loop (medians), the exchange's extra
-// cost in microseconds and as a fraction of the step, and the bytes moved between host and backend per
-// exchange iteration (structmd_get_counters), which scale with the region, not with N.
+// cost in microseconds and as a fraction of the step, and the bytes the exchange moves between host
+// and backend per iteration beyond those of the step itself (structmd_get_counters), which scale
+// with the region, not with N.
 //
 // CSV columns: n, backend, precision, region, iterations, step_us, exchange_us, extra_us,
 // extra_fraction, bytes_per_exchange.
@@ -132,10 +133,12 @@ Row measure(const Options& options, int64_t requested, const std::string& backen
     std::vector<double> step, coupled;
     double bytes = 0;
     for (int repeat = 0; repeat < options.repeats; ++repeat) {
+        const double start = transferred_bytes(sim);
         step.push_back(timed_loop(sim, iterations, nullptr) / iterations);
-        const double before = transferred_bytes(sim);
+        const double between = transferred_bytes(sim);
         coupled.push_back(timed_loop(sim, iterations, &exchange) / iterations);
-        bytes = (transferred_bytes(sim) - before) / iterations;
+        // What the exchange adds to a step's own transfers (the fault flag each call reads back).
+        bytes = ((transferred_bytes(sim) - between) - (between - start)) / iterations;
     }
     row.stepMicroseconds = 1e6 * median(step);
     row.exchangeMicroseconds = 1e6 * median(coupled);
