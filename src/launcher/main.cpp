@@ -2,10 +2,15 @@
 // host program would: create a handle, load the input, step along the schedule, report.
 //
 //   structmd run INPUT.json [--backend auto|cpu|cuda] [--precision single|mixed|double] [--threads N]
-//                [--plugin LIBRARY.so]... [--quiet]
+//                [--plugin LIBRARY.so]... [--steps N] [--thermo K] [--progress SECONDS] [--quiet]
 //   structmd --version
 //
-// Exit status: 0 on success, the structmd_status code (1..9) when the engine reports a failure,
+// Progress goes to standard error: a line redrawn in place on a terminal, one line every
+// --progress seconds (default 10) otherwise, as in a batch job's log. --thermo K prints the energies
+// every K steps on standard output. A run stops at the first failure (a blow-up included) with the
+// engine's message and a hint.
+//
+// Exit status: 0 on success, the structmd_status code (1..10) when the engine reports a failure,
 // CLI11's own codes for a malformed command line.
 #include <unistd.h>
 
@@ -14,6 +19,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +46,9 @@ struct RunOptions {
     std::string precision = "single";
     int threads = 0;  // 0: the engine's default (all threads OpenMP offers)
     std::vector<std::string> plugins;  // the handle's "plugins" option
+    int64_t steps = -1;                // -1: until the schedule ends
+    int64_t thermo = 0;                // 0: no energies on screen
+    double progressSeconds = 10.0;     // between progress lines without a terminal
     bool quiet = false;
 };
 
@@ -107,10 +116,12 @@ std::string format_duration(double seconds) {
 
 // One status line on a terminal, rewritten in place with '\r'; redraws are throttled so the
 // terminal never costs more than a few writes per second.
+// Without a terminal (a batch job's log), each update that is due is a line of its own instead.
 class ProgressLine {
 public:
-    ProgressLine(FILE* stream, int64_t first_step, int64_t final_step)
-        : stream_(stream), first_step_(first_step), final_step_(final_step) {}
+    ProgressLine(FILE* stream, int64_t first_step, int64_t final_step, bool terminal, double interval)
+        : stream_(stream), first_step_(first_step), final_step_(final_step), terminal_(terminal),
+          interval_(terminal ? kMinInterval : interval) {}
     // Moves past the line, also when a failure ends the run early, so later output starts clean.
     ~ProgressLine() {
         if (drawn_length_ > 0) std::fputc('\n', stream_);
@@ -120,7 +131,7 @@ public:
     ProgressLine& operator=(const ProgressLine&) = delete;
 
     void update(int64_t step, double elapsed, bool force) {
-        if (!force && elapsed - last_draw_ < kMinInterval) return;
+        if (!force && elapsed - last_draw_ < interval_) return;
         last_draw_ = elapsed;
 
         const double done = static_cast<double>(step - first_step_);
@@ -135,6 +146,11 @@ public:
                                           "%5.1f%%  step %lld/%lld  %.4g steps/s  ETA %s", percent,
                                           static_cast<long long>(step),
                                           static_cast<long long>(final_step_), rate, eta.c_str());
+        if (!terminal_) {
+            std::fprintf(stream_, "structmd: %s\n", line);
+            std::fflush(stream_);
+            return;
+        }
         // Pad over the previous, possibly longer, line, and leave the cursor at the line's start so
         // that a log line the engine writes meanwhile replaces the progress line instead of
         // trailing after it.
@@ -148,6 +164,8 @@ private:
     FILE* stream_;
     int64_t first_step_;
     int64_t final_step_;
+    bool terminal_;
+    double interval_;
     double last_draw_ = -1.0;
     int drawn_length_ = 0;
 };
@@ -161,25 +179,50 @@ std::string create_options(const RunOptions& options) {
     return json.dump();
 }
 
-// Steps until the schedule ends. With a progress line, steps go in chunks of about half a second;
-// without one, a single structmd_run call does it all.
-void run_schedule(structmd_sim* sim, int64_t first_step, int64_t final_step, bool show_progress) {
-    if (!show_progress || final_step < 0) {
-        check(structmd_run(sim), sim, "structmd_run");
-        return;
+double energy(structmd_sim* sim, const char* term) {
+    double value = 0.0;
+    check(structmd_get_energy(sim, term, &value), sim, "structmd_get_energy");
+    return value;
+}
+
+// The energies on standard output, a header first, one row per call.
+class ThermoTable {
+public:
+    void print(structmd_sim* sim, int64_t step) {
+        if (!headed_) {
+            std::printf("%12s  %16s  %16s  %16s\n", "step", "kinetic", "potential", "total");
+            headed_ = true;
+        }
+        const double kinetic = energy(sim, "kinetic"), potential = energy(sim, "potential");
+        std::printf("%12lld  %16.8g  %16.8g  %16.8g\n", static_cast<long long>(step), kinetic, potential,
+                    energy(sim, "total"));
+        std::fflush(stdout);
     }
-    ProgressLine progress(stderr, first_step, final_step);
+
+private:
+    bool headed_ = false;
+};
+
+// Steps from first_step to final_step in chunks of about half a second (shorter where a thermo row
+// is due), with progress and thermo rows between chunks. A failing step ends the run there.
+void run_steps(structmd_sim* sim, const RunOptions& options, int64_t first_step, int64_t final_step) {
+    std::optional<ProgressLine> progress;
+    if (!options.quiet)
+        progress.emplace(stderr, first_step, final_step, isatty(STDERR_FILENO) != 0, options.progressSeconds);
+    ThermoTable thermo;
     ChunkPlanner planner(0.5);
     const auto start = Clock::now();
     int64_t step = first_step;
-    progress.update(step, 0.0, true);
+    if (options.thermo > 0) thermo.print(sim, step);
     while (step < final_step) {
-        const int64_t chunk = std::min(planner.next(), final_step - step);
+        int64_t chunk = std::min(planner.next(), final_step - step);
+        if (options.thermo > 0) chunk = std::min(chunk, options.thermo - step % options.thermo);
         const auto chunk_start = Clock::now();
         check(structmd_step(sim, chunk), sim, "structmd_step");
         planner.record(chunk, seconds_since(chunk_start));
         step = current_step(sim);
-        progress.update(step, seconds_since(start), step >= final_step);
+        if (options.thermo > 0 && (step % options.thermo == 0 || step >= final_step)) thermo.print(sim, step);
+        if (progress) progress->update(step, seconds_since(start), step >= final_step);
     }
 }
 
@@ -207,17 +250,26 @@ int run_command(const RunOptions& options) {
 
         const EngineInfo info = read_info(sim);
         const int64_t first_step = current_step(sim);
-        const bool show_progress = !options.quiet && isatty(STDERR_FILENO);
+        const int64_t final_step = options.steps >= 0 ? first_step + options.steps : info.final_step;
 
         const auto start = Clock::now();
-        run_schedule(sim, first_step, info.final_step, show_progress);
+        if (final_step < 0 || (options.steps < 0 && options.thermo == 0 && options.quiet))
+            check(structmd_run(sim), sim, "structmd_run");
+        else
+            run_steps(sim, options, first_step, final_step);
         const double wall = seconds_since(start);
 
         if (!options.quiet) print_summary(options, info, current_step(sim) - first_step, wall);
         return 0;
     } catch (const Failure& failure) {
         std::fflush(stdout);
-        std::fprintf(stderr, "structmd: %s (status %d)\n", failure.what(), static_cast<int>(failure.status()));
+        std::fprintf(stderr, "structmd: stopped: %s (status %d)\n", failure.what(), static_cast<int>(failure.status()));
+        if (failure.status() == STRUCTMD_ERR_NUMERICAL)
+            std::fprintf(stderr,
+                         "structmd: the system blew up; the state before the failing steps was kept. Try a smaller "
+                         "timeStep, a minimisation first, or look for overlapping particles in the input.\n");
+        if (failure.status() == STRUCTMD_ERR_INPUT)
+            std::fprintf(stderr, "structmd: the input was not accepted; the message names the JSON path to fix.\n");
         return failure.status();
     } catch (const nlohmann::json::exception& error) {
         std::fprintf(stderr, "structmd: unexpected structmd_get_info output: %s\n", error.what());
@@ -236,7 +288,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
 
     RunOptions options;
-    CLI::App* run = app.add_subcommand("run", "Run a simulation until its integrator schedule ends");
+    CLI::App* run = app.add_subcommand("run", "Run a simulation until its integrator schedule ends (or --steps)");
     run->add_option("input", options.input, "Input document (UAMMD-structured JSON)")
         ->required()
         ->check(CLI::ExistingFile);
@@ -250,6 +302,15 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     run->add_option("--plugin", options.plugins,
                     "A plugin library whose components the input may use (docs/plugins.md); repeatable");
+    run->add_option("--steps", options.steps,
+                    "Steps to run instead of the schedule's; past its end the last integrator goes on")
+        ->check(CLI::NonNegativeNumber);
+    run->add_option("--thermo", options.thermo, "Print kinetic, potential and total energy every K steps")
+        ->check(CLI::PositiveNumber);
+    run->add_option("--progress", options.progressSeconds,
+                    "Seconds between progress lines when standard error is not a terminal")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     run->add_flag("--quiet", options.quiet,
                   "No progress line, no summary, engine log at warning level (errors still print)");
 
