@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "steps/chemical_elements.hpp"
 #include "steps/dcd_writer.hpp"
 #include "steps/trajectory_writer.hpp"
 
@@ -49,21 +50,34 @@ private:
     int64_t frames_ = 0;  // frames in the file before the one being written
 };
 
-// N, a comment line in the extended-XYZ style (step, time, box), then "type x y z" per particle.
+// N, a comment line in the extended-XYZ style (step, time, box), then "type x y z Z t" per
+// particle: the type's name, the atomic number when the name is an element (else 0, which ASE
+// reads as a dummy atom instead of failing on a coarse-grained name) and the type's row.
 class XyzWriter final : public TextTrajectoryWriter {
 public:
     using TextTrajectoryWriter::TextTrajectoryWriter;
 
 protected:
     void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        if (numbers_.size() != frame.typeNames.size()) {
+            numbers_.clear();
+            for (const std::string& name : frame.typeNames) numbers_.push_back(atomic_number(name));
+        }
         const size_t n = frame.types.size();
         const auto& L = frame.box;
-        std::fprintf(f, "%zu\nstep=%lld time=%.8g Lattice=\"%.8g 0 0 0 %.8g 0 0 0 %.8g\" Properties=species:S:1:pos:R:3\n",
+        std::fprintf(f,
+                     "%zu\nstep=%lld time=%.8g Lattice=\"%.8g 0 0 0 %.8g 0 0 0 %.8g\" "
+                     "Properties=species:S:1:pos:R:3:Z:I:1:type:I:1 pbc=\"T T T\"\n",
                      n, static_cast<long long>(frame.step), frame.time, L[0], L[1], L[2]);
-        for (size_t i = 0; i < n; ++i)
-            std::fprintf(f, "%s %.8g %.8g %.8g\n", frame.typeNames[frame.types[i]].c_str(), frame.positions[3 * i],
-                         frame.positions[3 * i + 1], frame.positions[3 * i + 2]);
+        for (size_t i = 0; i < n; ++i) {
+            const int32_t type = frame.types[i];
+            std::fprintf(f, "%s %.8g %.8g %.8g %d %d\n", frame.typeNames[type].c_str(), frame.positions[3 * i],
+                         frame.positions[3 * i + 1], frame.positions[3 * i + 2], numbers_[type], type);
+        }
     }
+
+private:
+    std::vector<int> numbers_;  // atomic number by type
 };
 
 // The superpunto format: a header with the half box lengths, then "x y z radius type" per particle.

@@ -16,7 +16,9 @@ BOX = np.array([8.0, 9.0, 10.0])  # unequal edges, so a swapped axis shows
 TIME_STEP = 0.005
 STEPS = 13                         # frames at 0, 3, 6, 9, 12, and the final state at 13
 INTERVAL = 3
-TYPES = [["A", 1.0, 0.5, 0.0], ["Polymer", 2.0, 0.7, 0.0]]  # a name longer than PDB's 4 columns
+# A name longer than PDB's 4 columns, and an element symbol among coarse-grained names.
+TYPES = [["A", 1.0, 0.5, 0.0], ["Polymer", 2.0, 0.7, 0.0], ["Na", 1.5, 0.6, 0.0]]
+ELEMENTS = {"Na": 11}  # of the names above
 FORMATS = ["xyz", "sp", "lammpstrj", "dcd", "pdb"]
 
 
@@ -38,7 +40,7 @@ def initial_state():
     on_minus_y = positions[:, 1] < -BOX[1] / 2 + 0.1
     velocities[on_plus_x, 0] = np.abs(velocities[on_plus_x, 0]) + 2.0
     velocities[on_minus_y, 1] = -np.abs(velocities[on_minus_y, 1]) - 2.0
-    types = [TYPES[i % 2][0] for i in range(len(positions))]
+    types = [TYPES[i % len(TYPES)][0] for i in range(len(positions))]
     return positions, velocities, types
 
 
@@ -115,8 +117,9 @@ def read_xyz(path):
         comment = lines[k + 1]
         fields = dict(item.split("=", 1) for item in comment.replace('"', "").split(" ") if "=" in item)
         atoms = [line.split() for line in lines[k + 2:k + 2 + n]]
-        frames.append({"step": int(fields["step"]), "comment": comment,
-                       "names": [a[0] for a in atoms], "xyz": np.array([[float(v) for v in a[1:]] for a in atoms])})
+        frames.append({"step": int(fields["step"]), "comment": comment, "names": [a[0] for a in atoms],
+                       "xyz": np.array([[float(v) for v in a[1:4]] for a in atoms]),
+                       "Z": [int(a[4]) for a in atoms], "type": [int(a[5]) for a in atoms]})
         k += 2 + n
     return frames
 
@@ -245,7 +248,11 @@ def test_xyz(sim, tmp_path, pbc):
     names = [TYPES[t][0] for t in sim.types]
     for frame, positions in zip(frames, expected):
         assert frame["names"] == names
+        assert frame["type"] == list(sim.types)
+        # Z: the atomic number of a name that is an element symbol, else 0 (ASE's dummy atom).
+        assert frame["Z"] == [ELEMENTS.get(name, 0) for name in names]
         assert f'Lattice="{BOX[0]:g} 0 0 0 {BOX[1]:g} 0 0 0 {BOX[2]:g}"' in frame["comment"]
+        assert "Properties=species:S:1:pos:R:3:Z:I:1:type:I:1" in frame["comment"]
         assert_positions(frame["xyz"], positions, pbc, atol=1e-6)
 
 
