@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Couples a Python "field code" to structmd: every 10 steps the host reads forces, energy and positions,
 and applies an external force that depends on the positions, a harmonic tether pulling each particle
-toward the box centre (f = -k x, the box spans [-L/2, L/2) so its centre is the origin).
+toward the box centre (f = -k x, the box spans [-L/2, L/2) so its centre is the origin). Then it
+tethers only a region of the particles, exchanging just their positions and forces by id every step,
+and changes the bonds' spring constant at run time (structmd_set_parameter).
 
 Usage: coupling.py [input.json]   (default: bead_spring.json next to this script if it exists, else a
 small bead-spring chain built here). It checks its own results and exits non-zero when they are wrong:
@@ -83,6 +85,32 @@ def check_field(sim, field, tolerance):
         raise AssertionError(f"forces minus internal forces differ from the field by {error:.3e}")
 
 
+def region_and_parameter(sim, tolerance):
+    """A tether on every other particle only, exchanged by id each step, then the bond constant
+    doubled at run time: the bond energy at fixed positions must double with it."""
+    failures = []
+    sim.external_forces = None
+    region = np.arange(0, sim.num_particles, 2)
+    for _ in range(STEPS_PER_ROUND):
+        sim.step(1)
+        sim.set_external_forces_of(region, tether(sim.positions_of(region)))
+    expected = np.zeros((sim.num_particles, 3))
+    expected[region] = tether(sim.positions[region])
+    try:
+        check_field(sim, expected, tolerance)
+    except AssertionError as error:
+        failures.append(f"region: {error}")
+    path = "topology.forceField.bonds.parameters.K"
+    k = sim.get_parameter(path)
+    before = sim.energy("bonds")
+    sim.set_parameter(path, 2 * k)
+    after = sim.energy("bonds")
+    print(f"bond constant {k:g} -> {sim.get_parameter(path):g}: bond energy {before:.6f} -> {after:.6f}")
+    if not math.isclose(after, 2 * before, rel_tol=tolerance, abs_tol=1e-12):
+        failures.append(f"bond energy {after} after doubling K, expected {2 * before}")
+    return failures
+
+
 def main(argv):
     source = argv[1] if len(argv) > 1 else default_input()
     with structmd.Simulation({"log": "warning"}) as sim:
@@ -107,6 +135,7 @@ def main(argv):
                 failures.append(f"round {round_index}: {error}")
             print(f"step {sim.step_number:5d}  potential {potential: .6f}  kinetic {kinetic: .6f}  "
                   f"max |f| {np.abs(forces).max():.4f}")
+        failures += region_and_parameter(sim, tolerance)
     for failure in failures:
         print("FAILED:", failure, file=sys.stderr)
     return 1 if failures else 0

@@ -85,7 +85,11 @@ std::vector<double> unwrapped_frame(structmd_sim* sim, const std::string& path) 
     std::getline(file, comment);
     std::getline(file, comment);
     std::vector<double> xyz(3 * count);
-    for (std::size_t i = 0; i < count; ++i) file >> type >> xyz[3 * i] >> xyz[3 * i + 1] >> xyz[3 * i + 2];
+    std::string rest;  // the atomic number and type columns
+    for (std::size_t i = 0; i < count; ++i) {
+        file >> type >> xyz[3 * i] >> xyz[3 * i + 1] >> xyz[3 * i + 2];
+        std::getline(file, rest);
+    }
     EXPECT_TRUE(file) << "could not read " << count << " positions from " << path;
     return xyz;
 }
