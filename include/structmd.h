@@ -66,6 +66,7 @@ extern "C" {
 #define STRUCTMD_ERR_MEMORY 7       /**< out of host or device memory */
 #define STRUCTMD_ERR_UNSUPPORTED 8  /**< a valid request this build or backend cannot do */
 #define STRUCTMD_ERR_INTERNAL 9     /**< a bug: please report */
+#define STRUCTMD_ERR_CALLBACK 10    /**< a host callback failed (message: the host's own, see structmd_set_callback_error) */
 /** @} */
 
 /** @name Compute flags
@@ -599,6 +600,124 @@ STRUCTMD_API structmd_status structmd_set_parameter(structmd_sim* sim, const cha
  *         input leaves to its default (the message says so); STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_get_parameter(structmd_sim* sim, const char* path, double* value);
+
+/** @} */
+
+/** @name Force callbacks
+ *  The host's own force term, evaluated by the host inside the engine's loop: at every force
+ *  evaluation whose positions the callback has not yet seen (once per step of an integrator, in
+ *  getters after positions changed, in structmd_compute), the engine calls it, and what it adds
+ *  becomes part of the forces, of the energy term "callback" (part of "potential" and "total" for
+ *  the whole system, of no batch and not of the per-particle energies) and of the virial. A host
+ *  callback and a device callback may be set at once; both are called. They are called on the
+ *  thread that made the structmd call, never concurrently, and must not call structmd functions on
+ *  the same handle other than structmd_set_callback_error. A failure (a non-zero return, a C++
+ *  exception, a non-finite value) stops the call with STRUCTMD_ERR_CALLBACK; inside structmd_step the
+ *  state goes back to where the call started, as for a blow-up. A new load clears both callbacks;
+ *  checkpoints do not hold them.
+ *  @{ */
+
+/**
+ * A host force callback. Every array is the engine's, valid during the call only.
+ *
+ * @param positions  double[3n], positions wrapped into the box, ascending particle id (length).
+ * @param forces     double[3n], zero on entry: the forces to add (energy/length).
+ * @param n          the number of particles.
+ * @param energy     zero on entry: the energy of these forces (energy).
+ * @param virial     zero on entry: their virial, sum_k r_k (x) F_k in the convention of
+ *                   structmd_get_virial, row-major (energy); leave it zero if unknown.
+ * @param step       the step the positions belong to (the step being completed, inside a step).
+ * @param user_data  the pointer given to structmd_set_force_callback.
+ * @return 0 on success; anything else stops the engine's call with STRUCTMD_ERR_CALLBACK.
+ */
+typedef int32_t (*structmd_force_callback)(const double* positions, double* forces, int64_t n, double* energy,
+                                           double virial[9], int64_t step, void* user_data);
+
+/**
+ * A device force callback: the engine's own arrays, without a copy. On the CUDA backend they are
+ * device pointers and stream is the cudaStream_t of the engine's work (launch on it, or
+ * synchronise with it); on the CPU backend they are host pointers and stream is NULL.
+ *
+ * @param positions  n records of four reals {x, y, z, w} (w is the engine's, do not read it):
+ *                   positions wrapped into the box, ascending particle id.
+ * @param forces     n records of four reals {fx, fy, fz, w}, zero on entry: the forces to add to x,
+ *                   y, z (leave w).
+ * @param n          the number of particles.
+ * @param real_size  the size of one real in bytes: 4 in single precision, 8 in mixed and double.
+ * @param energy     host memory, zero on entry: the energy of these forces.
+ * @param virial     host memory, zero on entry: their virial, as for structmd_force_callback.
+ * @param step       the step the positions belong to.
+ * @param stream     the engine's cudaStream_t on CUDA, NULL on the CPU backend.
+ * @param user_data  the pointer given to structmd_set_device_force_callback.
+ * @return 0 on success; anything else stops the engine's call with STRUCTMD_ERR_CALLBACK.
+ */
+typedef int32_t (*structmd_device_force_callback)(const void* positions, void* forces, int64_t n,
+                                                  int32_t real_size, double* energy, double virial[9], int64_t step,
+                                                  void* stream, void* user_data);
+
+/**
+ * Sets, replaces or clears (NULL) the host force callback. Forces, energies and virial evaluated
+ * before are stale from now on. Needs a load.
+ *
+ * @param sim        the handle.
+ * @param callback   the callback, or NULL to clear it.
+ * @param user_data  passed to every call of callback, untouched; may be NULL.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load.
+ */
+STRUCTMD_API structmd_status structmd_set_force_callback(structmd_sim* sim, structmd_force_callback callback,
+                                                         void* user_data);
+
+/**
+ * Sets, replaces or clears (NULL) the device force callback, as structmd_set_force_callback.
+ *
+ * @param sim        the handle.
+ * @param callback   the callback, or NULL to clear it.
+ * @param user_data  passed to every call of callback, untouched; may be NULL.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load.
+ */
+STRUCTMD_API structmd_status structmd_set_device_force_callback(structmd_sim* sim,
+                                                                structmd_device_force_callback callback,
+                                                                void* user_data);
+
+/**
+ * Called by a callback before it returns non-zero: message becomes the text of
+ * structmd_last_error for the failed call (after the step and the callback's return value). Outside
+ * a callback it has no effect.
+ *
+ * @param sim      the handle the callback was called for.
+ * @param message  the reason, copied.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for message == NULL.
+ */
+STRUCTMD_API structmd_status structmd_set_callback_error(structmd_sim* sim, const char* message);
+
+/** @} */
+
+/** @name Zero-copy views
+ *  The engine's own arrays as DLPack tensors (dlpack.h, DLPack 0.6 or later), for CuPy, PyTorch,
+ *  JAX or NumPy to read without a copy.
+ *  @{ */
+
+/** DLPack's DLManagedTensor, declared by dlpack.h; the header does not need it. */
+typedef struct DLManagedTensor structmd_dlpack_tensor;
+
+/**
+ * A view of "positions" (wrapped into the box), "velocities" or "forces" (evaluated first when
+ * stale): a DLPack tensor of shape (n, 3), strides (4, 1) in elements, float32 in single precision
+ * and float64 in mixed and double, rows in ascending particle id, on the GPU (kDLCUDA, the handle's
+ * device) or in host memory (kDLCPU). The engine's work is complete when the call returns.
+ * The data are valid until the next call on the handle that steps, sets anything, loads, changes a
+ * parameter or destroys it; reading them after that reads freed or changed memory. The view is
+ * read-only: writing through it is undefined. Release it with its deleter (a DLPack consumer does
+ * so); the deleter does not touch the handle and may be called after it is destroyed.
+ *
+ * @param sim        the handle.
+ * @param quantity   "positions", "velocities" or "forces".
+ * @param[out] view  the new tensor.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for a NULL pointer or an unknown quantity (the message
+ *         lists the known ones); STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_NUMERICAL when the
+ *         forces are not finite.
+ */
+STRUCTMD_API structmd_status structmd_get_view(structmd_sim* sim, const char* quantity, structmd_dlpack_tensor** view);
 
 /** @} */
 

@@ -3,7 +3,7 @@
 # when nvcc is already installed; without it the build is CPU-only.
 set -euo pipefail
 
-packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev googletest
+packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev libdlpack-dev googletest
           lammps python3 python3-pip
           doxygen  # the API reference rendered from include/structmd.h: test api_reference
           clang libclang-rt-dev libomp-dev)  # clang, libFuzzer and clang's OpenMP: scripts/fuzz.sh

@@ -13,7 +13,8 @@
 !> tests/api/test_fortran_binding.py checks them against the header, kind by kind.
 module structmd
   use, intrinsic :: iso_c_binding, only: c_ptr, c_associated, c_f_pointer, c_char, &
-                                         c_null_char, c_int, c_int32_t, c_int64_t, c_size_t, c_double
+                                         c_null_char, c_int, c_int32_t, c_int64_t, c_size_t, c_double, &
+                                         c_funptr
   implicit none
   private
 
@@ -31,6 +32,7 @@ module structmd
   integer(c_int32_t), parameter, public :: STRUCTMD_ERR_MEMORY = 7
   integer(c_int32_t), parameter, public :: STRUCTMD_ERR_UNSUPPORTED = 8
   integer(c_int32_t), parameter, public :: STRUCTMD_ERR_INTERNAL = 9
+  integer(c_int32_t), parameter, public :: STRUCTMD_ERR_CALLBACK = 10
 
   ! Compute flags for structmd_compute (uint32_t in C; the bits are the same), combined with ior.
   integer(c_int32_t), parameter, public :: STRUCTMD_FORCES = 1
@@ -49,7 +51,8 @@ module structmd
             structmd_load_plugin, structmd_set_external_energy, structmd_get_positions_of, &
             structmd_get_velocities_of, structmd_get_forces_of, structmd_set_positions_of, &
             structmd_set_velocities_of, structmd_set_external_forces_of, structmd_set_parameter, &
-            structmd_get_parameter
+            structmd_get_parameter, structmd_set_force_callback, structmd_set_device_force_callback, &
+            structmd_set_callback_error, structmd_get_view, structmd_force_callback
 
   public :: structmd_version_f, structmd_last_error_f, structmd_create_f, structmd_load_file_f, &
             structmd_load_string_f, structmd_get_energy_f, structmd_get_ids_f, &
@@ -61,6 +64,22 @@ module structmd
             structmd_get_positions_of_f, structmd_get_velocities_of_f, structmd_get_forces_of_f, &
             structmd_set_positions_of_f, structmd_set_velocities_of_f, structmd_set_external_forces_of_f, &
             structmd_set_parameter_f, structmd_get_parameter_f
+
+  ! The shape of a host force callback (structmd_force_callback in C): pass c_funloc of a bind(C)
+  ! function of this interface to structmd_set_force_callback.
+  abstract interface
+    function structmd_force_callback(positions, forces, n, energy, virial, step, user_data) bind(C) result(status)
+      import :: c_double, c_int64_t, c_int32_t, c_ptr
+      integer(c_int64_t), value :: n
+      real(c_double), intent(in) :: positions(3, n)
+      real(c_double), intent(inout) :: forces(3, n)
+      real(c_double), intent(inout) :: energy
+      real(c_double), intent(inout) :: virial(9)
+      integer(c_int64_t), value :: step
+      type(c_ptr), value :: user_data
+      integer(c_int32_t) :: status
+    end function
+  end interface
 
   interface
     function structmd_abi_version() bind(C, name="structmd_abi_version") result(version)
@@ -285,6 +304,39 @@ module structmd
       type(c_ptr), value :: sim
       character(kind=c_char), intent(in) :: path(*)
       real(c_double), intent(out) :: value
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_set_force_callback(sim, callback, user_data) bind(C, name="structmd_set_force_callback") &
+        result(status)
+      import :: c_ptr, c_funptr, c_int32_t
+      type(c_ptr), value :: sim
+      type(c_funptr), value :: callback
+      type(c_ptr), value :: user_data
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_set_device_force_callback(sim, callback, user_data) &
+        bind(C, name="structmd_set_device_force_callback") result(status)
+      import :: c_ptr, c_funptr, c_int32_t
+      type(c_ptr), value :: sim
+      type(c_funptr), value :: callback
+      type(c_ptr), value :: user_data
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_set_callback_error(sim, message) bind(C, name="structmd_set_callback_error") result(status)
+      import :: c_ptr, c_char, c_int32_t
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: message(*)
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_get_view(sim, quantity, view) bind(C, name="structmd_get_view") result(status)
+      import :: c_ptr, c_char, c_int32_t
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: quantity(*)
+      type(c_ptr), intent(out) :: view
       integer(c_int32_t) :: status
     end function
 

@@ -34,8 +34,15 @@ EnergyRequest parse_energy_request(const std::string& request, const std::vector
         parsed.host = true;
         return parsed;
     }
+    if (t == "callback" && !entry) {
+        if (parsed.batch >= 0)
+            throw Error(STRUCTMD_ERR_ARGUMENT, "energy term '" + request +
+                                                   "': the force callbacks' energy belongs to no batch (ask for 'callback')");
+        parsed.callback = true;
+        return parsed;
+    }
     if (t == "potential" || t == "kinetic" || t == "total" || entry) return parsed;
-    std::string known = "potential, kinetic, total, external";
+    std::string known = "potential, kinetic, total, external, callback";
     for (const std::string& name : entries) known += ", " + name;
     throw Error(STRUCTMD_ERR_ARGUMENT,
                 "energy term '" + request + "' does not exist (terms: " + known + ", each optionally followed by @batch:K)");

@@ -1,8 +1,10 @@
 #pragma once
 // The energy terms structmd_get_energy takes: "potential", "kinetic", "total", "external" (the
-// host's field, structmd_set_external_energy) or a forceField entry name, each optionally followed
+// host's field, structmd_set_external_energy), "callback" (the host's force callbacks) or a
+// forceField entry name, each optionally followed
 // by "@batch:K" for the share of the particles of batch K. An entry named "external" keeps its name:
-// the host's energy then has no term of its own (it is still part of "total").
+// the host's energy then has no term of its own (it is still part of "total"); so does one named
+// "callback".
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@ struct EnergyRequest {
     std::string term;
     int batch = -1;  // -1: every particle
     bool host = false;  // term is the host's external energy (no entry is called "external")
+    bool callback = false;  // term is the force callbacks' energy (no entry is called "callback")
 };
 
 // batchIds: the batchId of each particle. With one batch, "@batch:K" for that batch is everything.

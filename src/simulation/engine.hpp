@@ -19,6 +19,7 @@
 #include "forcefield/component_set.hpp"
 #include "forcefield/make_interactors.hpp"
 #include "integrators/make_integrator.hpp"
+#include "simulation/callback_term.hpp"
 #include "simulation/checkpoint_file.hpp"
 #include "simulation/energy_terms.hpp"
 #include "simulation/engine_functors.hpp"
@@ -123,6 +124,11 @@ public:
                 backend_.for_each(1, AdvanceClock{p_.clock.data(), integrator.time_advance()});
                 p_.timeline.commit(integrator.time_advance());
             }
+        } catch (const Error& e) {
+            backend_.end_steps();
+            // A host callback that fails stops the call as a blow-up does: back to its start.
+            if (e.status() == STRUCTMD_ERR_CALLBACK) roll_back();
+            throw;
         } catch (...) {
             backend_.end_steps();
             throw;
@@ -135,7 +141,7 @@ public:
 
     void compute(unsigned flags) override {
         backend_.activate();
-        cache_.evaluate(flags, backend_, p_, forceField_, evaluations_);
+        cache_.evaluate(flags, backend_, p_, forceField_, callbacks_, evaluations_);
     }
 
     void get_positions(double* xyz) override { download_vectors(p_.pos, xyz); }
@@ -183,6 +189,10 @@ public:
         backend_.activate();
         const EnergyRequest r = parse_energy_request(request, batchId_, forceField_.names());
         if (r.host) return externalEnergy_;
+        if (r.callback) {
+            callbacks_.evaluate(backend_, p_);
+            return callbacks_.empty() ? 0.0 : callbacks_.energy();
+        }
         if (r.term == "kinetic") return kinetic_energy(r.batch);
         if (r.term == "potential") return potential_energy(r.batch);
         // The host's field belongs to no batch: it is part of the whole system's total only.
@@ -202,7 +212,10 @@ public:
     std::array<double, 9> virial() override {
         compute(kVirial);
         const Tensor3<double> w = backend_.reduce(p_.count, SumVirial<R>{p_.virial.data()}, zero_tensor<double>());
-        return {w.xx, w.xy, w.xz, w.yx, w.yy, w.yz, w.zx, w.zy, w.zz};
+        std::array<double, 9> total{w.xx, w.xy, w.xz, w.yx, w.yy, w.yz, w.zx, w.zy, w.zz};
+        if (!callbacks_.empty())
+            for (int k = 0; k < 9; ++k) total[k] += callbacks_.virial()[k];
+        return total;
     }
 
     void get_pair_virials(double* w) override {
@@ -307,6 +320,34 @@ public:
         replace_external_forces(subsetIds_.data(), subsetVectors_.data(), m);
     }
     void set_external_energy(double energy) override { externalEnergy_ = energy; }
+
+    void set_force_callback(HostForceCallback callback) override {
+        callbacks_.set_host(std::move(callback));
+        cache_.invalidate();
+    }
+    void set_device_force_callback(DeviceForceCallback callback) override {
+        callbacks_.set_device(std::move(callback));
+        cache_.invalidate();
+    }
+
+    ArrayView view(const std::string& quantity) override {
+        backend_.activate();
+        const Real4<R>* data = nullptr;
+        if (quantity == "positions") {
+            data = p_.pos.data();
+        } else if (quantity == "velocities") {
+            data = p_.vel.data();
+        } else if (quantity == "forces") {
+            compute(kForces);
+            require_finite_forces();
+            data = p_.force.data();
+        } else {
+            throw Error(STRUCTMD_ERR_ARGUMENT,
+                        "quantity: '" + quantity + "' has no view (known: positions, velocities, forces)");
+        }
+        backend_.synchronize();
+        return {data, p_.count, static_cast<int>(sizeof(R)), backend_.device_ordinal()};
+    }
     double external_energy() const override { return externalEnergy_; }
 
     void change_parameters(const RuntimeSpec& spec, const ForceFieldComponents& components) override {
@@ -422,7 +463,7 @@ private:
     }
 
     // ForceSource
-    void update_forces() override { cache_.evaluate(kForces, backend_, p_, forceField_, evaluations_); }
+    void update_forces() override { cache_.evaluate(kForces, backend_, p_, forceField_, callbacks_, evaluations_); }
     double potential_energy() override { return potential_energy(-1); }
     void positions_moved(double elapsed) override {
         ++p_.version;
@@ -434,12 +475,25 @@ private:
     void check_fault() {
         const unsigned long long word = backend_.read(p_.fault, 0);
         if (word == kNoFault) return;
-        backend_.fill(p_.fault, kNoFault);
         const int64_t failedStep = current_step();
+        roll_back();
+        throw Error(STRUCTMD_ERR_NUMERICAL, describe_fault(word, std::sqrt(p_.maxMove2), failedStep, current_step()));
+    }
+    // The state the step call started from, with any fault the device recorded meanwhile forgotten.
+    void roll_back() {
+        backend_.fill(p_.fault, kNoFault);
         activeStage_ = rollback_.restore(backend_, p_, integrators_);
         set_clock(p_.timeline.step(), p_.timeline.time());
         positions_changed();
-        throw Error(STRUCTMD_ERR_NUMERICAL, describe_fault(word, std::sqrt(p_.maxMove2), failedStep, current_step()));
+    }
+
+    // On the backend, so that a view of the forces stays a view.
+    void require_finite_forces() {
+        const double bad = backend_.reduce(p_.count, NonFiniteForce<R>{p_.force.data()}, 0.0);
+        if (bad > 0)
+            throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(current_step()) + ": the forces of " +
+                                                    std::to_string(static_cast<int64_t>(bad)) +
+                                                    " particles are not finite (overlapping particles?)");
     }
 
     // batch < 0: all particles.
@@ -447,9 +501,10 @@ private:
         if (batch < 0) return backend_.reduce(p_.count, SumEnergy<R>{p_.energy.data()}, 0.0);
         return backend_.reduce(p_.count, InBatch<SumEnergy<R>>{{p_.energy.data()}, p_.batch.data(), batch}, 0.0);
     }
+    // The callbacks' energy belongs to no batch: it is part of the whole system's potential only.
     double potential_energy(int batch) {
-        cache_.evaluate(kEnergy, backend_, p_, forceField_, evaluations_);
-        return sum_energy(batch);
+        cache_.evaluate(kEnergy, backend_, p_, forceField_, callbacks_, evaluations_);
+        return sum_energy(batch) + (batch < 0 && !callbacks_.empty() ? callbacks_.energy() : 0.0);
     }
     double kinetic_energy(int batch) {
         if (batch < 0) return backend_.reduce(p_.count, KineticEnergy<R>{p_.vel.data()}, 0.0);
@@ -551,6 +606,7 @@ private:
     ForceFieldContext context_;  // what the force field is made with, kept to make it again
     int64_t retiredListBuilds_ = 0;  // builds of the lists of force fields replaced by change_parameters
     double externalEnergy_ = 0.0;  // the host's field energy (structmd_set_external_energy)
+    CallbackTerm<B, R> callbacks_;  // the host's force callbacks
     // Staging of the subset getters and setters: ids and packed values, m entries each.
     typename B::template Buffer<int64_t> subsetIds_;
     typename B::template Buffer<Real4<R>> subsetVectors_;

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "core/vec.hpp"
+#include "state/fault.hpp"
 
 namespace structmd {
 
@@ -14,6 +15,13 @@ struct InitForces {
     SMD_HD void operator()(int64_t i) const {
         force[i] = external ? external[i] : Real4<R>{R(0), R(0), R(0), R(0)};
     }
+};
+
+// 1 for a particle whose force is not finite: summed, it checks the forces without copying them.
+template <class R>
+struct NonFiniteForce {
+    const Real4<R>* force;
+    SMD_HD double operator()(int64_t i) const { return finite(force[i]) ? 0.0 : 1.0; }
 };
 
 template <class R>

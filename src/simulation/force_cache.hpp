@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "forcefield/force_field.hpp"
+#include "simulation/callback_term.hpp"
 #include "simulation/engine_functors.hpp"
 #include "simulation/simulation.hpp"
 
@@ -14,9 +15,10 @@ namespace structmd {
 template <class B, class R>
 class ForceCache {
 public:
-    // flags: ComputeFlags. Counts each evaluated quantity in `counters`.
+    // flags: ComputeFlags. Counts each evaluated quantity in `counters`. The host's callbacks are
+    // part of the pass: called first (so a failing one leaves everything stale), their forces added.
     void evaluate(unsigned flags, const B& backend, Particles<B, R>& p, ForceField<B, R>& forceField,
-                  Counters& counters) {
+                  CallbackTerm<B, R>& callbacks, Counters& counters) {
         ForceOutputs<R> out;
         if ((flags & kForces) && forces_ != p.version) {
             backend.for_each(p.count, InitForces<R>{p.force.data(), p.externalForce.empty() ? nullptr
@@ -34,8 +36,10 @@ public:
             out.virial = p.virial.data();
         }
         if (!out.force && !out.energy && !out.virial) return;
+        callbacks.evaluate(backend, p);
         forceField.prepare(p);
         forceField.compute_all(p, out);
+        if (out.force && !callbacks.empty()) callbacks.add_forces(backend, p);
         count(out, counters);
         if (out.force) forces_ = p.version;
         if (out.energy) energy_ = p.version;

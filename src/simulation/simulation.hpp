@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/thermodynamics.hpp"
+#include "simulation/force_callbacks.hpp"
 
 namespace structmd {
 
@@ -88,6 +89,23 @@ public:
     // part of "total" and of the thermodynamic outputs.
     virtual void set_external_energy(double energy) = 0;
     virtual double external_energy() const = 0;
+
+    // The host's force callbacks (an empty function clears one): called once per configuration at
+    // force evaluations; their forces are added, their energy is the term "callback" (part of the
+    // whole system's "potential"), their virial part of virial(). A callback that throws (ERR_CALLBACK)
+    // inside advance() rolls the state back to the call's start.
+    virtual void set_force_callback(HostForceCallback callback) = 0;
+    virtual void set_device_force_callback(DeviceForceCallback callback) = 0;
+
+    // The backend's own array of a quantity ("positions", "velocities", "forces"), n Real4 records in
+    // id order, with the backend's work finished. Throws ERR_ARGUMENT for another name.
+    struct ArrayView {
+        const void* data;
+        int64_t n;
+        int realSize;  // bytes of one real
+        int device;    // the CUDA device, or -1 for host memory
+    };
+    virtual ArrayView view(const std::string& quantity) = 0;
 
     // Makes the force field and the integrators again from `spec` (the loaded input read again with
     // a parameter changed), keeping the particles, step, time, external forces and the integrators'

@@ -15,6 +15,8 @@ problems() returns one line per mismatch, naming the function and what differs.
 import re
 from dataclasses import dataclass
 
+from structmd_header import CALLBACK_TYPES
+
 # The kind of each C value type in iso_c_binding. Fortran has no unsigned integers: uint32_t travels
 # as c_int32_t, which has its size and passes the flag bits unchanged.
 KIND_OF_C_TYPE = {
@@ -28,6 +30,7 @@ KIND_OF_C_TYPE = {
     "char": ("character", "c_char"),
 }
 C_PTR = ("type", "c_ptr")
+C_FUNPTR = ("type", "c_funptr")  # a callback, passed by value: c_funloc(f) or c_null_funptr
 
 # Fortran names are not case sensitive, so the macro STRUCTMD_ABI_VERSION would clash with the
 # function structmd_abi_version; the module names it differently.
@@ -160,7 +163,7 @@ def _argument_problem(c_type, dummy):
     if dummy.type is None:
         return "the dummy argument is not declared"
     if c_type.pointers == 0:
-        wanted = KIND_OF_C_TYPE.get(c_type.base)
+        wanted = C_FUNPTR if c_type.base in CALLBACK_TYPES else KIND_OF_C_TYPE.get(c_type.base)
         if dummy.type != wanted or not dummy.value or dummy.dimensions is not None or dummy.optional:
             return f"C passes {c_type} by value: expected {wanted[0]}({wanted[1]}), value"
         return None
@@ -168,8 +171,9 @@ def _argument_problem(c_type, dummy):
         return None  # the address itself, c_loc(x) or c_null_ptr
     if dummy.value:
         return f"C passes {c_type}, a pointer: a value dummy must be type(c_ptr)"
-    pointee = C_PTR if c_type.pointers == 2 or c_type.base == "structmd_sim" else KIND_OF_C_TYPE.get(c_type.base)
-    if c_type.pointers > 2 or (c_type.pointers == 2 and c_type.base != "structmd_sim"):
+    opaque = ("structmd_sim", "structmd_dlpack_tensor")
+    pointee = C_PTR if c_type.pointers == 2 or c_type.base in opaque else KIND_OF_C_TYPE.get(c_type.base)
+    if c_type.pointers > 2 or (c_type.pointers == 2 and c_type.base not in opaque):
         pointee = None
     if dummy.type != pointee:
         expected = f"{pointee[0]}({pointee[1]}) by reference" if pointee else "nothing Fortran can pass by reference"

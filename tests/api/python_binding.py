@@ -7,6 +7,8 @@ problems() returns one line per mismatch, naming the function and what differs.
 
 import ctypes
 
+from structmd_header import CALLBACK_TYPES
+
 CTYPES_OF_C_VALUE = {
     "int": ctypes.c_int,
     "int32_t": ctypes.c_int32,
@@ -20,11 +22,15 @@ CTYPES_OF_C_VALUE = {
 
 def expected_ctype(c_type):
     """The ctypes type that passes or returns a C type: None for void, c_char_p for char*, c_void_p
-    for the opaque handle, POINTER(T) for any other pointer or array parameter."""
+    for the opaque handle and a DLPack tensor, c_void_p for a callback (its address), POINTER(T) for any
+    other pointer or array parameter."""
     if c_type.pointers == 0:
+        if c_type.base in CALLBACK_TYPES:
+            return ctypes.c_void_p  # the function's address, so that None clears a callback
         return None if c_type.base == "void" else CTYPES_OF_C_VALUE[c_type.base]
     # A pointer to one of these is itself a ctypes type; deeper pointers wrap it in POINTER.
-    pointer_to = {"char": ctypes.c_char_p, "structmd_sim": ctypes.c_void_p, "void": ctypes.c_void_p}
+    pointer_to = {"char": ctypes.c_char_p, "structmd_sim": ctypes.c_void_p, "void": ctypes.c_void_p,
+                  "structmd_dlpack_tensor": ctypes.c_void_p}
     if c_type.base in pointer_to:
         result, depth = pointer_to[c_type.base], c_type.pointers - 1
     else:

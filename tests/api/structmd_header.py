@@ -22,10 +22,13 @@ HEADER = Path(os.environ.get("STRUCTMD_HEADER", REPO_ROOT / "include" / "structm
 
 # The only base types a declaration of the ABI may use.
 C_BASE_TYPES = ("void", "char", "int", "int32_t", "uint32_t", "int64_t", "size_t", "double",
-                "structmd_status", "structmd_sim")
+                "structmd_status", "structmd_sim", "structmd_force_callback", "structmd_device_force_callback",
+                "structmd_dlpack_tensor")
+# The typedefs of function pointers: parameters of these types carry a function's address by value.
+CALLBACK_TYPES = ("structmd_force_callback", "structmd_device_force_callback")
 
 _DEFINE = re.compile(r"^\s*#\s*define\s+(STRUCTMD_\w+)\s+(\d+)[uU]?\b", re.MULTILINE)
-_TYPEDEF = re.compile(r"\btypedef\s+[^;]*?\b(\w+)\s*;")
+_TYPEDEF = re.compile(r"\btypedef\s+[^;(]*?\b(\w+)\s*;|\btypedef\s+[^;(]*\(\s*\*\s*(\w+)\s*\)")
 _PROTOTYPE = re.compile(r"\bSTRUCTMD_API\s+([^;{}()]*?)\b(structmd_\w+)\s*\(([^()]*)\)\s*;")
 _DECLARATION = re.compile(r"^(?P<const>const\s+)?(?P<base>\w+)\s*(?P<stars>(?:\*\s*)*)"
                           r"(?P<name>\w+)?\s*(?:\[\s*(?P<extent>\d*)\s*\])?$")
@@ -116,7 +119,7 @@ def header_defines(text=None):
 
 def header_typedefs(text=None):
     """The type names the header defines (structmd_status, structmd_sim)."""
-    return set(_TYPEDEF.findall(strip_comments(text or header_text())))
+    return {plain or pointer for plain, pointer in _TYPEDEF.findall(strip_comments(text or header_text()))}
 
 
 def functions(text=None):

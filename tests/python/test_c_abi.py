@@ -32,6 +32,22 @@ NAMES = {value: name for name, value in DEFINES.items() if name.startswith(("STR
 
 ffi = cffi.FFI()
 ffi.cdef(structmd_header.preprocessed_declarations())
+# DLPack's DLManagedTensor (dlpack.h, ABI-stable since 0.6), which the header leaves opaque.
+ffi.cdef("""
+struct DLManagedTensor {
+    struct {
+        void* data;
+        struct { int32_t device_type; int32_t device_id; } device;
+        int32_t ndim;
+        struct { uint8_t code; uint8_t bits; uint16_t lanes; } dtype;
+        int64_t* shape;
+        int64_t* strides;
+        uint64_t byte_offset;
+    } dl_tensor;
+    void* manager_ctx;
+    void (*deleter)(struct DLManagedTensor* self);
+};
+""")
 
 _called = set()
 
@@ -199,6 +215,11 @@ def valid_arguments(sim, prototype, n, good_input_file):
         "v": lambda: ffi.new("double[]", np.ravel(systems.BASE_VELOCITIES).tolist()),
         "ids": lambda: ffi.new("int64_t[]", list(range(max(1, n)))),
         "energy": lambda: 0.5,
+        "quantity": lambda: ffi.new("char[]", b"positions"),
+        "message": lambda: ffi.new("char[]", b"a reason"),
+        "callback": lambda: ffi.NULL,
+        "user_data": lambda: ffi.NULL,
+        "view": lambda: ffi.new("structmd_dlpack_tensor**"),
     }
     by_type = {
         "structmd_sim*": lambda: sim,
@@ -217,8 +238,10 @@ def valid_arguments(sim, prototype, n, good_input_file):
 HANDLE_FUNCTIONS = sorted(name for name, (_, params) in PROTOTYPES.items()
                           if params and params[0][0] == "structmd_sim*"
                           and name not in ("structmd_destroy", "structmd_last_error"))
-NEEDS_LOADED = sorted(set(HANDLE_FUNCTIONS) - {"structmd_load_file", "structmd_load_string", "structmd_get_info"})
-NULLABLE = {("structmd_get_info", "needed")}  # optional pointers
+NEEDS_LOADED = sorted(set(HANDLE_FUNCTIONS) - {"structmd_load_file", "structmd_load_string", "structmd_get_info",
+                                                "structmd_set_callback_error"})
+NULLABLE = {("structmd_get_info", "needed"), ("structmd_set_force_callback", "user_data"),
+            ("structmd_set_device_force_callback", "user_data")}  # optional pointers
 POINTER_ARGUMENTS = sorted((name, index, param_name)
                            for name in HANDLE_FUNCTIONS
                            for index, (c_type, param_name) in enumerate(PROTOTYPES[name][1])
@@ -880,6 +903,156 @@ def test_handles_can_be_driven_from_different_threads_at_once(new_handle):
     assert statuses == [OK] * 4
     for handle in workers:
         np.testing.assert_allclose(get_array(handle, "structmd_get_positions"), expected, rtol=1e-9, atol=1e-9)
+
+
+# ---- force callbacks and views -----------------------------------------------------------------
+
+CALLBACK = DEFINES["STRUCTMD_ERR_CALLBACK"]
+PUSH = np.array([0.25, -0.5, 1.0])  # the force the callbacks below add to every particle
+
+
+def constant_push(calls, fail_at=None):
+    """A host callback adding PUSH to every particle, energy 2.5 and a diagonal virial; it counts its
+    calls and, at call number fail_at, explains itself and returns 7."""
+
+    @ffi.callback("structmd_force_callback")
+    def callback(positions, forces, n, energy, virial, step, user_data):
+        calls.append((step, np.frombuffer(ffi.buffer(positions, 24 * n), dtype=np.float64).reshape(n, 3).copy()))
+        if len(calls) == fail_at:
+            lib.structmd_set_callback_error(ffi.cast("structmd_sim*", user_data), b"the host's model diverged")
+            return 7
+        for i in range(n):
+            for d in range(3):
+                forces[3 * i + d] += PUSH[d]
+        energy[0] += 2.5
+        for d in range(3):
+            virial[4 * d] += 1.0 + d
+        return 0
+
+    return callback
+
+
+def test_force_callback_adds_its_forces_energy_and_virial(new_handle):
+    plain, pushed = new_handle(), new_handle()
+    for sim in (plain, pushed):
+        load(sim, systems.lj_bond_system())
+    calls = []
+    callback = constant_push(calls)
+    check(pushed, lib.structmd_set_force_callback(pushed, callback, pushed))
+    n = num_particles(pushed)
+    np.testing.assert_allclose(get_array(pushed, "structmd_get_forces"),
+                               get_array(plain, "structmd_get_forces") + PUSH, rtol=1e-12, atol=1e-12)
+    # The callback saw the positions the engine holds, in id order.
+    np.testing.assert_array_equal(calls[0][1], get_array(pushed, "structmd_get_positions"))
+    assert energy(pushed, "callback") == 2.5
+    assert energy(plain, "callback") == 0.0
+    assert energy(pushed, "potential") == pytest.approx(energy(plain, "potential") + 2.5, rel=1e-12)
+    assert energy(pushed, "total") == pytest.approx(energy(plain, "total") + 2.5, rel=1e-12)
+    np.testing.assert_allclose(get_fixed(pushed, "structmd_get_virial", 9),
+                               get_fixed(plain, "structmd_get_virial", 9) + np.diag([1.0, 2.0, 3.0]).ravel(),
+                               rtol=1e-12, atol=1e-12)
+    assert len(calls) == 1 and n == len(calls[0][1])
+
+
+def test_force_callback_is_called_once_per_configuration_and_shapes_the_trajectory(new_handle):
+    sim = new_handle()
+    load(sim, systems.lj_bond_system())
+    calls = []
+    callback = constant_push(calls)
+    check(sim, lib.structmd_set_force_callback(sim, callback, sim))
+    get_array(sim, "structmd_get_forces")
+    get_array(sim, "structmd_get_forces")
+    energy(sim, "potential")
+    assert len(calls) == 1
+    check(sim, lib.structmd_step(sim, 5))
+    # Velocity Verlet evaluates forces once per step, at the step the positions belong to.
+    assert [step for step, _ in calls] == [0, 1, 2, 3, 4, 5]
+    # Without the callback the same steps go elsewhere: its forces drove the particles.
+    reference = new_handle()
+    load(reference, systems.lj_bond_system())
+    check(reference, lib.structmd_step(reference, 5))
+    masses = get_array(sim, "structmd_get_masses", components=1)
+    moved = get_array(sim, "structmd_get_velocities") - get_array(reference, "structmd_get_velocities")
+    # Over 5 steps of dt the push changes each velocity by about 5 dt PUSH / m.
+    expected = 5 * systems.BASE_TIME_STEP * PUSH[None, :] / masses[:, None]
+    np.testing.assert_allclose(moved, expected, rtol=0.2, atol=1e-6)
+
+
+def test_failing_force_callback_stops_the_step_and_rolls_back(loaded):
+    check(loaded, lib.structmd_step(loaded, 2))
+    calls = []
+    callback = constant_push(calls, fail_at=3)
+    check(loaded, lib.structmd_set_force_callback(loaded, callback, loaded))
+    before = snapshot(loaded)
+    expect(loaded, lib.structmd_step(loaded, 10), CALLBACK)
+    assert "returned 7: the host's model diverged" in message(loaded)
+    assert "step 4" in message(loaded)
+    assert_same_state(before, snapshot(loaded))
+    check(loaded, lib.structmd_set_force_callback(loaded, ffi.NULL, ffi.NULL))
+    assert energy(loaded, "callback") == 0.0
+    check(loaded, lib.structmd_step(loaded, 10))
+    assert get_scalar(loaded, "structmd_get_step", "int64_t") == 12
+
+
+def test_callback_error_outside_a_callback_changes_nothing(loaded):
+    expect(loaded, lib.structmd_step(loaded, -1), ARGUMENT)
+    reason = message(loaded)
+    check(loaded, lib.structmd_set_callback_error(loaded, b"not in a callback"))
+    assert message(loaded) == reason
+    expect(loaded, lib.structmd_set_callback_error(loaded, ffi.NULL), ARGUMENT)
+
+
+def test_device_force_callback_gets_the_engines_records(new_handle):
+    if engine_options()["backend"] != "cpu":
+        pytest.skip("the host reads these records only on the CPU backend; tests/python/test_force_callbacks.py "
+                    "covers CUDA through CuPy")
+    host, device = new_handle(), new_handle()
+    for sim in (host, device):
+        load(sim, systems.lj_bond_system())
+    host_calls = []
+    host_callback = constant_push(host_calls)
+    check(host, lib.structmd_set_force_callback(host, host_callback, host))
+    seen = []
+
+    @ffi.callback("structmd_device_force_callback")
+    def device_callback(positions, forces, n, real_size, energy, virial, step, stream, user_data):
+        assert real_size == 8 and stream == ffi.NULL
+        records = np.frombuffer(ffi.buffer(positions, 32 * n), dtype=np.float64).reshape(n, 4)
+        seen.append(records[:, :3].copy())
+        out = np.frombuffer(ffi.buffer(forces, 32 * n), dtype=np.float64).reshape(n, 4)
+        out[:, :3] += PUSH
+        energy[0] += 2.5
+        return 0
+
+    check(device, lib.structmd_set_device_force_callback(device, device_callback, ffi.NULL))
+    check(host, lib.structmd_step(host, 20))
+    check(device, lib.structmd_step(device, 20))
+    np.testing.assert_array_equal(seen[0], host_calls[0][1])
+    assert len(seen) == 21
+    np.testing.assert_array_equal(get_array(device, "structmd_get_positions"), get_array(host, "structmd_get_positions"))
+    assert energy(device, "callback") == 2.5
+
+
+def test_view_describes_the_engines_array(loaded):
+    view = ffi.new("structmd_dlpack_tensor**")
+    for quantity, getter in (("positions", "structmd_get_positions"), ("velocities", "structmd_get_velocities"),
+                             ("forces", "structmd_get_forces")):
+        check(loaded, lib.structmd_get_view(loaded, quantity.encode(), view))
+        managed = view[0]
+        tensor = managed.dl_tensor
+        n = num_particles(loaded)
+        assert (tensor.ndim, tensor.shape[0], tensor.shape[1]) == (2, n, 3)
+        assert (tensor.strides[0], tensor.strides[1], tensor.byte_offset) == (4, 1, 0)
+        assert (tensor.dtype.code, tensor.dtype.bits, tensor.dtype.lanes) == (2, 64, 1)  # kDLFloat, double
+        if engine_options()["backend"] == "cpu":
+            assert tensor.device.device_type == 1
+            records = np.frombuffer(ffi.buffer(tensor.data, 32 * n), dtype=np.float64).reshape(n, 4)
+            np.testing.assert_array_equal(records[:, :3], get_array(loaded, getter))
+        else:
+            assert tensor.device.device_type == 2
+        managed.deleter(managed)
+    expect(loaded, lib.structmd_get_view(loaded, b"masses", view), ARGUMENT)
+    assert "known: positions, velocities, forces" in message(loaded)
 
 
 # ---- coverage of the header --------------------------------------------------------------------

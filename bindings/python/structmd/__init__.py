@@ -18,7 +18,7 @@ import os as _os
 from ._library import lib as _lib
 from ._library import library_path
 from .constants import ABI_VERSION, COMPUTE_FLAGS, STATUS
-from .errors import (ArgumentError, DeviceError, InputError, InternalError, NumericalError, StateError,
+from .errors import (ArgumentError, CallbackError, DeviceError, InputError, InternalError, NumericalError, StateError,
                      StructmdError, StructmdIOError, StructmdMemoryError, UnsupportedError,
                      error_for_status)
 from .simulation import Simulation
@@ -50,5 +50,5 @@ __all__ = [
     "ABI_VERSION", "COMPUTE_FLAGS", "STATUS", "Simulation", "abi_version", "version", "library_path",
     "load_plugin",
     "StructmdError", "ArgumentError", "InputError", "StateError", "NumericalError", "StructmdIOError",
-    "DeviceError", "StructmdMemoryError", "UnsupportedError", "InternalError", "error_for_status",
+    "DeviceError", "StructmdMemoryError", "UnsupportedError", "InternalError", "CallbackError", "error_for_status",
 ]

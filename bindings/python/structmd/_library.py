@@ -8,7 +8,7 @@ import ctypes
 import ctypes.util
 import os
 import sys
-from ctypes import POINTER, c_char_p, c_double, c_int, c_int32, c_int64, c_size_t, c_uint32, c_void_p
+from ctypes import CFUNCTYPE, POINTER, c_char_p, c_double, c_int, c_int32, c_int64, c_size_t, c_uint32, c_void_p
 from pathlib import Path
 
 from .constants import ABI_VERSION
@@ -17,6 +17,13 @@ LIBRARY_ENV = "STRUCTMD_LIBRARY"
 
 STATUS_T = c_int32  # structmd_status
 HANDLE_T = c_void_p  # structmd_sim*, opaque
+
+# structmd_force_callback and structmd_device_force_callback; the functions that take them receive
+# their addresses (c_void_p), so NULL clears a callback.
+FORCE_CALLBACK_T = CFUNCTYPE(c_int32, POINTER(c_double), POINTER(c_double), c_int64, POINTER(c_double),
+                             POINTER(c_double), c_int64, c_void_p)
+DEVICE_FORCE_CALLBACK_T = CFUNCTYPE(c_int32, c_void_p, c_void_p, c_int64, c_int32, POINTER(c_double),
+                                    POINTER(c_double), c_int64, c_void_p, c_void_p)
 
 # name: (restype, argtypes), in the order of include/structmd.h.
 SIGNATURES = {
@@ -58,6 +65,10 @@ SIGNATURES = {
     "structmd_set_external_forces_of": (STATUS_T, [HANDLE_T, POINTER(c_int64), c_int64, POINTER(c_double)]),
     "structmd_set_parameter": (STATUS_T, [HANDLE_T, c_char_p, c_double]),
     "structmd_get_parameter": (STATUS_T, [HANDLE_T, c_char_p, POINTER(c_double)]),
+    "structmd_set_force_callback": (STATUS_T, [HANDLE_T, c_void_p, c_void_p]),
+    "structmd_set_device_force_callback": (STATUS_T, [HANDLE_T, c_void_p, c_void_p]),
+    "structmd_set_callback_error": (STATUS_T, [HANDLE_T, c_char_p]),
+    "structmd_get_view": (STATUS_T, [HANDLE_T, c_char_p, POINTER(c_void_p)]),
     "structmd_save_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_load_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_get_info": (STATUS_T, [HANDLE_T, c_char_p, c_size_t, POINTER(c_size_t)]),

@@ -75,10 +75,16 @@ class InternalError(StructmdError):
     status_name = "STRUCTMD_ERR_INTERNAL"
 
 
+class CallbackError(StructmdError):
+    """A force callback of the host failed; the message carries its own (or its exception's) words."""
+
+    status_name = "STRUCTMD_ERR_CALLBACK"
+
+
 ERROR_CLASSES = {
     STATUS[cls.status_name]: cls
     for cls in (ArgumentError, InputError, StateError, NumericalError, StructmdIOError, DeviceError,
-                StructmdMemoryError, UnsupportedError, InternalError)
+                StructmdMemoryError, UnsupportedError, InternalError, CallbackError)
 }
 
 

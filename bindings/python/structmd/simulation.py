@@ -4,9 +4,10 @@ import json
 import operator
 import os
 from collections.abc import Mapping
-from ctypes import POINTER, byref, c_double, c_int32, c_int64, c_size_t, c_void_p, create_string_buffer
+from ctypes import POINTER, byref, cast, c_double, c_int32, c_int64, c_size_t, c_void_p, create_string_buffer
 
-from ._library import lib
+from ._library import DEVICE_FORCE_CALLBACK_T, FORCE_CALLBACK_T, lib
+from .dlpack import K_DL_CUDA, DLPackView, make_tensor
 from .constants import COMPUTE_FLAGS, STATUS
 from .errors import ArgumentError, StateError, StructmdError, error_for_status
 
@@ -26,6 +27,11 @@ def _decode(text):
 def _looks_like_json(text):
     # An input document is a JSON object, possibly preceded by comments; a path never starts so.
     return text.lstrip().startswith(("{", "//", "/*"))
+
+
+def ctypes_address(function):
+    """The address of a ctypes function object, as the C ABI's callback parameters take it."""
+    return cast(function, c_void_p).value
 
 
 def _raise_for(status, message):
@@ -55,6 +61,7 @@ class Simulation:
             raise TypeError(f"options must be a dict, a JSON string or None, not {type(options).__name__}")
         self._handle = None
         self._external_forces = None
+        self._callbacks = {}  # the ctypes function objects the library holds, kept alive while set
         handle = c_void_p()
         status = lib.structmd_create(encoded, byref(handle))
         _raise_for(status, _decode(lib.structmd_last_error(None)))
@@ -106,6 +113,93 @@ class Simulation:
     def last_error(self):
         """The message of the last failed call on this handle, "" if none."""
         return _decode(lib.structmd_last_error(self._checked_handle()))
+
+    # ---- force callbacks and views -----------------------------------------------------------
+
+    def _report_callback_failure(self, error):
+        lib.structmd_set_callback_error(self._handle, f"{type(error).__name__}: {error}".encode(errors="replace"))
+        return 1
+
+    @staticmethod
+    def _add_energy_and_virial(result, energy, virial):
+        """A callback returns None, its energy, or (energy, virial as 3x3 or 9 numbers)."""
+        if result is None:
+            return
+        if isinstance(result, tuple):
+            energy[0] = float(result[0])
+            for k, w in enumerate(_np.ravel(result[1]) if _np is not None else result[1]):
+                virial[k] = float(w)
+        else:
+            energy[0] = float(result)
+
+    def set_force_callback(self, callback):
+        """Sets (None clears) the host force callback (structmd_set_force_callback):
+        callback(positions, forces, step) is called at every force evaluation at new positions with
+        positions (n, 3), read-only, and forces (n, 3), zeros to add to, both numpy arrays valid
+        during the call only. It returns None, its energy, or (energy, virial 3x3). An exception it
+        raises stops the structmd call with CallbackError carrying the exception's text."""
+        if callback is None:
+            self._call(lib.structmd_set_force_callback, None, None)
+            self._callbacks.pop("host", None)
+            return
+        if _np is None:
+            raise RuntimeError("force callbacks need numpy")
+
+        def trampoline(positions, forces, n, energy, virial, step, _user_data):
+            try:
+                xyz = _np.ctypeslib.as_array(positions, shape=(n, 3))
+                xyz.flags.writeable = False
+                result = callback(xyz, _np.ctypeslib.as_array(forces, shape=(n, 3)), step)
+                self._add_energy_and_virial(result, energy, virial)
+                return 0
+            except BaseException as error:  # noqa: B902 - nothing may cross back into C
+                return self._report_callback_failure(error)
+
+        function = FORCE_CALLBACK_T(trampoline)
+        self._call(lib.structmd_set_force_callback, ctypes_address(function), None)
+        self._callbacks["host"] = function
+
+    def set_device_force_callback(self, callback):
+        """Sets (None clears) the device force callback (structmd_set_device_force_callback):
+        callback(positions, forces, step, stream) receives the engine's own arrays as DLPackView
+        objects of shape (n, 3) (cupy.from_dlpack / torch.from_dlpack on CUDA; view.numpy() on the
+        CPU backend, writable), forces zero on entry to be added to, and the engine's CUDA stream as an
+        integer (0 on the CPU backend). Returns as for set_force_callback."""
+        if callback is None:
+            self._call(lib.structmd_set_device_force_callback, None, None)
+            self._callbacks.pop("device", None)
+            return
+        device_type, device_id = self.view("positions").device
+        ordinal = device_id if device_type == K_DL_CUDA else -1
+
+        def trampoline(positions, forces, n, real_size, energy, virial, step, stream, _user_data):
+            try:
+                result = callback(DLPackView(make_tensor(positions, n, real_size, ordinal)),
+                                  DLPackView(make_tensor(forces, n, real_size, ordinal)), step, stream or 0)
+                self._add_energy_and_virial(result, energy, virial)
+                return 0
+            except BaseException as error:  # noqa: B902 - nothing may cross back into C
+                return self._report_callback_failure(error)
+
+        function = DEVICE_FORCE_CALLBACK_T(trampoline)
+        self._call(lib.structmd_set_device_force_callback, ctypes_address(function), None)
+        self._callbacks["device"] = function
+
+    def view(self, quantity):
+        """The engine's "positions", "velocities" or "forces" as a DLPackView (structmd_get_view):
+        no copy; valid until the next call that steps or sets anything."""
+        address = c_void_p()
+        self._call(lib.structmd_get_view, quantity.encode(), byref(address))
+        return DLPackView(address.value)
+
+    def positions_view(self):
+        return self.view("positions")
+
+    def velocities_view(self):
+        return self.view("velocities")
+
+    def forces_view(self):
+        return self.view("forces")
 
     # ---- loading and advancing ---------------------------------------------------------------
 

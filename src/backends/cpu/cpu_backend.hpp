@@ -69,6 +69,8 @@ public:
     void begin_steps() const {}
     void begin_step() const {}
     void end_steps() const {}
+    void* host_launch_stream() const { return nullptr; }  // host memory: no stream to order work on
+    int device_ordinal() const { return -1; }             // host memory
     uint64_t graphs_captured() const { return 0; }
     uint64_t graphs_replayed() const { return 0; }
 

@@ -136,6 +136,13 @@ public:
         ++stepsInGraph_;
     }
     void end_steps() const { graphs_.close(stream_); }
+    // For work the host launches itself (a device force callback): what was recorded is issued
+    // first, so the host's kernels run in order on the engine's stream.
+    void* host_launch_stream() const {
+        issue_recorded();
+        return stream_;
+    }
+    int device_ordinal() const { return device_; }
     uint64_t graphs_captured() const { return graphs_.captured(); }
     uint64_t graphs_replayed() const { return graphs_.replayed(); }
 
