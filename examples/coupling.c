@@ -1,13 +1,20 @@
 /*
  * coupling.c - drives structmd from a C host the way a coupled code does: step, read forces and
- * energies, answer with an external force field that depends on the positions, step again.
+ * energies, answer with an external force field that depends on the positions, step again. Then the
+ * same tether as a force callback (the engine calls the host inside its step loop), a region
+ * exchanged by particle id, and a time step changed at run time.
  *
  * The field here is a harmonic tether toward the box centre, f_i = -k x_i (the box spans [-L/2, L/2),
  * so its centre is the origin). At the end the program checks its own results and exits non-zero,
  * saying what failed, if any check does:
  *   - the forces with the field minus the forces with the field cleared equal the field;
  *   - every energy read is finite;
- *   - the step counter advanced by exactly the steps taken.
+ *   - the step counter advanced by exactly the steps taken;
+ *   - the forces with the callback minus those without it equal its forces, its energy is the
+ *     energy term "callback", and it runs once per step;
+ *   - positions read for a region by id equal those of the whole array;
+ *   - after halving integrator.vv.parameters.timeStep (when the input has it), time advances by
+ *     the new step.
  *
  * usage: example_coupling_c [INPUT_JSON [OPTIONS_JSON]]
  *   INPUT_JSON    default: the bead_spring.json bundled with the examples
@@ -78,6 +85,111 @@ static double field_recovery_error(const double* with_field, const double* witho
         worst = fmax(worst, error);
     }
     return worst;
+}
+
+/* The tether as a force callback: what the engine should add, and what the host saw. */
+struct tether {
+    double stiffness;
+    double energy;  /* the energy of the last call */
+    int calls;
+};
+
+static int32_t tether_callback(const double* x, double* f, int64_t n, double* energy, double virial[9],
+                               int64_t step, void* user_data) {
+    struct tether* t = user_data;
+    (void)step;
+    t->energy = 0.0;
+    for (int64_t i = 0; i < 3 * n; ++i) {
+        f[i] -= t->stiffness * x[i];
+        t->energy += 0.5 * t->stiffness * x[i] * x[i];
+        virial[4 * (i % 3)] -= t->stiffness * x[i] * x[i];
+    }
+    *energy += t->energy;
+    ++t->calls;
+    return 0;
+}
+
+/* The callback, a region by id and a run-time parameter; returns the number of failed checks, or -1
+ * when a call failed. */
+static int callback_region_parameter(structmd_sim* sim, int64_t n, double tolerance) {
+    int result = -1;
+    int failures = 0;
+    int64_t m = n / 10 > 0 ? n / 10 : 1;
+    double* with_callback = malloc(3 * (size_t)n * sizeof(double));
+    double* without_callback = malloc(3 * (size_t)n * sizeof(double));
+    double* positions = malloc(3 * (size_t)n * sizeof(double));
+    double* field = malloc(3 * (size_t)n * sizeof(double));
+    double* region_positions = malloc(3 * (size_t)m * sizeof(double));
+    int64_t* region = malloc((size_t)m * sizeof(int64_t));
+    if (!with_callback || !without_callback || !positions || !field || !region_positions || !region) {
+        fprintf(stderr, "FAILED: out of memory for %lld particles\n", (long long)n);
+        goto release;
+    }
+
+    struct tether t = {TETHER_STIFFNESS, 0.0, 0};
+    if (!CHECKED(sim, structmd_get_forces(sim, without_callback, n))) goto release;
+    if (!CHECKED(sim, structmd_get_positions(sim, positions, n))) goto release;
+    if (!CHECKED(sim, structmd_set_force_callback(sim, tether_callback, &t))) goto release;
+    if (!CHECKED(sim, structmd_get_forces(sim, with_callback, n))) goto release;
+    for (int64_t i = 0; i < 3 * n; ++i) field[i] = -TETHER_STIFFNESS * positions[i];
+    double error = field_recovery_error(with_callback, without_callback, field, 3 * n);
+    double callback_energy = 0.0;
+    if (!CHECKED(sim, structmd_get_energy(sim, "callback", &callback_energy))) goto release;
+    if (!(error <= tolerance) || fabs(callback_energy - t.energy) > 1e-12 * fmax(1.0, fabs(t.energy))) {
+        fprintf(stderr, "FAILED: the callback's forces recovered to %g (tolerance %g), its energy %.17g "
+                        "read back as %.17g\n", error, tolerance, t.energy, callback_energy);
+        ++failures;
+    }
+    if (!CHECKED(sim, structmd_step(sim, STEPS_PER_ROUND))) goto release;
+    if (t.calls != 1 + STEPS_PER_ROUND) {
+        fprintf(stderr, "FAILED: the callback ran %d times over %d steps, expected %d\n", t.calls, STEPS_PER_ROUND,
+                1 + STEPS_PER_ROUND);
+        ++failures;
+    }
+    printf("callback: forces recovered to %.3g relative, energy %.8g, %d calls\n", error, callback_energy, t.calls);
+    if (!CHECKED(sim, structmd_set_force_callback(sim, NULL, NULL))) goto release;
+
+    for (int64_t k = 0; k < m; ++k) region[k] = k * (n / m); /* spread over the system, distinct */
+    if (!CHECKED(sim, structmd_get_positions(sim, positions, n))) goto release;
+    if (!CHECKED(sim, structmd_get_positions_of(sim, region, m, region_positions))) goto release;
+    for (int64_t k = 0; k < m; ++k)
+        for (int d = 0; d < 3; ++d)
+            if (region_positions[3 * k + d] != positions[3 * region[k] + d]) {
+                fprintf(stderr, "FAILED: particle %lld read by id differs from the whole array\n", (long long)region[k]);
+                ++failures;
+                k = m;
+                break;
+            }
+    printf("region: %lld particles read by id\n", (long long)m);
+
+    const char* time_step_path = "integrator.vv.parameters.timeStep";
+    double dt = 0.0;
+    if (structmd_get_parameter(sim, time_step_path, &dt) == STRUCTMD_OK) {
+        double before = 0.0;
+        double after = 0.0;
+        if (!CHECKED(sim, structmd_set_parameter(sim, time_step_path, 0.5 * dt))) goto release;
+        if (!CHECKED(sim, structmd_get_time(sim, &before))) goto release;
+        if (!CHECKED(sim, structmd_step(sim, STEPS_PER_ROUND))) goto release;
+        if (!CHECKED(sim, structmd_get_time(sim, &after))) goto release;
+        if (fabs(after - before - STEPS_PER_ROUND * 0.5 * dt) > 1e-9 * fmax(1.0, after)) {
+            fprintf(stderr, "FAILED: %d steps of %g advanced time by %g\n", STEPS_PER_ROUND, 0.5 * dt, after - before);
+            ++failures;
+        }
+        if (!CHECKED(sim, structmd_set_parameter(sim, time_step_path, dt))) goto release;
+        printf("parameter: %s %g -> %g and back\n", time_step_path, dt, 0.5 * dt);
+    } else {
+        printf("parameter: this input has no %s; not changed\n", time_step_path);
+    }
+    result = failures;
+
+release:
+    free(with_callback);
+    free(without_callback);
+    free(positions);
+    free(field);
+    free(region_positions);
+    free(region);
+    return result;
 }
 
 /* Runs the coupling loop and the checks on a loaded handle; returns the number of failed checks, or
@@ -179,7 +291,13 @@ int main(int argc, char** argv) {
     if (info != NULL) {
         printf("%s\n", info);
         int double_precision = strstr(info, "\"double\"") != NULL;
-        int failures = couple(sim, double_precision ? DOUBLE_PRECISION_TOLERANCE : SINGLE_PRECISION_TOLERANCE);
+        double tolerance = double_precision ? DOUBLE_PRECISION_TOLERANCE : SINGLE_PRECISION_TOLERANCE;
+        int failures = couple(sim, tolerance);
+        if (failures >= 0) {
+            int64_t n = 0;
+            int more = CHECKED(sim, structmd_get_num_particles(sim, &n)) ? callback_region_parameter(sim, n, tolerance) : -1;
+            failures = more < 0 ? -1 : failures + more;
+        }
         if (failures == 0) {
             printf("all checks passed\n");
             exit_code = EXIT_SUCCESS;

@@ -3,7 +3,8 @@
 and applies an external force that depends on the positions, a harmonic tether pulling each particle
 toward the box centre (f = -k x, the box spans [-L/2, L/2) so its centre is the origin). Then it
 tethers only a region of the particles, exchanging just their positions and forces by id every step,
-and changes the bonds' spring constant at run time (structmd_set_parameter).
+and changes the bonds' spring constant at run time (structmd_set_parameter). Last, the tether becomes a
+force callback: the engine calls the host's function inside its own step loop (structmd_set_force_callback).
 
 Usage: coupling.py [input.json]   (default: bead_spring.json next to this script if it exists, else a
 small bead-spring chain built here). It checks its own results and exits non-zero when they are wrong:
@@ -111,6 +112,35 @@ def region_and_parameter(sim, tolerance):
     return failures
 
 
+def callback(sim, tolerance):
+    """The tether as a force callback, called by the engine at each new configuration: its forces
+    join the engine's, its energy is the term "callback", and it runs once per step."""
+    failures = []
+    sim.external_forces = None
+    internal = sim.forces
+    calls = []
+
+    def tether_callback(positions, forces, step):
+        calls.append(step)
+        forces += tether(positions)
+        return 0.5 * TETHER_K * float(np.sum(positions ** 2))
+
+    sim.set_force_callback(tether_callback)
+    expected = tether(sim.positions)
+    error = float(np.abs(sim.forces - internal - expected).max())
+    if error > tolerance * max(1.0, float(np.abs(sim.forces).max())):
+        failures.append(f"callback: forces minus internal forces differ from its forces by {error:.3e}")
+    energy = sim.energy("callback")
+    if not math.isclose(energy, 0.5 * TETHER_K * float(np.sum(sim.positions ** 2)), rel_tol=1e-9):
+        failures.append(f"callback: energy term {energy}")
+    sim.step(STEPS_PER_ROUND)
+    if len(calls) != STEPS_PER_ROUND + 1:
+        failures.append(f"callback: called {len(calls)} times over {STEPS_PER_ROUND} steps")
+    print(f"callback: energy {energy:.6f}, {len(calls)} calls, steps {calls[0]}..{calls[-1]}")
+    sim.set_force_callback(None)
+    return failures
+
+
 def main(argv):
     source = argv[1] if len(argv) > 1 else default_input()
     with structmd.Simulation({"log": "warning"}) as sim:
@@ -136,6 +166,7 @@ def main(argv):
             print(f"step {sim.step_number:5d}  potential {potential: .6f}  kinetic {kinetic: .6f}  "
                   f"max |f| {np.abs(forces).max():.4f}")
         failures += region_and_parameter(sim, tolerance)
+        failures += callback(sim, tolerance)
     for failure in failures:
         print("FAILED:", failure, file=sys.stderr)
     return 1 if failures else 0
