@@ -5,46 +5,11 @@ length_unit and energy_unit."""
 
 import numpy as np
 import pytest
-from ase.build import bulk
 from ase.calculators.lj import LennardJones
 
 import structmd
 from structmd.ase import Calculator
-
-SIGMA, EPSILON = 3.405, 0.010318  # argon, Å and eV
-CUTOFF_FACTOR = 3.0  # ASE's default rc = 3 sigma
-LATTICE = 5.26  # Å; 4 cubic cells give a 21.04 Å box, more than twice rc (10.2 Å)
-
-
-def rattled_argon(seed):
-    atoms = bulk("Ar", "fcc", a=LATTICE, cubic=True).repeat(4)
-    atoms.rattle(stdev=0.08, seed=seed)
-    return atoms
-
-
-def lj_input(atoms, sigma=SIGMA, epsilon=EPSILON, length_unit=1.0):
-    """The structmd input of ASE's LennardJones(sigma, epsilon, rc=3 sigma): shifted at the cutoff."""
-    box = (np.diag(atoms.cell.array) / length_unit).tolist()
-    positions = atoms.positions / length_unit
-    return {
-        "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": "ase-lj", "seed": 1}}},
-        "global": {
-            "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
-                      "data": [["Ar", 39.948, 0.5 * sigma, 0.0]]},
-            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[box, 0.0]]},
-        },
-        "state": {"labels": ["id", "position"], "data": [[i, list(p)] for i, p in enumerate(positions.tolist())]},
-        "topology": {
-            "structure": {"labels": ["id", "type"], "data": [[i, "Ar"] for i in range(len(atoms))]},
-            "forceField": {
-                "nl": {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": 1.02}},
-                "lj": {"type": ["NonBonded", "LennardJonesType1"],
-                       "parameters": {"cutOffFactor": CUTOFF_FACTOR, "condition": "all", "shift": True},
-                       "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [["Ar", "Ar", epsilon, sigma]]},
-            },
-        },
-    }
-
+from systems import CUTOFF_FACTOR, EPSILON, SIGMA, lj_input, rattled_argon
 
 def ase_reference(atoms):
     reference = atoms.copy()
