@@ -161,18 +161,18 @@ ServerAddress parse_address(const std::string& text) {
     if (text.rfind("unix:", 0) == 0) {
         address.unixSocket = true;
         address.name = text.substr(5);
-        if (address.name.empty()) throw ConnectionFailure("the address unix:NAME needs a NAME");
+        if (address.name.empty()) throw Failure("--ipi", STRUCTMD_ERR_ARGUMENT, "the address unix:NAME needs a NAME");
         return address;
     }
     const size_t colon = text.rfind(':');
-    if (colon == std::string::npos || colon == 0) throw ConnectionFailure("address " + text + ": expected HOST:PORT or unix:NAME");
+    if (colon == std::string::npos || colon == 0) throw Failure("--ipi", STRUCTMD_ERR_ARGUMENT, "address " + text + ": expected HOST:PORT or unix:NAME");
     address.host = text.substr(0, colon);
     address.port = text.substr(colon + 1);
     const std::string& port = address.port;
     const bool numeric = !port.empty() && port.size() <= 5 &&
                          std::all_of(port.begin(), port.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
     if (!numeric || std::stoi(port) == 0 || std::stoi(port) > 65535)
-        throw ConnectionFailure("address " + text + ": the port must be a number from 1 to 65535");
+        throw Failure("--ipi", STRUCTMD_ERR_ARGUMENT, "address " + text + ": the port must be a number from 1 to 65535");
     return address;
 }
 

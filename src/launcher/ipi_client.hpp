@@ -19,8 +19,9 @@ struct IpiClientOptions {
 };
 
 // Serves the server until it sends EXIT or closes the connection. Returns the exit status: 0, the
-// structmd_status of a failed engine call, or STRUCTMD_ERR_IO for a connection or protocol failure;
-// every failure is reported on standard error.
+// structmd_status of a failed engine call (STRUCTMD_ERR_ARGUMENT also for a malformed address or a
+// wrong number of atoms), or STRUCTMD_ERR_IO for a connection or protocol failure; every failure is
+// reported on standard error.
 int run_ipi_client(const IpiClientOptions& options);
 
 }  // namespace structmd::launcher

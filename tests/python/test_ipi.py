@@ -168,14 +168,15 @@ def test_launcher_reports_a_wrong_number_of_atoms_and_exits_with_its_status(opti
 
 
 @pytest.mark.skipif(LAUNCHER is None, reason="STRUCTMD_LAUNCHER not set (ctest sets it)")
-@pytest.mark.parametrize("address, message", [("localhost:x", "the port must be a number"),
-                                              ("localhost", "expected HOST:PORT or unix:NAME"),
-                                              ("unix:", "needs a NAME"),
-                                              (f"unix:structmd_nobody_{os.getpid()}", "no i-PI server")])
-def test_launcher_reports_a_bad_or_absent_server_as_an_io_error(address, message, tmp_path):
+@pytest.mark.parametrize("address, status, message", [
+    ("localhost:x", "STRUCTMD_ERR_ARGUMENT", "the port must be a number"),
+    ("localhost", "STRUCTMD_ERR_ARGUMENT", "expected HOST:PORT or unix:NAME"),
+    ("unix:", "STRUCTMD_ERR_ARGUMENT", "needs a NAME"),
+    (f"unix:structmd_nobody_{os.getpid()}", "STRUCTMD_ERR_IO", "no i-PI server")])
+def test_launcher_reports_a_bad_address_or_an_absent_server(address, status, message, tmp_path):
     input_path = tmp_path / "argon.json"
     input_path.write_text(json.dumps(lj_input(rattled_argon(seed=1))))
     result = subprocess.run([LAUNCHER, "client", "--ipi", address, str(input_path), "--backend", "cpu",
                              "--connect-timeout", "0.3", "--quiet"], capture_output=True, text=True, timeout=60)
-    assert result.returncode == structmd.STATUS["STRUCTMD_ERR_IO"], result.stderr
+    assert result.returncode == structmd.STATUS[status], result.stderr
     assert message in result.stderr

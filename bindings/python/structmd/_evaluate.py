@@ -1,7 +1,7 @@
 """One evaluation at positions given by a coupled code (the ASE calculator, the i-PI client): set the
 box and the positions, compute, read energy, forces and virial. Everything in the input's units."""
 
-from typing import NamedTuple, Optional
+from typing import NamedTuple
 
 import numpy as np
 
@@ -17,7 +17,7 @@ _TILT_TOLERANCE = 1e-12
 class Evaluation(NamedTuple):
     energy: float  # the potential energy, structmd_get_energy "potential"
     forces: np.ndarray  # (n, 3), ascending particle id
-    virial: Optional[np.ndarray]  # 3x3 W = sum r_ij (x) F_ij (docs/c-api.md), None if not asked for
+    virial: np.ndarray  # 3x3, W = sum r_ij (x) F_ij (docs/c-api.md)
 
 
 def orthorhombic_box(cell: np.ndarray) -> np.ndarray:
@@ -35,9 +35,10 @@ def orthorhombic_box(cell: np.ndarray) -> np.ndarray:
     return lengths
 
 
-def evaluate(sim: Simulation, positions: np.ndarray, box: np.ndarray, virial: bool) -> Evaluation:
+def evaluate(sim: Simulation, positions: np.ndarray, box: np.ndarray) -> Evaluation:
     """Sets the box (only when it changed, since that rebuilds the neighbour lists) and then the
-    positions, so that positions are taken as given rather than scaled with the box."""
+    positions, so that positions are taken as given rather than scaled with the box. The virial comes
+    from the same pass over the force field as the forces, so it is always computed."""
     positions = np.asarray(positions, dtype=np.float64)
     n = sim.num_particles
     if positions.shape != (n, 3):
@@ -47,5 +48,5 @@ def evaluate(sim: Simulation, positions: np.ndarray, box: np.ndarray, virial: bo
     if not np.array_equal(sim.box, box):
         sim.box = box
     sim.positions = positions
-    sim.compute(forces=True, energy=True, virial=virial)
-    return Evaluation(sim.energy("potential"), sim.forces, sim.virial if virial else None)
+    sim.compute(forces=True, energy=True, virial=True)
+    return Evaluation(sim.energy("potential"), sim.forces, sim.virial)

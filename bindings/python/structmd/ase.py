@@ -7,7 +7,7 @@ An input in other units gives their size: length_unit is one input length in Å,
 energy in eV (an input in ["Units","KcalMol_A"]: length_unit=1, energy_unit=ase.units.kcal/ase.units.mol).
 
 Each calculation sets the box (from the cell, when it changed) and the positions, then asks the engine
-for forces, energy and, when stress is asked for, the virial W (docs/c-api.md); stress = -W / volume,
+for forces, energy and the virial W (docs/c-api.md); stress = -W / volume,
 in ASE's Voigt order (xx, yy, zz, yz, xz, xy). The cell must be rectangular and periodic in x, y and z,
 as structmd's box is. Atomic numbers are not read: the input's types decide the interactions.
 """
@@ -61,14 +61,13 @@ class Calculator(_AseCalculator):
             raise UnsupportedError(STATUS["STRUCTMD_ERR_UNSUPPORTED"],
                                    f"structmd is periodic in x, y and z; these Atoms have pbc={list(atoms.pbc)}")
         box = orthorhombic_box(atoms.cell.array) / self.length_unit
-        result = evaluate(self.simulation, atoms.positions / self.length_unit, box, virial="stress" in properties)
+        result = evaluate(self.simulation, atoms.positions / self.length_unit, box)
         energy = result.energy * self.energy_unit
         self.results["energy"] = energy
         self.results["free_energy"] = energy
         self.results["forces"] = result.forces * (self.energy_unit / self.length_unit)
-        if result.virial is not None:
-            stress = -result.virial * self.energy_unit / atoms.get_volume()
-            self.results["stress"] = full_3x3_to_voigt_6_stress(stress)
+        stress = -result.virial * self.energy_unit / atoms.get_volume()
+        self.results["stress"] = full_3x3_to_voigt_6_stress(stress)
 
     def close(self) -> None:
         """Releases the engine's handle; the calculator cannot calculate afterwards."""

@@ -27,7 +27,7 @@ from typing import Any, Mapping, Optional, TextIO, Tuple, Union
 
 import numpy as np
 
-from ._evaluate import evaluate, orthorhombic_box
+from ._evaluate import Evaluation, evaluate, orthorhombic_box
 from .constants import STATUS
 from .errors import ArgumentError
 from .simulation import Simulation
@@ -48,8 +48,7 @@ class ProtocolError(ConnectionError):
 def parse_address(address: Address) -> Tuple[int, Union[str, Tuple[str, int]]]:
     """(socket family, socket address) of "host:port", (host, port) or "unix:NAME"."""
     if isinstance(address, tuple):
-        host, port = address
-        return socket.AF_INET, (host, int(port))
+        return socket.AF_INET, (address[0], int(address[1]))
     if address.startswith("unix:"):
         name = address[len("unix:"):]
         if not name:
@@ -90,15 +89,15 @@ class _Channel:
     def __init__(self, connection: socket.socket) -> None:
         self.connection = connection
 
-    def receive(self, size: int, at_boundary: bool = False) -> Optional[bytes]:
-        """size bytes; None when the server closed the connection before the first byte of a header."""
+    def receive(self, size: int, at_boundary: bool = False) -> bytes:
+        """size bytes; b"" when at_boundary and the server closed the connection before the first."""
         chunks = []
         remaining = size
         while remaining > 0:
             chunk = self.connection.recv(remaining)
             if not chunk:
                 if at_boundary and remaining == size:
-                    return None
+                    return b""
                 raise ProtocolError(f"the server closed the connection in the middle of a message "
                                     f"({size - remaining} of {size} bytes)")
             chunks.append(chunk)
@@ -107,7 +106,7 @@ class _Channel:
 
     def header(self) -> Optional[str]:
         raw = self.receive(HEADER_SIZE, at_boundary=True)
-        return None if raw is None else raw.decode("ascii", errors="replace").strip()
+        return raw.decode("ascii", errors="replace").strip() if raw else None
 
     def doubles(self, count: int) -> np.ndarray:
         return np.frombuffer(self.receive(8 * count), dtype=np.float64).copy()
@@ -142,7 +141,8 @@ def run(address: Address, input: Union[str, Mapping[str, Any]], options: Optiona
 
 
 def _serve(sim: Simulation, channel: _Channel, bohr: float, hartree: float, log: Optional[TextIO]) -> int:
-    initialised, result, evaluations = False, None, 0
+    initialised, evaluations = False, 0
+    result: Optional[Evaluation] = None
     while True:
         message = channel.header()
         if message is None or message == "EXIT":
@@ -164,7 +164,7 @@ def _serve(sim: Simulation, channel: _Channel, bohr: float, hartree: float, log:
             if count < 0:
                 raise ProtocolError(f"POSDATA with {count} atoms")
             positions = channel.doubles(3 * count).reshape(count, 3)
-            result = evaluate(sim, positions * bohr, orthorhombic_box(cell) * bohr, virial=True)
+            result = evaluate(sim, positions * bohr, orthorhombic_box(cell) * bohr)
             evaluations += 1
         elif message == "GETFORCE":
             if result is None:
