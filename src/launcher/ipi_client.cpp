@@ -112,7 +112,8 @@ private:
 Socket try_connect_unix(const std::string& name, int& error) {
     const std::string path = kUnixSocketPrefix + name;
     sockaddr_un address{};
-    if (path.size() >= sizeof address.sun_path) throw ConnectionFailure("the UNIX socket name " + path + " is too long");
+    if (path.size() >= sizeof address.sun_path)
+        throw ConnectionFailure("the UNIX socket name " + path + " is too long");
     address.sun_family = AF_UNIX;
     std::memcpy(address.sun_path, path.c_str(), path.size() + 1);
     Socket socket_fd(socket(AF_UNIX, SOCK_STREAM, 0));
@@ -165,14 +166,16 @@ ServerAddress parse_address(const std::string& text) {
         return address;
     }
     const size_t colon = text.rfind(':');
-    if (colon == std::string::npos || colon == 0) throw Failure("--ipi", STRUCTMD_ERR_ARGUMENT, "address " + text + ": expected HOST:PORT or unix:NAME");
+    if (colon == std::string::npos || colon == 0)
+        throw Failure("--ipi", STRUCTMD_ERR_ARGUMENT, "address " + text + ": expected HOST:PORT or unix:NAME");
     address.host = text.substr(0, colon);
     address.port = text.substr(colon + 1);
     const std::string& port = address.port;
     const bool numeric = !port.empty() && port.size() <= 5 &&
                          std::all_of(port.begin(), port.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
     if (!numeric || std::stoi(port) == 0 || std::stoi(port) > 65535)
-        throw Failure("--ipi", STRUCTMD_ERR_ARGUMENT, "address " + text + ": the port must be a number from 1 to 65535");
+        throw Failure("--ipi", STRUCTMD_ERR_ARGUMENT,
+                      "address " + text + ": the port must be a number from 1 to 65535");
     return address;
 }
 
@@ -202,9 +205,7 @@ struct ForceReply {
 class IpiClient {
 public:
     IpiClient(structmd_sim* sim, const IpiClientOptions& options)
-        : sim_(sim),
-          bohr_(kBohrInAngstrom / options.lengthUnit),
-          hartree_(kHartreeInEv / options.energyUnit) {
+        : sim_(sim), bohr_(kBohrInAngstrom / options.lengthUnit), hartree_(kHartreeInEv / options.energyUnit) {
         check(structmd_get_num_particles(sim_, &particles_), sim_, "structmd_get_num_particles");
     }
 
@@ -313,10 +314,12 @@ int run_ipi_client(const IpiClientOptions& options) {
         if (!options.quiet) std::fprintf(stderr, "structmd client: connected to %s\n", options.address.c_str());
         const int64_t evaluations = client.serve(server);
         if (!options.quiet)
-            std::fprintf(stderr, "structmd client: done after %lld configurations\n", static_cast<long long>(evaluations));
+            std::fprintf(stderr, "structmd client: done after %lld configurations\n",
+                         static_cast<long long>(evaluations));
         return 0;
     } catch (const Failure& failure) {
-        std::fprintf(stderr, "structmd client: stopped: %s (status %d)\n", failure.what(), static_cast<int>(failure.status()));
+        std::fprintf(stderr, "structmd client: stopped: %s (status %d)\n", failure.what(),
+                     static_cast<int>(failure.status()));
         return failure.status();
     } catch (const ConnectionFailure& failure) {
         std::fprintf(stderr, "structmd client: %s\n", failure.what());

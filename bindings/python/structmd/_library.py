@@ -89,8 +89,9 @@ def _library_file_names() -> List[str]:
 
 def _checkout_build_folders(package_dir: Path) -> List[Path]:
     """build/src of the repository when the package is the one of a source checkout, else nothing."""
-    repository = package_dir.parents[2]
-    in_checkout = package_dir == repository / "bindings" / "python" / "structmd"
+    bindings = package_dir.parent.parent
+    repository = bindings.parent
+    in_checkout = (package_dir.parent.name, bindings.name) == ("python", "bindings")
     if in_checkout and (repository / "include" / "structmd.h").is_file():
         return [repository / "build" / "src"]
     return []
