@@ -2,7 +2,8 @@
 """pip install . as a user does it: builds a wheel of the repository (CPU-only, to keep it short),
 installs it into a fresh virtual environment with numpy from pip, and there, away from the source tree
 and without STRUCTMD_LIBRARY or PYTHONPATH, imports structmd, loads an example, steps and reads
-forces. The installed package must be the venv's, with the library bundled inside it.
+forces, then runs tests/python/test_binding.py against the installed package. The installed package
+must be the venv's, with the library bundled inside it.
 
 usage: check_wheel.py SOURCE_DIR BUILD_DIR EXAMPLE.json
 Exit status 77 (skipped) only when a virtual environment with pip cannot be made here; a wheel that
@@ -61,8 +62,9 @@ def main(source, build, example):
             return SKIPPED
         # The build backend goes into the venv too, so that the wheel is built without a second
         # download into an isolated environment.
-        if run([python, "-m", "pip", "install", "-q", "numpy", "scikit-build-core>=0.10"], env=clean_env).returncode != 0:
-            print("skipped: pip cannot install numpy and scikit-build-core into a fresh venv (no package index?)")
+        if run([python, "-m", "pip", "install", "-q", "numpy", "pytest", "scikit-build-core>=0.10"],
+               env=clean_env).returncode != 0:
+            print("skipped: pip cannot install numpy, pytest and scikit-build-core into a fresh venv (no package index?)")
             return SKIPPED
         wheelhouse = work / "wheels"
         built = run([python, "-m", "pip", "wheel", source, "--no-deps", "--no-build-isolation", "-w", wheelhouse,
@@ -83,6 +85,15 @@ def main(source, build, example):
         checked = run([python, "-c", INSTALLED_CHECK, example], env=clean_env, cwd=work)
         if checked.returncode != 0:
             print("FAILED: the installed package does not work")
+            return 1
+        # The binding's own tests, with the test helpers on the path but not bindings/python: pytest
+        # adds tests/python, so `import structmd` finds the venv's package.
+        tests = Path(source) / "tests"
+        test_env = dict(clean_env, PYTHONPATH=str(tests / "api"))
+        tested = run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", tests / "python" / "test_binding.py"],
+                     env=test_env, cwd=work)
+        if tested.returncode != 0:
+            print("FAILED: tests/python/test_binding.py fails against the installed package")
             return 1
     return 0
 
