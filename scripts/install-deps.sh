@@ -18,7 +18,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
-if ! python3 -c "import numpy, cffi, pytest" >/dev/null 2>&1; then
-  python3 -m pip install -q numpy cffi pytest 2>/dev/null \
-    || python3 -m pip install -q --break-system-packages numpy cffi pytest
+# ase: the reference and the i-PI server of tests/python/test_ase.py and test_ipi.py.
+if ! python3 -c "import numpy, cffi, pytest, ase" >/dev/null 2>&1; then
+  python3 -m pip install -q numpy cffi pytest ase 2>/dev/null \
+    || python3 -m pip install -q --break-system-packages numpy cffi pytest ase
 fi

@@ -3,6 +3,8 @@
 //
 //   structmd run INPUT.json [--backend auto|cpu|cuda] [--precision single|mixed|double] [--threads N]
 //                [--plugin LIBRARY.so]... [--steps N] [--thermo K] [--progress SECONDS] [--quiet]
+//   structmd client --ipi HOST:PORT|unix:NAME INPUT.json [--backend ...] [--precision ...] [--threads N]
+//                   [--plugin LIBRARY.so]... [--length-unit A] [--energy-unit EV] [--connect-timeout S] [--quiet]
 //   structmd --version
 //
 // Progress goes to standard error: a line redrawn in place on a terminal, one line every
@@ -26,6 +28,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "ipi_client.hpp"
 #include "structmd.hpp"
 
 namespace {
@@ -280,6 +283,20 @@ int run_command(const RunOptions& options) {
     }
 }
 
+// The options of structmd_create that every subcommand takes.
+void add_engine_options(CLI::App* command, RunOptions& options) {
+    command->add_option("--backend", options.backend, "Where to run: auto picks CUDA when a GPU is usable")
+        ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
+        ->capture_default_str();
+    command->add_option("--precision", options.precision, "Floating-point precision of the engine")
+        ->check(CLI::IsMember({"single", "mixed", "double"}))
+        ->capture_default_str();
+    command->add_option("--threads", options.threads, "CPU threads (default: all OpenMP offers)")
+        ->check(CLI::PositiveNumber);
+    command->add_option("--plugin", options.plugins,
+                        "A plugin library whose components the input may use (docs/plugins.md); repeatable");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -292,16 +309,7 @@ int main(int argc, char** argv) {
     run->add_option("input", options.input, "Input document (UAMMD-structured JSON)")
         ->required()
         ->check(CLI::ExistingFile);
-    run->add_option("--backend", options.backend, "Where to run: auto picks CUDA when a GPU is usable")
-        ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
-        ->capture_default_str();
-    run->add_option("--precision", options.precision, "Floating-point precision of the engine")
-        ->check(CLI::IsMember({"single", "mixed", "double"}))
-        ->capture_default_str();
-    run->add_option("--threads", options.threads, "CPU threads (default: all OpenMP offers)")
-        ->check(CLI::PositiveNumber);
-    run->add_option("--plugin", options.plugins,
-                    "A plugin library whose components the input may use (docs/plugins.md); repeatable");
+    add_engine_options(run, options);
     run->add_option("--steps", options.steps,
                     "Steps to run instead of the schedule's; past its end the last integrator goes on")
         ->check(CLI::NonNegativeNumber);
@@ -314,6 +322,41 @@ int main(int argc, char** argv) {
     run->add_flag("--quiet", options.quiet,
                   "No progress line, no summary, engine log at warning level (errors still print)");
 
+    // The engine as an i-PI client: the same engine options as run, double precision by default since
+    // the server's optimiser or integrator expects it.
+    RunOptions clientEngine;
+    clientEngine.precision = "double";
+    structmd::launcher::IpiClientOptions clientOptions;
+    CLI::App* client =
+        app.add_subcommand("client", "Answer the force requests of an i-PI server (i-PI, ASE's SocketIOCalculator)");
+    client
+        ->add_option("--ipi", clientOptions.address,
+                     "The server: HOST:PORT, or unix:NAME for the UNIX socket /tmp/ipi_NAME")
+        ->required();
+    client
+        ->add_option("input", clientOptions.input,
+                     "Input document (UAMMD-structured JSON) whose particles are the server's atoms")
+        ->required()
+        ->check(CLI::ExistingFile);
+    add_engine_options(client, clientEngine);
+    client->add_option("--length-unit", clientOptions.lengthUnit, "One input length in Å (the server speaks bohr)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    client->add_option("--energy-unit", clientOptions.energyUnit, "One input energy in eV (the server speaks hartree)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    client
+        ->add_option("--connect-timeout", clientOptions.connectTimeout,
+                     "Seconds to keep trying while no server listens")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    client->add_flag("--quiet", clientEngine.quiet, "No connection messages, engine log at warning level");
+
     CLI11_PARSE(app, argc, argv);
+    if (client->parsed()) {
+        clientOptions.createOptions = create_options(clientEngine);
+        clientOptions.quiet = clientEngine.quiet;
+        return structmd::launcher::run_ipi_client(clientOptions);
+    }
     return run_command(options);
 }

@@ -72,3 +72,42 @@ def dimer_system(separation=1.3, box=8.0, steps=1000, bond=("Harmonic", ["K", "r
                                 "data": [[0, 1, *values]]}},
     }
     return doc
+
+
+# Lennard-Jones argon for the ASE and i-PI tests: Å and eV, ASE's LennardJones conventions.
+SIGMA, EPSILON = 3.405, 0.010318
+CUTOFF_FACTOR = 3.0  # ASE's default rc = 3 sigma
+LATTICE = 5.26  # Å; 4 cubic cells give a 21.04 Å box, more than twice rc (10.2 Å)
+
+
+def rattled_argon(seed):
+    """256 argon atoms of an fcc crystal (ase.Atoms), each moved at random by about 0.08 Å."""
+    from ase.build import bulk
+
+    atoms = bulk("Ar", "fcc", a=LATTICE, cubic=True).repeat(4)
+    atoms.rattle(stdev=0.08, seed=seed)
+    return atoms
+
+
+def lj_input(atoms, sigma=SIGMA, epsilon=EPSILON, length_unit=1.0):
+    """The structmd input of ASE's LennardJones(sigma, epsilon, rc=3 sigma): shifted at the cutoff."""
+    box = [atoms.cell[k, k] / length_unit for k in range(3)]
+    positions = atoms.positions / length_unit
+    return {
+        "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": "ase-lj", "seed": 1}}},
+        "global": {
+            "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
+                      "data": [["Ar", 39.948, 0.5 * sigma, 0.0]]},
+            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[box, 0.0]]},
+        },
+        "state": {"labels": ["id", "position"], "data": [[i, list(p)] for i, p in enumerate(positions.tolist())]},
+        "topology": {
+            "structure": {"labels": ["id", "type"], "data": [[i, "Ar"] for i in range(len(atoms))]},
+            "forceField": {
+                "nl": {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": 1.02}},
+                "lj": {"type": ["NonBonded", "LennardJonesType1"],
+                       "parameters": {"cutOffFactor": CUTOFF_FACTOR, "condition": "all", "shift": True},
+                       "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [["Ar", "Ar", epsilon, sigma]]},
+            },
+        },
+    }

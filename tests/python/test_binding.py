@@ -100,7 +100,8 @@ def test_import_names_a_wrong_library_path(tmp_path):
 
 def test_library_next_to_the_package_is_found(tmp_path):
     copy = tmp_path / "structmd"
-    shutil.copytree(PACKAGE_PARENT / "structmd", copy, ignore=shutil.ignore_patterns("__pycache__"))
+    # An installed package already holds its library: the copy takes the package's Python files only.
+    shutil.copytree(PACKAGE_PARENT / "structmd", copy, ignore=shutil.ignore_patterns("__pycache__", "*.so"))
     (copy / Path(structmd.library_path).name).symlink_to(Path(structmd.library_path).resolve())
     result = run_python("import structmd; print(structmd.library_path)", {"PYTHONPATH": str(tmp_path)})
     assert result.returncode == 0, result.stderr

@@ -8,12 +8,16 @@
         sim.external_forces = -0.1 * sim.positions
         sim.step(100)
 
-The shared library is found through the environment variable STRUCTMD_LIBRARY, else next to this
-package, else on the system's library path; importing fails with ImportError if its ABI version is
-not ABI_VERSION.
+The shared library is found through the environment variable STRUCTMD_LIBRARY, else inside or next to
+this package (pip install . bundles it inside), else in a source checkout's build/src, else on the
+system's library path; importing fails with ImportError if its ABI version is not ABI_VERSION.
+
+structmd.ase (an ASE calculator) and structmd.ipi (an i-PI client) are imported on demand: see
+docs/python.md.
 """
 
 import os as _os
+from typing import Union
 
 from ._library import lib as _lib
 from ._library import library_path
@@ -24,17 +28,17 @@ from .errors import (ArgumentError, CallbackError, DeviceError, InputError, Inte
 from .simulation import Simulation
 
 
-def abi_version():
+def abi_version() -> int:
     """STRUCTMD_ABI_VERSION of the library actually loaded."""
     return _lib.structmd_abi_version()
 
 
-def version():
+def version() -> str:
     """The library version, "MAJOR.MINOR.PATCH"."""
     return _lib.structmd_version().decode()
 
 
-def load_plugin(path):
+def load_plugin(path: Union[str, "_os.PathLike[str]"]) -> None:
     """Loads a plugin library for every Simulation created afterwards (structmd_load_plugin); a
     Simulation may also load its own through the option "plugins". Raises the StructmdError subclass
     of the failure: StructmdIOError (no such file), ArgumentError (not a plugin), UnsupportedError

@@ -1,7 +1,9 @@
 """Finds libstructmd, checks its ABI version and declares the C signature of every function.
 
 Search order: the path in the environment variable STRUCTMD_LIBRARY; a library file next to the
-package (inside it or in its parent folder); then ctypes.util.find_library("structmd").
+package (inside it, where a wheel from `pip install .` puts it, or in its parent folder); in a source
+checkout (bindings/python/structmd), the build tree of scripts/build.sh, build/src; then
+ctypes.util.find_library("structmd").
 """
 
 import ctypes
@@ -10,6 +12,7 @@ import os
 import sys
 from ctypes import CFUNCTYPE, POINTER, c_char_p, c_double, c_int, c_int32, c_int64, c_size_t, c_uint32, c_void_p
 from pathlib import Path
+from typing import List, Tuple
 
 from .constants import ABI_VERSION
 
@@ -76,7 +79,7 @@ SIGNATURES = {
 }
 
 
-def _library_file_names():
+def _library_file_names() -> List[str]:
     if sys.platform == "win32":
         return ["structmd.dll"]
     if sys.platform == "darwin":
@@ -84,7 +87,17 @@ def _library_file_names():
     return ["libstructmd.so"]
 
 
-def find_library_path():
+def _checkout_build_folders(package_dir: Path) -> List[Path]:
+    """build/src of the repository when the package is the one of a source checkout, else nothing."""
+    bindings = package_dir.parent.parent
+    repository = bindings.parent
+    in_checkout = (package_dir.parent.name, bindings.name) == ("python", "bindings")
+    if in_checkout and (repository / "include" / "structmd.h").is_file():
+        return [repository / "build" / "src"]
+    return []
+
+
+def find_library_path() -> str:
     """The library file to load, by the search order above; ImportError when there is none."""
     explicit = os.environ.get(LIBRARY_ENV)
     if explicit:
@@ -92,7 +105,7 @@ def find_library_path():
             raise ImportError(f"structmd: {LIBRARY_ENV}={explicit} does not name a file")
         return explicit
     package_dir = Path(__file__).resolve().parent
-    for folder in (package_dir, package_dir.parent):
+    for folder in (package_dir, package_dir.parent, *_checkout_build_folders(package_dir)):
         for name in _library_file_names():
             if (folder / name).is_file():
                 return str(folder / name)
@@ -102,10 +115,10 @@ def find_library_path():
     raise ImportError(
         "structmd: the shared library libstructmd was not found; set "
         f"{LIBRARY_ENV} to its path, put it next to the package ({package_dir}) or on the "
-        "system's library path")
+        "system's library path, or install the package with `pip install .` from the repository")
 
 
-def load_library():
+def load_library() -> Tuple[ctypes.CDLL, str]:
     """Loads the library, refuses one of another ABI version and declares every function."""
     path = find_library_path()
     try:

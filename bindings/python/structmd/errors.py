@@ -1,5 +1,7 @@
 """One exception class per structmd status code, all derived from StructmdError."""
 
+from typing import Optional
+
 from .constants import STATUS
 
 _STATUS_NAMES = {value: name for name, value in STATUS.items()}
@@ -8,15 +10,15 @@ _STATUS_NAMES = {value: name for name, value in STATUS.items()}
 class StructmdError(Exception):
     """A structmd call failed. `status` is the C status code, `message` the library's explanation."""
 
-    status_name = None
+    status_name: Optional[str] = None
 
-    def __init__(self, status, message):
+    def __init__(self, status: int, message: str) -> None:
         # Both values go to Exception so that the exception pickles and copies faithfully.
         super().__init__(status, message)
         self.status = status
         self.message = message
 
-    def __str__(self):
+    def __str__(self) -> str:
         name = _STATUS_NAMES.get(self.status, f"status {self.status}")
         return f"{self.message} [{name}]" if self.message else name
 
@@ -88,6 +90,6 @@ ERROR_CLASSES = {
 }
 
 
-def error_for_status(status, message):
+def error_for_status(status: int, message: str) -> StructmdError:
     """The exception for a failed call; an unknown status (a newer library) gives StructmdError."""
     return ERROR_CLASSES.get(status, StructmdError)(status, message)

@@ -1,0 +1,102 @@
+#!/usr/bin/env python3
+"""pip install . as a user does it: builds a wheel of the repository (CPU-only, to keep it short),
+installs it into a fresh virtual environment with numpy from pip, and there, away from the source tree
+and without STRUCTMD_LIBRARY or PYTHONPATH, imports structmd, loads an example, steps and reads
+forces, then runs tests/python/test_binding.py against the installed package. The installed package
+must be the venv's, with the library bundled inside it.
+
+usage: check_wheel.py SOURCE_DIR BUILD_DIR EXAMPLE.json
+Exit status 77 (skipped) only when a virtual environment with pip cannot be made here; a wheel that
+does not build, install or work is a failure."""
+
+import os
+import subprocess
+import sys
+import tempfile
+import zipfile
+from pathlib import Path
+
+SKIPPED = 77
+
+# The check above: it runs inside the venv; everything printed is for the log, the exit status is the verdict.
+INSTALLED_CHECK = r"""
+import sys
+from pathlib import Path
+import numpy as np
+import structmd
+
+venv = Path(sys.prefix).resolve()
+package = Path(structmd.__file__).resolve().parent
+library = Path(structmd.library_path).resolve()
+print("structmd", structmd.version(), "from", package, "library", library)
+assert venv in package.parents, f"structmd imported from {package}, not from the venv {venv}"
+assert library.parent == package, f"the library {library} is not the one bundled in {package}"
+assert (package / "py.typed").is_file(), "py.typed is missing from the installed package"
+with structmd.Simulation({"backend": "cpu", "precision": "double"}) as sim:
+    sim.load(sys.argv[1])
+    sim.step(10)
+    forces = sim.forces
+    assert sim.step_number == 10, sim.step_number
+    assert forces.shape == (sim.num_particles, 3) and np.all(np.isfinite(forces)), forces
+    assert np.abs(forces).max() > 0.0, "all forces are zero"
+    # Internal forces only: they sum to zero (Newton's third law).
+    assert np.abs(forces.sum(axis=0)).max() < 1e-9 * np.abs(forces).max(), forces.sum(axis=0)
+print("installed package works")
+"""
+
+
+def run(command, **kwargs):
+    print("$", *("<the check above>" if "\n" in str(c) else c for c in command), flush=True)
+    return subprocess.run([str(c) for c in command], **kwargs)
+
+
+def main(source, build, example):
+    clean_env = {k: v for k, v in os.environ.items() if k not in ("STRUCTMD_LIBRARY", "PYTHONPATH")}
+    clean_env["CMAKE_BUILD_PARALLEL_LEVEL"] = str(os.cpu_count() or 1)
+    with tempfile.TemporaryDirectory() as work:
+        work = Path(work)
+        venv = work / "venv"
+        python = venv / "bin" / "python"
+        if run([sys.executable, "-m", "venv", venv]).returncode != 0 or not python.is_file():
+            print("skipped: python3 -m venv does not work here (Debian: python3-venv)")
+            return SKIPPED
+        # The build backend goes into the venv too, so that the wheel is built without a second
+        # download into an isolated environment.
+        if run([python, "-m", "pip", "install", "-q", "numpy", "pytest", "scikit-build-core>=0.10"],
+               env=clean_env).returncode != 0:
+            print("skipped: pip cannot install numpy, pytest and scikit-build-core into a fresh venv (no package index?)")
+            return SKIPPED
+        wheelhouse = work / "wheels"
+        built = run([python, "-m", "pip", "wheel", source, "--no-deps", "--no-build-isolation", "-w", wheelhouse,
+                     "-C", "cmake.define.STRUCTMD_CUDA=OFF", "-C", f"build-dir={build}"], env=clean_env)
+        wheels = list(wheelhouse.glob("structmd-*.whl"))
+        if built.returncode != 0 or len(wheels) != 1:
+            print(f"FAILED: pip wheel exited {built.returncode}, wheels: {wheels}")
+            return 1
+        names = zipfile.ZipFile(wheels[0]).namelist()
+        print("wheel holds:", *names, sep="\n  ")
+        libraries = [name for name in names if "libstructmd" in name]
+        if libraries != ["structmd/libstructmd.so"]:
+            print(f"FAILED: expected the one library structmd/libstructmd.so in the wheel, found {libraries}")
+            return 1
+        if run([python, "-m", "pip", "install", "-q", "--no-deps", wheels[0]], env=clean_env).returncode != 0:
+            print("FAILED: the wheel does not install")
+            return 1
+        checked = run([python, "-c", INSTALLED_CHECK, example], env=clean_env, cwd=work)
+        if checked.returncode != 0:
+            print("FAILED: the installed package does not work")
+            return 1
+        # The binding's own tests, with the test helpers on the path but not bindings/python: pytest
+        # adds tests/python, so `import structmd` finds the venv's package.
+        tests = Path(source) / "tests"
+        test_env = dict(clean_env, PYTHONPATH=str(tests / "api"))
+        tested = run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", tests / "python" / "test_binding.py"],
+                     env=test_env, cwd=work)
+        if tested.returncode != 0:
+            print("FAILED: tests/python/test_binding.py fails against the installed package")
+            return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:4]))
