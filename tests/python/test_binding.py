@@ -108,6 +108,27 @@ def test_library_next_to_the_package_is_found(tmp_path):
     assert Path(result.stdout.strip()).parent == copy
 
 
+def test_a_source_checkout_finds_the_library_of_its_build_tree(tmp_path):
+    # A checkout's layout: bindings/python/structmd beside include/structmd.h, the library where
+    # scripts/build.sh puts it, build/src; examples/coupling.py relies on this after a plain build.
+    checkout = tmp_path / "checkout"
+    package = checkout / "bindings" / "python" / "structmd"
+    shutil.copytree(PACKAGE_PARENT / "structmd", package, ignore=shutil.ignore_patterns("__pycache__", "*.so"))
+    (checkout / "include").mkdir()
+    (checkout / "include" / "structmd.h").touch()
+    built = checkout / "build" / "src" / "libstructmd.so"
+    built.parent.mkdir(parents=True)
+    built.symlink_to(Path(structmd.library_path).resolve())
+    code = "import structmd; print(structmd.library_path)"
+    result = run_python(code, {"PYTHONPATH": str(package.parent)})
+    assert result.returncode == 0, result.stderr
+    assert Path(result.stdout.strip()) == built
+    # Without the header the folders are not a checkout, and build/src is not looked into.
+    (checkout / "include" / "structmd.h").unlink()
+    result = run_python(code, {"PYTHONPATH": str(package.parent)})
+    assert Path(result.stdout.strip() or "none") != built
+
+
 # ---- creating, loading, advancing --------------------------------------------------------------
 
 @pytest.mark.parametrize("form", ["dict", "string"])
