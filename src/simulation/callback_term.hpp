@@ -53,7 +53,7 @@ public:
             std::vector<Real4<R>> packed(p.count);
             backend.download(p.pos, packed.data(), packed.size());
             std::vector<double> xyz(3 * p.count);
-            unpack_vectors(packed, xyz.data());
+            unpack_vectors(packed.data(), p.count, xyz.data());
             std::vector<double> f(3 * p.count, 0.0);
             host_({xyz.data(), f.data(), p.count, &energy, virial.data(), step});
             for (int64_t k = 0; k < 3 * p.count; ++k)

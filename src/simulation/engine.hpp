@@ -271,52 +271,51 @@ public:
             externalEnergy_ = 0.0;  // no field, no field energy
             return;
         }
-        std::vector<Real4<R>> values(p_.count);
-        for (int64_t i = 0; i < p_.count; ++i) values[i] = {R(f[3 * i]), R(f[3 * i + 1]), R(f[3 * i + 2]), R(0)};
+        pack_forces(f, p_.count);
         create_external_forces();
-        backend_.upload(subsetVectors_, values.data(), values.size());
+        backend_.upload(subsetVectors_, hostVectors_, static_cast<size_t>(p_.count));
         replace_external_forces(nullptr, subsetVectors_.data(), p_.count);
     }
 
-    void get_positions_of(const int64_t* ids, int64_t m, double* xyz) override { gather_vectors(p_.pos, ids, m, xyz); }
-    void get_velocities_of(const int64_t* ids, int64_t m, double* v) override { gather_vectors(p_.vel, ids, m, v); }
+    void get_positions_of(const int64_t* ids, int64_t m, double* xyz) override {
+        unpack_vectors(gather(p_.pos, ids, m), m, xyz);
+    }
+    void get_velocities_of(const int64_t* ids, int64_t m, double* v) override {
+        unpack_vectors(gather(p_.vel, ids, m), m, v);
+    }
     // As get_forces: the m forces are checked before any is handed over.
     void get_forces_of(const int64_t* ids, int64_t m, double* f) override {
         compute(kForces);
-        std::vector<double> values(3 * m);
-        gather_vectors(p_.force, ids, m, values.data());
-        for (int64_t k = 0; k < 3 * m; ++k)
-            if (!std::isfinite(values[k]))
+        const Real4<R>* values = gather(p_.force, ids, m);
+        for (int64_t k = 0; k < m; ++k)
+            if (!std::isfinite(values[k].x) || !std::isfinite(values[k].y) || !std::isfinite(values[k].z))
                 throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(current_step()) + ", particle id " +
-                                                        std::to_string(ids[k / 3]) +
+                                                        std::to_string(ids[k]) +
                                                         ": the force is not finite (overlapping particles?)");
-        std::copy(values.begin(), values.end(), f);
+        unpack_vectors(values, m, f);
     }
     // As set_positions for those particles: wrapped, images counted from the positions given, and
     // everything computed from positions made stale.
     void set_positions_of(const int64_t* ids, int64_t m, const double* xyz) override {
         backend_.activate();
-        std::vector<Real4<R>> values;
-        std::vector<Image> images;
-        pack_positions_of<R>(xyz, ids, m, boxLengths_, typeIndex_, values, images);
+        pack_positions_of<R>(xyz, ids, m, boxLengths_, typeIndex_, hostVectors_.reserve(m), hostImages_.reserve(m));
         upload_ids(ids, m);
-        scatter(values, p_.pos, subsetVectors_);
-        scatter(images, p_.image, subsetImages_);
+        scatter(hostVectors_, subsetVectors_, p_.pos, m);
+        scatter(hostImages_, subsetImages_, p_.image, m);
         positions_changed();
     }
     void set_velocities_of(const int64_t* ids, int64_t m, const double* v) override {
         backend_.activate();
-        const std::vector<Real4<R>> values = pack_velocities_of<R>(v, ids, m, masses_);
+        pack_velocities_of<R>(v, ids, m, masses_, hostVectors_.reserve(m));
         upload_ids(ids, m);
-        scatter(values, p_.vel, subsetVectors_);
+        scatter(hostVectors_, subsetVectors_, p_.vel, m);
     }
     void set_external_forces_of(const int64_t* ids, int64_t m, const double* f) override {
         backend_.activate();
-        std::vector<Real4<R>> values(m);
-        for (int64_t k = 0; k < m; ++k) values[k] = {R(f[3 * k]), R(f[3 * k + 1]), R(f[3 * k + 2]), R(0)};
+        pack_forces(f, m);
         upload_ids(ids, m);
         create_external_forces();
-        backend_.upload(subsetVectors_, values.data(), values.size());
+        backend_.upload(subsetVectors_, hostVectors_, static_cast<size_t>(m));
         replace_external_forces(subsetIds_.data(), subsetVectors_.data(), m);
     }
     void set_external_energy(double energy) override { externalEnergy_ = energy; }
@@ -526,16 +525,23 @@ private:
     }
 
     void upload_positions(const double* xyz) {
-        std::vector<Real4<R>> values;
-        std::vector<Image> images;
-        pack_positions<R>(xyz, boxLengths_, typeIndex_, values, images);
-        backend_.upload(p_.pos, values.data(), values.size());
-        backend_.upload(p_.image, images.data(), images.size());
+        const auto n = static_cast<size_t>(p_.count);
+        pack_positions_of<R>(xyz, nullptr, p_.count, boxLengths_, typeIndex_, hostVectors_.reserve(n),
+                             hostImages_.reserve(n));
+        backend_.upload(p_.pos, hostVectors_, n);
+        backend_.upload(p_.image, hostImages_, n);
     }
 
     void upload_velocities(const double* v) {
-        const std::vector<Real4<R>> values = pack_velocities<R>(v, masses_);
-        backend_.upload(p_.vel, values.data(), values.size());
+        const auto n = static_cast<size_t>(p_.count);
+        pack_velocities_of<R>(v, nullptr, p_.count, masses_, hostVectors_.reserve(n));
+        backend_.upload(p_.vel, hostVectors_, n);
+    }
+
+    // The m forces f (3m values) into the vector staging, as Real4 with w = 0.
+    void pack_forces(const double* f, int64_t m) {
+        Real4<R>* values = hostVectors_.reserve(static_cast<size_t>(m));
+        for (int64_t k = 0; k < m; ++k) values[k] = {R(f[3 * k]), R(f[3 * k + 1]), R(f[3 * k + 2]), R(0)};
     }
 
     template <class T>
@@ -547,7 +553,7 @@ private:
 
     void download_vectors(const typename B::template Buffer<Real4<R>>& buffer, double* out) {
         backend_.activate();
-        unpack_vectors(download(buffer), out);
+        unpack_vectors(backend_.download(buffer, hostVectors_, buffer.size()), static_cast<int64_t>(buffer.size()), out);
     }
 
     // The host's field, zero until it sets one.
@@ -562,26 +568,29 @@ private:
         backend_.for_each(m, ReplaceExternalForces<R>{ids, values, p_.externalForce.data(), force});
     }
 
-    // Subsets by id (m > 0): the ids and m packed entries cross between the host and the backend,
-    // and a backend loop gathers or scatters them.
+    // Subsets by id (m > 0): the ids and m packed entries cross between the host and the backend
+    // through the staging, and a backend loop gathers or scatters them.
     // A coupling loop names the same region call after call: those ids are on the backend already.
     void upload_ids(const int64_t* ids, int64_t m) {
         if (uploadedIds_.size() == static_cast<size_t>(m) && std::equal(ids, ids + m, uploadedIds_.begin())) return;
-        backend_.upload(subsetIds_, ids, static_cast<size_t>(m));
+        std::copy(ids, ids + m, hostIds_.reserve(static_cast<size_t>(m)));
+        backend_.upload(subsetIds_, hostIds_, static_cast<size_t>(m));
         uploadedIds_.assign(ids, ids + m);
     }
-    void gather_vectors(const typename B::template Buffer<Real4<R>>& from, const int64_t* ids, int64_t m, double* out) {
+    // The m values of from at ids, in the vector staging (valid until the next transfer).
+    const Real4<R>* gather(const typename B::template Buffer<Real4<R>>& from, const int64_t* ids, int64_t m) {
         backend_.activate();
         upload_ids(ids, m);
         backend_.resize(subsetVectors_, static_cast<size_t>(m));
         backend_.for_each(m, GatherById<Real4<R>>{from.data(), subsetIds_.data(), subsetVectors_.data()});
-        unpack_vectors(download(subsetVectors_), out);
+        return backend_.download(subsetVectors_, hostVectors_, static_cast<size_t>(m));
     }
-    // The ids are in subsetIds_ already.
+    // The m values packed in host into to at the ids in subsetIds_, through the backend buffer staging.
     template <class T>
-    void scatter(const std::vector<T>& values, typename B::template Buffer<T>& to, typename B::template Buffer<T>& staging) {
-        backend_.upload(staging, values.data(), values.size());
-        backend_.for_each(static_cast<int64_t>(values.size()), ScatterById<T>{staging.data(), subsetIds_.data(), to.data()});
+    void scatter(typename B::template Staging<T>& host, typename B::template Buffer<T>& staging,
+                 typename B::template Buffer<T>& to, int64_t m) {
+        backend_.upload(staging, host, static_cast<size_t>(m));
+        backend_.for_each(m, ScatterById<T>{staging.data(), subsetIds_.data(), to.data()});
     }
 
     B backend_;
@@ -612,6 +621,10 @@ private:
     typename B::template Buffer<Real4<R>> subsetVectors_;
     std::vector<int64_t> uploadedIds_;  // what subsetIds_ holds
     typename B::template Buffer<Image> subsetImages_;
+    // Host staging of every transfer of particle arrays (pinned on CUDA): packed and unpacked here.
+    typename B::template Staging<Real4<R>> hostVectors_;
+    typename B::template Staging<Image> hostImages_;
+    typename B::template Staging<int64_t> hostIds_;
 };
 
 }  // namespace structmd

@@ -12,10 +12,8 @@ namespace structmd {
 
 template <class R>
 void pack_positions_of(const double* xyz, const int64_t* ids, int64_t m, const std::array<double, 3>& lengths,
-                       const std::vector<int32_t>& types, std::vector<Real4<R>>& positions, std::vector<Image>& images) {
+                       const std::vector<int32_t>& types, Real4<R>* positions, Image* images) {
     const Box<double> box = Box<double>::make(lengths[0], lengths[1], lengths[2]);
-    positions.resize(static_cast<size_t>(m));
-    images.assign(static_cast<size_t>(m), Image{0, 0, 0});
     for (int64_t k = 0; k < m; ++k) {
         const int64_t id = ids ? ids[k] : k;
         for (int d = 0; d < 3; ++d) {
@@ -28,56 +26,38 @@ void pack_positions_of(const double* xyz, const int64_t* ids, int64_t m, const s
                                                        ": expected a finite value within 1e8 box lengths of the box");
             }
         }
+        images[k] = Image{0, 0, 0};
         const Vec3<double> r = box.wrap({xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]}, images[k]);
         positions[k] = {R(r.x), R(r.y), R(r.z), R(types[id])};
     }
 }
 
 template <class R>
-void pack_positions(const double* xyz, const std::array<double, 3>& lengths, const std::vector<int32_t>& types,
-                    std::vector<Real4<R>>& positions, std::vector<Image>& images) {
-    pack_positions_of<R>(xyz, nullptr, static_cast<int64_t>(types.size()), lengths, types, positions, images);
-}
-
-template <class R>
-std::vector<Real4<R>> pack_velocities_of(const double* v, const int64_t* ids, int64_t m,
-                                         const std::vector<double>& masses) {
-    std::vector<Real4<R>> values(static_cast<size_t>(m));
+void pack_velocities_of(const double* v, const int64_t* ids, int64_t m, const std::vector<double>& masses,
+                        Real4<R>* velocities) {
     for (int64_t k = 0; k < m; ++k)
-        values[k] = {R(v[3 * k]), R(v[3 * k + 1]), R(v[3 * k + 2]), R(masses[ids ? ids[k] : k])};
-    return values;
+        velocities[k] = {R(v[3 * k]), R(v[3 * k + 1]), R(v[3 * k + 2]), R(masses[ids ? ids[k] : k])};
 }
 
 template <class R>
-std::vector<Real4<R>> pack_velocities(const double* v, const std::vector<double>& masses) {
-    return pack_velocities_of<R>(v, nullptr, static_cast<int64_t>(masses.size()), masses);
-}
-
-template <class R>
-void unpack_vectors(const std::vector<Real4<R>>& values, double* xyz) {
-    for (size_t i = 0; i < values.size(); ++i) {
+void unpack_vectors(const Real4<R>* values, int64_t m, double* xyz) {
+    for (int64_t i = 0; i < m; ++i) {
         xyz[3 * i] = values[i].x;
         xyz[3 * i + 1] = values[i].y;
         xyz[3 * i + 2] = values[i].z;
     }
 }
 
-template void pack_positions<float>(const double*, const std::array<double, 3>&, const std::vector<int32_t>&,
-                                    std::vector<Real4<float>>&, std::vector<Image>&);
-template void pack_positions<double>(const double*, const std::array<double, 3>&, const std::vector<int32_t>&,
-                                     std::vector<Real4<double>>&, std::vector<Image>&);
 template void pack_positions_of<float>(const double*, const int64_t*, int64_t, const std::array<double, 3>&,
-                                       const std::vector<int32_t>&, std::vector<Real4<float>>&, std::vector<Image>&);
+                                       const std::vector<int32_t>&, Real4<float>*, Image*);
 template void pack_positions_of<double>(const double*, const int64_t*, int64_t, const std::array<double, 3>&,
-                                        const std::vector<int32_t>&, std::vector<Real4<double>>&, std::vector<Image>&);
-template std::vector<Real4<float>> pack_velocities_of<float>(const double*, const int64_t*, int64_t,
-                                                             const std::vector<double>&);
-template std::vector<Real4<double>> pack_velocities_of<double>(const double*, const int64_t*, int64_t,
-                                                               const std::vector<double>&);
-template std::vector<Real4<float>> pack_velocities<float>(const double*, const std::vector<double>&);
-template std::vector<Real4<double>> pack_velocities<double>(const double*, const std::vector<double>&);
-template void unpack_vectors<float>(const std::vector<Real4<float>>&, double*);
-template void unpack_vectors<double>(const std::vector<Real4<double>>&, double*);
+                                        const std::vector<int32_t>&, Real4<double>*, Image*);
+template void pack_velocities_of<float>(const double*, const int64_t*, int64_t, const std::vector<double>&,
+                                        Real4<float>*);
+template void pack_velocities_of<double>(const double*, const int64_t*, int64_t, const std::vector<double>&,
+                                         Real4<double>*);
+template void unpack_vectors<float>(const Real4<float>*, int64_t, double*);
+template void unpack_vectors<double>(const Real4<double>*, int64_t, double*);
 
 std::vector<double> maxwell_boltzmann(const SimulationSpec& spec) {
     const int64_t n = static_cast<int64_t>(spec.positions.size());

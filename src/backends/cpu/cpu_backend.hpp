@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "backends/cpu/host_staging.hpp"
 #include "backends/transfer_counters.hpp"
 #include "core/lanes.hpp"
 
@@ -53,6 +54,8 @@ class CpuBackend {
 public:
     template <class T>
     using Buffer = HostBuffer<T>;
+    template <class T>
+    using Staging = HostStaging<T>;
 
     static constexpr const char* name = "cpu";
     // Neighbour lists in index order: force sums independent of the build history, so a restart
@@ -148,6 +151,19 @@ public:
     void download(const Buffer<T>& buffer, T* host, size_t n) const {
         transfers_.deviceToHost += n * sizeof(T);
         std::copy(buffer.data(), buffer.data() + n, host);
+    }
+
+    // Through the backend's staging, as on CUDA (where the upload is asynchronous).
+    template <class T>
+    void upload(Buffer<T>& buffer, Staging<T>& host, size_t n) const {
+        upload(buffer, host.data(), n);
+    }
+
+    template <class T>
+    const T* download(const Buffer<T>& buffer, Staging<T>& host, size_t n) const {
+        T* values = host.reserve(n);
+        download(buffer, values, n);
+        return values;
     }
 
     template <class T>

@@ -14,6 +14,7 @@
 
 #include "backends/cuda/cuda_check.hpp"
 #include "backends/cuda/launch_kernels.cuh"
+#include "backends/cuda/pinned_staging.cuh"
 #include "backends/cuda/runtime_compiler.hpp"
 #include "backends/cuda/step_graphs.cuh"
 #include "backends/transfer_counters.hpp"
@@ -86,6 +87,8 @@ class CudaBackend {
 public:
     template <class T>
     using Buffer = DeviceBuffer<T>;
+    template <class T>
+    using Staging = PinnedStaging<T>;
 
     static constexpr const char* name = "cuda";
     // Sorting every list in global memory at each build cut the LJ benchmark at a million particles
@@ -254,6 +257,27 @@ public:
         cuda_check(cudaMemcpyAsync(host, buffer.data(), n * sizeof(T), cudaMemcpyDeviceToHost, stream_),
                    "copying from the device");
         synchronize();
+    }
+
+    // From pinned staging: queued on the stream, and the host goes on at once (host.reserve waits
+    // before the staging is written again).
+    template <class T>
+    void upload(Buffer<T>& buffer, Staging<T>& host, size_t n) const {
+        resize(buffer, n);
+        if (n == 0) return;
+        transfers_.hostToDevice += n * sizeof(T);
+        issue_recorded();
+        cuda_check(cudaMemcpyAsync(buffer.data(), host.data(), n * sizeof(T), cudaMemcpyHostToDevice, stream_),
+                   "copying to the device");
+        host.mark_uploading(stream_);
+    }
+
+    // Into pinned staging; the values are there when this returns.
+    template <class T>
+    const T* download(const Buffer<T>& buffer, Staging<T>& host, size_t n) const {
+        T* values = host.reserve(n);
+        download(buffer, values, n);
+        return values;
     }
 
     template <class T>
