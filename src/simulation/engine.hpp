@@ -273,8 +273,8 @@ public:
         }
         pack_forces(f, p_.count);
         create_external_forces();
-        backend_.upload(subsetVectors_, hostVectors_, static_cast<size_t>(p_.count));
-        replace_external_forces(nullptr, subsetVectors_.data(), p_.count);
+        replace_external_forces(nullptr, hostVectors_.data(), p_.count);
+        backend_.read_from_host(hostVectors_, static_cast<size_t>(p_.count));
     }
 
     void get_positions_of(const int64_t* ids, int64_t m, double* xyz) override {
@@ -300,23 +300,23 @@ public:
         backend_.activate();
         pack_positions_of<R>(xyz, ids, m, boxLengths_, typeIndex_, hostVectors_.reserve(m), hostImages_.reserve(m));
         upload_ids(ids, m);
-        scatter(hostVectors_, subsetVectors_, p_.pos, m);
-        scatter(hostImages_, subsetImages_, p_.image, m);
+        scatter(hostVectors_, p_.pos, m);
+        scatter(hostImages_, p_.image, m);
         positions_changed();
     }
     void set_velocities_of(const int64_t* ids, int64_t m, const double* v) override {
         backend_.activate();
         pack_velocities_of<R>(v, ids, m, masses_, hostVectors_.reserve(m));
         upload_ids(ids, m);
-        scatter(hostVectors_, subsetVectors_, p_.vel, m);
+        scatter(hostVectors_, p_.vel, m);
     }
     void set_external_forces_of(const int64_t* ids, int64_t m, const double* f) override {
         backend_.activate();
         pack_forces(f, m);
         upload_ids(ids, m);
         create_external_forces();
-        backend_.upload(subsetVectors_, hostVectors_, static_cast<size_t>(m));
-        replace_external_forces(subsetIds_.data(), subsetVectors_.data(), m);
+        replace_external_forces(subsetIds_.data(), hostVectors_.data(), m);
+        backend_.read_from_host(hostVectors_, static_cast<size_t>(m));
     }
     void set_external_energy(double energy) override { externalEnergy_ = energy; }
 
@@ -568,8 +568,8 @@ private:
         backend_.for_each(m, ReplaceExternalForces<R>{ids, values, p_.externalForce.data(), force});
     }
 
-    // Subsets by id (m > 0): the ids and m packed entries cross between the host and the backend
-    // through the staging, and a backend loop gathers or scatters them.
+    // Subsets by id (m > 0): a backend loop gathers the m entries into the host staging or scatters
+    // them from it, directly (pinned memory on CUDA): one launch, no copy. The ids live on the backend.
     // A coupling loop names the same region call after call: those ids are on the backend already.
     void upload_ids(const int64_t* ids, int64_t m) {
         if (uploadedIds_.size() == static_cast<size_t>(m) && std::equal(ids, ids + m, uploadedIds_.begin())) return;
@@ -581,16 +581,16 @@ private:
     const Real4<R>* gather(const typename B::template Buffer<Real4<R>>& from, const int64_t* ids, int64_t m) {
         backend_.activate();
         upload_ids(ids, m);
-        backend_.resize(subsetVectors_, static_cast<size_t>(m));
-        backend_.for_each(m, GatherById<Real4<R>>{from.data(), subsetIds_.data(), subsetVectors_.data()});
-        return backend_.download(subsetVectors_, hostVectors_, static_cast<size_t>(m));
+        Real4<R>* values = hostVectors_.reserve(static_cast<size_t>(m));
+        backend_.for_each(m, GatherById<Real4<R>>{from.data(), subsetIds_.data(), values});
+        backend_.wait_for_writes_to_host(hostVectors_, static_cast<size_t>(m));
+        return values;
     }
-    // The m values packed in host into to at the ids in subsetIds_, through the backend buffer staging.
+    // The m values packed in host go into to at the ids in subsetIds_.
     template <class T>
-    void scatter(typename B::template Staging<T>& host, typename B::template Buffer<T>& staging,
-                 typename B::template Buffer<T>& to, int64_t m) {
-        backend_.upload(staging, host, static_cast<size_t>(m));
-        backend_.for_each(m, ScatterById<T>{staging.data(), subsetIds_.data(), to.data()});
+    void scatter(typename B::template Staging<T>& host, typename B::template Buffer<T>& to, int64_t m) {
+        backend_.for_each(m, ScatterById<T>{host.data(), subsetIds_.data(), to.data()});
+        backend_.read_from_host(host, static_cast<size_t>(m));
     }
 
     B backend_;
@@ -616,11 +616,9 @@ private:
     int64_t retiredListBuilds_ = 0;  // builds of the lists of force fields replaced by change_parameters
     double externalEnergy_ = 0.0;  // the host's field energy (structmd_set_external_energy)
     CallbackTerm<B, R> callbacks_;  // the host's force callbacks
-    // Staging of the subset getters and setters: ids and packed values, m entries each.
+    // The ids of the last subset call on the backend, and on the host to compare the next with.
     typename B::template Buffer<int64_t> subsetIds_;
-    typename B::template Buffer<Real4<R>> subsetVectors_;
-    std::vector<int64_t> uploadedIds_;  // what subsetIds_ holds
-    typename B::template Buffer<Image> subsetImages_;
+    std::vector<int64_t> uploadedIds_;
     // Host staging of every transfer of particle arrays (pinned on CUDA): packed and unpacked here.
     typename B::template Staging<Real4<R>> hostVectors_;
     typename B::template Staging<Image> hostImages_;

@@ -25,7 +25,7 @@ LJ_COLUMNS = ["n", "backend", "precision", "steps_per_call", "steps_per_second",
 ACCURACY_COLUMNS = ["precision", "dt", "skin", "n", "backend", "steps", "steps_per_second", "seconds_per_tau",
                     "energy_drift", "relative_force_error", "list_builds_per_1000_steps"]
 COUPLING_COLUMNS = ["n", "backend", "precision", "region", "iterations", "step_us", "exchange_us", "extra_us",
-                    "extra_fraction", "bytes_per_exchange"]
+                    "extra_fraction", "bytes_per_exchange", "get_us", "set_us"]
 # Force-error bounds per precision (the forces' arithmetic), see the docstring.
 FORCE_ERROR_BOUNDS = {"double": (0.0, 1e-10), "mixed": (1e-9, 1e-3), "single": (1e-9, 1e-3)}
 
@@ -118,6 +118,8 @@ def check_coupling(program):
         step = positive_finite(row, "step_us")
         exchange = positive_finite(row, "exchange_us")
         expect(math.isclose(float(row["extra_us"]), exchange - step, rel_tol=1e-3, abs_tol=1e-3), f"extra_us in {row}")
+        calls = positive_finite(row, "get_us") + positive_finite(row, "set_us")
+        expect(calls < exchange, f"the calls' {calls} us exceed the whole iteration's {exchange} us in {row}")
         moved = float(row["bytes_per_exchange"])
         expect(32 * 10 <= moved <= 64 * 10, f"{moved} bytes per exchange of 10 particles in {row}")
 

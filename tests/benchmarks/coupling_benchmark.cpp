@@ -13,12 +13,14 @@
 // sets are a weak pull towards the box centre (1e-3 per unit of distance), small beside the liquid's
 // own, so both loops run the same dynamics. The iterations per loop are chosen so one step loop takes
 // about T seconds. Reported: microseconds per iteration of each loop (medians), the exchange's extra
-// cost in microseconds and as a fraction of the step, and the bytes the exchange moves between host
-// and backend per iteration beyond those of the step itself (structmd_get_counters), which scale
-// with the region, not with N.
+// cost in microseconds and as a fraction of the step, the time spent inside each of the two calls
+// (medians of their means over the exchange loop: the get includes waiting for the step's kernels to
+// finish, the set only queues its work), and the bytes the exchange moves between host and backend per
+// iteration beyond those of the step itself (structmd_get_counters), which scale with the region,
+// not with N.
 //
 // CSV columns: n, backend, precision, region, iterations, step_us, exchange_us, extra_us,
-// extra_fraction, bytes_per_exchange.
+// extra_fraction, bytes_per_exchange, get_us, set_us.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -66,6 +68,8 @@ struct Row {
     double stepMicroseconds = 0;
     double exchangeMicroseconds = 0;
     double bytesPerExchange = 0;
+    double getMicroseconds = 0;  // inside structmd_get_positions_of, per call
+    double setMicroseconds = 0;  // inside structmd_set_external_forces_of, per call
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -84,10 +88,16 @@ public:
     }
     void operator()() {
         const auto m = static_cast<int64_t>(ids_.size());
+        const auto start = std::chrono::steady_clock::now();
         check(structmd_get_positions_of(sim_, ids_.data(), m, xyz_.data()), sim_, "structmd_get_positions_of");
+        getSeconds += seconds_since(start);
         for (int64_t k = 0; k < 3 * m; ++k) f_[k] = -kPull * xyz_[k];  // wrapped positions: the centre is 0
+        const auto set = std::chrono::steady_clock::now();
         check(structmd_set_external_forces_of(sim_, ids_.data(), m, f_.data()), sim_, "structmd_set_external_forces_of");
+        setSeconds += seconds_since(set);
     }
+    // Time spent inside each call since the last reset.
+    double getSeconds = 0, setSeconds = 0;
 
 private:
     structmd_sim* sim_;
@@ -130,37 +140,44 @@ Row measure(const Options& options, int64_t requested, const std::string& backen
     iterations = std::max<int64_t>(1, std::llround(options.seconds / (timed_loop(sim, iterations, nullptr) / iterations)));
     row.iterations = iterations;
 
-    std::vector<double> step, coupled;
+    std::vector<double> step, coupled, get, set;
     double bytes = 0;
     for (int repeat = 0; repeat < options.repeats; ++repeat) {
         const double start = transferred_bytes(sim);
         step.push_back(timed_loop(sim, iterations, nullptr) / iterations);
         const double between = transferred_bytes(sim);
+        exchange.getSeconds = exchange.setSeconds = 0;
         coupled.push_back(timed_loop(sim, iterations, &exchange) / iterations);
+        get.push_back(exchange.getSeconds / iterations);
+        set.push_back(exchange.setSeconds / iterations);
         // What the exchange adds to a step's own transfers (the fault flag each call reads back).
         bytes = ((transferred_bytes(sim) - between) - (between - start)) / iterations;
     }
     row.stepMicroseconds = 1e6 * median(step);
     row.exchangeMicroseconds = 1e6 * median(coupled);
     row.bytesPerExchange = bytes;
+    row.getMicroseconds = 1e6 * median(get);
+    row.setMicroseconds = 1e6 * median(set);
     return row;
 }
 
 void print_row(const Row& r) {
     const double extra = r.exchangeMicroseconds - r.stepMicroseconds;
-    std::printf("%10lld  %-7s  %-9s  %8lld  %10lld  %10.2f  %12.2f  %10.2f  %8.3f  %12.0f\n",
+    std::printf("%10lld  %-7s  %-9s  %8lld  %10lld  %10.2f  %12.2f  %10.2f  %8.3f  %12.0f  %8.2f  %8.2f\n",
                 static_cast<long long>(r.particles), r.backend.c_str(), r.precision.c_str(),
                 static_cast<long long>(r.region), static_cast<long long>(r.iterations), r.stepMicroseconds,
-                r.exchangeMicroseconds, extra, extra / r.stepMicroseconds, r.bytesPerExchange);
+                r.exchangeMicroseconds, extra, extra / r.stepMicroseconds, r.bytesPerExchange, r.getMicroseconds,
+                r.setMicroseconds);
 }
 
 void write_csv_row(std::ofstream& csv, const Row& r) {
     const double extra = r.exchangeMicroseconds - r.stepMicroseconds;
     char line[512];
-    std::snprintf(line, sizeof line, "%lld,%s,%s,%lld,%lld,%.4f,%.4f,%.4f,%.5f,%.0f\n",
+    std::snprintf(line, sizeof line, "%lld,%s,%s,%lld,%lld,%.4f,%.4f,%.4f,%.5f,%.0f,%.4f,%.4f\n",
                   static_cast<long long>(r.particles), r.backend.c_str(), r.precision.c_str(),
                   static_cast<long long>(r.region), static_cast<long long>(r.iterations), r.stepMicroseconds,
-                  r.exchangeMicroseconds, extra, extra / r.stepMicroseconds, r.bytesPerExchange);
+                  r.exchangeMicroseconds, extra, extra / r.stepMicroseconds, r.bytesPerExchange, r.getMicroseconds,
+                  r.setMicroseconds);
     csv << line << std::flush;
 }
 
@@ -198,13 +215,14 @@ int main(int argc, char** argv) {
     if (!options.csvPath.empty() &&
         !open_csv(csv, options.csvPath,
                   "n,backend,precision,region,iterations,step_us,exchange_us,extra_us,extra_fraction,"
-                  "bytes_per_exchange"))
+                  "bytes_per_exchange,get_us,set_us"))
         return 2;
     std::printf("structmd %s, LJ liquid, step(1) alone against step(1) + positions of a region + its external "
                 "forces (%.3g%% of the particles), medians of %d\n",
                 structmd_version(), 100 * options.fraction, options.repeats);
-    std::printf("%10s  %-7s  %-9s  %8s  %10s  %10s  %12s  %10s  %8s  %12s\n", "N", "backend", "precision", "region",
-                "iterations", "step us", "exchange us", "extra us", "extra/st", "bytes/iter");
+    std::printf("%10s  %-7s  %-9s  %8s  %10s  %10s  %12s  %10s  %8s  %12s  %8s  %8s\n", "N", "backend", "precision",
+                "region", "iterations", "step us", "exchange us", "extra us", "extra/st", "bytes/iter", "get us",
+                "set us");
     std::fflush(stdout);
     int failures = 0;
     for (const auto& backend : options.backends)

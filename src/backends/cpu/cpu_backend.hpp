@@ -166,6 +166,17 @@ public:
         return values;
     }
 
+    // The loops that read or wrote the staging have run: only the account of the bytes is kept.
+    template <class T>
+    void read_from_host(Staging<T>&, size_t n) const {
+        transfers_.hostToDevice += n * sizeof(T);
+    }
+
+    template <class T>
+    void wait_for_writes_to_host(const Staging<T>&, size_t n) const {
+        transfers_.deviceToHost += n * sizeof(T);
+    }
+
     template <class T>
     T read(const Buffer<T>& buffer, size_t index) const {
         transfers_.deviceToHost += sizeof(T);

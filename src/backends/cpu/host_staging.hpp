@@ -1,6 +1,7 @@
 #pragma once
 // The CPU backend's counterpart of the CUDA backend's pinned staging: plain host memory, reused call
-// after call, so that the engine packs and unpacks transfers the same way on both backends.
+// after call, so that the engine packs, unpacks, gathers into and scatters from it the same way on
+// both backends.
 #include <cstddef>
 #include <vector>
 
@@ -13,6 +14,7 @@ public:
         if (values_.size() < n) values_.resize(n);
         return values_.data();
     }
+    T* data() { return values_.data(); }
     const T* data() const { return values_.data(); }
 
 private:

@@ -269,7 +269,22 @@ public:
         issue_recorded();
         cuda_check(cudaMemcpyAsync(buffer.data(), host.data(), n * sizeof(T), cudaMemcpyHostToDevice, stream_),
                    "copying to the device");
-        host.mark_uploading(stream_);
+        host.mark_read_by(stream_);
+    }
+
+    // Kernels queued since read n values from the staging directly (its pointer is the device's
+    // too): counted as copied, and kept until they are done.
+    template <class T>
+    void read_from_host(Staging<T>& host, size_t n) const {
+        transfers_.hostToDevice += n * sizeof(T);
+        host.mark_read_by(stream_);
+    }
+
+    // Kernels queued since wrote n values into the staging directly; they are there on return.
+    template <class T>
+    void wait_for_writes_to_host(const Staging<T>&, size_t n) const {
+        transfers_.deviceToHost += n * sizeof(T);
+        synchronize();
     }
 
     // Into pinned staging; the values are there when this returns.

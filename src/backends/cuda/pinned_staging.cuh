@@ -1,8 +1,10 @@
 #pragma once
 // Page-locked host memory for the copies between the caller's arrays and the device. A copy from
 // pageable memory goes through a driver bounce buffer and blocks the host; from pinned memory it
-// runs at full speed and an upload returns at once, which is what a coupling loop exchanging a
-// region every step needs. Reused call after call: it grows, never shrinks.
+// runs at full speed and an upload returns at once. With unified addressing (every 64-bit CUDA
+// platform) kernels also read and write it directly through the same pointer: the subset calls of a
+// coupling loop gather into it and scatter from it without a copy. Reused call after call: it
+// grows, never shrinks.
 #include <cuda_runtime.h>
 
 #include <string>
@@ -23,7 +25,7 @@ public:
         if (data_) cudaFreeHost(data_);
     }
 
-    // Room for n values, writable once the last upload from here has left.
+    // Room for n values, writable once the device has finished reading the last ones.
     T* reserve(size_t n) {
         wait_for_upload();
         if (n > capacity_) {
@@ -40,10 +42,11 @@ public:
         }
         return data_;
     }
+    T* data() { return data_; }
     const T* data() const { return data_; }
 
-    // An asynchronous copy from here was queued on stream: the next reserve waits for it.
-    void mark_uploading(cudaStream_t stream) {
+    // Work queued on stream (a copy, a kernel) reads from here: the next reserve waits for it.
+    void mark_read_by(cudaStream_t stream) {
         if (!copied_) cuda_check(cudaEventCreateWithFlags(&copied_, cudaEventDisableTiming), "creating an event");
         cuda_check(cudaEventRecord(copied_, stream), "recording an event");
         inFlight_ = true;
@@ -52,7 +55,7 @@ public:
 private:
     void wait_for_upload() {
         if (!inFlight_) return;
-        cuda_check(cudaEventSynchronize(copied_), "waiting for a copy to the device");
+        cuda_check(cudaEventSynchronize(copied_), "waiting for the device to read pinned memory");
         inFlight_ = false;
     }
 
