@@ -33,6 +33,9 @@ struct structmd_sim {
     // O(m) with no allocation after the first call.
     std::vector<uint64_t> idSeenAt;
     uint64_t subsetCalls = 0;
+    // The last ids found distinct: a coupling loop names the same region call after call, and
+    // comparing with them reads memory in order where the stamps above are scattered over n.
+    std::vector<int64_t> distinctIds;
     // What a force callback said through structmd_set_callback_error while it ran (callbacks.cpp).
     std::string callbackError;
     bool inCallback = false;

@@ -26,6 +26,7 @@ bool require_subset(structmd_sim& s, const int64_t* ids, int64_t m, const void* 
         if (ids[k] < 0 || ids[k] >= n)
             throw Error(STRUCTMD_ERR_ARGUMENT, "ids[" + std::to_string(k) + "]: particle id " + std::to_string(ids[k]) +
                                                    " does not exist (ids are 0.." + std::to_string(n - 1) + ")");
+    if (s.distinctIds.size() == static_cast<size_t>(m) && std::equal(ids, ids + m, s.distinctIds.begin())) return true;
     if (static_cast<int64_t>(s.idSeenAt.size()) != n) s.idSeenAt.assign(static_cast<size_t>(n), 0);
     const uint64_t call = ++s.subsetCalls;
     for (int64_t k = 0; k < m; ++k) {
@@ -38,6 +39,7 @@ bool require_subset(structmd_sim& s, const int64_t* ids, int64_t m, const void* 
         }
         seen = call;
     }
+    s.distinctIds.assign(ids, ids + m);
     return true;
 }
 

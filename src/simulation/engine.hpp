@@ -134,6 +134,7 @@ public:
             throw;
         }
         backend_.end_steps();
+        gather_watched_positions();
         check_fault();
         if (current_step() == last) fire_steps(true);
         forceField_.adapt();
@@ -278,15 +279,23 @@ public:
     }
 
     void get_positions_of(const int64_t* ids, int64_t m, double* xyz) override {
-        unpack_vectors(gather(p_.pos, ids, m), m, xyz);
+        if (watching(ids, m) && watchedVersion_ == p_.version) {
+            unpack_vectors(watchedPositions_.data(), m, xyz);  // gathered by the last step call
+        } else {
+            watch(ids, m);
+            unpack_vectors(gather(p_.pos, watchedIdsOnBackend_, m), m, xyz);
+        }
+        watchedRead_ = true;
     }
     void get_velocities_of(const int64_t* ids, int64_t m, double* v) override {
-        unpack_vectors(gather(p_.vel, ids, m), m, v);
+        upload_ids(ids, m);
+        unpack_vectors(gather(p_.vel, subsetIds_, m), m, v);
     }
     // As get_forces: the m forces are checked before any is handed over.
     void get_forces_of(const int64_t* ids, int64_t m, double* f) override {
         compute(kForces);
-        const Real4<R>* values = gather(p_.force, ids, m);
+        upload_ids(ids, m);
+        const Real4<R>* values = gather(p_.force, subsetIds_, m);
         for (int64_t k = 0; k < m; ++k)
             if (!std::isfinite(values[k].x) || !std::isfinite(values[k].y) || !std::isfinite(values[k].z))
                 throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(current_step()) + ", particle id " +
@@ -572,17 +581,49 @@ private:
     // them from it, directly (pinned memory on CUDA): one launch, no copy. The ids live on the backend.
     // A coupling loop names the same region call after call: those ids are on the backend already.
     void upload_ids(const int64_t* ids, int64_t m) {
+        backend_.activate();
         if (uploadedIds_.size() == static_cast<size_t>(m) && std::equal(ids, ids + m, uploadedIds_.begin())) return;
         std::copy(ids, ids + m, hostIds_.reserve(static_cast<size_t>(m)));
         backend_.upload(subsetIds_, hostIds_, static_cast<size_t>(m));
         uploadedIds_.assign(ids, ids + m);
     }
-    // The m values of from at ids, in the vector staging (valid until the next transfer).
-    const Real4<R>* gather(const typename B::template Buffer<Real4<R>>& from, const int64_t* ids, int64_t m) {
+    // The watched region: a coupling host reads the positions of the same particles after every step
+    // call, so the call's last kernel gathers them into pinned memory and the fault check's wait
+    // brings them back with it; the read then costs no launch and no wait of its own. A region the
+    // host stopped reading (not read since the last gather) is no longer gathered.
+    bool watching(const int64_t* ids, int64_t m) const {
+        return watchedIds_.size() == static_cast<size_t>(m) && std::equal(ids, ids + m, watchedIds_.begin());
+    }
+    void watch(const int64_t* ids, int64_t m) {
         backend_.activate();
-        upload_ids(ids, m);
+        if (!watching(ids, m)) {
+            std::copy(ids, ids + m, hostIds_.reserve(static_cast<size_t>(m)));
+            backend_.upload(watchedIdsOnBackend_, hostIds_, static_cast<size_t>(m));
+            watchedIds_.assign(ids, ids + m);
+        }
+        watchedVersion_ = -1;
+    }
+    void gather_watched_positions() {
+        if (watchedIds_.empty()) return;
+        if (!watchedRead_) {
+            watchedIds_.clear();
+            watchedIdsOnBackend_.release();
+            return;
+        }
+        const auto m = static_cast<int64_t>(watchedIds_.size());
+        Real4<R>* values = watchedPositions_.reserve(static_cast<size_t>(m));
+        backend_.for_each(m, GatherById<Real4<R>>{p_.pos.data(), watchedIdsOnBackend_.data(), values});
+        backend_.wait_for_writes_to_host(watchedPositions_, static_cast<size_t>(m));
+        watchedVersion_ = p_.version;
+        watchedRead_ = false;
+    }
+
+    // The m values of from at the ids on the backend, in the vector staging (valid until the next
+    // transfer).
+    const Real4<R>* gather(const typename B::template Buffer<Real4<R>>& from,
+                           const typename B::template Buffer<int64_t>& ids, int64_t m) {
         Real4<R>* values = hostVectors_.reserve(static_cast<size_t>(m));
-        backend_.for_each(m, GatherById<Real4<R>>{from.data(), subsetIds_.data(), values});
+        backend_.for_each(m, GatherById<Real4<R>>{from.data(), ids.data(), values});
         backend_.wait_for_writes_to_host(hostVectors_, static_cast<size_t>(m));
         return values;
     }
@@ -623,6 +664,13 @@ private:
     typename B::template Staging<Real4<R>> hostVectors_;
     typename B::template Staging<Image> hostImages_;
     typename B::template Staging<int64_t> hostIds_;
+    // The watched region (gather_watched_positions): its ids, their positions as of watchedVersion_
+    // (-1: none), and whether the host read them since they were gathered.
+    std::vector<int64_t> watchedIds_;
+    typename B::template Buffer<int64_t> watchedIdsOnBackend_;
+    typename B::template Staging<Real4<R>> watchedPositions_;
+    int64_t watchedVersion_ = -1;
+    bool watchedRead_ = false;
 };
 
 }  // namespace structmd

@@ -232,6 +232,44 @@ def test_subset_transfers_are_proportional_to_m_not_n(handles):
     assert to_host >= 24 * n > 20 * (32 * m + slack)
 
 
+def test_a_region_read_after_every_step_call_is_gathered_by_the_call_itself(handles):
+    # The watched region: the step call gathers the positions a host read after the last call, so
+    # the read costs nothing of its own; whatever moved the particles since, the values stay exact.
+    sim = handles(lattice())
+    m = len(IDS)
+    overhead = moved(sim.counters, sim.counters)
+    slack = 64 + max(overhead)
+    np.testing.assert_array_equal(sim.positions_of(IDS), sim.positions[IDS])
+    for _ in range(3):
+        before = sim.counters
+        sim.step(2)
+        during = sim.counters
+        read = sim.positions_of(IDS)
+        after = sim.counters
+        assert moved(before, during)[1] >= 24 * m  # the call gathered them
+        assert max(moved(during, after)) <= slack  # the read moved nothing
+        np.testing.assert_array_equal(read, sim.positions[IDS])
+
+    # Positions changed by the host after the step: read from the engine again, not the gather.
+    sim.step(1)
+    sim.set_positions_of(IDS[:1], sim.positions[IDS[:1]] + 0.01)
+    np.testing.assert_array_equal(sim.positions_of(IDS), sim.positions[IDS])
+    # Another region read in between takes the watch over; the first is still exact.
+    sim.step(1)
+    others = [5, 6, 900]
+    np.testing.assert_array_equal(sim.positions_of(others), sim.positions[others])
+    sim.step(1)
+    np.testing.assert_array_equal(sim.positions_of(IDS), sim.positions[IDS])
+    np.testing.assert_array_equal(sim.positions_of(IDS), sim.positions[IDS])
+
+    # A region no longer read stops being gathered after one call.
+    sim.step(1)  # gathers: the region was read before it
+    before = sim.counters
+    sim.step(1)
+    sim.step(1)
+    assert moved(before, sim.counters)[1] < 24 * m
+
+
 # ---- subsets: bad arguments --------------------------------------------------------------------
 
 @pytest.mark.parametrize("ids, culprit", [([3, 1000], "ids[1]: particle id 1000 does not exist"),
