@@ -613,7 +613,7 @@ private:
         const auto m = static_cast<int64_t>(watchedIds_.size());
         Real4<R>* values = watchedPositions_.reserve(static_cast<size_t>(m));
         backend_.for_each(m, GatherById<Real4<R>>{p_.pos.data(), watchedIdsOnBackend_.data(), values});
-        backend_.wait_for_writes_to_host(watchedPositions_, static_cast<size_t>(m));
+        backend_.written_to_host(watchedPositions_, static_cast<size_t>(m));  // check_fault's read waits for it
         watchedVersion_ = p_.version;
         watchedRead_ = false;
     }

@@ -173,8 +173,12 @@ public:
     }
 
     template <class T>
-    void wait_for_writes_to_host(const Staging<T>&, size_t n) const {
+    void written_to_host(const Staging<T>&, size_t n) const {
         transfers_.deviceToHost += n * sizeof(T);
+    }
+    template <class T>
+    void wait_for_writes_to_host(const Staging<T>& host, size_t n) const {
+        written_to_host(host, n);
     }
 
     template <class T>

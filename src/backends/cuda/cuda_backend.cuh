@@ -280,10 +280,15 @@ public:
         host.mark_read_by(stream_);
     }
 
-    // Kernels queued since wrote n values into the staging directly; they are there on return.
+    // Kernels queued since wrote n values into the staging directly: counted as copied. They are
+    // there once the stream has been waited for: at once with wait_for_writes_to_host.
     template <class T>
-    void wait_for_writes_to_host(const Staging<T>&, size_t n) const {
+    void written_to_host(const Staging<T>&, size_t n) const {
         transfers_.deviceToHost += n * sizeof(T);
+    }
+    template <class T>
+    void wait_for_writes_to_host(const Staging<T>& host, size_t n) const {
+        written_to_host(host, n);
         synchronize();
     }
 
