@@ -6,6 +6,7 @@
 #include "forcefield/read_forcefield.hpp"
 #include "input/description.hpp"
 #include "integrators/read_integrators.hpp"
+#include "simulation/whole_molecules.hpp"
 #include "steps/read_simulation_steps.hpp"
 
 namespace structmd {
@@ -33,6 +34,7 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     spec.simulationTime = system.simulationTime;
     for (const input::ParticleType& type : system.types) spec.typeNames.push_back(type.name);
     spec.positions = system.positions;
+    make_bonded_groups_whole(spec.positions, spec.box, spec.forceField.bonds);
     spec.velocities = system.velocities;
     spec.typeIndex = system.typeIndex;
     spec.mass = system.mass;
