@@ -70,7 +70,8 @@ struct SystemDescription {
     std::vector<Vec3d> velocities;  // empty when the state gives none
     std::vector<int32_t> typeIndex;
     std::vector<double> mass, radius, charge;  // type values with the state's overrides applied
-    std::vector<int32_t> modelId, batchId;  // resId and chainId are accepted and checked, not kept: nothing uses them
+    std::vector<int32_t> modelId, batchId;
+    std::vector<int32_t> resId, chainId;  // empty when the structure has no such column (PDB output reads them)
 
     // components, in document order
     std::vector<ComponentEntry> forceField;

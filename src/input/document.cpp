@@ -420,10 +420,12 @@ void read_structure(const TrackedNode& structure, SystemDescription& description
     description.charge.assign(n, 0.0);
     description.modelId.assign(n, 0);
     description.batchId.assign(n, 0);
-    // UAMMD-structured files carry resId and chainId too; they must be integers, but no component
-    // reads them, so they are checked and dropped.
-    const std::pair<const char*, std::vector<int32_t>*> groupings[] = {
-        {"resId", nullptr}, {"chainId", nullptr}, {"modelId", &description.modelId}, {"batchId", &description.batchId}};
+    if (table.has("resId")) description.resId.assign(n, 0);
+    if (table.has("chainId")) description.chainId.assign(n, 0);
+    const std::pair<const char*, std::vector<int32_t>*> groupings[] = {{"resId", &description.resId},
+                                                                       {"chainId", &description.chainId},
+                                                                       {"modelId", &description.modelId},
+                                                                       {"batchId", &description.batchId}};
     for (size_t row = 0; row < table.rows(); ++row) {
         const auto id = static_cast<size_t>(idOfRow[row]);
         const TrackedNode typeCell = table.cell(row, "type");
@@ -438,8 +440,7 @@ void read_structure(const TrackedNode& structure, SystemDescription& description
         description.charge[id] = description.types[static_cast<size_t>(type)].charge;
         for (const auto& [label, values] : groupings) {
             if (!table.has(label)) continue;
-            const int32_t value = table.cell(row, label).as<int32_t>();
-            if (values) (*values)[id] = value;
+            (*values)[id] = table.cell(row, label).as<int32_t>();
         }
     }
 }

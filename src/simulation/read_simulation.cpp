@@ -19,7 +19,7 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     SimulationSpec spec;
     spec.forceField = read_forcefield(system, log, components);
     spec.integrators = read_integrators(system, spec.forceField.groups, spec.schedule);
-    spec.steps = read_simulation_steps(system, spec.forceField.groups, log);
+    spec.steps = read_simulation_steps(system, spec.forceField, log);
     if (const auto& b = system.backup)
         spec.steps.push_back(std::make_unique<BackupStep>(b->intervalStep, b->startStep, b->endStep, b->filePath));
     doc.root.check_all_used();

@@ -129,9 +129,10 @@ void StepInput::require_all_particles() const {
 
 std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registry<SimulationStepEntry>& registry,
                                                                    const input::SystemDescription& system,
-                                                                   const std::vector<GroupSpec>& groups,
+                                                                   const ForceFieldSpec& forceField,
                                                                    const Logger& log) {
     static const std::vector<uint8_t> everyParticle;
+    const std::vector<GroupSpec>& groups = forceField.groups;
     std::vector<std::unique_ptr<SimulationStep>> steps;
     for (const input::ComponentEntry& entry : system.simulationSteps) {
         const SimulationStepEntry& step =
@@ -145,6 +146,7 @@ std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registr
                               group,
                               group < 0 ? everyParticle : groups[static_cast<size_t>(group)].members,
                               system,
+                              forceField.bonds,
                               log};
         steps.push_back(step.make(input));
     }
@@ -152,9 +154,9 @@ std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registr
 }
 
 std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const input::SystemDescription& system,
-                                                                   const std::vector<GroupSpec>& groups,
+                                                                   const ForceFieldSpec& forceField,
                                                                    const Logger& log) {
-    return read_simulation_steps(simulation_step_registry(), system, groups, log);
+    return read_simulation_steps(simulation_step_registry(), system, forceField, log);
 }
 
 }  // namespace structmd

@@ -15,14 +15,15 @@ namespace structmd {
 // Throws Error(ERR_INPUT) naming the path for an unknown step (<entry>.type, with the known ones), a
 // bad or missing parameter (<entry>.parameters.<name>) or an unknown group, and Error(ERR_UNSUPPORTED)
 // for a group on a step that cannot restrict itself to one.
+// forceField: its groups name what steps measure; its bonds are written by the PDB format.
 std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registry<SimulationStepEntry>& registry,
                                                                    const input::SystemDescription& system,
-                                                                   const std::vector<GroupSpec>& groups,
+                                                                   const ForceFieldSpec& forceField,
                                                                    const Logger& log);
 
 // The same with the built-in steps (simulation_step_registry()).
 std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const input::SystemDescription& system,
-                                                                   const std::vector<GroupSpec>& groups,
+                                                                   const ForceFieldSpec& forceField,
                                                                    const Logger& log);
 
 }  // namespace structmd

@@ -16,6 +16,7 @@
 #include "core/logger.hpp"
 #include "core/parameters.hpp"
 #include "core/registry.hpp"
+#include "forcefield/forcefield_spec.hpp"
 #include "input/description.hpp"
 #include "steps/simulation_step.hpp"
 
@@ -72,6 +73,7 @@ struct StepInput {
     int group;                            // the `group` parameter's index in the force field's groups; -1: "All"
     const std::vector<uint8_t>& members;  // that group's members by particle id; empty for "All"
     const input::SystemDescription& system;
+    const std::vector<BondSpec>& bonds;   // the force field's bonded terms (PDB CONECT records)
     const Logger& log;
 
     int64_t interval() const { return parameters.integer("intervalStep"); }

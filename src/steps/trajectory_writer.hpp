@@ -25,12 +25,20 @@ struct TrajectoryFrame {
     std::vector<std::string> typeNames;  // indexed by type
 };
 
+// What a format that describes molecules (PDB) writes beside the positions, by particle id.
+struct MoleculeLayout {
+    std::vector<int32_t> chain;    // structure's chainId; empty when not given
+    std::vector<int32_t> residue;  // structure's resId; empty when not given
+    std::vector<std::array<int64_t, 2>> bonds;  // the two-particle bonds, i < j, each pair once, sorted
+};
+
 struct TrajectoryOptions {
     std::string path;        // the file written, extension included
     std::string owner;       // the entry's JSON path, which starts every message
     bool append = false;
     int64_t interval = 1;    // steps between frames (DCD NSAVC)
     double timeStep = 0.0;   // DCD DELTA; 0 when unknown
+    MoleculeLayout molecules;  // filled for PDB only
 };
 
 class TrajectoryWriter {

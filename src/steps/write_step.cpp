@@ -1,5 +1,7 @@
 #include "steps/write_step.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 
 namespace structmd {
@@ -60,6 +62,23 @@ double first_time_step(const input::SystemDescription& system) {
     return timeStep;
 }
 
+// Chains, residues and the distinct two-particle bonds of the input, for the PDB format.
+MoleculeLayout molecule_layout(const StepInput& in) {
+    MoleculeLayout layout;
+    layout.chain = in.system.chainId;
+    layout.residue = in.system.resId;
+    for (const BondSpec& bond : in.bonds) {
+        if (bond.arity != 2) continue;
+        for (size_t k = 0; k + 1 < bond.members.size(); k += 2) {
+            const int64_t i = bond.members[k], j = bond.members[k + 1];
+            layout.bonds.push_back({std::min(i, j), std::max(i, j)});
+        }
+    }
+    std::sort(layout.bonds.begin(), layout.bonds.end());
+    layout.bonds.erase(std::unique(layout.bonds.begin(), layout.bonds.end()), layout.bonds.end());
+    return layout;
+}
+
 std::string known_formats() {
     std::string list;
     for (const std::string& format : trajectory_formats()) list += (list.empty() ? "" : ", ") + format;
@@ -74,6 +93,7 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
     options.append = in.parameters.flag("append");
     options.interval = in.interval();
     options.timeStep = first_time_step(in.system);
+    if (format == "pdb") options.molecules = molecule_layout(in);
 
     std::unique_ptr<TrajectoryWriter> writer = make_trajectory_writer(format, std::move(options));
     if (!writer)

@@ -284,6 +284,68 @@ def test_lammpstrj(sim, tmp_path, pbc):
         assert_positions(frame["xyz"], positions, pbc, atol=1e-6)
 
 
+def molecules_document(writers):
+    """document() with residues and chains in the structure, two bond terms naming the pair 0-1
+    both ways, and an angle (three-particle terms give no CONECT record)."""
+    doc = document(writers)
+    n = len(doc["state"]["data"])
+    residues = [9990 + 3 * i for i in range(n)]  # past 9999: PDB's four columns wrap
+    chains = [i // 7 for i in range(n)]
+    chains[-1] = 52  # the 53rd letter: A-Z, a-z, then digits
+    doc["topology"]["structure"] = {"labels": ["id", "type", "resId", "chainId"],
+                                    "data": [[i, row[1], residues[i], chains[i]]
+                                             for i, row in enumerate(doc["topology"]["structure"]["data"])]}
+    positions = np.array([row[1] for row in doc["state"]["data"]])
+
+    def bonded(pairs):
+        return [[i, j, float(np.linalg.norm(minimum_image(positions[i] - positions[j])))] for i, j in pairs]
+
+    doc["topology"]["forceField"]["chain"] = {"type": ["Bond2", "Harmonic"],
+                                              "labels": ["id_i", "id_j", "K", "r0"],
+                                              "data": [row[:2] + [5.0, row[2]] for row in bonded([(0, 1), (1, 2), (1, 5)])]}
+    doc["topology"]["forceField"]["again"] = {"type": ["Bond2", "Harmonic"],
+                                              "labels": ["id_i", "id_j", "K", "r0"],
+                                              "data": [row[:2] + [1.0, row[2]] for row in bonded([(1, 0), (12, 19)])]}
+    doc["topology"]["forceField"]["angle"] = {"type": ["Bond3", "HarmonicAngularCommon_K_theta0"],
+                                              "parameters": {"K": 1.0, "theta0": 2.0},
+                                              "labels": ["id_i", "id_j", "id_k"], "data": [[3, 4, 8]]}
+    return doc, residues, chains
+
+
+def test_pdb_residues_chains_and_conect_records(sim, tmp_path):
+    doc, residues, chains = molecules_document({"traj": writer(tmp_path / "traj", "pdb")})
+    sim.load(doc)
+    sim.step(STEPS)
+    lines = (tmp_path / "traj.pdb").read_text().splitlines()
+    atoms = [line for line in lines if line.startswith("ATOM  ")]
+    n = len(residues)
+    letters = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+    assert [line[21] for line in atoms[:n]] == [letters[c % len(letters)] for c in chains]
+    assert [int(line[22:26]) for line in atoms[:n]] == [r % 10000 for r in residues]
+    assert [line[17:20] for line in atoms[:n]] == ["UNK"] * n
+    types = [row[1] for row in doc["topology"]["structure"]["data"]]
+    assert [line[76:78].strip() for line in atoms[:n]] == [t if t in ELEMENTS else "X" for t in types]
+    # CONECT in the first model only, each bonded pair once per side, serials id + 1.
+    conect = [line for line in lines if line.startswith("CONECT")]
+    assert conect == ["CONECT    1    2", "CONECT    2    1    3    6", "CONECT    3    2",
+                      "CONECT    6    2", "CONECT   13   20", "CONECT   20   13"]
+    first_end = lines.index("ENDMDL")
+    assert all(lines.index(line) < first_end for line in conect)
+
+
+def test_pdb_with_bonds_reads_in_ase(sim, tmp_path):
+    ase_io = pytest.importorskip("ase.io")
+    doc, _, _ = molecules_document({"traj": writer(tmp_path / "traj", "pdb")})
+    record = run_and_record(sim, doc)
+    steps, expected = expected_frames(record, True)
+    frames = ase_io.read(tmp_path / "traj.pdb", format="proteindatabank", index=":")
+    assert len(frames) == len(steps)
+    numbers = [ELEMENTS.get(row[1], 0) for row in doc["topology"]["structure"]["data"]]
+    for atoms, positions in zip(frames, expected):
+        np.testing.assert_allclose(atoms.positions, positions, atol=5.1e-4)
+        assert atoms.numbers.tolist() == numbers
+
+
 @pytest.mark.parametrize("pbc", [True, False], ids=["wrapped", "unwrapped"])
 def test_pdb(sim, tmp_path, pbc):
     record = run_and_record(sim, document({"traj": writer(tmp_path / "traj", "pdb", pbc=pbc)}))

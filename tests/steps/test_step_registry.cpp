@@ -49,7 +49,12 @@ json base_document() {
             {"data", {{1, "vv", 100}}}}}}}};
 }
 
-const std::vector<GroupSpec> kGroups = {{"pair", {0, 1, 1, 0}}};
+ForceFieldSpec with_groups() {
+    ForceFieldSpec forceField;
+    forceField.groups = {{"pair", {0, 1, 1, 0}}};
+    return forceField;
+}
+const ForceFieldSpec kForceField = with_groups();
 
 std::string output_path() { return (std::filesystem::temp_directory_path() / "structmd_step_registry").string(); }
 
@@ -104,7 +109,7 @@ struct Loaded {
 Loaded load(const json& document, const Registry<SimulationStepEntry>& registry = simulation_step_registry()) {
     Loaded loaded;
     loaded.parsed = input::parse_document(document.dump());
-    loaded.steps = read_simulation_steps(registry, loaded.parsed.system, kGroups, Logger(LogLevel::quiet, nullptr));
+    loaded.steps = read_simulation_steps(registry, loaded.parsed.system, kForceField, Logger(LogLevel::quiet, nullptr));
     return loaded;
 }
 
