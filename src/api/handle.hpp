@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/logger.hpp"
 #include "engines/engine_options.hpp"
+#include "input/description.hpp"
 #include "simulation/simulation.hpp"
 #include "structmd.h"
 
@@ -26,9 +27,10 @@ struct structmd_sim {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> logFile{nullptr, &std::fclose};
     structmd::Logger log;
     std::unique_ptr<structmd::Simulation> simulation;
-    // The input the simulation was loaded from, with the changes of structmd_set_parameter: what
-    // structmd_get_parameter reads and what a parameter change reads again.
+    // The input the simulation was loaded from, kept as text until the first parameter call parses
+    // it into runtimeDocument (parameters.cpp), which then holds the changes of structmd_set_parameter.
     std::string document;
+    std::unique_ptr<structmd::input::ParsedDocument> runtimeDocument;
     // By particle id: the subset call that last named it (subsets.cpp), so a repeated id is found in
     // O(m) with no allocation after the first call.
     std::vector<uint64_t> idSeenAt;

@@ -19,6 +19,7 @@ namespace {
 void load_text(structmd_sim& sim, const std::string& text) {
     sim.simulation.reset();  // a failed load leaves no simulation, and the old one's memory is freed first
     sim.document.clear();
+    sim.runtimeDocument.reset();
     sim.simulation = load_simulation(sim.options, text, *sim.components, sim.log);
     sim.document = text;
     sim.log.info("loaded " + std::to_string(sim.simulation->particle_count()) + " particles on " +

@@ -1,10 +1,13 @@
 // Run-time parameters: structmd_get_parameter and structmd_set_parameter, with paths in the input's
-// own terms. A change writes the value into the loaded document and reads the force field and the
-// integrators again from it, with the checks of a load; the engine then makes both again, keeping
-// the particles and the integrators' state. The reader stays the one judge of what a value may be.
+// own terms. The first call parses the loaded input once and keeps it, without the particle tables
+// the engine already holds; a change writes the value into it and reads the force field and the
+// integrators again from it, with the checks of a load, and the engine makes both again, keeping
+// the particles and the integrators' state. The reader stays the one judge of what a value may be; a
+// value it refuses is taken back, leaving the document as it was.
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "api/handle.hpp"
 #include "engines/make_engine.hpp"
@@ -15,7 +18,7 @@ using namespace structmd::api;
 
 namespace {
 
-using Json = nlohmann::ordered_json;  // keeps the document's key order, which orders the entries
+using Json = nlohmann::json;
 
 const char* const kForms =
     "run-time parameters are global.ensemble.temperature, integrator.<name>.parameters.<key> and "
@@ -93,7 +96,66 @@ Json* locate(Json& doc, const std::string& path, bool create) {
     return value;
 }
 
-Json parse(const std::string& text) { return Json::parse(text, nullptr, true, /*ignore_comments=*/true); }
+// The parsed input parameters live in: made at the first call, from the loaded text, which is then
+// no longer needed.
+input::ParsedDocument& runtime_document(structmd_sim& s) {
+    if (!s.runtimeDocument) {
+        auto parsed = std::make_unique<input::ParsedDocument>(input::parse_document(s.document));
+        Json& doc = parsed->tracking->document;
+        doc["state"]["data"] = Json::array();
+        doc["topology"]["structure"]["data"] = Json::array();
+        s.runtimeDocument = std::move(parsed);
+        std::string().swap(s.document);
+    }
+    return *s.runtimeDocument;
+}
+
+// The member `key` of an object, or null.
+Json* member(Json* object, const std::string& key) {
+    if (!object || !object->is_object()) return nullptr;
+    const auto found = object->find(key);
+    return found == object->end() ? nullptr : &*found;
+}
+
+// What a refused change restores: the entry's parameters object as it was (none: it had none), or
+// the temperature cell and the description's temperature.
+class Undo {
+public:
+    // Taken before the change; it modifies nothing, so a path that names nothing is left to locate().
+    Undo(Json& doc, const std::string& path, input::SystemDescription& system) : system_(system) {
+        const std::string integrator = "integrator.", forceField = "topology.forceField.";
+        if (path == "global.ensemble.temperature") {
+            cell_ = ensemble_temperature(doc, path);
+            savedCell_ = *cell_;
+            savedTemperature_ = system.temperature;
+            return;
+        }
+        const bool inIntegrator = path.rfind(integrator, 0) == 0;
+        if (!inIntegrator && path.rfind(forceField, 0) != 0) return;
+        const std::string rest = path.substr(inIntegrator ? integrator.size() : forceField.size());
+        Json* section = inIntegrator ? member(&doc, "integrator") : member(member(&doc, "topology"), "forceField");
+        entry_ = member(section, rest.substr(0, rest.rfind(".parameters.")));
+        if (Json* parameters = member(entry_, "parameters")) savedParameters_ = *parameters;
+    }
+    void restore() {
+        if (cell_) {
+            *cell_ = savedCell_;
+            system_.temperature = savedTemperature_;
+        } else if (entry_ && savedParameters_) {
+            (*entry_)["parameters"] = *savedParameters_;
+        } else if (entry_) {
+            entry_->erase("parameters");
+        }
+    }
+
+private:
+    input::SystemDescription& system_;
+    Json* cell_ = nullptr;
+    Json savedCell_;
+    double savedTemperature_ = 0.0;
+    Json* entry_ = nullptr;
+    std::optional<Json> savedParameters_;
+};
 
 }  // namespace
 
@@ -104,8 +166,7 @@ structmd_status structmd_get_parameter(structmd_sim* sim, const char* path, doub
         loaded(s);
         require_pointer(path, "path");
         require_pointer(value, "value");
-        Json doc = parse(s.document);
-        *value = locate(doc, path, false)->get<double>();
+        *value = locate(runtime_document(s).tracking->document, path, false)->get<double>();
     });
 }
 
@@ -114,35 +175,36 @@ structmd_status structmd_set_parameter(structmd_sim* sim, const char* path, doub
         Simulation& simulation = loaded(s);
         require_pointer(path, "path");
         if (!std::isfinite(value)) throw refused(path, "value: not a finite number");
-        Json doc = parse(s.document);
+        input::ParsedDocument& parsed = runtime_document(s);
+        Json& doc = parsed.tracking->document;
+        Undo undo(doc, path, parsed.system);
         Json* node = locate(doc, path, true);
         // Whole numbers are written as integers, so integer parameters (a step, a multiplicity) read back.
         if (value == std::nearbyint(value) && std::fabs(value) < 9007199254740992.0)
             *node = static_cast<int64_t>(value);
         else
             *node = value;
-        // The box is the present one (structmd_set_box may have changed it): cutoffs are checked against it.
-        if (Json* cell = nullptr; doc["global"].contains("ensemble") && doc["global"]["ensemble"].contains("labels")) {
-            const Json& labels = doc["global"]["ensemble"]["labels"];
-            for (size_t k = 0; k < labels.size(); ++k)
-                if (labels[k] == "box") cell = &doc["global"]["ensemble"]["data"][0][k];
-            if (cell) *cell = simulation.box();
-        }
-        const std::string text = doc.dump();
-        RuntimeSpec spec;
         try {
-            spec = read_runtime_spec(text, Logger(LogLevel::quiet, nullptr), s.components->reader());
-        } catch (const Error& e) {
-            if (e.status() != STRUCTMD_ERR_INPUT) throw;
-            throw refused(path, precise(value) + " refused by the input's rules: " + e.what());
+            if (std::string(path) == "global.ensemble.temperature") parsed.system.temperature = value;
+            // The present box (structmd_set_box may have changed it): cutoffs are checked against it.
+            parsed.system.box = simulation.box();
+            RuntimeSpec spec;
+            try {
+                spec = read_runtime_spec(parsed.system, Logger(LogLevel::quiet, nullptr), s.components->reader());
+            } catch (const Error& e) {
+                if (e.status() != STRUCTMD_ERR_INPUT) throw;
+                throw refused(path, precise(value) + " refused by the input's rules: " + e.what());
+            }
+            try {
+                simulation.change_parameters(spec, *s.components);
+            } catch (const Error& e) {
+                if (e.status() != STRUCTMD_ERR_ARGUMENT) throw;
+                throw refused(path, precise(value) + ": " + e.what());
+            }
+        } catch (...) {
+            undo.restore();
+            throw;
         }
-        try {
-            simulation.change_parameters(spec, *s.components);
-        } catch (const Error& e) {
-            if (e.status() != STRUCTMD_ERR_ARGUMENT) throw;
-            throw refused(path, precise(value) + ": " + e.what());
-        }
-        s.document = text;
     });
 }
 

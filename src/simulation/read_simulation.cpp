@@ -45,10 +45,8 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     return spec;
 }
 
-RuntimeSpec read_runtime_spec(const std::string& text, const Logger& log,
+RuntimeSpec read_runtime_spec(const input::SystemDescription& system, const Logger& log,
                               const Registry<ForceFieldComponent>& components) {
-    input::ParsedDocument doc = input::parse_document(text);
-    const input::SystemDescription& system = doc.system;
     RuntimeSpec spec;
     spec.forceField = read_forcefield(system, log, components);
     spec.integrators = read_integrators(system, spec.forceField.groups, spec.schedule);

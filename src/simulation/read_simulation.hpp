@@ -3,6 +3,7 @@
 
 #include "core/logger.hpp"
 #include "forcefield/component_registry.hpp"
+#include "input/description.hpp"
 #include "simulation/simulation_spec.hpp"
 
 namespace structmd {
@@ -13,15 +14,15 @@ namespace structmd {
 SimulationSpec read_simulation(const std::string& text, const Logger& log,
                                const Registry<ForceFieldComponent>& components = forcefield_registry());
 
-// What structmd_set_parameter may change, read again from a document that differs from the loaded
-// one in a parameter: the force field and the integrators, validated as a load validates them
-// (every key of their entries must be used). The particles' state is parsed and checked, not kept.
+// What structmd_set_parameter may change, read again from the parsed document after a parameter in
+// it changed: the force field and the integrators, validated as a load validates them (every key of
+// their entries must be used). The particles are the description's; their tables are not read.
 struct RuntimeSpec {
     ForceFieldSpec forceField;
     std::vector<IntegratorSpec> integrators;
     std::vector<ScheduleStage> schedule;
 };
-RuntimeSpec read_runtime_spec(const std::string& text, const Logger& log,
+RuntimeSpec read_runtime_spec(const input::SystemDescription& system, const Logger& log,
                               const Registry<ForceFieldComponent>& components);
 
 }  // namespace structmd

@@ -494,6 +494,25 @@ def test_a_parameter_that_cannot_change_is_refused_and_changes_nothing(handles, 
     assert sim.time == pytest.approx(t + 0.002)
 
 
+def test_a_refused_parameter_is_taken_back_so_later_changes_work(handles):
+    # The kept document must not hold a refused value or key: the next change is read with it.
+    sim = handles(lattice())
+    with pytest.raises(structmd.ArgumentError, match="Kay"):
+        sim.set_parameter("topology.forceField.bonds.parameters.Kay", 1.0)
+    with pytest.raises(structmd.ArgumentError, match="does not give it"):
+        sim.get_parameter("topology.forceField.bonds.parameters.Kay")
+    with pytest.raises(structmd.ArgumentError):
+        sim.set_parameter("global.ensemble.temperature", -1.0)
+    assert sim.get_parameter("global.ensemble.temperature") == 1.0
+    sim.set_parameter("topology.forceField.bonds.parameters.K", 30.0)
+    sim.set_parameter("global.ensemble.temperature", 1.5)
+    assert sim.get_parameter("topology.forceField.bonds.parameters.K") == 30.0
+    assert sim.get_parameter("global.ensemble.temperature") == 1.5
+    fresh = handles(lattice(bond_k=30.0))
+    fresh.positions = sim.positions
+    np.testing.assert_allclose(sim.forces, fresh.forces, rtol=1e-12, atol=1e-12)
+
+
 def test_a_parameter_the_input_left_to_its_default_can_be_set(handles):
     langevin = {"type": ["Langevin", "GJF"], "parameters": {"timeStep": 0.002, "frictionConstant": 1.0}}
     sim = handles(lattice(side=5, integrator=langevin))

@@ -6,6 +6,7 @@
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/transform_reduce.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -303,12 +304,15 @@ public:
     template <class T>
     T read(const Buffer<T>& buffer, size_t index) const {
         transfers_.deviceToHost += sizeof(T);
-        T value;
+        // Into pinned memory: a copy to pageable memory is staged by the driver, which costs a step
+        // call (it reads the fault flag) several microseconds more.
+        auto* value = reinterpret_cast<T*>(
+            scalar_.reserve((sizeof(T) + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t)));
         issue_recorded();
-        cuda_check(cudaMemcpyAsync(&value, buffer.data() + index, sizeof(T), cudaMemcpyDeviceToHost, stream_),
+        cuda_check(cudaMemcpyAsync(value, buffer.data() + index, sizeof(T), cudaMemcpyDeviceToHost, stream_),
                    "reading from the device");
         synchronize();
-        return value;
+        return *value;
     }
 
     // Sets one element from a kernel, so that no host synchronisation is needed.
@@ -364,6 +368,7 @@ private:
     mutable int stepsInGraph_ = 0;
     mutable TransferCounters transfers_;
     mutable MemoryAccount memory_;
+    mutable PinnedStaging<std::max_align_t> scalar_;  // where read() lands
     int64_t residentThreads_ = 0;  // threads the device holds at once
     std::string deviceName_;
     cudaStream_t stream_ = nullptr;
