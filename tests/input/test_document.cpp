@@ -231,8 +231,8 @@ TEST(Document, StructureMissingUnknownOrDuplicatedId) {
                         "(first at topology.structure.data[0])"});
 }
 
-// UAMMD-structured files carry resId and chainId; they are accepted when they are integers (nothing
-// uses them), while modelId and batchId are kept.
+// The four grouping columns of UAMMD-structured are integers and kept by particle id; resId and
+// chainId (read by the PDB writer) stay empty when the structure has no such column.
 TEST(Document, StructureGroupingColumns) {
     json document = valid_document();
     document["topology"]["structure"] = {{"labels", {"id", "type", "resId", "chainId", "modelId", "batchId"}},
@@ -240,8 +240,14 @@ TEST(Document, StructureGroupingColumns) {
     const ParsedDocument parsed = parse_document(document.dump());
     EXPECT_EQ(parsed.system.modelId, (std::vector<int32_t>{0, 1, 1}));
     EXPECT_EQ(parsed.system.batchId, (std::vector<int32_t>{2, 0, 1}));
+    EXPECT_EQ(parsed.system.resId, (std::vector<int32_t>{4, 5, 6}));
+    EXPECT_EQ(parsed.system.chainId, (std::vector<int32_t>{1, 1, 2}));
     consume_components(parsed);
     EXPECT_NO_THROW(parsed.root.check_all_used());
+
+    const ParsedDocument plain = parse_document(valid_document().dump());
+    EXPECT_TRUE(plain.system.resId.empty());
+    EXPECT_TRUE(plain.system.chainId.empty());
 
     for (const char* label : {"resId", "chainId"}) {
         json bad = valid_document();
