@@ -11,7 +11,7 @@
 #include "core/error.hpp"
 #include "core/logger.hpp"
 #include "engines/engine_options.hpp"
-#include "input/description.hpp"
+#include "simulation/read_simulation.hpp"
 #include "simulation/simulation.hpp"
 #include "structmd.h"
 

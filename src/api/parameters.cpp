@@ -100,11 +100,7 @@ Json* locate(Json& doc, const std::string& path, bool create) {
 // no longer needed.
 input::ParsedDocument& runtime_document(structmd_sim& s) {
     if (!s.runtimeDocument) {
-        auto parsed = std::make_unique<input::ParsedDocument>(input::parse_document(s.document));
-        Json& doc = parsed->tracking->document;
-        doc["state"]["data"] = Json::array();
-        doc["topology"]["structure"]["data"] = Json::array();
-        s.runtimeDocument = std::move(parsed);
+        s.runtimeDocument = read_parameter_document(s.document);
         std::string().swap(s.document);
     }
     return *s.runtimeDocument;

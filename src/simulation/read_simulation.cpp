@@ -45,6 +45,14 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     return spec;
 }
 
+std::unique_ptr<input::ParsedDocument> read_parameter_document(const std::string& text) {
+    auto parsed = std::make_unique<input::ParsedDocument>(input::parse_document(text));
+    nlohmann::json& doc = parsed->tracking->document;
+    doc["state"]["data"] = nlohmann::json::array();
+    doc["topology"]["structure"]["data"] = nlohmann::json::array();
+    return parsed;
+}
+
 RuntimeSpec read_runtime_spec(const input::SystemDescription& system, const Logger& log,
                               const Registry<ForceFieldComponent>& components) {
     RuntimeSpec spec;

@@ -1,4 +1,5 @@
 #pragma once
+#include <memory>
 #include <string>
 
 #include "core/logger.hpp"
@@ -24,5 +25,9 @@ struct RuntimeSpec {
 };
 RuntimeSpec read_runtime_spec(const input::SystemDescription& system, const Logger& log,
                               const Registry<ForceFieldComponent>& components);
+
+// The loaded input as structmd_set_parameter keeps it: parsed and checked once, its particle tables
+// (state and structure data) emptied, since the engine holds the particles.
+std::unique_ptr<input::ParsedDocument> read_parameter_document(const std::string& text);
 
 }  // namespace structmd

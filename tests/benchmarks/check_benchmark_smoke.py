@@ -10,7 +10,8 @@ With forces in single precision the error is ~1e-7 (float rounding), hence 1e-9 
 The coupling benchmark's bytes per exchange must scale with the region, not the system: one packed
 vector each way for m particles (16 or 32 bytes each, by precision; the region's ids cross once, as
 the loop names the same ones every time) is 32-64 bytes per particle, far below the 24 N bytes of
-one whole array.
+one whole array. The plain-step loop that follows an exchange still gathers the watched region once
+(docs/c-api.md), which the difference of the two loops takes off: hence 10% of slack below.
 
 usage: check_benchmark_smoke.py lj|accuracy|coupling PROGRAM"""
 import csv
@@ -121,7 +122,7 @@ def check_coupling(program):
         calls = positive_finite(row, "get_us") + positive_finite(row, "set_us")
         expect(calls < exchange, f"the calls' {calls} us exceed the whole iteration's {exchange} us in {row}")
         moved = float(row["bytes_per_exchange"])
-        expect(32 * 10 <= moved <= 64 * 10, f"{moved} bytes per exchange of 10 particles in {row}")
+        expect(0.9 * 32 * 10 <= moved <= 64 * 10, f"{moved} bytes per exchange of 10 particles in {row}")
 
 
 kind, program = sys.argv[1], os.path.abspath(sys.argv[2])
