@@ -134,8 +134,7 @@ public:
             throw;
         }
         backend_.end_steps();
-        gather_watched_positions();
-        check_fault();
+        check_fault(gather_watched_positions());
         if (current_step() == last) fire_steps(true);
         forceField_.adapt();
     }
@@ -479,9 +478,15 @@ private:
     }
 
     // Reports a fault recorded on the backend during the last steps and returns to the state the
-    // call started from.
-    void check_fault() {
-        const unsigned long long word = backend_.read(p_.fault, 0);
+    // call started from. faultStaged: a kernel queued last copies the fault word into faultWord_.
+    void check_fault(bool faultStaged = false) {
+        unsigned long long word;
+        if (faultStaged) {
+            backend_.synchronize();
+            word = *faultWord_.data();
+        } else {
+            word = backend_.read(p_.fault, 0);
+        }
         if (word == kNoFault) return;
         const int64_t failedStep = current_step();
         roll_back();
@@ -603,19 +608,24 @@ private:
         }
         watchedVersion_ = -1;
     }
-    void gather_watched_positions() {
-        if (watchedIds_.empty()) return;
+    // Returns whether it gathered: the same kernel then brought the fault word along, and the step
+    // call's fault check needs only to wait for it.
+    bool gather_watched_positions() {
+        if (watchedIds_.empty()) return false;
         if (!watchedRead_) {
             watchedIds_.clear();
             watchedIdsOnBackend_.release();
-            return;
+            return false;
         }
         const auto m = static_cast<int64_t>(watchedIds_.size());
         Real4<R>* values = watchedPositions_.reserve(static_cast<size_t>(m));
-        backend_.for_each(m, GatherById<Real4<R>>{p_.pos.data(), watchedIdsOnBackend_.data(), values});
-        backend_.written_to_host(watchedPositions_, static_cast<size_t>(m));  // check_fault's read waits for it
+        backend_.for_each(m, GatherWithFaultWord<R>{p_.pos.data(), watchedIdsOnBackend_.data(), values,
+                                                    p_.fault.data(), faultWord_.reserve(1)});
+        backend_.written_to_host(watchedPositions_, static_cast<size_t>(m));
+        backend_.written_to_host(faultWord_, 1);
         watchedVersion_ = p_.version;
         watchedRead_ = false;
+        return true;
     }
 
     // The m values of from at the ids on the backend, in the vector staging (valid until the next
@@ -671,6 +681,7 @@ private:
     typename B::template Staging<Real4<R>> watchedPositions_;
     int64_t watchedVersion_ = -1;
     bool watchedRead_ = false;
+    typename B::template Staging<unsigned long long> faultWord_;
 };
 
 }  // namespace structmd

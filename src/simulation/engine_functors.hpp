@@ -68,6 +68,21 @@ struct GatherById {
     SMD_HD void operator()(int64_t k) const { to[k] = from[ids[k]]; }
 };
 
+// GatherById of positions that also copies the fault word (one word, by the first thread): the
+// watched region and the step call's fault flag come back in one kernel.
+template <class R>
+struct GatherWithFaultWord {
+    const Real4<R>* from;  // by particle
+    const int64_t* ids;
+    Real4<R>* to;  // m entries
+    const unsigned long long* fault;
+    unsigned long long* faultCopy;
+    SMD_HD void operator()(int64_t k) const {
+        to[k] = from[ids[k]];
+        if (k == 0) *faultCopy = *fault;
+    }
+};
+
 template <class T>
 struct ScatterById {
     const T* from;  // m entries

@@ -270,6 +270,23 @@ def test_a_region_read_after_every_step_call_is_gathered_by_the_call_itself(hand
     assert moved(before, sim.counters)[1] < 24 * m
 
 
+def test_a_blow_up_is_reported_while_a_region_is_watched(handles):
+    # The watched gather brings the step call's fault flag back with it: a blow-up must still stop
+    # the call and roll it back, and the region then reads the rolled-back positions.
+    sim = handles(lattice())
+    sim.positions_of(IDS)
+    sim.step(1)
+    sim.positions_of(IDS)  # read after the call: the next call gathers it
+    neighbour = sim.positions[1]
+    sim.set_positions_of([0], [neighbour + 0.01])  # almost on top of particle 1
+    sim.positions_of(IDS)
+    before = sim.positions
+    with pytest.raises(structmd.NumericalError):
+        sim.step(5)
+    np.testing.assert_array_equal(sim.positions, before)
+    np.testing.assert_array_equal(sim.positions_of(IDS), before[IDS])
+
+
 # ---- subsets: bad arguments --------------------------------------------------------------------
 
 @pytest.mark.parametrize("ids, culprit", [([3, 1000], "ids[1]: particle id 1000 does not exist"),
