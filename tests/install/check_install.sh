@@ -12,9 +12,13 @@ prefix=$(cd "$scratch/prefix" && pwd)
 # Runs a consumer without LD_LIBRARY_PATH and checks that it loaded the installed library.
 run_installed() {
   env -u LD_LIBRARY_PATH "$1"
-  if ! env -u LD_LIBRARY_PATH ldd "$1" | grep -q "libstructmd.so.* => $prefix/"; then
+  # ldd's output is kept before it is searched: grep -q stopping early would otherwise fail the pipe
+  # under pipefail whenever ldd is still writing.
+  local libraries
+  libraries=$(env -u LD_LIBRARY_PATH ldd "$1")
+  if ! grep -q "libstructmd.so.* => $prefix/" <<< "$libraries"; then
     echo "$1 does not load libstructmd from $prefix:" >&2
-    env -u LD_LIBRARY_PATH ldd "$1" >&2
+    echo "$libraries" >&2
     exit 1
   fi
 }
