@@ -9,6 +9,10 @@ from .constants import STATUS
 from .errors import ArgumentError, UnsupportedError
 from .simulation import Simulation
 
+# The engine options of both couplings (ASE, i-PI) under what their caller gives: double precision,
+# since optimisers and finite-difference checks on their side expect it, and a quiet log.
+DEFAULT_OPTIONS = {"precision": "double", "log": "warning"}
+
 # Off-diagonal cell entries below this fraction of the largest edge count as zero: cells that went
 # through a unit conversion or a transpose keep exact zeros, but a tolerance costs nothing.
 _TILT_TOLERANCE = 1e-12

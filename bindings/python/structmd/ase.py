@@ -19,14 +19,13 @@ from ase.calculators.calculator import Calculator as _AseCalculator
 from ase.calculators.calculator import all_changes
 from ase.stress import full_3x3_to_voigt_6_stress
 
-from ._evaluate import evaluate, orthorhombic_box
+from ._evaluate import DEFAULT_OPTIONS, evaluate, orthorhombic_box
 from .constants import STATUS
 from .errors import UnsupportedError
 from .simulation import Simulation
 
 InputSource = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 
-DEFAULT_OPTIONS = {"precision": "double", "log": "warning"}
 
 
 class Calculator(_AseCalculator):

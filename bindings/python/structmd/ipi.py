@@ -27,7 +27,7 @@ from typing import Any, Mapping, Optional, TextIO, Tuple, Union
 
 import numpy as np
 
-from ._evaluate import Evaluation, evaluate, orthorhombic_box
+from ._evaluate import DEFAULT_OPTIONS, Evaluation, evaluate, orthorhombic_box
 from .constants import STATUS
 from .errors import ArgumentError
 from .simulation import Simulation
@@ -36,7 +36,6 @@ BOHR_IN_ANGSTROM = 0.5291772105638411
 HARTREE_IN_EV = 27.211386024367243
 HEADER_SIZE = 12
 UNIX_SOCKET_PREFIX = "/tmp/ipi_"  # i-PI's and ASE's: unix:NAME is the socket /tmp/ipi_NAME
-DEFAULT_OPTIONS = {"precision": "double", "log": "warning"}
 
 Address = Union[str, Tuple[str, int]]
 
