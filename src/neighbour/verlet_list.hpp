@@ -16,14 +16,13 @@ template <class B, class R>
 class VerletList {
 public:
     // excluded: for nonExcluded lists, the sorted ids each particle never pairs with (else empty);
-    // batch and model: backend arrays by particle, or null where not needed.
+    // batch (numbered 0 .. batches - 1) and model: backend arrays by particle, or null where not needed.
     VerletList(const B& backend, double cutoff, double verletFactor, PairCondition condition,
-               const std::vector<std::vector<int>>& excluded, const int* batch, const int* model)
-        : backend_(backend), cutoff_(cutoff), listRadius_(cutoff * verletFactor) {
+               const std::vector<std::vector<int>>& excluded, const int* batch, int batches, const int* model)
+        : backend_(backend), cutoff_(cutoff), listRadius_(cutoff * verletFactor), batch_(batch), batches_(batches) {
         backend_.resize(control_, kControlSlots);
         backend_.fill(control_, 0);
         filter_.condition = condition;
-        filter_.batch = batch;
         filter_.model = model;
         if (condition == PairCondition::nonExcluded) {
             std::vector<int> start(1, 0), flat;
@@ -47,26 +46,17 @@ public:
         if (version == updatedAt_ && !forceRebuild_ && !needsLayout_) return;
         updatedAt_ = version;
         if (needsLayout_ || n != particles_ || !same_box(box)) layout(n, box);
-        backend_.write(control_, kRebuild, forceRebuild_ ? 1 : 0);
-        if (!forceRebuild_) {
+        // The flag is down between updates (the build lowers it), so a step without a build sets
+        // nothing here and launches nothing of the build.
+        if (forceRebuild_) {
+            backend_.write(control_, kRebuild, 1);
+        } else {
             const R halfSkin = R(0.5 * (listRadius_ - cutoff_));
             backend_.for_each(n, RefreshPositions<R>{pos.data(), order_.data(), binned_.data(), positions_.data(),
                                                      box_, halfSkin * halfSkin, control_.data()});
         }
         forceRebuild_ = false;
-        const int cells = grid_.count();
-        backend_.for_each(n, BinParticles<R>{pos.data(), grid_, box_, control_.data(), cellCount_.data(),
-                                             cellOf_.data(), rankInCell_.data()});
-        backend_.for_each_lanes(chunks_, SumCellChunks{control_.data(), cellCount_.data(), chunkTotal_.data(),
-                                                       chunkCells_, cells});
-        backend_.for_each_lanes(chunks_, StartCells{control_.data(), cellCount_.data(), chunkTotal_.data(),
-                                              cellStart_.data(), chunkCells_, cells});
-        backend_.for_each(n, PlaceParticles{control_.data(), cellOf_.data(), rankInCell_.data(), cellStart_.data(),
-                                            order_.data()});
-        backend_.for_each(cells, SortCells<R>{pos.data(), control_.data(), cellStart_.data(), order_.data(),
-                                              positions_.data(), binned_.data()});
-        backend_.for_each_lanes(n, BuildLists<R>{view(), R(listRadius_ * listRadius_), control_.data(),
-                                                 B::ordered_neighbour_lists});
+        backend_.only_if(control_.data() + kRebuild, [&] { build(pos, n); });
     }
 
     // Reads what the last builds needed (one small copy to the host) and enlarges the list
@@ -104,6 +94,7 @@ public:
         }
         v.cellStart = cellStart_.data();
         v.grid = grid_;
+        v.batch = batch_;
         v.box = box_;
         v.filter = filter_;
         return v;
@@ -114,14 +105,32 @@ private:
         return box.length.x == box_.length.x && box.length.y == box_.length.y && box.length.z == box_.length.z;
     }
 
+    void build(const typename B::template Buffer<Real4<R>>& pos, int64_t n) {
+        const int cells = grid_.count();
+        backend_.for_each(n, BinParticles<R>{pos.data(), grid_, batch_, box_, control_.data(), cellCount_.data(),
+                                             cellOf_.data(), rankInCell_.data()});
+        backend_.for_each_lanes(chunks_, SumCellChunks{control_.data(), cellCount_.data(), chunkTotal_.data(),
+                                                       chunkCells_, cells});
+        backend_.for_each_lanes(chunks_, StartCells{control_.data(), cellCount_.data(), chunkTotal_.data(),
+                                              cellStart_.data(), chunkCells_, cells});
+        backend_.for_each(n, PlaceParticles{control_.data(), cellOf_.data(), rankInCell_.data(), cellStart_.data(),
+                                            order_.data()});
+        backend_.for_each(cells, SortCells<R>{pos.data(), control_.data(), cellStart_.data(), order_.data(),
+                                              positions_.data(), binned_.data()});
+        backend_.for_each_lanes(n, BuildLists<R>{view(), R(listRadius_ * listRadius_), control_.data(),
+                                                 B::ordered_neighbour_lists});
+        backend_.write(control_, kRebuild, 0);
+    }
+
     // Sizes every buffer for n particles in this box and schedules a full rebuild.
     void layout(int64_t n, const Box<R>& box) {
         box_ = box;
         capacity_ = std::max(capacity_, pendingCapacity_);
-        grid_ = CellGrid<R>::make(box, listRadius_, n);
+        grid_ = CellGrid<R>::make(box, listRadius_, n, batches_);
         if (capacity_ == 0) {
-            // No particle has more neighbours than there are particles, whatever the list radius.
-            const double volume = static_cast<double>(box.length.x) * box.length.y * box.length.z;
+            // No particle has more neighbours than there are particles, whatever the list radius;
+            // batches overlaid in the box each fill it at their own density.
+            const double volume = static_cast<double>(box.length.x) * box.length.y * box.length.z * batches_;
             const double expected = 4.18879 * listRadius_ * listRadius_ * listRadius_ * n / volume;
             capacity_ = static_cast<int>(std::min(std::ceil(1.3 * expected), static_cast<double>(n))) + 16;
         }
@@ -149,6 +158,8 @@ private:
     const B& backend_;
     double cutoff_;
     double listRadius_;
+    const int* batch_;
+    int batches_;
     int64_t particles_ = 0;
     Box<R> box_{};
     CellGrid<R> grid_;

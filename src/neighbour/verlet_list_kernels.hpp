@@ -17,7 +17,7 @@ namespace structmd {
 
 // Slots of the list's small control buffer.
 enum ListControl : int {
-    kRebuild = 0,        // 1 while a rebuild is under way this step
+    kRebuild = 0,        // 1 from the step that needs a build until the build ends
     kBuilds = 1,         // number of builds since load
     kMaxNeighbours = 2,  // the longest list seen at a build
     kControlSlots = 3
@@ -46,6 +46,7 @@ template <class R>
 struct BinParticles {
     const Real4<R>* pos;
     CellGrid<R> grid;
+    const int* batch;  // null: one batch
     Box<R> box;
     int* control;
     int* cellCount;
@@ -55,7 +56,7 @@ struct BinParticles {
         if (!control[kRebuild]) return;
         int cx, cy, cz;
         grid.coordinates(xyz(pos[i]), box, cx, cy, cz);
-        const int c = grid.index(cx, cy, cz);
+        const int c = grid.index(cx, cy, cz, batch ? batch[i] : 0);
         cellOf[i] = c;
         rankInCell[i] = atomic_add(cellCount + c, 1);
     }
@@ -206,7 +207,7 @@ struct BuildLists {
         int n = 0;
         int cx, cy, cz;
         v.grid.coordinates(rk, v.box, cx, cy, cz);
-        v.grid.for_each_adjacent(cx, cy, cz, [&](int c) {
+        v.grid.for_each_adjacent(cx, cy, cz, v.batch_of_slot(k), [&](int c) {
             const int end = v.cellStart[c + 1];
             for (int base = v.cellStart[c]; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;

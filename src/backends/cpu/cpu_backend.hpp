@@ -89,6 +89,13 @@ public:
         for (int64_t i = 0; i < n; ++i) f(i);
     }
 
+    // Runs the launches of body only while the flag in backend memory is set. Work runs as it is
+    // issued here, so the flag already holds what the launches before set.
+    template <class Body>
+    void only_if(const int* flag, Body&& body) const {
+        if (*flag) body();
+    }
+
     // A thread reads a particle's neighbours one after the other: side by side suits its cache.
     bool lists_by_rows(int64_t) const { return true; }
 

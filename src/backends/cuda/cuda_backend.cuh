@@ -187,6 +187,25 @@ public:
         graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_lanes_kernel<F>), grid, true, n, f));
     }
 
+    // Runs the launches of body only while the flag in device memory is set when they are reached.
+    // Inside a step graph they become a conditional node; issued directly they run, and each of
+    // their kernels must test the flag itself.
+    template <class Body>
+    void only_if(const int* flag, Body&& body) const {
+        if (!graphs_.recording()) {
+            body();
+            return;
+        }
+        graphs_.begin_condition(flag);
+        try {
+            body();
+        } catch (...) {
+            graphs_.end_condition();
+            throw;
+        }
+        graphs_.end_condition();
+    }
+
     // Kernels compiled at load time (runtime_compiler.hpp) for this handle's GPU.
     static constexpr bool compiles_at_run_time = true;
     using CompiledKernels = std::shared_ptr<const RuntimeKernels>;
@@ -352,7 +371,15 @@ private:
         launch.withLanes = withLanes;
         launch.n = n;
         launch.lanes = grid.lanes;
-        launch.functor.assign(reinterpret_cast<const char*>(&f), sizeof(F));
+        // Padding bytes hold whatever the stack held: cleared, so that equal functors compare
+        // equal and a replayed graph keeps its nodes (those in conditional bodies must match).
+        F copy = f;
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_clear_padding)
+        __builtin_clear_padding(&copy);
+#endif
+#endif
+        launch.functor.assign(reinterpret_cast<const char*>(&copy), sizeof(F));
         return launch;
     }
 

@@ -7,6 +7,11 @@
 // was recorded, so the order of work never changes. Kernels read the step and time from the
 // device clock, so the steps of a run pass the same arguments again and again and replaying a
 // batch costs one graph launch.
+//
+// Launches recorded under a condition (a flag in device memory, see only_if) become the body of a
+// conditional graph node, run only when the flag is set at that point of the graph: a step
+// without a list build then launches none of the build's kernels. Issued outside a graph they run
+// anyway, and their kernels test the flag themselves.
 #include <cuda_runtime.h>
 
 #include <cstdint>
@@ -28,6 +33,8 @@ struct KernelLaunch {
     int64_t n = 0;
     int lanes = 1;
     std::string functor;  // the functor's bytes
+    const int* condition = nullptr;  // runs only where *condition != 0 (null: always)
+    bool opensCondition = false;     // the first launch of a conditional region
     void* params[3] = {nullptr, nullptr, nullptr};
 
     void** kernel_params() {
@@ -51,11 +58,20 @@ struct KernelLaunch {
     bool same_arguments(const KernelLaunch& other) const {
         return n == other.n && lanes == other.lanes && functor == other.functor;
     }
+    bool same_shape(const KernelLaunch& other) const {
+        return kernel == other.kernel && blocks == other.blocks && threads == other.threads &&
+               condition == other.condition && opensCondition == other.opensCondition;
+    }
     void issue(cudaStream_t stream) {
         cuda_check(cudaLaunchKernel(kernel, dim3(blocks), dim3(threads), kernel_params(), 0, stream),
                    "launching a kernel");
     }
 };
+
+// Sets a conditional node's value from a flag the kernels before it wrote.
+static __global__ void set_graph_condition(cudaGraphConditionalHandle handle, const int* flag) {
+    cudaGraphSetConditional(handle, *flag != 0 ? 1u : 0u);
+}
 
 class StepGraphs {
 public:
@@ -72,10 +88,24 @@ public:
 
     void open() {
         open_ = true;
+        condition_ = nullptr;
         launches_.clear();
     }
 
-    void record(KernelLaunch launch) { launches_.push_back(std::move(launch)); }
+    void record(KernelLaunch launch) {
+        launch.condition = condition_;
+        launch.opensCondition = condition_ && !conditionOpened_;
+        conditionOpened_ = conditionOpened_ || condition_;
+        launches_.push_back(std::move(launch));
+    }
+
+    // Launches recorded until end_condition run only where *flag != 0, evaluated once before the
+    // first of them.
+    void begin_condition(const int* flag) {
+        condition_ = flag;
+        conditionOpened_ = false;
+    }
+    void end_condition() { condition_ = nullptr; }
 
     // Issues what was recorded, one launch at a time, and goes on recording afresh.
     void flush(cudaStream_t stream) {
@@ -119,9 +149,10 @@ private:
         for (Cached& c : cache_) {
             if (c.launches.size() != launches_.size()) continue;
             bool same = true;
+            // Nodes inside a conditional body are not updated in place: their arguments must match.
             for (size_t k = 0; same && k < launches_.size(); ++k)
-                same = c.launches[k].kernel == launches_[k].kernel && c.launches[k].blocks == launches_[k].blocks &&
-                       c.launches[k].threads == launches_[k].threads;
+                same = c.launches[k].same_shape(launches_[k]) &&
+                       (!launches_[k].condition || c.launches[k].same_arguments(launches_[k]));
             if (same) return &c;
         }
         return nullptr;
@@ -147,12 +178,22 @@ private:
         Cached c;
         cuda_check(cudaGraphCreate(&c.graph, 0), "creating a step graph");
         try {
+            cudaGraphNode_t last = nullptr;  // the node the next one waits for, in the top graph
+            cudaGraph_t body = nullptr;      // the open conditional body, if any
+            cudaGraphNode_t lastInBody = nullptr;
             for (KernelLaunch& launch : launches_) {
+                if (!launch.condition) body = nullptr;
+                if (launch.opensCondition) {
+                    body = add_conditional(c.graph, last, launch.condition);
+                    lastInBody = nullptr;
+                }
                 const cudaKernelNodeParams params = launch.node_params();
                 cudaGraphNode_t node = nullptr;
-                const cudaGraphNode_t* after = c.nodes.empty() ? nullptr : &c.nodes.back();
-                cuda_check(cudaGraphAddKernelNode(&node, c.graph, after, after ? 1 : 0, &params),
+                cudaGraphNode_t& after = body ? lastInBody : last;
+                cuda_check(cudaGraphAddKernelNode(&node, body ? body : c.graph, after ? &after : nullptr, after ? 1 : 0,
+                                                  &params),
                            "building a step graph");
+                after = node;
                 c.nodes.push_back(node);
             }
             cuda_check(cudaGraphInstantiate(&c.exec, c.graph, 0), "instantiating a step graph");
@@ -165,7 +206,32 @@ private:
         return cache_.back();
     }
 
+    // Adds, after `last`, a kernel that reads *flag and an if-node on its value; `last` becomes the
+    // if-node. Returns the graph of the if-node's body.
+    static cudaGraph_t add_conditional(cudaGraph_t graph, cudaGraphNode_t& last, const int* flag) {
+        cudaGraphConditionalHandle handle{};
+        cuda_check(cudaGraphConditionalHandleCreate(&handle, graph, 0, 0), "creating a graph condition");
+        void* args[2] = {&handle, &flag};
+        cudaKernelNodeParams setter{};
+        setter.func = reinterpret_cast<void*>(&set_graph_condition);
+        setter.gridDim = dim3(1);
+        setter.blockDim = dim3(1);
+        setter.kernelParams = args;
+        cudaGraphNode_t setNode = nullptr;
+        cuda_check(cudaGraphAddKernelNode(&setNode, graph, last ? &last : nullptr, last ? 1 : 0, &setter),
+                   "building a step graph");
+        cudaGraphNodeParams ifNode{};
+        ifNode.type = cudaGraphNodeTypeConditional;
+        ifNode.conditional.handle = handle;
+        ifNode.conditional.type = cudaGraphCondTypeIf;
+        ifNode.conditional.size = 1;
+        cuda_check(cudaGraphAddNode(&last, graph, &setNode, nullptr, 1, &ifNode), "building a step graph");
+        return ifNode.conditional.phGraph_out[0];
+    }
+
     bool open_ = false;
+    const int* condition_ = nullptr;
+    bool conditionOpened_ = false;
     std::vector<KernelLaunch> launches_;
     std::vector<Cached> cache_;
     uint64_t uses_ = 0;
