@@ -19,7 +19,8 @@ struct ForceFieldContext {
     size_t ntypes = 0;
     int64_t particles = 0;
     Constants constants;
-    const int* batch = nullptr;  // backend arrays by particle, or null where not needed
+    const int* batch = nullptr;  // backend arrays by particle, or null where not needed: batches
+    int batches = 1;             // numbered 0 .. batches - 1, in the order of their batchId
     const int* model = nullptr;
     const Logger* log = nullptr;  // for what the build reports (a kernel's compile time)
 };

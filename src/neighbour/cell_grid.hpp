@@ -1,6 +1,8 @@
 #pragma once
 // Division of the periodic box into cells at least as wide as the list radius, so that every
-// neighbour of a particle lies in its own cell or an adjacent one.
+// neighbour of a particle lies in its own cell or an adjacent one. Independent systems sharing the
+// box (batches) get a grid each, so a particle's candidates are those of its own batch only: 1,000
+// batches overlaid in one box cost what one system of their total size costs, not 1,000 times more.
 #include "core/box.hpp"
 
 #if SMD_HOST_CODE
@@ -14,20 +16,22 @@ namespace structmd {
 template <class R>
 struct CellGrid {
     int nx = 1, ny = 1, nz = 1;
+    int batches = 1;  // grids, one after the other: batch b's cells are b * nx * ny * nz onwards
     Vec3<R> cellsPerLength{1, 1, 1};  // cells per unit length along each axis
 
 #if SMD_HOST_CODE
-    int count() const { return nx * ny * nz; }
+    int count() const { return nx * ny * nz * batches; }
 
     // Cells no narrower than minWidth, and not many more cells than about twice the particles so a
     // dilute system in a large box does not allocate a huge grid.
-    static CellGrid make(const Box<R>& box, double minWidth, int64_t particles) {
+    static CellGrid make(const Box<R>& box, double minWidth, int64_t particles, int batches = 1) {
         CellGrid grid;
+        grid.batches = std::max(batches, 1);
         double n[3] = {std::floor(box.length.x / minWidth), std::floor(box.length.y / minWidth),
                        std::floor(box.length.z / minWidth)};
         for (double& v : n) v = std::min(std::max(1.0, v), 1e6);  // NaN and huge ratios: 1 and 1e6
         const double limit = std::max<double>(64.0, 2.0 * static_cast<double>(particles));
-        while (n[0] * n[1] * n[2] > limit) {
+        while (n[0] * n[1] * n[2] * grid.batches > limit && n[0] * n[1] * n[2] > 1) {
             for (double& v : n) v = std::max(1.0, std::floor(v * 0.8));
         }
         grid.nx = static_cast<int>(n[0]);
@@ -56,6 +60,9 @@ struct CellGrid {
     }
 
     SMD_HD SMD_INLINE int index(int cx, int cy, int cz) const { return (cz * ny + cy) * nx + cx; }
+    SMD_HD SMD_INLINE int index(int cx, int cy, int cz, int batch) const {
+        return (batch * nz + cz) * ny * nx + cy * nx + cx;
+    }
 
     // First and last offset to scan along an axis of n cells: with fewer than three cells the
     // offsets -1 and +1 would name the same cell twice, so fewer are scanned.
@@ -63,13 +70,14 @@ struct CellGrid {
     static SMD_HD SMD_INLINE int first_offset(int n) { return n >= 2 ? -1 : 0; }
     static SMD_HD SMD_INLINE int periodic(int c, int n) { return c < 0 ? c + n : (c >= n ? c - n : c); }
 
-    // Calls visit(cell) once for each distinct cell in the 3x3x3 block around (cx, cy, cz).
+    // Calls visit(cell) once for each distinct cell in the 3x3x3 block around (cx, cy, cz) of a
+    // batch's grid.
     template <class Visit>
-    SMD_HD SMD_INLINE void for_each_adjacent(int cx, int cy, int cz, Visit&& visit) const {
+    SMD_HD SMD_INLINE void for_each_adjacent(int cx, int cy, int cz, int batch, Visit&& visit) const {
         for (int dz = first_offset(nz); dz <= last_offset(nz); ++dz)
             for (int dy = first_offset(ny); dy <= last_offset(ny); ++dy)
                 for (int dx = first_offset(nx); dx <= last_offset(nx); ++dx)
-                    visit(index(periodic(cx + dx, nx), periodic(cy + dy, ny), periodic(cz + dz, nz)));
+                    visit(index(periodic(cx + dx, nx), periodic(cy + dy, ny), periodic(cz + dz, nz), batch));
     }
 };
 

@@ -29,10 +29,12 @@ struct NeighbourView {
     int64_t entryStride = 0;
     const int* cellStart = nullptr;  // cell c holds slots cellStart[c] .. cellStart[c + 1] - 1
     CellGrid<R> grid;
+    const int* batch = nullptr;  // batch by particle, numbered as the grid's batches; null: one batch
     Box<R> box;
     PairFilter filter;
 
     SMD_HD SMD_INLINE int* entries_of(int64_t k) const { return list + k * particleStride; }
+    SMD_HD SMD_INLINE int batch_of_slot(int64_t k) const { return batch ? batch[order[k]] : 0; }
 
     // Whether the pair of slots k and s may be listed (the filter judges particles, not slots).
     SMD_HD SMD_INLINE bool accepts(int k, int s) const {
@@ -64,7 +66,7 @@ struct NeighbourView {
     SMD_HD SMD_INLINE void scan_cells(int k, Visit&& visit) const {
         int cx, cy, cz;
         grid.coordinates(xyz(binned[k]), box, cx, cy, cz);
-        grid.for_each_adjacent(cx, cy, cz, [&](int c) {
+        grid.for_each_adjacent(cx, cy, cz, batch_of_slot(k), [&](int c) {
             for (int s = cellStart[c]; s < cellStart[c + 1]; ++s)
                 if (accepts(k, s)) visit(s);
         });

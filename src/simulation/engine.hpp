@@ -75,14 +75,23 @@ public:
         const std::vector<R> charge(spec.charge.begin(), spec.charge.end());
         backend_.upload(p_.radius, radius.data(), radius.size());
         backend_.upload(p_.charge, charge.data(), charge.size());
-        if (std::any_of(batchId_.begin(), batchId_.end(), [](int b) { return b != 0; }))
+        if (std::any_of(batchId_.begin(), batchId_.end(), [](int b) { return b != 0; })) {
             backend_.upload(p_.batch, batchId_.data(), batchId_.size());
+            std::vector<int> ids = batchId_;
+            std::sort(ids.begin(), ids.end());
+            ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+            std::vector<int> index(batchId_.size());
+            for (size_t i = 0; i < index.size(); ++i)
+                index[i] = static_cast<int>(std::lower_bound(ids.begin(), ids.end(), batchId_[i]) - ids.begin());
+            backend_.upload(p_.batchIndex, index.data(), index.size());
+            context_.batches = static_cast<int>(ids.size());
+        }
         backend_.upload(p_.model, spec.modelId.data(), spec.modelId.size());
 
         context_.ntypes = spec.typeNames.size();
         context_.particles = p_.count;
         context_.constants = spec.constants;
-        context_.batch = p_.batch.empty() ? nullptr : p_.batch.data();
+        context_.batch = p_.batchIndex.empty() ? nullptr : p_.batchIndex.data();
         context_.model = p_.model.data();
         context_.log = &log_;
         forceField_ = make_force_field(spec.forceField, components, nullptr);

@@ -28,6 +28,7 @@ struct Particles {
     Buffer<R> radius;
     Buffer<R> charge;
     Buffer<int> batch;  // batchId by particle; empty when every particle is in batch 0
+    Buffer<int> batchIndex;  // the same batches numbered 0, 1, ... in order of batchId; empty with batch
     Buffer<int> model;  // modelId by particle
     Buffer<unsigned long long> fault;  // one word, kNoFault when all is well
     Buffer<StepClock> clock;           // one entry: the step and time on the backend

@@ -56,7 +56,7 @@ std::vector<double> neighbour_volumes(const std::vector<double>& xyz, const std:
         double inverseSquareSum = 0.0;
         int cx, cy, cz;
         grid.coordinates({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, binned.box, cx, cy, cz);
-        grid.for_each_adjacent(cx, cy, cz, [&](int c) {
+        grid.for_each_adjacent(cx, cy, cz, 0, [&](int c) {
             for (int64_t k = binned.start[c]; k < binned.start[c + 1]; ++k) {
                 const int64_t j = binned.order[k];
                 if (j == i) continue;

@@ -94,7 +94,7 @@ void expect_complete(const std::set<std::pair<int, int>>& wanted, const std::set
 
 TEST(VerletList, FindsEveryPairAfterABuild) {
     System s(800, 12.0, 13.0, 14.0, 1);
-    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
     expect_complete(s.pairs_within(2.5), s.visited(list));
     list.adapt();
     EXPECT_EQ(list.builds(), 1);
@@ -102,7 +102,7 @@ TEST(VerletList, FindsEveryPairAfterABuild) {
 
 TEST(VerletList, StillCompleteAfterMovesBelowHalfTheSkin) {
     System s(800, 12.0, 12.0, 12.0, 2);
-    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);  // skin 0.3
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);  // skin 0.3
     s.visited(list);
     for (int k = 0; k < 5; ++k) {
         s.jiggle(0.029, 10 + k);  // five moves of 0.029: at most 0.145 < 0.15, no rebuild
@@ -114,7 +114,7 @@ TEST(VerletList, StillCompleteAfterMovesBelowHalfTheSkin) {
 
 TEST(VerletList, RebuildsOnceAParticleMovesPastHalfTheSkin) {
     System s(500, 12.0, 12.0, 12.0, 3);
-    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
     s.visited(list);
     s.jiggle(0.16, 7);
     expect_complete(s.pairs_within(2.5), s.visited(list));
@@ -124,7 +124,7 @@ TEST(VerletList, RebuildsOnceAParticleMovesPastHalfTheSkin) {
 
 TEST(VerletList, ForcedRebuildAfterInvalidate) {
     System s(300, 10.0, 10.0, 10.0, 4);
-    List list(s.backend, 2.0, 1.2, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.0, 1.2, PairCondition::all, {}, nullptr, 1, nullptr);
     s.visited(list);
     list.invalidate();
     s.visited(list);
@@ -141,7 +141,7 @@ TEST(VerletList, CompleteWhenEveryParticleSitsInOneCell) {
         Real4<double>& p = s.pos.data()[i];
         p = {0.05 * p.x, 0.05 * p.y, 0.05 * p.z, 0.0};
     }
-    List list(s.backend, 2.5, 1.1, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.5, 1.1, PairCondition::all, {}, nullptr, 1, nullptr);
     expect_complete(s.pairs_within(2.5), s.visited(list));
     list.adapt();
     list.invalidate();
@@ -151,23 +151,49 @@ TEST(VerletList, CompleteWhenEveryParticleSitsInOneCell) {
 TEST(VerletList, SmallBoxesWithOneOrTwoCellsPerSide) {
     // 5.2 / (2.5 * 1.02) gives 2 cells per side; 3.0 gives 1 along z.
     System s(120, 5.2, 5.2, 3.0, 6);
-    List list(s.backend, 1.4, 1.02, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 1.4, 1.02, PairCondition::all, {}, nullptr, 1, nullptr);
     expect_complete(s.pairs_within(1.4), s.visited(list));
     System t(60, 5.2, 5.2, 5.2, 7);
-    List wide(t.backend, 2.5, 1.02, PairCondition::all, {}, nullptr, nullptr);
+    List wide(t.backend, 2.5, 1.02, PairCondition::all, {}, nullptr, 1, nullptr);
     expect_complete(t.pairs_within(2.5), t.visited(wide));
 }
 
 TEST(VerletList, DiluteSystemInALargeBoxKeepsTheGridSmall) {
     System s(50, 400.0, 400.0, 400.0, 8);
     for (int64_t i = 0; i < 10; ++i) s.pos.data()[i] = {0.3 * i, 0.0, 0.0, 0.0};  // a close cluster
-    List list(s.backend, 2.5, 1.1, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.5, 1.1, PairCondition::all, {}, nullptr, 1, nullptr);
     expect_complete(s.pairs_within(2.5), s.visited(list));
+}
+
+TEST(VerletList, BatchesOverlaidInOneBoxPairOnlyWithinABatch) {
+    // Three independent systems in one box: each has cells of its own, so the list holds exactly
+    // the pairs within the cutoff and within one batch, after a build and on the cell-scan
+    // fallback of overflowing lists (the crowded batch 2).
+    System s(900, 12.0, 12.0, 12.0, 12);
+    HostBuffer<int> batch;
+    s.backend.resize(batch, s.n);
+    for (int64_t i = 0; i < s.n; ++i) batch.data()[i] = static_cast<int>(i % 3);
+    for (int64_t i = 2; i < s.n; i += 3) {
+        Real4<double>& p = s.pos.data()[i];
+        p = {0.1 * p.x, 0.1 * p.y, 0.1 * p.z, 0.0};
+    }
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, batch.data(), 3, nullptr);
+    std::set<std::pair<int, int>> wanted;
+    for (const auto& pair : s.pairs_within(2.5))
+        if (batch.data()[pair.first] == batch.data()[pair.second]) wanted.insert(pair);
+    const auto seen = s.visited(list);
+    expect_complete(wanted, seen);
+    for (const auto& pair : seen)
+        EXPECT_EQ(batch.data()[pair.first], batch.data()[pair.second])
+            << "pair (" << pair.first << ", " << pair.second << ") crosses batches";
+    const CellGrid<double>& grid = list.view().grid;
+    EXPECT_EQ(grid.batches, 3);
+    EXPECT_EQ(grid.count(), 3 * grid.nx * grid.ny * grid.nz);
 }
 
 TEST(VerletList, SlotsAreAPermutationInCellOrder) {
     System s(900, 11.0, 12.0, 13.0, 9);
-    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
     s.visited(list);
     const NeighbourView<double> view = list.view();
     std::vector<int> seen(s.n, 0);
@@ -195,7 +221,7 @@ TEST(VerletList, CompleteWithAGridScannedInChunks) {
     // 17^3 cells, whose counts are scanned in 52 chunks of 96 cells: the chunks before a cell
     // must all be counted for its first slot to be right.
     System s(6000, 19.0, 19.0, 19.0, 11);
-    List list(s.backend, 1.0, 1.1, PairCondition::all, {}, nullptr, nullptr);
+    List list(s.backend, 1.0, 1.1, PairCondition::all, {}, nullptr, 1, nullptr);
     expect_complete(s.pairs_within(1.0), s.visited(list));
     EXPECT_EQ(list.view().grid.count(), 17 * 17 * 17);
     EXPECT_EQ(list.view().cellStart[list.view().grid.count()], s.n);
@@ -205,8 +231,8 @@ TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
     // Enough particles that the CPU backend's loops run in parallel (kParallelThreshold).
     System one(6000, 19.0, 19.0, 19.0, 10, 1);
     System four(6000, 19.0, 19.0, 19.0, 10, 4);
-    List a(one.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
-    List b(four.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, nullptr);
+    List a(one.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
+    List b(four.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
     for (int round = 0; round < 3; ++round) {
         const auto x = one.slots_and_lists(a);
         const auto y = four.slots_and_lists(b);

@@ -78,7 +78,7 @@ Outputs evaluate(bool compiled, bool inGraph) {
             builtin.push_back(LennardJonesType1::make_pair_params<PairR>(epsilon, sigma, 2.5 * sigma, true));
         }
     auto list = std::make_shared<VerletList<CudaBackend, R>>(backend, 2.5 * 1.2, 1.1, PairCondition::all,
-                                                              std::vector<std::vector<int>>{}, nullptr, nullptr);
+                                                              std::vector<std::vector<int>>{}, nullptr, 1, nullptr);
     std::unique_ptr<Interactor<CudaBackend, R>> term;
     if (compiled) {
         std::vector<PairR> table;
