@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Smoke test of the LJ and coupling benchmarks on the CPU backend: tiny systems, a few steps. Runs one
+"""Smoke test of the LJ and coupling benchmarks on the CPU backend: tiny systems, a few steps (and the
+LJ benchmark's other scenes: batches and bead chains). Runs one
 program with --csv and checks that it exits 0 and that its CSV has the expected columns, one row per
 configuration asked, and sane values: positive finite rates, finite drift, and force errors that
 test the host reference of the accuracy benchmark. In double precision the engine's forces (Verlet
@@ -22,7 +23,7 @@ import sys
 import tempfile
 
 LJ_COLUMNS = ["n", "backend", "precision", "steps_per_call", "steps_per_second", "particle_steps_per_second",
-              "list_builds_per_1000_steps", "device_memory_mib", "setup_seconds", "pair"]
+              "list_builds_per_1000_steps", "device_memory_mib", "setup_seconds", "pair", "scene"]
 ACCURACY_COLUMNS = ["precision", "dt", "skin", "n", "backend", "steps", "steps_per_second", "seconds_per_tau",
                     "energy_drift", "relative_force_error", "list_builds_per_1000_steps"]
 COUPLING_COLUMNS = ["n", "backend", "precision", "region", "iterations", "step_us", "exchange_us", "extra_us",
@@ -82,6 +83,14 @@ def check_lj(program):
             positive_finite(row, "device_memory_mib")  # this engine reports it, on the CPU backend too
             setup = float(row["setup_seconds"])
             expect(math.isfinite(setup) and setup >= 0, f"setup_seconds in {row}")
+            expect(row["scene"] == "lj", f"scene of {row}")
+    # The other scenes: 4 and 2 batches of 500 particles; 16 and 9 chains of 100 beads (a square number).
+    rows = run(program, ["--n", "2000", "--n", "900", "--backend", "cpu", "--scene", "batches", "--scene", "chains",
+                         "--steps", "10", "--repeats", "2", "--warmup", "5"], LJ_COLUMNS)
+    expect([(row["scene"], row["n"]) for row in rows] ==
+           [("batches", "2000"), ("batches", "1000"), ("chains", "1600"), ("chains", "900")], f"rows {rows}")
+    for row in rows:
+        positive_finite(row, "particle_steps_per_second")
 
 
 def check_accuracy(program):

@@ -3,10 +3,16 @@
 // NVE velocity Verlet with dt = 0.005), driven through the public C API.
 //
 //   structmd_lj_benchmark [--n N]... [--backend B]... [--precision P]... [--seconds T | --steps S]
-//                         [--repeats R] [--warmup W] [--threads K] [--pair F]... [--csv PATH]
+//                         [--repeats R] [--warmup W] [--threads K] [--pair F]... [--scene S]...
+//                         [--csv PATH]
 //
 // --pair builtin (the default) runs LJ as LennardJonesType1; --pair expression runs the same
 // potential as ["NonBonded","Expression"] (compiled at load time on CUDA, interpreted on the CPU).
+//
+// --scene lj (the default) is the liquid of N particles; --scene batches is N / 500 independent
+// liquids of 500 particles (4 x 5^3) as batches of one input; --scene chains is a melt of N / 100
+// chains of 100 beads (rounded to a square number of chains; lj_liquid.hpp's BeadChains: harmonic
+// bonds, KratkyPorod angles, WCA between non-bonded pairs, Langevin BBK, dt = 0.005).
 //
 // For every (backend, precision, pair form, N) the program builds the input in memory, loads a fresh system,
 // takes W untimed steps (first neighbour-list build, caches, GPU clocks), then times R calls of
@@ -68,6 +74,7 @@ struct BenchmarkOptions {
     int64_t warmup = 100;
     int threads = 0;  // 0: the engine's default
     std::vector<std::string> pairForms{"builtin"};
+    std::vector<std::string> scenes{"lj"};
     std::string csvPath;
 };
 
@@ -81,7 +88,37 @@ struct Row {
     std::optional<double> deviceMemoryMiB;
     double setupSeconds = 0;
     std::string pairForm;
+    std::string scene;
 };
+
+constexpr int64_t kBatchCells = 5;      // fcc cells per edge of one batch: 500 particles
+constexpr int64_t kBeadsPerChain = 100;
+
+// The input of a scene of about `size` particles.
+std::string scene_input(const std::string& scene, int64_t size, const std::string& pairForm) {
+    if (scene == "chains") {
+        BeadChains melt;
+        const auto rows = std::max<int64_t>(1, std::llround(std::sqrt(static_cast<double>(size) / kBeadsPerChain)));
+        melt.chains = rows * rows;
+        melt.beads = kBeadsPerChain;
+        melt.timeStep = kTimeStep;
+        melt.skin = kSkin;
+        melt.scheduleSteps = kUnendingSchedule;
+        return bead_chains_input(melt);
+    }
+    LjLiquid liquid;
+    if (scene == "batches") {
+        liquid.cells = kBatchCells;
+        liquid.batches = std::max<int64_t>(1, std::llround(static_cast<double>(size) / (4 * kBatchCells * kBatchCells * kBatchCells)));
+    } else {
+        liquid.cells = cells_per_edge(size);
+    }
+    liquid.timeStep = kTimeStep;
+    liquid.skin = kSkin;
+    liquid.scheduleSteps = kUnendingSchedule;
+    liquid.asExpression = pairForm == "expression";
+    return lj_liquid_input(liquid);
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -108,23 +145,18 @@ int64_t probe_steps_per_call(structmd_sim* sim, double seconds_per_call) {
 }
 
 Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::string& backend,
-            const std::string& precision, const std::string& pairForm) {
+            const std::string& precision, const std::string& pairForm, const std::string& scene) {
     const auto setup_start = std::chrono::steady_clock::now();
     Handle simulation(create_options(backend, precision, options.threads));
     structmd_sim* sim = simulation.get();
     {
-        LjLiquid liquid;
-        liquid.cells = cells_per_edge(requested_size);
-        liquid.timeStep = kTimeStep;
-        liquid.skin = kSkin;
-        liquid.scheduleSteps = kUnendingSchedule;
-        liquid.asExpression = pairForm == "expression";
-        const std::string input = lj_liquid_input(liquid);  // released before stepping
+        const std::string input = scene_input(scene, requested_size, pairForm);  // released before stepping
         check(structmd_load_string(sim, input.c_str()), sim, "structmd_load_string");
     }
     Row row;
     row.setupSeconds = seconds_since(setup_start);
     row.pairForm = pairForm;
+    row.scene = scene;
 
     check(structmd_step(sim, options.warmup), sim, "structmd_step (warm-up)");
     row.stepsPerCall =
@@ -152,28 +184,29 @@ Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::
 }
 
 void print_header() {
-    std::printf("%10s  %-7s  %-9s  %10s  %10s  %16s  %14s  %10s  %7s  %s\n", "N", "backend", "precision", "steps/call",
-                "steps/s", "particle-steps/s", "builds/1000st", "memory MiB", "setup s", "pair");
+    std::printf("%10s  %-7s  %-9s  %10s  %10s  %16s  %14s  %10s  %7s  %-10s  %s\n", "N", "backend", "precision",
+                "steps/call", "steps/s", "particle-steps/s", "builds/1000st", "memory MiB", "setup s", "pair", "scene");
 }
 
 void print_row(const Row& row) {
     char memory[32] = "-";
     if (row.deviceMemoryMiB) std::snprintf(memory, sizeof memory, "%.1f", *row.deviceMemoryMiB);
-    std::printf("%10lld  %-7s  %-9s  %10lld  %10.4g  %16.4g  %14.2f  %10s  %7.2f  %s\n",
+    std::printf("%10lld  %-7s  %-9s  %10lld  %10.4g  %16.4g  %14.2f  %10s  %7.2f  %-10s  %s\n",
                 static_cast<long long>(row.particles), row.backend.c_str(), row.precision.c_str(),
                 static_cast<long long>(row.stepsPerCall), row.stepsPerSecond,
                 row.stepsPerSecond * static_cast<double>(row.particles), row.listBuildsPer1000Steps, memory,
-                row.setupSeconds, row.pairForm.c_str());
+                row.setupSeconds, row.pairForm.c_str(), row.scene.c_str());
 }
 
 void write_csv_row(std::ofstream& csv, const Row& row) {
     char line[512];
     char memory[32] = "";
     if (row.deviceMemoryMiB) std::snprintf(memory, sizeof memory, "%.3f", *row.deviceMemoryMiB);
-    std::snprintf(line, sizeof line, "%lld,%s,%s,%lld,%.6g,%.6g,%.4f,%s,%.3f,%s\n", static_cast<long long>(row.particles),
-                  row.backend.c_str(), row.precision.c_str(), static_cast<long long>(row.stepsPerCall),
-                  row.stepsPerSecond, row.stepsPerSecond * static_cast<double>(row.particles),
-                  row.listBuildsPer1000Steps, memory, row.setupSeconds, row.pairForm.c_str());
+    std::snprintf(line, sizeof line, "%lld,%s,%s,%lld,%.6g,%.6g,%.4f,%s,%.3f,%s,%s\n",
+                  static_cast<long long>(row.particles), row.backend.c_str(), row.precision.c_str(),
+                  static_cast<long long>(row.stepsPerCall), row.stepsPerSecond,
+                  row.stepsPerSecond * static_cast<double>(row.particles), row.listBuildsPer1000Steps, memory,
+                  row.setupSeconds, row.pairForm.c_str(), row.scene.c_str());
     csv << line << std::flush;
 }
 
@@ -209,6 +242,9 @@ int main(int argc, char** argv) {
     app.add_option("--pair", options.pairForms, "builtin or expression: the form of the LJ potential (repeatable)")
         ->check(CLI::IsMember({"builtin", "expression"}))
         ->capture_default_str();
+    app.add_option("--scene", options.scenes, "lj, batches or chains: what runs (repeatable)")
+        ->check(CLI::IsMember({"lj", "batches", "chains"}))
+        ->capture_default_str();
     app.add_option("--csv", options.csvPath, "Also write the rows to this CSV file");
     CLI11_PARSE(app, argc, argv);
 
@@ -216,26 +252,28 @@ int main(int argc, char** argv) {
     if (!options.csvPath.empty() &&
         !open_csv(csv, options.csvPath,
                   "n,backend,precision,steps_per_call,steps_per_second,particle_steps_per_second,"
-                  "list_builds_per_1000_steps,device_memory_mib,setup_seconds,pair"))
+                  "list_builds_per_1000_steps,device_memory_mib,setup_seconds,pair,scene"))
         return 2;
 
     if (options.fixedSteps > 0)
-        std::printf("structmd %s, LJ liquid, %lld steps per call", structmd_version(),
+        std::printf("structmd %s, %lld steps per call", structmd_version(),
                     static_cast<long long>(options.fixedSteps));
     else
-        std::printf("structmd %s, LJ liquid, steps per call chosen for %.3g s", structmd_version(),
+        std::printf("structmd %s, steps per call chosen for %.3g s", structmd_version(),
                     options.secondsPerCall);
     std::printf(" x %d calls (median), %lld warm-up steps\n", options.repeats, static_cast<long long>(options.warmup));
     print_header();
     std::fflush(stdout);
 
     int failures = 0;
+    for (const auto& scene : options.scenes)
     for (const auto& backend : options.backends)
         for (const auto& precision : options.precisions)
             for (const auto& pairForm : options.pairForms)
             for (const int64_t size : options.sizes) {
+                if (scene == "chains" && pairForm != "builtin") continue;  // the melt has no LJ to rewrite
                 try {
-                    const Row row = measure(options, size, backend, precision, pairForm);
+                    const Row row = measure(options, size, backend, precision, pairForm, scene);
                     print_row(row);
                     if (csv.is_open()) write_csv_row(csv, row);
                 } catch (const Failure& failure) {

@@ -49,7 +49,8 @@ std::string lj_liquid_input(const LjLiquid& liquid) {
     const double lattice = std::cbrt(4.0 / kDensity);
     const double box = lattice * static_cast<double>(liquid.cells);
     const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
-    const int64_t particles = 4 * liquid.cells * liquid.cells * liquid.cells;
+    const int64_t perBatch = 4 * liquid.cells * liquid.cells * liquid.cells;
+    const int64_t particles = perBatch * liquid.batches;
 
     std::string json;
     // About 45 bytes per state row and 12 per structure row.
@@ -79,6 +80,7 @@ std::string lj_liquid_input(const LjLiquid& liquid) {
     // Lattice sites shifted by a quarter cell so none sits on the box boundary at -L/2.
     json += R"("state": {"labels": ["id", "position"], "data": [)";
     int64_t id = 0;
+    for (int64_t batch = 0; batch < liquid.batches; ++batch)
     for (int64_t i = 0; i < liquid.cells; ++i)
         for (int64_t j = 0; j < liquid.cells; ++j)
             for (int64_t l = 0; l < liquid.cells; ++l)
@@ -94,11 +96,18 @@ std::string lj_liquid_input(const LjLiquid& liquid) {
                 }
     json += "]},";
 
-    json += R"("topology": {"structure": {"labels": ["id", "type"], "data": [)";
+    const bool batched = liquid.batches > 1;
+    json += batched ? R"("topology": {"structure": {"labels": ["id", "type", "batchId"], "data": [)"
+                    : R"("topology": {"structure": {"labels": ["id", "type"], "data": [)";
     for (int64_t p = 0; p < particles; ++p) {
         json += p > 0 ? ",[" : "[";
         append_integer(json, p);
-        json += R"(,"A"])";
+        json += R"(,"A")";
+        if (batched) {
+            json += ',';
+            append_integer(json, p / perBatch);
+        }
+        json += ']';
     }
     json += "]},";
     json += R"("forceField": {"nl": {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": )";
@@ -114,6 +123,106 @@ std::string lj_liquid_input(const LjLiquid& liquid) {
     json += R"(, "condition": "all", "shift": )";
     json += liquid.shiftEnergy ? "true" : "false";
     json += R"(}, "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [["A", "A", 1.0, 1.0]]}}}})";
+    return json;
+}
+
+std::string bead_chains_input(const BeadChains& melt) {
+    const auto rows = static_cast<int64_t>(std::llround(std::sqrt(static_cast<double>(melt.chains))));
+    const double spacing = std::cbrt(1.0 / 0.85);
+    const double lengths[3] = {spacing * static_cast<double>(melt.beads), spacing * static_cast<double>(rows),
+                               spacing * static_cast<double>(rows)};
+    const int64_t particles = melt.beads * rows * rows;
+
+    std::string json;
+    json.reserve(static_cast<size_t>(particles) * 110 + 2048);
+    json += R"({"system": {"info": {"type": ["Simulation", "Information"],)"
+            R"( "parameters": {"name": "bead_chains", "seed": 1}}},)";
+    json += R"("global": {"units": {"type": ["Units", "None"]},)"
+            R"("types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],)"
+            R"( "data": [["A", 1.0, 0.5, 0.0]]},)"
+            R"("ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[[)";
+    for (int axis = 0; axis < 3; ++axis) {
+        append_number(json, lengths[axis]);
+        json += axis < 2 ? "," : "],";
+    }
+    json += "1.0]]}},";
+    json += R"("integrator": {"bbk": {"type": ["Langevin", "BBK"], "parameters": {"frictionConstant": 1.0, "timeStep": )";
+    append_number(json, melt.timeStep);
+    json += R"(}}, "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],)"
+            R"( "data": [[1, "bbk", )";
+    append_integer(json, melt.scheduleSteps);
+    json += "]]}},";
+
+    // Chain c is lattice row (c / rows, c % rows); its beads run along x.
+    const auto id_of = [&](int64_t chain, int64_t bead) { return chain * melt.beads + bead; };
+    json += R"("state": {"labels": ["id", "position"], "data": [)";
+    for (int64_t chain = 0; chain < rows * rows; ++chain)
+        for (int64_t bead = 0; bead < melt.beads; ++bead) {
+            json += chain + bead > 0 ? ",[" : "[";
+            append_integer(json, id_of(chain, bead));
+            json += ',';
+            append_position(json, -0.5 * lengths[0] + spacing * (static_cast<double>(bead) + 0.25),
+                            -0.5 * lengths[1] + spacing * (static_cast<double>(chain / rows) + 0.25),
+                            -0.5 * lengths[2] + spacing * (static_cast<double>(chain % rows) + 0.25));
+            json += ']';
+        }
+    json += "]},";
+
+    json += R"("topology": {"structure": {"labels": ["id", "type", "modelId"], "data": [)";
+    for (int64_t p = 0; p < particles; ++p) {
+        json += p > 0 ? ",[" : "[";
+        append_integer(json, p);
+        json += R"(,"A",)";
+        append_integer(json, p / melt.beads);
+        json += ']';
+    }
+    json += "]},";
+    const double wcaCutOff = std::pow(2.0, 1.0 / 6.0);
+    json += R"("forceField": {"nl": {"type": ["VerletConditionalListSet", "nonExcluded"], "parameters": {"cutOffVerletFactor": )";
+    append_number(json, (wcaCutOff + melt.skin) / wcaCutOff);
+    json += R"(}, "labels": ["id", "id_list"], "data": [)";
+    for (int64_t p = 0; p < particles; ++p) {
+        const int64_t bead = p % melt.beads;
+        json += p > 0 ? ",[" : "[";
+        append_integer(json, p);
+        json += ",[";
+        if (bead > 0) append_integer(json, p - 1);
+        if (bead > 0 && bead + 1 < melt.beads) json += ',';
+        if (bead + 1 < melt.beads) append_integer(json, p + 1);
+        json += "]]";
+    }
+    json += "]},";
+    json += R"("wca": {"type": ["NonBonded", "WCAType1"], "parameters": {"cutOffFactor": )";
+    append_number(json, wcaCutOff);
+    json += R"(, "condition": "nonExcluded"}, "labels": ["name_i", "name_j", "epsilon", "sigma"],)"
+            R"( "data": [["A", "A", 1.0, 1.0]]},)";
+    json += R"("bonds": {"type": ["Bond2", "HarmonicCommon_K_r0"], "parameters": {"K": 100.0, "r0": 1.0},)"
+            R"( "labels": ["id_i", "id_j"], "data": [)";
+    bool first = true;
+    for (int64_t chain = 0; chain < rows * rows; ++chain)
+        for (int64_t bead = 0; bead + 1 < melt.beads; ++bead) {
+            json += first ? "[" : ",[";
+            first = false;
+            append_integer(json, id_of(chain, bead));
+            json += ',';
+            append_integer(json, id_of(chain, bead + 1));
+            json += ']';
+        }
+    json += "]},";
+    json += R"("bending": {"type": ["Bond3", "KratkyPorodCommon_K"], "parameters": {"K": 2.0},)"
+            R"( "labels": ["id_i", "id_j", "id_k"], "data": [)";
+    first = true;
+    for (int64_t chain = 0; chain < rows * rows; ++chain)
+        for (int64_t bead = 0; bead + 2 < melt.beads; ++bead) {
+            json += first ? "[" : ",[";
+            first = false;
+            for (int64_t k = 0; k < 3; ++k) {
+                if (k > 0) json += ',';
+                append_integer(json, id_of(chain, bead + k));
+            }
+            json += ']';
+        }
+    json += "]}}}}";
     return json;
 }
 

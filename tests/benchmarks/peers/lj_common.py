@@ -35,7 +35,7 @@ TIME_STEP = 0.005
 DRIFT_N = 10_976  # 4 * 14^3
 
 CSV_HEADER = ("engine,variant,n,precision,steps,seconds,steps_per_s,particle_steps_per_s,"
-              "mode,drift_tau,drift_per_particle_per_tau")
+              "mode,drift_tau,drift_per_particle_per_tau,relative_force_error")
 
 
 def log(*args) -> None:
@@ -198,15 +198,17 @@ def header(args) -> None:
 
 def throughput_row(engine: str, variant: str, n: int, precision: str, steps: int, seconds: float) -> None:
     rate = steps / seconds
-    print(f"{engine},{variant},{n},{precision},{steps},{seconds:.6f},{rate:.6g},{rate * n:.6g},throughput,,",
+    print(f"{engine},{variant},{n},{precision},{steps},{seconds:.6f},{rate:.6g},{rate * n:.6g},throughput,,,",
           flush=True)
 
 
 def drift_row(engine: str, variant: str, n: int, precision: str, steps: int, seconds: float,
-              tau: float, slope: float) -> None:
+              tau: float, slope: float, force_error: float | None = None) -> None:
+    """force_error: the relative RMS force error at the run's last configuration, where measured."""
     rate = steps / seconds
+    error = "" if force_error is None else f"{force_error:.6e}"
     print(f"{engine},{variant},{n},{precision},{steps},{seconds:.6f},{rate:.6g},{rate * n:.6g},drift,"
-          f"{tau:g},{slope:.6e}", flush=True)
+          f"{tau:g},{slope:.6e},{error}", flush=True)
 
 
 def describe(error: BaseException) -> str:
@@ -221,4 +223,4 @@ def error_row(engine: str, variant: str, n: int, precision: str, mode: str, mess
     if len(message) > 600:
         message = message[:600] + " ..."
     log(f"{engine} {variant} n={n} {precision} {mode}: FAILED: {message}")
-    print(f"{engine},{variant},{n},{precision},,,,,{mode}-failed,,", flush=True)
+    print(f"{engine},{variant},{n},{precision},,,,,{mode}-failed,,,", flush=True)

@@ -199,9 +199,24 @@ def drift(mm, unit, args, variant: str, precision: str) -> None:
         energy.append(k + u)
     seconds = time.perf_counter() - t0
     slope = lc.drift_slope(np.array(times), np.array(energy))
+    error = force_error(mm, built[0], context)
     lc.log(f"  drift: E/N {energy[0]:.6f} -> {energy[-1]:.6f} over {times[-1]:g} tau, slope {slope:.3e} "
-           f"per particle per tau (T end = {2 * k / 3:.4f})")
-    lc.drift_row(ENGINE, variant, n, precision_label(args, precision), samples * every, seconds, times[-1], slope)
+           f"per particle per tau (T end = {2 * k / 3:.4f}); relative force error {error:.3e}")
+    lc.drift_row(ENGINE, variant, n, precision_label(args, precision), samples * every, seconds, times[-1], slope,
+                 error)
+
+
+def force_error(mm, system, context) -> float:
+    """Relative RMS difference between the context's forces and the Reference platform's (double
+    precision) at the context's current positions: sqrt(sum |F - F_ref|^2 / sum |F_ref|^2)."""
+    import numpy as np
+
+    state = context.getState(getPositions=True, getForces=True)
+    reference = mm.Context(system, mm.VerletIntegrator(lc.TIME_STEP), mm.Platform.getPlatformByName("Reference"))
+    reference.setPositions(state.getPositions())
+    forces = np.asarray(state.getForces(asNumpy=True)._value, dtype=np.float64)
+    exact = np.asarray(reference.getState(getForces=True).getForces(asNumpy=True)._value, dtype=np.float64)
+    return float(np.sqrt(np.sum((forces - exact) ** 2) / np.sum(exact ** 2)))
 
 
 def main() -> int:

@@ -201,7 +201,7 @@ fi
 import csv, os, sys
 out = sys.argv[1]
 header = ("engine,variant,n,precision,steps,seconds,steps_per_s,particle_steps_per_s,"
-          "mode,drift_tau,drift_per_particle_per_tau").split(",")
+          "mode,drift_tau,drift_per_particle_per_tau,relative_force_error").split(",")
 rows = []
 path = os.path.join(out, "structmd.csv")
 if os.path.exists(path):
@@ -209,7 +209,7 @@ if os.path.exists(path):
         sps = float(r["steps_per_second"])
         steps = int(r["steps_per_call"])
         rows.append(["structmd", r.get("pair", "builtin"), r["n"], r["precision"], steps, f"{steps / sps:.6f}",
-                     r["steps_per_second"], r["particle_steps_per_second"], "throughput", "", ""])
+                     r["steps_per_second"], r["particle_steps_per_second"], "throughput", "", "", ""])
 path = os.path.join(out, "structmd_drift.csv")
 if os.path.exists(path):
     for r in csv.DictReader(open(path)):
@@ -217,7 +217,8 @@ if os.path.exists(path):
         sps = float(r["steps_per_second"])
         tau = steps * float(r["dt"])
         rows.append(["structmd", f"builtin-skin{r['skin']}", r["n"], r["precision"], steps, f"{steps / sps:.6f}",
-                     r["steps_per_second"], f"{sps * int(r['n']):.6g}", "drift", f"{tau:g}", r["energy_drift"]])
+                     r["steps_per_second"], f"{sps * int(r['n']):.6g}", "drift", f"{tau:g}", r["energy_drift"],
+                     r["relative_force_error"]])
 for name in ("openmm", "gamdpy", "jaxmd"):
     path = os.path.join(out, name + ".csv")
     if os.path.exists(path):
