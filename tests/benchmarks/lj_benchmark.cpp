@@ -4,7 +4,7 @@
 //
 //   structmd_lj_benchmark [--n N]... [--backend B]... [--precision P]... [--seconds T | --steps S]
 //                         [--repeats R] [--warmup W] [--threads K] [--pair F]... [--scene S]...
-//                         [--csv PATH]
+//                         [--skin D] [--csv PATH]
 //
 // --pair builtin (the default) runs LJ as LennardJonesType1; --pair expression runs the same
 // potential as ["NonBonded","Expression"] (compiled at load time on CUDA, interpreted on the CPU).
@@ -13,6 +13,7 @@
 // liquids of 500 particles (4 x 5^3) as batches of one input; --scene chains is a melt of N / 100
 // chains of 100 beads (rounded to a square number of chains; lj_liquid.hpp's BeadChains: harmonic
 // bonds, KratkyPorod angles, WCA between non-bonded pairs, Langevin BBK, dt = 0.005).
+// --skin (default 0.3 sigma) is the Verlet list's skin in every scene.
 //
 // For every (backend, precision, pair form, N) the program builds the input in memory, loads a fresh system,
 // takes W untimed steps (first neighbour-list build, caches, GPU clocks), then times R calls of
@@ -60,7 +61,6 @@ using structmd::host::Failure;
 using structmd::host::Handle;
 
 constexpr double kTimeStep = 0.005;
-constexpr double kSkin = 0.3;
 // The run is ended by this program, never by the schedule.
 constexpr int64_t kUnendingSchedule = 1'000'000'000'000;
 
@@ -75,6 +75,7 @@ struct BenchmarkOptions {
     int threads = 0;  // 0: the engine's default
     std::vector<std::string> pairForms{"builtin"};
     std::vector<std::string> scenes{"lj"};
+    double skin = 0.3;  // sigma, added to the cutoff for the Verlet list
     std::string csvPath;
 };
 
@@ -95,14 +96,14 @@ constexpr int64_t kBatchCells = 5;      // fcc cells per edge of one batch: 500 
 constexpr int64_t kBeadsPerChain = 100;
 
 // The input of a scene of about `size` particles.
-std::string scene_input(const std::string& scene, int64_t size, const std::string& pairForm) {
+std::string scene_input(const std::string& scene, int64_t size, const std::string& pairForm, double skin) {
     if (scene == "chains") {
         BeadChains melt;
         const auto rows = std::max<int64_t>(1, std::llround(std::sqrt(static_cast<double>(size) / kBeadsPerChain)));
         melt.chains = rows * rows;
         melt.beads = kBeadsPerChain;
         melt.timeStep = kTimeStep;
-        melt.skin = kSkin;
+        melt.skin = skin;
         melt.scheduleSteps = kUnendingSchedule;
         return bead_chains_input(melt);
     }
@@ -114,7 +115,7 @@ std::string scene_input(const std::string& scene, int64_t size, const std::strin
         liquid.cells = cells_per_edge(size);
     }
     liquid.timeStep = kTimeStep;
-    liquid.skin = kSkin;
+    liquid.skin = skin;
     liquid.scheduleSteps = kUnendingSchedule;
     liquid.asExpression = pairForm == "expression";
     return lj_liquid_input(liquid);
@@ -150,7 +151,7 @@ Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::
     Handle simulation(create_options(backend, precision, options.threads));
     structmd_sim* sim = simulation.get();
     {
-        const std::string input = scene_input(scene, requested_size, pairForm);  // released before stepping
+        const std::string input = scene_input(scene, requested_size, pairForm, options.skin);  // released before stepping
         check(structmd_load_string(sim, input.c_str()), sim, "structmd_load_string");
     }
     Row row;
@@ -245,6 +246,7 @@ int main(int argc, char** argv) {
     app.add_option("--scene", options.scenes, "lj, batches or chains: what runs (repeatable)")
         ->check(CLI::IsMember({"lj", "batches", "chains"}))
         ->capture_default_str();
+    app.add_option("--skin", options.skin, "Neighbour-list skin (sigma)")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--csv", options.csvPath, "Also write the rows to this CSV file");
     CLI11_PARSE(app, argc, argv);
 
