@@ -365,7 +365,8 @@ STRUCTMD_API structmd_status structmd_get_virial(structmd_sim* sim, double w[9])
 /**
  * @param sim      the handle.
  * @param[out] p   pressure P = (2K + trace W) / (3V), K the kinetic energy, V the box volume
- *                 (energy/length^3).
+ *                 (energy/length^3). While the next step runs an overdamped (Brownian) integrator,
+ *                 which has no velocities, P = (N k_B T + trace W / 3) / V at its bath temperature T.
  * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_get_pressure(structmd_sim* sim, double* p);

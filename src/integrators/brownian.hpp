@@ -11,6 +11,7 @@ namespace structmd {
 struct BrownianInputs : IntegratorInputs {
     static std::vector<Parameter> parameters() { return {number("viscosity", "mass/(length time)", Must::be_positive)}; }
     static constexpr bool needsRadius = true;  // mobility 1 / (6 pi eta a)
+    static constexpr bool overdamped = true;
 };
 
 template <class R>
@@ -54,6 +55,8 @@ class BrownianEulerMaruyama : public Integrator<B, R> {
 public:
     BrownianEulerMaruyama(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
         : Integrator<B, R>(scope), backend_(backend), viscosity_(v["viscosity"]) {}
+
+    bool overdamped() const override { return true; }
 
     // Overdamped particles have no velocity of their own: the kinetic energy reads 0.
     void begin(Particles<B, R>& p, ForceSource&) override {

@@ -50,6 +50,7 @@ struct IntegratorInputs {
     static std::vector<Parameter> parameters() { return {}; }
     static constexpr bool minimiser = false;    // moves no time forward: needs no time step
     static constexpr bool needsRadius = false;  // its mobility uses each particle's radius
+    static constexpr bool overdamped = false;   // moves positions only: the particles have no velocities
     // Rejects values the integrator cannot run with (beyond each parameter's own rule).
     static void validate(const ParameterValues&, const std::string&) {}
 };
@@ -69,6 +70,9 @@ public:
     double time_step() const { return scope_.timeStep; }
     // The simulation time one step adds (a minimiser adds none).
     virtual double time_advance() const { return scope_.timeStep; }
+    // Overdamped dynamics has no velocities, so no kinetic energy: its temperature is the bath's.
+    virtual bool overdamped() const { return false; }
+    double thermal_energy() const { return scope_.kT; }
     // Called before the first step of each stage of the schedule this integrator runs.
     virtual void begin(Particles<B, R>&, ForceSource&) {}
     virtual void step(Particles<B, R>& particles, ForceSource& forces) = 0;

@@ -18,6 +18,7 @@ struct IntegratorSpec {
     double timeStep = 0.0;
     double temperature = 0.0;  // k_B T, in energy units
     int group = -1;            // index into ForceFieldSpec::groups; -1: every particle
+    bool overdamped = false;   // IntegratorInputs::overdamped
     ParameterValues parameters;  // the integrator's own (IntegratorInputs::parameters())
 };
 
@@ -32,6 +33,7 @@ struct IntegratorComponent {
     std::vector<Parameter> parameters;
     bool minimiser = false;
     bool needsRadius = false;
+    bool overdamped = false;
     std::function<void(const ParameterValues&, const std::string& path)> validate;
 };
 

@@ -15,7 +15,8 @@ struct ReaderEntries {
 
     template <template <class, class> class Integrator, class Inputs>
     void integrator(ComponentKey key) {
-        registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate});
+        registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, Inputs::overdamped,
+                      &Inputs::validate});
     }
 };
 
@@ -42,6 +43,7 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         const IntegratorComponent& component =
             registry.at({entry.cls, entry.subclass}, spec.path + ".type", "integrator");
         spec.key = component.key;
+        spec.overdamped = component.overdamped;
         const input::TrackedNode params = input::parameters_of(entry.node);
 
         std::optional<double> dt = system.timeStep;

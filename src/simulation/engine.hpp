@@ -5,6 +5,7 @@
 // terms (energy_terms.hpp), host packing (host_transfer.hpp) and the schedule (schedule.hpp); the
 // step and time have one owner, the particles' Timeline.
 #include <algorithm>
+#include <optional>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -108,6 +109,12 @@ public:
     std::array<double, 3> box() const override { return boxLengths_; }
     double volume() const override { return boxLengths_[0] * boxLengths_[1] * boxLengths_[2]; }
     int64_t final_step() const override { return schedule_.final_step(); }
+    std::optional<double> overdamped_kT() const override {
+        if (schedule_.stages() == 0) return std::nullopt;
+        const Integrator<B, R>& next = *integrators_[schedule_.integrator_of(schedule_.stage_after(current_step()))];
+        if (!next.overdamped()) return std::nullopt;
+        return next.thermal_energy();
+    }
 
     void advance(int64_t n) override {
         if (n < 0) throw Error(STRUCTMD_ERR_ARGUMENT, "nsteps: expected a count >= 0, got " + std::to_string(n));

@@ -67,6 +67,8 @@ std::vector<double> maxwell_boltzmann(const SimulationSpec& spec) {
     for (int64_t i = 0; i < n; ++i) {
         double normal[4];
         normal4(spec.seed, static_cast<uint64_t>(i), 0, normal);
+        // A massless particle (a type of mass 0, as Brownian inputs write) has no thermal velocity.
+        if (!(spec.mass[i] > 0.0)) continue;
         const double sigma = std::sqrt(spec.velocityKT / spec.mass[i]);
         for (int d = 0; d < 3; ++d) {
             v[3 * i + d] = sigma * normal[d];
@@ -74,9 +76,10 @@ std::vector<double> maxwell_boltzmann(const SimulationSpec& spec) {
         }
         totalMass += spec.mass[i];
     }
-    if (n > 1)
+    if (n > 1 && totalMass > 0.0)
         for (int64_t i = 0; i < n; ++i)
-            for (int d = 0; d < 3; ++d) v[3 * i + d] -= momentum[d] / totalMass;
+            if (spec.mass[i] > 0.0)
+                for (int d = 0; d < 3; ++d) v[3 * i + d] -= momentum[d] / totalMass;
     return v;
 }
 

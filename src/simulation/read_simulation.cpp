@@ -27,8 +27,11 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     spec.seed = system.seed;
     spec.constants.boltzmann = system.units.boltzmann;
     spec.constants.electricConversion = system.units.electricConversion;
-    spec.velocityKT = spec.schedule.empty() ? system.units.boltzmann * system.temperature
-                                            : spec.integrators[spec.schedule.front().integrator].temperature;
+    // Particles that start under overdamped dynamics start at rest: they have no velocities.
+    if (spec.schedule.empty())
+        spec.velocityKT = system.units.boltzmann * system.temperature;
+    else if (const IntegratorSpec& first = spec.integrators[spec.schedule.front().integrator]; !first.overdamped)
+        spec.velocityKT = first.temperature;
     spec.box = system.box;
     spec.currentStep = system.currentStep;
     spec.simulationTime = system.simulationTime;

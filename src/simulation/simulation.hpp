@@ -4,6 +4,7 @@
 // particle-id order.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -126,10 +127,34 @@ public:
     virtual std::string device_name() const = 0;
     virtual int threads() const = 0;
 
-    double pressure() {
+    // k_B T of the heat bath while the integrator of the next step is overdamped (Brownian dynamics:
+    // positions only); empty under inertial dynamics.
+    virtual std::optional<double> overdamped_kT() const = 0;
+
+    // The kinetic energy, temperature and pressure as the dynamics defines them. Inertial: K from the
+    // velocities, T = 2K / (3 N k_B), P = (2K + tr W) / (3V). Overdamped: no momenta, so K = 0; the
+    // temperature is the bath's and the pressure's ideal part N k_B T / V uses it.
+    struct Thermodynamics {
+        double kinetic = 0.0;
+        double temperature = 0.0;
+        double virialTrace = 0.0;
+        double pressure = 0.0;
+    };
+    Thermodynamics thermodynamics() {
+        Thermodynamics t;
         const std::array<double, 9> w = virial();
-        return virial_pressure(energy("kinetic"), w[0] + w[4] + w[8], volume());
+        t.virialTrace = w[0] + w[4] + w[8];
+        if (const std::optional<double> kT = overdamped_kT()) {
+            t.temperature = *kT / boltzmann();
+            t.pressure = (static_cast<double>(particle_count()) * *kT + t.virialTrace / 3.0) / volume();
+        } else {
+            t.kinetic = energy("kinetic");
+            t.temperature = kinetic_temperature(t.kinetic, particle_count(), boltzmann());
+            t.pressure = virial_pressure(t.kinetic, t.virialTrace, volume());
+        }
+        return t;
     }
+    double pressure() { return thermodynamics().pressure; }
 };
 
 }  // namespace structmd

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "core/thermodynamics.hpp"
 
 namespace structmd {
 
@@ -21,6 +20,16 @@ void ThermodynamicMeasure::run(Simulation& sim) {
         file_.emplace("simulationStep." + name(), outputPath_, std::move(header));
     }
     std::FILE* out = file_->stream();
+    // A comment line wherever the dynamics turns overdamped or back, so the columns explain themselves.
+    const bool overdamped = sim.overdamped_kT().has_value();
+    if (overdamped != overdamped_) {
+        overdamped_ = overdamped;
+        std::fprintf(out, overdamped ? "# from step %lld: overdamped (Brownian) dynamics, no velocities: kinetic is 0, "
+                                       "temperature is the bath's, pressure's ideal part uses it\n"
+                                     : "# from step %lld: inertial dynamics: kinetic and temperature from the "
+                                       "velocities\n",
+                     static_cast<long long>(sim.current_step()));
+    }
     std::fprintf(out, "%lld %lld %.10g", static_cast<long long>(sim.current_step()),
                  static_cast<long long>(sim.particle_count()), sim.volume());
     double potential = 0.0;
@@ -29,13 +38,11 @@ void ThermodynamicMeasure::run(Simulation& sim) {
         potential += e;
         std::fprintf(out, " %.10g", e);
     }
-    const double kinetic = sim.energy("kinetic");
+    const Simulation::Thermodynamics thermo = sim.thermodynamics();
     const double external = sim.external_energy();
-    const std::array<double, 9> w = sim.virial();
-    const double trace = w[0] + w[4] + w[8];
-    std::fprintf(out, " %.10g %.10g %.10g %.10g %.10g %.10g %.10g\n", kinetic, potential, kinetic + potential + external,
-                 kinetic_temperature(kinetic, sim.particle_count(), sim.boltzmann()), trace,
-                 virial_pressure(kinetic, trace, sim.volume()), external);
+    std::fprintf(out, " %.10g %.10g %.10g %.10g %.10g %.10g %.10g\n", thermo.kinetic, potential,
+                 thermo.kinetic + potential + external, thermo.temperature, thermo.virialTrace, thermo.pressure,
+                 external);
     file_->flush();
 }
 

@@ -21,6 +21,7 @@ protected:
 private:
     std::string outputPath_;
     std::optional<MeasureFile> file_;  // made at the first firing, when the energy terms are known
+    bool overdamped_ = false;          // the dynamics of the last row written
 };
 
 SimulationStepEntry thermodynamic_measure_entry();

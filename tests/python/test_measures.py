@@ -429,6 +429,54 @@ def test_thermodynamic_columns_match_the_api(sim, tmp_path):
     np.testing.assert_allclose(rows[-1, 10], sim.pressure, rtol=1e-8)
 
 
+@pytest.mark.parametrize("mass", [0.0, 2.0])
+def test_brownian_dynamics_has_no_kinetic_energy_in_the_thermodynamic_columns(sim, tmp_path, mass):
+    """UAMMD-structured's Brownian inputs give types mass 0. Overdamped particles have no velocities:
+    the columns say kinetic 0, the bath's temperature and P = (N k_B T + tr W / 3) / V, never NaN,
+    from the first row on; a comment line says so, and another where a Verlet stage follows."""
+    positions = [[0.0, 0.0, 0.0], [1.1, 0.0, 0.0], [0.1, 1.2, 0.2], [3.0, 1.1, 0.9]]
+    n, bath = len(positions), 1.7
+    doc = document(positions, types=["A"] * n, force_field={"nl": NEIGHBOUR_LIST, "lj": lj_entry()},
+                   simulation_steps={"thermo": measure("ThermodynamicMeasure", "ThermodynamicQuantityMeasure",
+                                                       outputFilePath=str(tmp_path / "thermo.dat"))})
+    del doc["state"]["labels"][2]  # no velocities given: the engine draws them (or not)
+    doc["state"]["data"] = [row[:2] for row in doc["state"]["data"]]
+    doc["global"]["types"]["data"][0][1] = mass
+    doc["global"]["types"]["data"][1][1] = 1.0
+    doc["integrator"] = {
+        "bd": {"type": ["Brownian", "EulerMaruyama"], "parameters": {"viscosity": 1.0, "temperature": bath}},
+        "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                     "data": [[1, "bd", 3]]}}
+    if mass > 0:
+        doc["integrator"]["vv"] = {"type": ["Verlet", "VelocityVerlet"]}
+        doc["integrator"]["schedule"]["data"].append([2, "vv", 2])
+    sim.load(doc)
+    assert np.array_equal(sim.velocities, np.zeros((n, 3))), "overdamped particles start at rest"
+    expected = []
+    for step in range(4):
+        trace = np.trace(sim.virial)
+        expected.append([0.0, bath, trace, (n * bath + trace / 3.0) / BOX ** 3])
+        assert sim.energy("kinetic") == 0.0
+        if step < 3:
+            sim.step(1)
+    sim.run()
+    lines = (tmp_path / "thermo.dat").read_text().splitlines()
+    assert lines[1].startswith("# from step 0: overdamped")
+    rows = read_rows(tmp_path / "thermo.dat")
+    assert np.all(np.isfinite(rows))
+    columns = [4, 7, 8, 9]  # kinetic, temperature, virial, pressure (after the one LJ entry, column 3)
+    # A row describes the dynamics of the step that follows it: with a Verlet stage next, step 3's row
+    # is inertial (the particles are at rest, so K = T = 0).
+    overdamped_rows = 3 if mass > 0 else 4
+    np.testing.assert_allclose(rows[:overdamped_rows][:, columns], np.array(expected[:overdamped_rows]), rtol=1e-8,
+                               atol=1e-12)
+    if mass > 0:
+        assert "# from step 3: inertial dynamics: kinetic and temperature from the velocities" in lines
+        np.testing.assert_allclose(rows[3, columns], [0.0, 0.0, expected[3][2], expected[3][2] / (3 * BOX ** 3)],
+                                   rtol=1e-8, atol=1e-12)
+        assert rows.shape[0] == 6 and rows[5, 4] > 0.0, "Verlet particles move: kinetic energy"
+
+
 # ---- reading ---------------------------------------------------------------------------------------
 
 def test_a_group_on_the_thermodynamic_measure_is_unsupported(sim, tmp_path):
