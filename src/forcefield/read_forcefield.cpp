@@ -94,14 +94,14 @@ void read_common(const ForceFieldComponent& component, const ComponentEntry& ent
 // ---- groups -----------------------------------------------------------------------------------
 
 void read_groups(const ComponentEntry& entry, const SystemDescription& system, ForceFieldSpec& ff) {
+    // UAMMD-structured's generators write an empty parameters object; any key in it is unknown.
+    if (const auto parameters = entry.node.find("parameters")) parameters->check_all_used();
     const input::Table table = input::read_table(entry.node, {"name", "type", "selection"});
     const int64_t n = system.numParticles();
     for (size_t r = 0; r < table.rows(); ++r) {
         GroupSpec group;
         group.name = table.cell(r, "name").as<std::string>();
         if (group.name == "All") throw input_error(table.cell(r, "name").path(), "the group 'All' always exists");
-        for (const GroupSpec& g : ff.groups)
-            if (g.name == group.name) throw input_error(table.cell(r, "name").path(), "group defined twice");
         const TrackedNode typeCell = table.cell(r, "type");
         std::string kind = typeCell.as<std::string>();
         const bool negate = kind.rfind("not", 0) == 0;
@@ -109,8 +109,16 @@ void read_groups(const ComponentEntry& entry, const SystemDescription& system, F
         const TrackedNode selection = table.cell(r, "selection");
         if (!selection.is_array()) throw input_error(selection.path(), "expected a list");
         std::set<int64_t> chosen;
+        std::set<std::pair<int64_t, int64_t>> chosenModelBatch;  // ModelIdsBatchIds: [modelId, batchId] pairs
         const std::vector<int32_t>* column = nullptr;
-        if (kind == "Ids") {
+        if (kind == "ModelIdsBatchIds") {
+            for (size_t k = 0; k < selection.size(); ++k) {
+                const TrackedNode pair = selection.at(k);
+                if (!pair.is_array() || pair.size() != 2)
+                    throw input_error(pair.path(), "expected a [modelId, batchId] pair");
+                chosenModelBatch.insert({pair.at(0).as<int64_t>(), pair.at(1).as<int64_t>()});
+            }
+        } else if (kind == "Ids") {
             for (size_t k = 0; k < selection.size(); ++k) chosen.insert(checked_id(system, selection.at(k)));
         } else if (kind == "Types") {
             for (size_t k = 0; k < selection.size(); ++k) chosen.insert(type_of(system, selection.at(k)));
@@ -121,17 +129,28 @@ void read_groups(const ComponentEntry& entry, const SystemDescription& system, F
         } else {
             throw input_error(typeCell.path(), "unknown selection '" + typeCell.as<std::string>() +
                                                    "' (expected Ids, notIds, Types, notTypes, ModelIds, "
-                                                   "notModelIds, BatchIds or notBatchIds)");
+                                                   "notModelIds, BatchIds, notBatchIds, ModelIdsBatchIds or "
+                                                   "notModelIdsBatchIds)");
         }
         group.members.assign(n, 0);
         int64_t count = 0;
         for (int64_t i = 0; i < n; ++i) {
-            const bool selected = chosen.count(column ? (*column)[i] : i) > 0;
+            const bool selected = kind == "ModelIdsBatchIds"
+                                      ? chosenModelBatch.count({system.modelId[i], system.batchId[i]}) > 0
+                                      : chosen.count(column ? (*column)[i] : i) > 0;
             group.members[i] = selected != negate;
             count += group.members[i];
         }
         if (count == 0) throw input_error(table.row(r).path(), "group '" + group.name + "' selects no particle");
-        ff.groups.push_back(std::move(group));
+        // Sections share one namespace of groups: a group repeated in another section (as
+        // UAMMD-structured's inputs do) must select the same particles.
+        const auto same = std::find_if(ff.groups.begin(), ff.groups.end(),
+                                       [&](const GroupSpec& g) { return g.name == group.name; });
+        if (same == ff.groups.end())
+            ff.groups.push_back(std::move(group));
+        else if (same->members != group.members)
+            throw input_error(table.cell(r, "name").path(),
+                              "group '" + group.name + "' is defined twice with different selections");
     }
 }
 
@@ -324,13 +343,15 @@ void warn_unlisted_type_pairs(const SystemDescription& system, const ForceFieldS
 ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& log,
                                const Registry<ForceFieldComponent>& registry) {
     ForceFieldSpec ff;
-    for (const ComponentEntry& entry : system.forceField) {
-        if (entry.cls != "Groups") continue;
+    const auto read_group_entry = [&](const ComponentEntry& entry) {
         if (entry.subclass != "GroupsList")
             throw input_error(entry.node.path() + ".type", "unknown component [\"Groups\", \"" + entry.subclass +
                                                               "\"] (expected [\"Groups\", \"GroupsList\"])");
         read_groups(entry, system, ff);
-    }
+    };
+    for (const ComponentEntry& entry : system.forceField)
+        if (entry.cls == "Groups") read_group_entry(entry);
+    for (const ComponentEntry& entry : system.sectionGroups) read_group_entry(entry);
     for (const ComponentEntry& entry : system.forceField)
         if (entry.cls == "VerletConditionalListSet") read_neighbour_list(entry, system, ff);
     for (const ComponentEntry& entry : system.forceField) {

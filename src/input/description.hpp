@@ -79,6 +79,9 @@ struct SystemDescription {
     std::vector<ScheduleRow> schedule;  // sorted by order; "Schedule" entry itself not in integrators
     std::string schedulePath;           // JSON path of the schedule entry
     std::vector<ComponentEntry> simulationSteps;
+    // ["Groups","GroupsList"] entries of the integrator and simulationStep sections (those of
+    // topology.forceField stay in forceField): every section's groups share one namespace.
+    std::vector<ComponentEntry> sectionGroups;
 
     int64_t numParticles() const { return static_cast<int64_t>(positions.size()); }
     int32_t typeId(const std::string& name) const {

@@ -496,7 +496,9 @@ void read_schedule(const ComponentEntry& entry, SystemDescription& description) 
 void read_integrators(const TrackedNode& section, SystemDescription& description) {
     std::optional<ComponentEntry> schedule;
     for (ComponentEntry& entry : read_components(section)) {
-        if (entry.cls != "Schedule") {
+        if (entry.cls == "Groups") {
+            description.sectionGroups.push_back(std::move(entry));
+        } else if (entry.cls != "Schedule") {
             description.integrators.push_back(std::move(entry));
         } else if (schedule) {
             throw input_error(entry.node.path(),
@@ -535,7 +537,9 @@ ParsedDocument parse_document(const std::string& text) {
     apply_state_overrides(stateTable, description);
     if (const auto forceField = topology.find("forceField")) description.forceField = read_components(*forceField);
     if (const auto integrator = root.find("integrator")) read_integrators(*integrator, description);
-    if (const auto steps = root.find("simulationStep")) description.simulationSteps = read_components(*steps);
+    if (const auto steps = root.find("simulationStep"))
+        for (ComponentEntry& entry : read_components(*steps))
+            (entry.cls == "Groups" ? description.sectionGroups : description.simulationSteps).push_back(std::move(entry));
 
     // The sections read whole here are checked now; components and the rest are checked by the
     // caller's root.check_all_used() once every component has read its entry.

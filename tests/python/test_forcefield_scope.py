@@ -128,6 +128,9 @@ def test_unknown_condition_names_the_path(sim):
     (["notIds", [0]], {1, 2, 3, 4, 5}),
     (["ModelIds", [1]], {3, 4, 5}),
     (["notModelIds", [1]], {0, 1, 2}),
+    # [modelId, batchId] pairs, matched as pairs: model 0 has no particle in batch 1.
+    (["ModelIdsBatchIds", [[1, 0], [0, 1]]], {3, 4, 5}),
+    (["notModelIdsBatchIds", [[1, 0]]], {0, 1, 2}),
 ])
 def test_a_pair_term_acts_only_inside_its_group(sim, selection, members):
     types = ["A", "A", "B", "A", "B", "A"]
@@ -246,3 +249,38 @@ def test_reading_after_the_neighbour_list_grew(sim):
     expected = pair_energy(positions, lambda i, j: True)
     assert energy == pytest.approx(expected, rel=1e-9)
     assert np.all(np.isfinite(forces))
+
+
+def test_groups_of_the_integrator_and_simulation_step_sections_are_known_everywhere(sim, tmp_path):
+    """UAMMD-structured's inputs put GroupsList entries (with an empty parameters object) in the
+    integrator and simulationStep sections too: the integrator moves its group, the step writes its
+    group, and a group repeated with the same selection is one group."""
+    groups = {"type": ["Groups", "GroupsList"], "parameters": {}, "labels": ["name", "type", "selection"],
+              "data": [["moving", "Ids", [0, 1, 2]]]}
+    doc = document(CLUSTER, force_field={"nl": {"type": ["VerletConditionalListSet", "all"]}, "lj": lj_entry()},
+                   steps=5)
+    doc["integrator"]["groups"] = groups
+    doc["integrator"]["vv"]["parameters"]["group"] = "moving"
+    doc["simulationStep"] = {
+        "groups": dict(groups, data=[["moving", "Ids", [0, 1, 2]], ["written", "notIds", [0]]]),
+        "write": {"type": ["WriteStep", "WriteStep"],
+                  "parameters": {"intervalStep": 5, "outputFilePath": str(tmp_path / "out"), "outputFormat": "xyz",
+                                 "group": "written"}}}
+    sim.load(doc)
+    start = sim.positions
+    sim.run()
+    assert np.array_equal(sim.positions[3:], start[3:]), "particles outside the integrator's group stay"
+    assert np.all(np.any(sim.positions[:3] != start[:3], axis=1))
+    first_frame = (tmp_path / "out.xyz").read_text().splitlines()
+    assert first_frame[0].strip() == str(len(CLUSTER) - 1)
+
+
+def test_a_group_redefined_with_another_selection_names_its_path(sim):
+    doc = document(CLUSTER, force_field={
+        "groups": {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                   "data": [["g", "Ids", [0, 1]]]},
+        "nl": {"type": ["VerletConditionalListSet", "all"]}, "lj": lj_entry()})
+    doc["integrator"]["groups"] = {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                                   "data": [["g", "Ids", [0, 2]]]}
+    with pytest.raises(structmd.InputError, match=r"integrator\.groups\.data\[0\]\[0\].*different selections"):
+        sim.load(doc)
