@@ -2,6 +2,7 @@
 // (system, global, state, topology.structure, the integrator schedule). Components are left in
 // ComponentEntry nodes for their own readers.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <utility>
@@ -364,8 +365,22 @@ struct StateTable {
     std::vector<int64_t> idOfRow;
 };
 
+// An orientation [q0, q1, q2, q3] (scalar first, as UAMMD-structured writes it): four numbers
+// of unit norm, to the few digits a generator may print.
+void check_quaternion(const TrackedNode& cell) {
+    if (!cell.is_array() || cell.size() != 4) throw input_error(cell.path(), "expected a quaternion [q0, q1, q2, q3]");
+    double norm2 = 0.0;
+    for (size_t k = 0; k < 4; ++k) {
+        const double q = cell.at(k).as<double>();
+        norm2 += q * q;
+    }
+    if (!(std::abs(norm2 - 1.0) < 1e-4))
+        throw input_error(cell.path(), "a direction quaternion must have unit norm, got norm^2 = " + std::to_string(norm2));
+}
+
 StateTable read_state(const TrackedNode& state, SystemDescription& description) {
-    Table table = read_table(state, {"id", "position"}, {"velocity", "mass", "radius", "charge"});
+    Table table = read_table(state, {"id", "position"},
+                             {"velocity", "mass", "radius", "charge", "direction", "polarizability", "innerRadius"});
     const size_t count = table.rows();
     const auto particleCount = static_cast<int64_t>(count);
     std::vector<int64_t> idOfRow =
@@ -380,6 +395,11 @@ StateTable read_state(const TrackedNode& state, SystemDescription& description) 
         const auto id = static_cast<size_t>(idOfRow[row]);
         description.positions[id] = table.cell(row, "position").as<Vec3d>();
         if (table.has("velocity")) description.velocities[id] = table.cell(row, "velocity").as<Vec3d>();
+        // UAMMD-structured's orientation and induced-dipole data: checked, not kept, as no component
+        // of this version uses them.
+        if (table.has("direction")) check_quaternion(table.cell(row, "direction"));
+        if (table.has("polarizability")) table.cell(row, "polarizability").as<double>();
+        if (table.has("innerRadius")) read_at_least(table.cell(row, "innerRadius"), 0.0, "innerRadius");
     }
     return {std::move(table), std::move(idOfRow)};
 }

@@ -163,6 +163,25 @@ TEST(Document, StateOverridesAndVelocities) {
     EXPECT_EQ(system.velocities[0], (Vec3d{1, 2, 3}));
 }
 
+// UAMMD-structured's orientation and induced-dipole columns (17 of its 72 example inputs have
+// "direction"): accepted and checked.
+TEST(Document, StateDirectionPolarizabilityAndInnerRadius) {
+    json document = valid_document();
+    document["state"] = {{"labels", {"id", "position", "direction", "polarizability", "innerRadius"}},
+                         {"data",
+                          {{0, {0, 0, 0}, {1, 0, 0, 0}, 0.5, 0.2},
+                           {1, {1, 1, 1}, {0.5, 0.5, 0.5, 0.5}, 0.0, 0.0},
+                           {2, {2, 2, 2}, {0.0, 0.0, 0.6, 0.8}, 1.5, 0.1}}}};
+    EXPECT_NO_THROW(parse_document(document.dump()));  // the state section is checked whole there
+    document["state"]["data"][2][2] = {0.0, 0.0, 0.6, 0.7};
+    expect_input_error(document, {"state.data[2][2]", "unit norm"});
+    document["state"]["data"][2][2] = {0.0, 0.6, 0.8};
+    expect_input_error(document, {"state.data[2][2]", "quaternion"});
+    document["state"]["data"][2][2] = {0.0, 0.0, 0.6, 0.8};
+    document["state"]["data"][1][4] = -0.1;
+    expect_input_error(document, {"state.data[1][4]", "innerRadius must be >= 0"});
+}
+
 TEST(Document, MalformedJsonGivesLineAndColumn) {
     expect_input_error_text("{\n  \"a\": 1,\n  \"b\": x\n}", {"line 3, column 8: "});
     expect_input_error_text("{\"system\": {}", {"line 1, column 14: "});
