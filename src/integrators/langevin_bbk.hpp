@@ -3,7 +3,11 @@
 // R = sqrt(2 m gamma kT / dt) xi:
 //   v(n+1/2) = [(1 - g) v(n-1/2) + dt (F_n + R) / m] / (1 + g);   x(n+1) = x(n) + dt v(n+1/2).
 // Velocities are the half-step ones. begin() turns full-step velocities v(0) into v(-1/2) with half a
-// kick back, so positions move once per step from the start.
+// kick back, so positions move once per step from the start. With stopTransRotSteps = N > 0 the
+// group's global translation and rotation are removed when the stage begins and after every step
+// that reaches a multiple of N (global_motion.hpp), as UAMMD-structured does for a solute that must
+// not drift or spin.
+#include "integrators/global_motion.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/langevin_inputs.hpp"
 #include "integrators/thermal_noise.hpp"
@@ -18,9 +22,8 @@ struct LangevinBBKInputs : LangevinInputs {
         return all;
     }
     static void validate(const ParameterValues& v, const std::string& path) {
-        if (v["stopTransRotSteps"] != 0.0)
-            throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ".parameters.stopTransRotSteps: removing the centre-of-mass "
-                                                         "motion is not supported yet; leave it 0");
+        if (v["stopTransRotSteps"] < 0.0)
+            throw input_error(path + ".parameters.stopTransRotSteps", "expected a number of steps >= 0 (0: never)");
     }
 };
 
@@ -75,12 +78,14 @@ public:
         : Integrator<B, R>(scope),
           backend_(backend),
           friction_(v["frictionConstant"]),
-          resetVelocities_(v["resetVelocities"] != 0.0) {}
+          resetVelocities_(v["resetVelocities"] != 0.0),
+          stopTransRotSteps_(static_cast<int64_t>(v["stopTransRotSteps"])) {}
 
     void begin(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
         if (resetVelocities_)
             backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.seed, p.now(), R(s.kT)});
+        if (stopTransRotSteps_ > 0) remove_rigid_motion(backend_, p, s.group, R(0));  // full-step v(0) at x(0)
         forces.update_forces();
         backend_.for_each(p.count, HalfKickBack<R>{p.vel.data(), p.force.data(), s.group, R(s.timeStep)});
     }
@@ -91,6 +96,9 @@ public:
         backend_.for_each(p.count, BbkStep<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
                                               p.box, R(s.timeStep), R(friction_), R(s.kT), p.seed, p.now(),
                                               p.fault_slot(1)});
+        // A reduction, so the host waits: only on the steps that ask for it.
+        if (stopTransRotSteps_ > 0 && (p.timeline.step() + 1) % stopTransRotSteps_ == 0)
+            remove_rigid_motion(backend_, p, s.group, R(s.timeStep));
         forces.positions_moved(s.timeStep);
     }
 
@@ -98,6 +106,7 @@ private:
     const B& backend_;
     double friction_;
     bool resetVelocities_;
+    int64_t stopTransRotSteps_;  // 0: never
 };
 
 }  // namespace structmd

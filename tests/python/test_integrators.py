@@ -558,10 +558,67 @@ def test_the_backend_repeats_the_cpu_trajectory_to_rounding(options, kind):
     np.testing.assert_allclose(velocities, expected_v, atol=1e-9)
 
 
+# ---- removing global motion (BBK stopTransRotSteps) ----------------------------------------------
+
+def rigid_motion_removed(positions, velocities, masses, dt):
+    """Velocities less the rigid motion V + omega x (r - R) that carries the momentum and the angular
+    momentum about the centre of mass R, at the positions half a step back (unwrapped)."""
+    r = positions - 0.5 * dt * velocities
+    m = masses[:, None]
+    centre = np.sum(m * r, axis=0) / masses.sum()
+    velocity = np.sum(m * velocities, axis=0) / masses.sum()
+    d = r - centre
+    angular = np.sum(m * np.cross(d, velocities - velocity), axis=0)
+    inertia = np.sum(masses[:, None, None] * (np.einsum("ij,ij->i", d, d)[:, None, None] * np.eye(3)
+                                              - np.einsum("ia,ib->iab", d, d)), axis=0)
+    omega = np.linalg.solve(inertia, angular)
+    return velocities - velocity - np.cross(omega, d)
+
+
+def test_bbk_removes_the_global_translation_and_rotation_every_stop_trans_rot_steps(options):
+    """A bonded cluster straddling the box's boundary, in a hot bath, starting without rigid motion
+    (so the removal when the stage begins changes nothing): with stopTransRotSteps = 5 the run
+    matches the one without up to step 4, and at step 5 its velocities are those of the run without,
+    less their rigid motion computed here with numpy on unwrapped positions."""
+    if options.get("precision", "double") != "double":
+        pytest.skip("compares velocities to 1e-9")
+    rng = np.random.default_rng(5)
+    n, box, dt = 8, 20.0, 0.005
+    whole = np.array([[9.3 + 0.9 * (i % 2), 0.9 * ((i // 2) % 2), 0.9 * (i // 4)] for i in range(n)])
+    wrapped = whole.copy()
+    wrapped[:, 0] = (wrapped[:, 0] + box / 2) % box - box / 2  # half of the cluster lies at -x
+    types = half_light_half_heavy(n)
+    masses = np.array([MASS[t] for t in types])
+    bonds = {"type": ["Bond2", "HarmonicCommon_K_r0"], "parameters": {"K": 50.0, "r0": 0.9},
+             "labels": ["id_i", "id_j"], "data": [[i, j] for i in range(n) for j in range(i + 1, n)]}
+    velocities = rigid_motion_removed(whole, rng.normal(0.0, 1.0, size=(n, 3)), masses, 0.0)
+
+    def run(steps, **extra):
+        entry = langevin("BBK", dt, 0.5, resetVelocities=False, **extra)
+        doc = document(wrapped, types, {"integrate": entry}, [("integrate", 20)],
+                       force_field={"bonds": bonds}, box=box, velocities=velocities)
+        with structmd.Simulation(options) as sim:
+            sim.load(doc)
+            sim.step(steps)
+            # The cluster, a sigma across, stays whole around where particle 0 started.
+            return whole[0] + minimum_image(sim.positions - whole[0], box), sim.velocities
+
+    _, free4 = run(4)
+    _, stopped4 = run(4, stopTransRotSteps=5)
+    np.testing.assert_allclose(stopped4, free4, atol=1e-9)
+    x5, free5 = run(5)
+    _, stopped5 = run(5, stopTransRotSteps=5)
+    expected = rigid_motion_removed(x5, free5, masses, dt)
+    assert np.linalg.norm(free5 - expected) > 1e-2, "the bath gave the cluster some rigid motion to remove"
+    np.testing.assert_allclose(stopped5, expected, atol=1e-9)
+    assert np.linalg.norm(np.sum(masses[:, None] * stopped5, axis=0)) < 1e-10
+
+
 # ---- input errors --------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("entry, error, message", [
-    (langevin("BBK", 0.01, 1.0, stopTransRotSteps=10), structmd.UnsupportedError, r"stopTransRotSteps"),
+    (langevin("BBK", 0.01, 1.0, stopTransRotSteps=-1), structmd.InputError,
+     r"integrator\.integrate\.parameters\.stopTransRotSteps"),
     ({"type": ["Langevin", "BBK"], "parameters": {"timeStep": 0.01}}, structmd.InputError,
      r"integrator\.integrate\.parameters\.frictionConstant"),
     (langevin("GJF", 0.01, -1.0), structmd.InputError, r"integrator\.integrate\.parameters\.frictionConstant"),
