@@ -247,6 +247,11 @@ void read_system(const TrackedNode& system, SystemDescription& description) {
                 throw input_error(parameters.path() + ".backupIntervalStep", "expected a positive integer");
             backup.startStep = parameters.get_or<int64_t>("backupStartStep", 0);
             backup.endStep = parameters.get_or<int64_t>("backupEndStep", INT64_MAX);
+            // What UAMMD-structured writes into the documents it restarts from: checked, not kept, as
+            // the restart's step comes from global.fundamental's currentStep.
+            parameters.get_or<bool>("restartedFromBackup", false);
+            if (parameters.get_or<int64_t>("lastBackupStep", 0) < 0)
+                throw input_error(parameters.path() + ".lastBackupStep", "expected a step >= 0");
             description.backup = backup;
             continue;
         }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/logger.hpp"
 #include "core/parameters.hpp"
 #include "state/particles.hpp"
 
@@ -55,11 +56,14 @@ struct IntegratorInputs {
     static void validate(const ParameterValues&, const std::string&) {}
 };
 
-// What every integrator is given: its time step, its thermal energy and the particles it moves.
+// What every integrator is given: its time step, its thermal energy, the particles it moves, and
+// its entry's name and the handle's log for what it reports.
 struct IntegratorScope {
     double timeStep = 0.0;
     double kT = 0.0;                  // k_B T in energy units
     const uint8_t* group = nullptr;   // backend bytes by particle; null: every particle
+    std::string name;
+    const Logger* log = nullptr;      // null: it reports nothing
 };
 
 template <class B, class R>

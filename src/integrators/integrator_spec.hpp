@@ -33,8 +33,8 @@ struct IntegratorComponent {
     std::vector<Parameter> parameters;
     bool minimiser = false;
     bool needsRadius = false;
-    bool overdamped = false;
     std::function<void(const ParameterValues&, const std::string& path)> validate;
+    bool overdamped = false;
 };
 
 const Registry<IntegratorComponent>& integrator_registry();

@@ -41,10 +41,12 @@ const Registry<IntegratorFactory<B, R>>& builtin_integrator_factories() {
 
 template <class B, class R>
 std::unique_ptr<Integrator<B, R>> make_integrator(const B& backend, const IntegratorSpec& spec, const uint8_t* group,
-                                                  const Registry<IntegratorFactory<B, R>>& factories) {
+                                                  const Registry<IntegratorFactory<B, R>>& factories,
+                                                  const Logger* log = nullptr) {
     const IntegratorFactory<B, R>* factory = factories.find(spec.key);
     if (!factory) throw Error(STRUCTMD_ERR_INTERNAL, spec.path + ": " + spec.key.text() + " has no implementation");
-    return factory->make(backend, IntegratorScope{spec.timeStep, spec.temperature, group}, spec.parameters);
+    return factory->make(backend, IntegratorScope{spec.timeStep, spec.temperature, group, spec.name, log},
+                         spec.parameters);
 }
 
 }  // namespace structmd

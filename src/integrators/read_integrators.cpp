@@ -15,8 +15,8 @@ struct ReaderEntries {
 
     template <template <class, class> class Integrator, class Inputs>
     void integrator(ComponentKey key) {
-        registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, Inputs::overdamped,
-                      &Inputs::validate});
+        registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate,
+                      Inputs::overdamped});
     }
 };
 

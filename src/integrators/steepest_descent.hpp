@@ -2,7 +2,8 @@
 // ["SteepestDescent","SteepestDescent"]: energy minimisation. Each step moves x += (h / max|F|) F; a
 // move that lowers the energy is kept and h grows by 1.001, one that raises it is undone and h
 // shrinks by 0.999. Once max|F| < maxObjectiveForce the particles stay put. Steps advance the step
-// counter only, not the time. Each step waits for two energies and a maximum on the host.
+// counter only, not the time. Each step waits for two energies and a maximum on the host. With
+// nStepsPrintProgress = k > 0 every k-th step logs max|F| and h at level info.
 #include <cmath>
 #include <string>
 
@@ -14,7 +15,12 @@ namespace structmd {
 
 struct SteepestDescentInputs : IntegratorInputs {
     static std::vector<Parameter> parameters() {
-        return {number("h", "length", Must::be_positive), number("maxObjectiveForce", "force", Must::be_positive)};
+        return {number("h", "length", Must::be_positive), number("maxObjectiveForce", "force", Must::be_positive),
+                with_default(number("nStepsPrintProgress", "step", Must::be_integer), 0.0)};
+    }
+    static void validate(const ParameterValues& v, const std::string& path) {
+        if (v["nStepsPrintProgress"] < 0.0)
+            throw input_error(path + ".parameters.nStepsPrintProgress", "expected a number of steps >= 0 (0: never)");
     }
     static constexpr bool minimiser = true;
 };
@@ -73,7 +79,8 @@ public:
           backend_(backend),
           initialH_(v["h"]),
           h_(initialH_),
-          maxObjectiveForce_(v["maxObjectiveForce"]) {}
+          maxObjectiveForce_(v["maxObjectiveForce"]),
+          progressInterval_(static_cast<int64_t>(v["nStepsPrintProgress"])) {}
 
     double time_advance() const override { return 0.0; }
     std::vector<double> state() const override { return {h_}; }
@@ -92,6 +99,11 @@ public:
             throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(p.timeline.evaluating_step()) +
                                                     ": a force is not finite, steepest descent cannot move "
                                                     "(overlapping particles?)");
+        const int64_t step = p.timeline.step();
+        if (progressInterval_ > 0 && step % progressInterval_ == 0 && this->scope().log)
+            this->scope().log->info("steepest descent " + this->scope().name + ", step " + std::to_string(step) +
+                                    ": max|F| " + std::to_string(largest) + " (objective " +
+                                    std::to_string(maxObjectiveForce_) + "), h " + std::to_string(h_));
         if (largest < maxObjectiveForce_ || largest == 0.0) return;  // converged
         const double before = forces.potential_energy();
         backend_.for_each(p.count, DescentMove<R>{p.pos.data(), p.image.data(), savedPos_.data(), savedImage_.data(),
@@ -113,6 +125,7 @@ private:
     double initialH_;
     double h_;
     double maxObjectiveForce_;
+    int64_t progressInterval_;  // 0: no progress lines
     typename B::template Buffer<Real4<R>> savedPos_;
     typename B::template Buffer<Image> savedImage_;
 };

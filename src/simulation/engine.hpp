@@ -468,7 +468,7 @@ private:
         for (const IntegratorSpec& integrator : specs)
             made.push_back(make_integrator<B, R>(backend_, integrator,
                                                  integrator.group >= 0 ? forceField.group(integrator.group) : nullptr,
-                                                 builtin_integrator_factories<B, R>()));
+                                                 builtin_integrator_factories<B, R>(), &log_));
         return made;
     }
 

@@ -334,6 +334,19 @@ TEST(Document, SystemEntries) {
     noInterval["system"]["backup"] = {{"type", {"Simulation", "Backup"}}, {"parameters", {{"backupFilePath", "b"}}}};
     expect_input_error(noInterval, {"system.backup.parameters.backupIntervalStep: missing required entry"});
 
+    // What UAMMD-structured writes into the documents it restarts from.
+    json restarted = valid_document();
+    restarted["system"]["backup"] = {{"type", {"Simulation", "Backup"}},
+                                     {"parameters",
+                                      {{"backupFilePath", "b"}, {"backupIntervalStep", 10},
+                                       {"restartedFromBackup", true}, {"lastBackupStep", 500}}}};
+    EXPECT_NO_THROW(parse_document(restarted.dump()).root.at("system").check_all_used());
+    restarted["system"]["backup"]["parameters"]["lastBackupStep"] = -1;
+    expect_input_error(restarted, {"system.backup.parameters.lastBackupStep", "expected a step >= 0"});
+    restarted["system"]["backup"]["parameters"]["lastBackupStep"] = 5;
+    restarted["system"]["backup"]["parameters"]["restartedFromBackup"] = "yes";
+    expect_input_error(restarted, {"system.backup.parameters.restartedFromBackup"});
+
     json other = valid_document();
     other["system"]["other"] = {{"type", {"Simulation", "Restart"}}};
     expect_input_error(other, {"system.other.type: unknown component [Simulation, Restart]"});

@@ -14,6 +14,7 @@ u^2 has mean 1, variance 2 and autocorrelation r^2; u^4 has mean 3, variance 96 
 """
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -394,6 +395,25 @@ def test_steepest_descent_needs_no_time_step(options):
         assert sim.step_number == 5 and sim.time == 0.0
 
 
+def test_steepest_descent_prints_its_progress_every_n_steps_print_progress(options, tmp_path):
+    doc = overlapping_lennard_jones(0.01, 1e-3, 10)
+    doc["integrator"]["minimise"]["parameters"]["nStepsPrintProgress"] = 4
+    log = tmp_path / "structmd.log"
+    largest = {}
+    with structmd.Simulation({**options, "log": "info", "log_file": str(log)}) as sim:
+        sim.load(doc)
+        for step in range(10):
+            largest[step] = np.max(np.linalg.norm(sim.forces, axis=1))
+            sim.step(1)
+    pattern = re.compile(r"steepest descent minimise, step (\d+): max\|F\| ([\d.e+-]+) \(objective ([\d.e+-]+)\), h ")
+    found = [pattern.search(line) for line in log.read_text().splitlines()]
+    found = [match for match in found if match]
+    assert [int(match[1]) for match in found] == [0, 4, 8]
+    for match in found:
+        assert float(match[2]) == pytest.approx(largest[int(match[1])], rel=1e-5)
+        assert float(match[3]) == pytest.approx(1e-3)
+
+
 # ---- schedule ------------------------------------------------------------------------------------
 
 # |F| <= K |displacement| <= 10 x 0.5 sqrt(3) = 8.7 in the traps below (the minimiser only lowers it),
@@ -617,6 +637,9 @@ def test_bbk_removes_the_global_translation_and_rotation_every_stop_trans_rot_st
 # ---- input errors --------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("entry, error, message", [
+    ({"type": ["SteepestDescent", "SteepestDescent"],
+      "parameters": {"h": 0.01, "maxObjectiveForce": 1.0, "nStepsPrintProgress": -2}}, structmd.InputError,
+     r"integrator\.integrate\.parameters\.nStepsPrintProgress"),
     (langevin("BBK", 0.01, 1.0, stopTransRotSteps=-1), structmd.InputError,
      r"integrator\.integrate\.parameters\.stopTransRotSteps"),
     ({"type": ["Langevin", "BBK"], "parameters": {"timeStep": 0.01}}, structmd.InputError,
