@@ -3,6 +3,7 @@
 // physics: the simulation layer turns this into an engine. Particles are indexed by id (0..N-1).
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -72,6 +73,8 @@ struct SystemDescription {
     std::vector<double> mass, radius, charge;  // type values with the state's overrides applied
     std::vector<int32_t> modelId, batchId;
     std::vector<int32_t> resId, chainId;  // empty when the structure has no such column (PDB output reads them)
+    // The state's per-particle frictionConstant and translationalSelfDiffusion, by name, when given.
+    std::map<std::string, std::vector<double>> particleColumns;
 
     // components, in document order
     std::vector<ComponentEntry> forceField;

@@ -385,7 +385,8 @@ void check_quaternion(const TrackedNode& cell) {
 
 StateTable read_state(const TrackedNode& state, SystemDescription& description) {
     Table table = read_table(state, {"id", "position"},
-                             {"velocity", "mass", "radius", "charge", "direction", "polarizability", "innerRadius"});
+                             {"velocity", "mass", "radius", "charge", "direction", "polarizability", "innerRadius",
+                              "frictionConstant", "translationalSelfDiffusion"});
     const size_t count = table.rows();
     const auto particleCount = static_cast<int64_t>(count);
     std::vector<int64_t> idOfRow =
@@ -405,6 +406,15 @@ StateTable read_state(const TrackedNode& state, SystemDescription& description) 
         if (table.has("direction")) check_quaternion(table.cell(row, "direction"));
         if (table.has("polarizability")) table.cell(row, "polarizability").as<double>();
         if (table.has("innerRadius")) read_at_least(table.cell(row, "innerRadius"), 0.0, "innerRadius");
+        // Per-particle values that integrators take when their own parameter is absent.
+        for (const char* column : {"frictionConstant", "translationalSelfDiffusion"}) {
+            if (!table.has(column)) continue;
+            std::vector<double>& values = description.particleColumns[column];
+            values.resize(count);
+            const TrackedNode cell = table.cell(row, column);
+            values[id] = cell.as<double>();
+            if (!(values[id] > 0.0)) throw input_error(cell.path(), std::string(column) + " must be > 0");
+        }
     }
     return {std::move(table), std::move(idOfRow)};
 }

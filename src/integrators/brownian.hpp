@@ -9,9 +9,14 @@
 namespace structmd {
 
 struct BrownianInputs : IntegratorInputs {
-    static std::vector<Parameter> parameters() { return {number("viscosity", "mass/(length time)", Must::be_positive)}; }
+    static std::vector<Parameter> parameters() {
+        return {with_default(number("viscosity", "mass/(length time)", Must::be_positive), 0.0)};
+    }
     static constexpr bool needsRadius = true;  // mobility 1 / (6 pi eta a)
     static constexpr bool overdamped = true;
+    // Without a viscosity, each particle's mobility is D / (k_B T) from the state.
+    static constexpr const char* fallbackParameter = "viscosity";
+    static constexpr const char* fallbackColumn = "translationalSelfDiffusion";
 };
 
 template <class R>
@@ -20,6 +25,7 @@ struct EulerMaruyamaStep {
     Image* image;
     const Real4<R>* force;
     const R* radius;
+    const R* selfDiffusion;  // null: mobility from the viscosity and the radius
     const uint8_t* group;
     Box<R> box;
     R dt, viscosity, kT;
@@ -29,7 +35,8 @@ struct EulerMaruyamaStep {
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
         const Real4<R> f = force[i];
-        const R mobility = R(1) / (R(6 * 3.14159265358979323846) * viscosity * radius[i]);
+        const R mobility = selfDiffusion ? selfDiffusion[i] / kT
+                                         : R(1) / (R(6 * 3.14159265358979323846) * viscosity * radius[i]);
         const R spread = sqrt(R(2) * kT * mobility * dt);
         const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
         const Vec3<R> move = (dt * mobility) * xyz(f) + spread * xi;
@@ -66,8 +73,9 @@ public:
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
         forces.update_forces();
+        const R* selfDiffusion = viscosity_ > 0.0 ? nullptr : p.selfDiffusion.data();
         backend_.for_each(p.count, EulerMaruyamaStep<R>{p.pos.data(), p.image.data(), p.force.data(), p.radius.data(),
-                                                        s.group, p.box, R(s.timeStep), R(viscosity_), R(s.kT),
+                                                        selfDiffusion, s.group, p.box, R(s.timeStep), R(viscosity_), R(s.kT),
                                                         p.seed, p.now(), p.fault_slot(1)});
         forces.positions_moved(s.timeStep);
     }

@@ -35,6 +35,8 @@ struct IntegratorComponent {
     bool needsRadius = false;
     std::function<void(const ParameterValues&, const std::string& path)> validate;
     bool overdamped = false;
+    const char* fallbackParameter = nullptr;  // IntegratorInputs::fallbackParameter and fallbackColumn
+    const char* fallbackColumn = nullptr;
 };
 
 const Registry<IntegratorComponent>& integrator_registry();

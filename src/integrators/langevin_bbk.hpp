@@ -46,6 +46,7 @@ struct BbkStep {
     Real4<R>* vel;
     const Real4<R>* force;
     const uint8_t* group;
+    const R* frictionOf;  // by particle; null: gamma for all
     Box<R> box;
     R dt, gamma, kT;
     uint64_t seed;
@@ -56,8 +57,9 @@ struct BbkStep {
         Real4<R> v = vel[i];
         const Real4<R> f = force[i];
         const R m = v.w;
-        const R g = R(0.5) * gamma * dt;
-        const R noise = sqrt(R(2) * m * gamma * kT / dt);
+        const R friction = frictionOf ? frictionOf[i] : gamma;
+        const R g = R(0.5) * friction * dt;
+        const R noise = sqrt(R(2) * m * friction * kT / dt);
         const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
         v.x = ((R(1) - g) * v.x + dt * (f.x + noise * xi.x) / m) / (R(1) + g);
         v.y = ((R(1) - g) * v.y + dt * (f.y + noise * xi.y) / m) / (R(1) + g);
@@ -93,8 +95,9 @@ public:
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
         forces.update_forces();
+        const R* frictionOf = friction_ > 0.0 ? nullptr : p.friction.data();
         backend_.for_each(p.count, BbkStep<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
-                                              p.box, R(s.timeStep), R(friction_), R(s.kT), p.seed, p.now(),
+                                              frictionOf, p.box, R(s.timeStep), R(friction_), R(s.kT), p.seed, p.now(),
                                               p.fault_slot(1)});
         // A reduction, so the host waits: only on the steps that ask for it.
         if (stopTransRotSteps_ > 0 && (p.timeline.step() + 1) % stopTransRotSteps_ == 0)

@@ -18,6 +18,7 @@ struct GjfDrift {
     Real4<R>* vel;
     const Real4<R>* force;
     const uint8_t* group;
+    const R* frictionOf;  // by particle; null: gamma for all
     Box<R> box;
     R dt, gamma, kT;
     uint64_t seed;
@@ -28,9 +29,10 @@ struct GjfDrift {
         Real4<R> v = vel[i];
         const Real4<R> f = force[i];
         const R m = v.w;
-        const R b = R(1) / (R(1) + R(0.5) * gamma * dt);
-        const R a = (R(1) - R(0.5) * gamma * dt) * b;
-        const R amplitude = sqrt(R(2) * gamma * m * kT * dt);
+        const R friction = frictionOf ? frictionOf[i] : gamma;
+        const R b = R(1) / (R(1) + R(0.5) * friction * dt);
+        const R a = (R(1) - R(0.5) * friction * dt) * b;
+        const R amplitude = sqrt(R(2) * friction * m * kT * dt);
         const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
         const Vec3<R> beta{amplitude * xi.x, amplitude * xi.y, amplitude * xi.z};
         const R c = b * dt / (R(2) * m);
@@ -82,8 +84,9 @@ public:
         const IntegratorScope& s = this->scope();
         const R dt = R(s.timeStep);
         forces.update_forces();
+        const R* frictionOf = friction_ > 0.0 ? nullptr : p.friction.data();
         backend_.for_each(p.count, GjfDrift<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
-                                               p.box, dt, R(friction_), R(s.kT), p.seed, p.now(), p.fault_slot(1)});
+                                               frictionOf, p.box, dt, R(friction_), R(s.kT), p.seed, p.now(), p.fault_slot(1)});
         forces.positions_moved(s.timeStep);
         forces.update_forces();
         backend_.for_each(p.count, GjfKick<R>{p.pos.data(), p.vel.data(), p.force.data(), s.group, dt, p.fault_slot()});

@@ -7,8 +7,11 @@ namespace structmd {
 
 struct LangevinInputs : IntegratorInputs {
     static std::vector<Parameter> parameters() {
-        return {number("frictionConstant", "1/time", Must::be_positive), with_default(boolean("resetVelocities"), 1.0)};
+        return {with_default(number("frictionConstant", "1/time", Must::be_positive), 0.0),
+                with_default(boolean("resetVelocities"), 1.0)};
     }
+    static constexpr const char* fallbackParameter = "frictionConstant";
+    static constexpr const char* fallbackColumn = "frictionConstant";
 };
 
 }  // namespace structmd

@@ -16,7 +16,7 @@ struct ReaderEntries {
     template <template <class, class> class Integrator, class Inputs>
     void integrator(ComponentKey key) {
         registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate,
-                      Inputs::overdamped});
+                      Inputs::overdamped, Inputs::fallbackParameter, Inputs::fallbackColumn});
     }
 };
 
@@ -63,7 +63,16 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         spec.parameters = input::read_parameters(entry.node, component.parameters);
         component.validate(spec.parameters, spec.path);
 
-        if (component.needsRadius)
+        const bool fromColumn = component.fallbackParameter && spec.parameters[component.fallbackParameter] == 0.0;
+        if (fromColumn && !system.particleColumns.count(component.fallbackColumn))
+            throw input_error(spec.path + ".parameters." + component.fallbackParameter,
+                              std::string("missing: give it here, or each particle's in a state column '") +
+                                  component.fallbackColumn + "'");
+        if (fromColumn && component.overdamped && !(spec.temperature > 0.0))
+            throw input_error(spec.path + ".parameters.temperature",
+                              std::string("the mobility D / (k_B T) from the state's ") + component.fallbackColumn +
+                                  " needs a temperature > 0");
+        if (component.needsRadius && !fromColumn)
             for (int64_t i = 0; i < system.numParticles(); ++i)
                 if ((spec.group < 0 || groups[spec.group].members[i]) && !(system.radius[i] > 0.0))
                     throw input_error(spec.path, "particle id " + std::to_string(i) + " has radius " +

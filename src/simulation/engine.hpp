@@ -76,6 +76,10 @@ public:
         const std::vector<R> charge(spec.charge.begin(), spec.charge.end());
         backend_.upload(p_.radius, radius.data(), radius.size());
         backend_.upload(p_.charge, charge.data(), charge.size());
+        const std::vector<R> friction(spec.friction.begin(), spec.friction.end());
+        const std::vector<R> selfDiffusion(spec.selfDiffusion.begin(), spec.selfDiffusion.end());
+        backend_.upload(p_.friction, friction.data(), friction.size());
+        backend_.upload(p_.selfDiffusion, selfDiffusion.data(), selfDiffusion.size());
         if (std::any_of(batchId_.begin(), batchId_.end(), [](int b) { return b != 0; })) {
             backend_.upload(p_.batch, batchId_.data(), batchId_.size());
             std::vector<int> ids = batchId_;

@@ -43,6 +43,10 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     spec.mass = system.mass;
     spec.radius = system.radius;
     spec.charge = system.charge;
+    if (auto column = system.particleColumns.find("frictionConstant"); column != system.particleColumns.end())
+        spec.friction = column->second;
+    if (auto column = system.particleColumns.find("translationalSelfDiffusion"); column != system.particleColumns.end())
+        spec.selfDiffusion = column->second;
     spec.batchId = system.batchId;
     spec.modelId = system.modelId;
     return spec;

@@ -27,6 +27,7 @@ struct SimulationSpec {
     std::vector<std::array<double, 3>> velocities;  // empty: draw from Maxwell-Boltzmann
     std::vector<int32_t> typeIndex;
     std::vector<double> mass, radius, charge;
+    std::vector<double> friction, selfDiffusion;  // the state's frictionConstant, translationalSelfDiffusion (or empty)
     std::vector<int32_t> batchId, modelId;
 
     ForceFieldSpec forceField;

@@ -27,6 +27,8 @@ struct Particles {
     Buffer<Real4<R>> externalForce;  // empty when the host set none
     Buffer<R> radius;
     Buffer<R> charge;
+    Buffer<R> friction;       // the state's frictionConstant column; empty when not given
+    Buffer<R> selfDiffusion;  // the state's translationalSelfDiffusion column; empty when not given
     Buffer<int> batch;  // batchId by particle; empty when every particle is in batch 0
     Buffer<int> batchIndex;  // the same batches numbered 0, 1, ... in order of batchId; empty with batch
     Buffer<int> model;  // modelId by particle

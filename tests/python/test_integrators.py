@@ -578,6 +578,75 @@ def test_the_backend_repeats_the_cpu_trajectory_to_rounding(options, kind):
     np.testing.assert_allclose(velocities, expected_v, atol=1e-9)
 
 
+# ---- per-particle friction and diffusion from the state (UAMMD-structured's particle data) ---------
+
+def with_state_column(doc, label, values):
+    doc["state"]["labels"].append(label)
+    for row, value in zip(doc["state"]["data"], values):
+        row.append(float(value))
+    return doc
+
+
+@pytest.mark.parametrize("kind", ["BBK", "GJF"])
+def test_langevin_takes_each_particles_friction_from_the_state_when_the_parameter_is_absent(options, kind):
+    """Free particles at T = 0: each velocity decays by (1 - g_i) / (1 + g_i) per step, g_i = gamma_i dt / 2,
+    with gamma_i the particle's frictionConstant from the state."""
+    n, dt, steps = 6, 0.01, 7
+    friction = np.array([0.5, 1.0, 2.0, 4.0, 8.0, 16.0])
+    positions = [[2.0 * i - 5.0, 0.0, 0.0] for i in range(n)]
+    velocities = np.random.default_rng(3).normal(size=(n, 3))
+    entry = {"type": ["Langevin", kind], "parameters": {"timeStep": dt, "temperature": 0.0, "resetVelocities": False}}
+    doc = with_state_column(document(positions, ["light"] * n, {"integrate": entry}, [("integrate", steps)],
+                                     velocities=velocities), "frictionConstant", friction)
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+        sim.run()
+        g = 0.5 * friction * dt
+        expected = velocities * (((1.0 - g) / (1.0 + g)) ** steps)[:, None]
+        np.testing.assert_allclose(sim.velocities, expected, rtol=1e-6 if options.get("precision") == "single" else 1e-12)
+
+
+def test_brownian_takes_each_particles_self_diffusion_from_the_state_when_the_viscosity_is_absent(options):
+    """D_i = k_B T / (6 pi eta a_i) in the state gives the trajectory that viscosity eta gives."""
+    positions, box = perturbed_lattice(4, 1.6, 0.25, seed=4)
+    n = len(positions)
+    types = half_light_half_heavy(n)
+    viscosity = 0.7
+    diffusion = [KT / (6.0 * math.pi * viscosity * RADIUS[t]) for t in types]
+    trajectories = []
+    for doc in (document(positions, types, {"integrate": brownian(0.001, viscosity)}, [("integrate", 20)],
+                         force_field=lennard_jones(), box=box),
+                with_state_column(document(positions, types,
+                                           {"integrate": {"type": ["Brownian", "EulerMaruyama"],
+                                                          "parameters": {"timeStep": 0.001}}},
+                                           [("integrate", 20)], force_field=lennard_jones(), box=box),
+                                  "translationalSelfDiffusion", diffusion)):
+        with structmd.Simulation(options) as sim:
+            sim.load(doc)
+            sim.run()
+            trajectories.append(sim.positions)
+    tolerance = 1e-4 if options.get("precision") == "single" else 1e-10
+    np.testing.assert_allclose(minimum_image(trajectories[1] - trajectories[0], box), 0.0, atol=tolerance)
+    assert np.any(np.abs(trajectories[0] - np.array(positions)) > 1e-3)
+
+
+def test_a_missing_friction_or_viscosity_without_the_state_column_names_its_path(options):
+    positions = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]
+    for entry, column, message in (
+            ({"type": ["Langevin", "BBK"], "parameters": {"timeStep": 0.01}}, None,
+             r"integrator\.integrate\.parameters\.frictionConstant: missing.*state column 'frictionConstant'"),
+            ({"type": ["Brownian", "EulerMaruyama"], "parameters": {"timeStep": 0.01}}, None,
+             r"integrator\.integrate\.parameters\.viscosity: missing.*'translationalSelfDiffusion'"),
+            ({"type": ["Brownian", "EulerMaruyama"], "parameters": {"timeStep": 0.01, "temperature": 0.0}},
+             "translationalSelfDiffusion", r"integrator\.integrate\.parameters\.temperature.*temperature > 0")):
+        doc = document(positions, ["light", "heavy"], {"integrate": entry}, [("integrate", 10)])
+        if column:
+            with_state_column(doc, column, [1.0, 1.0])
+        with structmd.Simulation(options) as sim:
+            with pytest.raises(structmd.InputError, match=message):
+                sim.load(doc)
+
+
 # ---- removing global motion (BBK stopTransRotSteps) ----------------------------------------------
 
 def rigid_motion_removed(positions, velocities, masses, dt):
@@ -642,11 +711,7 @@ def test_bbk_removes_the_global_translation_and_rotation_every_stop_trans_rot_st
      r"integrator\.integrate\.parameters\.nStepsPrintProgress"),
     (langevin("BBK", 0.01, 1.0, stopTransRotSteps=-1), structmd.InputError,
      r"integrator\.integrate\.parameters\.stopTransRotSteps"),
-    ({"type": ["Langevin", "BBK"], "parameters": {"timeStep": 0.01}}, structmd.InputError,
-     r"integrator\.integrate\.parameters\.frictionConstant"),
     (langevin("GJF", 0.01, -1.0), structmd.InputError, r"integrator\.integrate\.parameters\.frictionConstant"),
-    ({"type": ["Brownian", "EulerMaruyama"], "parameters": {"timeStep": 0.01}}, structmd.InputError,
-     r"integrator\.integrate\.parameters\.viscosity"),
     ({"type": ["SteepestDescent", "SteepestDescent"], "parameters": {"h": 0.01}}, structmd.InputError,
      r"integrator\.integrate\.parameters\.maxObjectiveForce"),
     ({"type": ["Langevin", "BBK"], "parameters": {"frictionConstant": 1.0}}, structmd.InputError,
