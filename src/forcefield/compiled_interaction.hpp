@@ -108,7 +108,7 @@ public:
             using Kernel = PairKernel<OpaquePairPotential, R, PairR, F, E, V>;
             backend_.for_each_lanes_compiled(
                 kernels_(F, E, V), particles.count,
-                Kernel{particles.charge.data(), this->group(), view, table_.data(), ntypes_, out});
+                Kernel{particles.charge.data(), particles.radius.data(), this->group(), view, table_.data(), ntypes_, out});
         });
     }
 

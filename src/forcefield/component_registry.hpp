@@ -27,6 +27,12 @@ struct ForceFieldComponent {
     // Pairs: the largest distance at which the term acts with these values (shared and one row's).
     std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
     bool readsCutOffFactor = true;  // pairs: the entry gives "cutOffFactor" (else its own cut-off parameter)
+    // Pairs that read no cutOffFactor: the member of the entry that sets the range, for the error of a
+    // cutoff too long for the box ("parameters.gamma", "data"; empty: "parameters.cutOff").
+    std::string cutoffKey;
+    // Pairs whose unlisted type pairs interact (the electrostatics of DLVO): their range, from the
+    // shared parameters; null where unlisted type pairs do not interact.
+    std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> unlistedCutoff;
     // Pairs whose cutoff is not a parameter (a table's range): the path that sets the largest, for
     // the error of a cutoff too long for the box.
     std::string cutoffPath;

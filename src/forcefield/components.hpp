@@ -21,9 +21,11 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "forcefield/clashed.hpp"
 #include "forcefield/constant_force_bond.hpp"
 #include "forcefield/debye_huckel.hpp"
 #include "forcefield/dihedral.hpp"
+#include "forcefield/dlvo.hpp"
 #include "forcefield/expression_component.hpp"
 #include "forcefield/external_constant_force.hpp"
 #include "forcefield/fene_bond.hpp"
@@ -31,13 +33,16 @@
 #include "forcefield/gaussian_bond.hpp"
 #include "forcefield/harmonic_angle.hpp"
 #include "forcefield/harmonic_bond.hpp"
+#include "forcefield/kim_hummer.hpp"
 #include "forcefield/kratky_porod.hpp"
+#include "forcefield/la_torre.hpp"
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/lennard_jones_general.hpp"
 #include "forcefield/lennard_jones_wca.hpp"
 #include "forcefield/morse.hpp"
 #include "forcefield/plates.hpp"
 #include "forcefield/spherical_shell.hpp"
+#include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
 #include "forcefield/tabulated.hpp"
 
@@ -57,6 +62,13 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template pair<Steric6>({"NonBonded", "Steric6"});
     v.template pair<Steric12>({"NonBonded", "Steric12"});
     v.template pair<DebyeHuckel>({"NonBonded", "DebyeHuckel"});
+    v.template pair<SplitLennardJones>({"NonBonded", "SplitLennardJones"});
+    v.template pair<LaTorre>({"NonBonded", "LaTorre"});
+    v.template pair<Clashed>({"NonBonded", "Clashed"});
+    v.template pair<DLVOType1>({"NonBonded", "DLVOType1"});
+    v.template pair<DLVOType2>({"NonBonded", "DLVOType2"});
+    v.template pair<DLVOType3>({"NonBonded", "DLVOType3"});
+    v.template pair<KimHummer>({"NonBonded", "KimHummer"});
     v.template configurable<TabulatedPair>({"NonBonded", "Tabulated"});
 
     v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});

@@ -80,6 +80,7 @@ struct PairSpec : InteractionSpec {
     ParameterValues shared;  // the component's parameters given once for every type pair
     std::vector<Row> rows;   // each unordered type pair at most once; none for a term of every type pair
     bool everyTypePair = false;  // the component has no per-type-pair parameters
+    bool unlistedPairsInteract = false;  // type pairs the table does not list interact (DLVO's electrostatics)
     double cutoff = 0.0;     // the largest distance at which the term acts, from its functor
 
     // What the functor is given for one type pair: the shared parameters and the row's.

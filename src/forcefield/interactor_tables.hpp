@@ -13,12 +13,12 @@
 namespace structmd {
 
 // make(values) gives the Params of a type pair from its parameters (the shared ones and its row's).
-// Unlisted type pairs keep value-initialised parameters (zero cutoff) and so never interact; a term
-// without per-type-pair parameters gives every type pair the same.
+// Unlisted type pairs take `unlisted`: by default value-initialised parameters (zero cutoff), which
+// never interact; a term without per-type-pair parameters gives every type pair the same.
 template <class Params, class Make>
-std::vector<Params> pair_table_of(const PairSpec& pair, size_t ntypes, Make&& make) {
+std::vector<Params> pair_table_of(const PairSpec& pair, size_t ntypes, Make&& make, const Params& unlisted = Params{}) {
     if (pair.everyTypePair) return std::vector<Params>(ntypes * ntypes, make(pair.shared));
-    std::vector<Params> table(ntypes * ntypes, Params{});
+    std::vector<Params> table(ntypes * ntypes, unlisted);
     for (const PairSpec::Row& row : pair.rows) {
         const Params p = make(pair.values_of(row));
         table[row.typeI * ntypes + row.typeJ] = p;

@@ -32,11 +32,18 @@ struct FactoryEntries {
         registry.add({std::move(key), [](const Build& build, const InteractionSpec& s) -> std::unique_ptr<Interactor<B, R>> {
                           const auto& pair = static_cast<const PairSpec&>(s);
                           const Constants& constants = build.context.constants;
-                          const auto table = pair_table_of<typename Potential::template Params<PairR>>(
-                              pair, build.context.ntypes, [&](const ParameterValues& v) {
+                          using Params = typename Potential::template Params<PairR>;
+                          Params unlisted{};
+                          if constexpr (acts_on_unlisted_pairs<Potential>::value)
+                              unlisted = Potential::template make_unlisted_pair_params<PairR>(
+                                  pair.shared, constants, pair.cutOffFactor, pair.shift);
+                          const auto table = pair_table_of<Params>(
+                              pair, build.context.ntypes,
+                              [&](const ParameterValues& v) {
                                   return Potential::template make_pair_params<PairR>(v, constants, pair.cutOffFactor,
                                                                                      pair.shift);
-                              });
+                              },
+                              unlisted);
                           return make_pair_interaction<B, R, Potential, PairR>(build, pair, table);
                       }});
     }

@@ -31,7 +31,7 @@ public:
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
             backend_.for_each_lanes(particles.count,
                               PairKernel<Potential, R, PairR, decltype(force)::value, decltype(energy)::value,
-                                         decltype(virial)::value>{particles.charge.data(),
+                                         decltype(virial)::value>{particles.charge.data(), particles.radius.data(),
                                                                   this->group(), view, table_.data(), ntypes_,
                                                                   out});
         });

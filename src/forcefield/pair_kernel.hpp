@@ -13,7 +13,8 @@
 
 namespace structmd {
 
-// Potentials of charges (Debye-Hueckel) declare `static constexpr bool uses_charges = true`.
+// Potentials of charges (Debye-Hueckel) declare `static constexpr bool uses_charges = true`, those of
+// particle radii (Clashed, DLVO) `static constexpr bool uses_radii = true`.
 template <class Potential>
 SMD_HD constexpr auto uses_charges(int) -> decltype(bool(Potential::uses_charges)) {
     return Potential::uses_charges;
@@ -22,11 +23,25 @@ template <class Potential>
 SMD_HD constexpr bool uses_charges(long) {
     return false;
 }
+template <class Potential>
+SMD_HD constexpr auto uses_radii(int) -> decltype(bool(Potential::uses_radii)) {
+    return Potential::uses_radii;
+}
+template <class Potential>
+SMD_HD constexpr bool uses_radii(long) {
+    return false;
+}
 
+// The potential is given what it declares it uses, in the order charge product, then radii.
 template <class Potential, class R>
-SMD_HD SMD_INLINE PairTerm<R> evaluate_pair(R r2, const typename Potential::template Params<R>& p, R chargeProduct) {
-    if constexpr (uses_charges<Potential>(0))
+SMD_HD SMD_INLINE PairTerm<R> evaluate_pair(R r2, const typename Potential::template Params<R>& p, R chargeProduct,
+                                            R radiusI, R radiusJ) {
+    if constexpr (uses_charges<Potential>(0) && uses_radii<Potential>(0))
+        return Potential::evaluate(r2, p, chargeProduct, radiusI, radiusJ);
+    else if constexpr (uses_charges<Potential>(0))
         return Potential::evaluate(r2, p, chargeProduct);
+    else if constexpr (uses_radii<Potential>(0))
+        return Potential::evaluate(r2, p, radiusI, radiusJ);
     else
         return Potential::evaluate(r2, p);
 }
@@ -34,11 +49,12 @@ SMD_HD SMD_INLINE PairTerm<R> evaluate_pair(R r2, const typename Potential::temp
 // Positions, separations and sums in R; the potential itself in PairR (float under mixed precision:
 // the separation is taken in double, so its accuracy does not fall with the size of the box).
 // Runs over the list's slots (neighbour_view.hpp); what belongs to a particle (charge, group,
-// outputs) is looked up through the slot's particle.
+// radius, outputs) is looked up through the slot's particle.
 template <class Potential, class R, class PairR, bool WantForce, bool WantEnergy, bool WantVirial>
 struct PairKernel {
     using Params = typename Potential::template Params<PairR>;
     const R* charge;       // by particle, read only by potentials of charges
+    const R* radius;       // by particle, read only by potentials of radii
     const uint8_t* group;  // by particle; null: every particle takes part
     NeighbourView<R> neighbours;
     const Params* table;  // ntypes x ntypes
@@ -61,8 +77,11 @@ struct PairKernel {
             const PairR r2 = PairR(dot(rij, rij));
             const Params& p = row[static_cast<int>(pj.w)];
             if (!(r2 < p.cutoff2) || (group && !group[v.order[s]])) return;
+            // Per-particle data is read only by the potentials that declare it (no load otherwise).
+            constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
             const PairTerm<PairR> t = evaluate_pair<Potential>(
-                r2, p, uses_charges<Potential>(0) ? PairR(charge[i] * charge[v.order[s]]) : PairR(0));
+                r2, p, charges ? PairR(charge[i] * charge[v.order[s]]) : PairR(0),
+                radii ? PairR(radius[i]) : PairR(0), radii ? PairR(radius[v.order[s]]) : PairR(0));
             const R dudrOverR = R(t.dudr_over_r);
             if (WantForce) f += dudrOverR * rij;
             if (WantEnergy) e += R(0.5) * R(t.energy);

@@ -15,8 +15,16 @@
 //   static std::vector<Parameter> bond_parameters();
 //   template <class R> static Params<R> make_bond_params(const ParameterValues& v, const Constants& c);
 // A potential of charges (Debye-Hueckel) has `static constexpr bool uses_charges = true` and
-// evaluate(r2, p, q_i q_j).
+// evaluate(r2, p, q_i q_j); one of particle radii has `static constexpr bool uses_radii = true` and
+// evaluate(r2, p, a_i, a_j); one of both, evaluate(r2, p, q_i q_j, a_i, a_j). Optionally:
+//   static constexpr const char* cutoff_key;  // the entry reads no cutOffFactor; its range is set by
+//                                             // this member of the entry ("parameters.gamma", "data")
+//   template <class R> static Params<R> make_unlisted_pair_params(const ParameterValues& shared,
+//                                                                 const Constants& c, double cutOffFactor,
+//                                                                 bool shift);
+// the Params of the type pairs the table does not list (without it, those do not interact).
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "core/hd.hpp"
@@ -25,11 +33,25 @@
 
 namespace structmd {
 
-// Physical constants of the input's units, for potentials that need them.
+// What potentials take from the system besides their parameters: the physical constants of the
+// input's units, and the largest particle radius (the range of a potential of radii scales with it).
 struct Constants {
     double boltzmann = 1.0;
     double electricConversion = 1.0;
+    double largestRadius = 0.0;
 };
+
+template <class Potential, class = void>
+struct has_cutoff_key : std::false_type {};
+template <class Potential>
+struct has_cutoff_key<Potential, std::void_t<decltype(Potential::cutoff_key)>> : std::true_type {};
+
+template <class Potential, class = void>
+struct acts_on_unlisted_pairs : std::false_type {};
+template <class Potential>
+struct acts_on_unlisted_pairs<Potential,
+                              std::void_t<decltype(&Potential::template make_unlisted_pair_params<double>)>>
+    : std::true_type {};
 
 // The pair parameters of the Lennard-Jones-like family: epsilon and sigma per type pair, cut at
 // cutOffFactor x sigma. Potential has make_pair_params<R>(epsilon, sigma, cutoff, shift).

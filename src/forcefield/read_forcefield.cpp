@@ -72,10 +72,6 @@ int type_of(const SystemDescription& system, const TrackedNode& cell) {
     return id;
 }
 
-Constants constants_of(const SystemDescription& system) {
-    return {system.units.boltzmann, system.units.electricConversion};
-}
-
 // startStep, endStep and group, which every interaction entry may give, and what a configurable
 // component derived from the entry.
 void read_common(const ForceFieldComponent& component, const ComponentEntry& entry, const ForceFieldSpec& ff,
@@ -254,6 +250,11 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
                                                                        pair.cutOffFactor, pair.shift));
             pair.rows.push_back(std::move(row));
         }
+        if (component.unlistedCutoff) {
+            pair.unlistedPairsInteract = true;
+            pair.cutoff = std::max(pair.cutoff,
+                                   component.unlistedCutoff(pair.shared, constants, pair.cutOffFactor, pair.shift));
+        }
     }
     if (!cutoff_fits_box(pair.cutoff, system.box)) {
         std::ostringstream what;
@@ -261,6 +262,7 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
         what << "cutoff " << pair.cutoff << " is not shorter than half the box ("
              << half_shortest_edge(system.box[0], system.box[1], system.box[2]) << ")";
         const std::string path = !component.cutoffPath.empty() ? component.cutoffPath
+                                 : !component.cutoffKey.empty() ? entry.node.path() + "." + component.cutoffKey
                                  : parameter_path(entry, component.readsCutOffFactor ? "cutOffFactor" : "cutOff");
         throw input_error(path, what.str());
     }
@@ -325,7 +327,7 @@ void read_external(const ForceFieldComponent& component, const ComponentEntry& e
 void warn_unlisted_type_pairs(const SystemDescription& system, const ForceFieldSpec& ff, const Logger& log) {
     const int ntypes = static_cast<int>(system.types.size());
     for (const PairSpec& pair : ff.pairs) {
-        if (pair.everyTypePair) continue;
+        if (pair.everyTypePair || pair.unlistedPairsInteract) continue;
         for (int a = 0; a < ntypes; ++a)
             for (int b = a; b < ntypes; ++b) {
                 const bool listed = std::any_of(pair.rows.begin(), pair.rows.end(), [&](const PairSpec::Row& r) {
@@ -339,6 +341,12 @@ void warn_unlisted_type_pairs(const SystemDescription& system, const ForceFieldS
 }
 
 }  // namespace
+
+Constants constants_of(const SystemDescription& system) {
+    const double largestRadius =
+        system.radius.empty() ? 0.0 : *std::max_element(system.radius.begin(), system.radius.end());
+    return {system.units.boltzmann, system.units.electricConversion, largestRadius};
+}
 
 ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& log,
                                const Registry<ForceFieldComponent>& registry) {

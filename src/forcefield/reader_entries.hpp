@@ -25,6 +25,15 @@ struct ReaderEntries {
             return std::sqrt(static_cast<double>(
                 Potential::template make_pair_params<double>(v, constants, cutOffFactor, shift).cutoff2));
         };
+        if constexpr (has_cutoff_key<Potential>::value) {
+            c.readsCutOffFactor = false;
+            c.cutoffKey = Potential::cutoff_key;
+        }
+        if constexpr (acts_on_unlisted_pairs<Potential>::value)
+            c.unlistedCutoff = [](const ParameterValues& v, const Constants& constants, double cutOffFactor, bool shift) {
+                return std::sqrt(static_cast<double>(
+                    Potential::template make_unlisted_pair_params<double>(v, constants, cutOffFactor, shift).cutoff2));
+            };
         registry.add(std::move(c));
     }
 

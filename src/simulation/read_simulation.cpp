@@ -25,8 +25,7 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     doc.root.check_all_used();
 
     spec.seed = system.seed;
-    spec.constants.boltzmann = system.units.boltzmann;
-    spec.constants.electricConversion = system.units.electricConversion;
+    spec.constants = constants_of(system);
     // Particles that start under overdamped dynamics start at rest: they have no velocities.
     if (spec.schedule.empty())
         spec.velocityKT = system.units.boltzmann * system.temperature;

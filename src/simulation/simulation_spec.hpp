@@ -16,7 +16,7 @@ namespace structmd {
 
 struct SimulationSpec {
     uint64_t seed = 0;
-    Constants constants;  // k_B and the electric conversion factor of the units
+    Constants constants;  // k_B, the electric conversion factor of the units, the largest particle radius
     double velocityKT = 0.0;  // k_B T of drawn velocities: the first scheduled integrator's temperature
     std::array<double, 3> box{0, 0, 0};
     int64_t currentStep = 0;

@@ -10,12 +10,17 @@
 #include <string>
 #include <vector>
 
+#include "forcefield/clashed.hpp"
 #include "forcefield/debye_huckel.hpp"
+#include "forcefield/dlvo.hpp"
 #include "forcefield/gaussian_bond.hpp"
+#include "forcefield/kim_hummer.hpp"
+#include "forcefield/la_torre.hpp"
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/lennard_jones_general.hpp"
 #include "forcefield/lennard_jones_wca.hpp"
 #include "forcefield/morse.hpp"
+#include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
 
 using namespace structmd;
@@ -58,22 +63,28 @@ PairTerm<double> at(double r, const typename Potential::template Params<double>&
     return Potential::evaluate(r * r, p);
 }
 
-// At each r: U equals `energy` and U'(r)/r equals the central difference of the functor's energy.
-template <class Potential>
-void expect_energy_and_derivative(const typename Potential::template Params<double>& p,
-                                  const std::function<double(double)>& energy, const std::vector<double>& radii) {
+// At each r: evaluate(r^2) gives U equal to `energy` and U'(r)/r equal to the central difference of
+// its own energy.
+void expect_term_matches(const std::function<PairTerm<double>(double)>& evaluate,
+                         const std::function<double(double)>& energy, const std::vector<double>& radii) {
     for (const double r : radii) {
         SCOPED_TRACE("r = " + std::to_string(r));
-        const PairTerm<double> term = at<Potential>(r, p);
+        const PairTerm<double> term = evaluate(r * r);
         const double energy_error = relative_error(term.energy, energy(r));
         EXPECT_LT(energy_error, kEnergyTolerance) << term.energy << " against " << energy(r);
         const double h = 1e-6 * r;
-        const double slope = (at<Potential>(r + h, p).energy - at<Potential>(r - h, p).energy) / (2.0 * h);
+        const double slope = (evaluate((r + h) * (r + h)).energy - evaluate((r - h) * (r - h)).energy) / (2.0 * h);
         const double derivative_error = relative_error(term.dudr_over_r, slope / r);
         EXPECT_LT(derivative_error, kDerivativeTolerance) << term.dudr_over_r << " against " << slope / r;
         worst.energy = std::max(worst.energy, energy_error);
         worst.derivative = std::max(worst.derivative, derivative_error);
     }
+}
+
+template <class Potential>
+void expect_energy_and_derivative(const typename Potential::template Params<double>& p,
+                                  const std::function<double(double)>& energy, const std::vector<double>& radii) {
+    expect_term_matches([&](double r2) { return Potential::evaluate(r2, p); }, energy, radii);
 }
 
 template <class Potential>
@@ -413,6 +424,217 @@ TEST(SinglePrecision, MatchesDouble) {
         },
         [](auto r2, const auto& p) { return DebyeHuckel::evaluate(r2, p, decltype(r2)(-0.42)); },
         {1.5, 7.0, 25.0});
+}
+
+// Named values, as the reader gives a potential its entry's and row's parameters.
+ParameterValues named(std::initializer_list<std::pair<const char*, double>> values) {
+    ParameterValues v;
+    for (const auto& [name, value] : values) v.set(name, {value});
+    return v;
+}
+
+// Split Lennard-Jones, written out: eps_r below 2^(1/6) s, epsilon_a x epsilon beyond.
+constexpr double kRepulsiveEpsilon = 1.7, kAttractiveFactor = 0.6;
+double split_lennard_jones(double r) {
+    const double attractive = kAttractiveFactor * kEps;
+    if (r < std::pow(2.0, 1.0 / 6.0) * kSigma) return lj1(kRepulsiveEpsilon, kSigma, r) + kRepulsiveEpsilon - attractive;
+    return lj1(attractive, kSigma, r);
+}
+
+SplitLennardJones::Params<double> split_params(bool shift) {
+    return SplitLennardJones::make_pair_params<double>(
+        named({{"epsilon", kEps}, {"sigma", kSigma}, {"epsilon_r", kRepulsiveEpsilon}, {"epsilon_a", kAttractiveFactor}}),
+        Constants{}, 2.5, shift);
+}
+
+TEST(SplitLennardJones, RepulsiveAndAttractiveScalesMatchTheFormula) {
+    const auto p = split_params(false);
+    expect_energy_and_derivative<SplitLennardJones>(p, split_lennard_jones, lennard_jones_radii());
+    // Continuous at r_min, where both sides are the well's bottom -epsilon_a x epsilon.
+    const double r_min = std::pow(2.0, 1.0 / 6.0) * kSigma;
+    for (const double r : {r_min * (1.0 - 1e-9), r_min * (1.0 + 1e-9)}) {
+        EXPECT_NEAR(at<SplitLennardJones>(r, p).energy, -kAttractiveFactor * kEps, 1e-7);
+        EXPECT_NEAR(at<SplitLennardJones>(r, p).dudr_over_r, 0.0, 1e-6);
+    }
+    expect_no_interaction<SplitLennardJones>(p, {kCutoff, 1.5 * kCutoff});
+    const auto shifted = split_params(true);
+    expect_energy_and_derivative<SplitLennardJones>(
+        shifted, [](double r) { return split_lennard_jones(r) - split_lennard_jones(kCutoff); }, lennard_jones_radii());
+}
+
+// LaTorre, written out.
+constexpr double kWidth = 0.7;
+double la_torre(double r) {
+    const double r_min = std::pow(2.0, 1.0 / 6.0) * kSigma;
+    if (r <= r_min) return -kEps;
+    if (r >= r_min + kWidth) return 0.0;
+    const double c = std::cos(M_PI * (r - r_min) / (2.0 * kWidth));
+    return -kEps * c * c;
+}
+
+TEST(LaTorre, FlatWellFadingOverItsWidth) {
+    const auto p = LaTorre::make_pair_params<double>(named({{"epsilon", kEps}, {"sigma", kSigma}, {"w", kWidth}}),
+                                                     Constants{}, 0.0, false);
+    const double r_min = std::pow(2.0, 1.0 / 6.0) * kSigma;
+    expect_energy_and_derivative<LaTorre>(p, la_torre, {r_min + 0.1 * kWidth, r_min + 0.45 * kWidth,
+                                                        r_min + 0.8 * kWidth, r_min + 0.97 * kWidth});
+    for (const double r : {0.8 * kSigma, r_min}) {
+        EXPECT_EQ(at<LaTorre>(r, p).energy, -kEps);
+        EXPECT_EQ(at<LaTorre>(r, p).dudr_over_r, 0.0);
+    }
+    EXPECT_NEAR(std::sqrt(p.cutoff2), r_min + kWidth, 1e-12);
+    expect_no_interaction<LaTorre>(p, {r_min + kWidth, 2.0 * (r_min + kWidth)});
+}
+
+TEST(Clashed, SoftRepulsionOfOverlappingRadii) {
+    EXPECT_TRUE(Clashed::uses_radii);
+    const double lambda = 3.0, gamma = 1.2, a_i = 0.4, a_j = 0.7;
+    Constants constants;
+    constants.largestRadius = 0.9;
+    const auto p = Clashed::make_pair_params<double>(named({{"lambda", lambda}, {"gamma", gamma}}), constants, 0.0,
+                                                     false);
+    EXPECT_NEAR(std::sqrt(p.cutoff2), 2.0 * gamma * 0.9, 1e-12);
+    const double d = gamma * (a_i + a_j);
+    const auto evaluate = [&](double r2) { return Clashed::evaluate(r2, p, a_i, a_j); };
+    expect_term_matches(evaluate, [&](double r) { return lambda * (d * d - r * r) * (d * d - r * r); },
+                        {0.2 * d, 0.5 * d, 0.8 * d, 0.99 * d});
+    for (const double r : {d, 1.01 * d, 1.9 * d}) {
+        EXPECT_EQ(evaluate(r * r).energy, 0.0);
+        EXPECT_EQ(evaluate(r * r).dudr_over_r, 0.0);
+    }
+}
+
+// DLVO, written out: Lennard-Jones of the row plus the electrostatics of two charged spheres.
+constexpr double kRadiusI = 1.5, kRadiusJ = 2.5;
+double charged_spheres(double charge_product, double r) {
+    return 332.0716 * charge_product * std::exp(-(r - kRadiusI - kRadiusJ) / kDebyeLength) /
+           (kDielectric * r * (1.0 + kRadiusI / kDebyeLength) * (1.0 + kRadiusJ / kDebyeLength));
+}
+
+ParameterValues dlvo_values() {
+    return named({{"epsilon", kEps}, {"sigma", kSigma}, {"cutOffNPFactor", 2.5}, {"cutOffDHFactor", 4.0},
+                  {"dielectricConstant", kDielectric}, {"debyeLength", kDebyeLength}});
+}
+
+template <class Potential>
+void check_dlvo(Formula lennard_jones) {
+    EXPECT_TRUE(Potential::uses_charges && Potential::uses_radii);
+    const double charge_product = -0.7;
+    const auto evaluate_with = [&](const auto& p) {
+        return [&p, charge_product](double r2) { return Potential::evaluate(r2, p, charge_product, kRadiusI, kRadiusJ); };
+    };
+    const auto p = Potential::template make_pair_params<double>(dlvo_values(), kKcalMolA, 0.0, false);
+    EXPECT_NEAR(std::sqrt(p.cutoff2), kDebyeCutoff, 1e-12);
+    const auto both = [&](double r) {
+        return (r < kCutoff ? lennard_jones(kEps, kSigma, r) : 0.0) + charged_spheres(charge_product, r);
+    };
+    std::vector<double> radii = lennard_jones_radii();
+    radii.insert(radii.end(), {6.0, 20.0, 35.0});
+    expect_term_matches(evaluate_with(p), both, radii);
+    // An unlisted type pair keeps the electrostatics only.
+    const auto unlisted = Potential::template make_unlisted_pair_params<double>(dlvo_values(), kKcalMolA, 0.0, false);
+    expect_term_matches(evaluate_with(unlisted), [&](double r) { return charged_spheres(charge_product, r); },
+                        {1.2, 3.0, 20.0});
+    // Shifted, each term reaches 0 at its own cutoff.
+    const auto shifted = Potential::template make_pair_params<double>(dlvo_values(), kKcalMolA, 0.0, true);
+    const auto both_shifted = [&](double r) {
+        return (r < kCutoff ? lennard_jones(kEps, kSigma, r) - lennard_jones(kEps, kSigma, kCutoff) : 0.0) +
+               charged_spheres(charge_product, r) - charged_spheres(charge_product, kDebyeCutoff);
+    };
+    expect_term_matches(evaluate_with(shifted), both_shifted, radii);
+    for (const double r : {kDebyeCutoff, 1.2 * kDebyeCutoff}) {
+        EXPECT_EQ(evaluate_with(p)(r * r).energy, 0.0);
+        EXPECT_EQ(evaluate_with(p)(r * r).dudr_over_r, 0.0);
+    }
+}
+
+TEST(DLVO, LennardJonesPlusChargedSpheres) {
+    check_dlvo<DLVOType1>(lj1);
+    check_dlvo<DLVOType2>(lj2);
+    check_dlvo<DLVOType3>(lj3);
+}
+
+// Kim-Hummer's contact term, written out from the paper.
+double kim_hummer_contact(double epsilon, double zero_energy, double r) {
+    if (epsilon == 0.0) return zero_energy * std::pow(kSigma / r, 12);
+    if (epsilon < 0.0) return lj1(-epsilon, kSigma, r);
+    if (r < std::pow(2.0, 1.0 / 6.0) * kSigma) return lj1(epsilon, kSigma, r) + 2.0 * epsilon;
+    return -lj1(epsilon, kSigma, r);
+}
+
+ParameterValues kim_hummer_values(double epsilon) {
+    return named({{"epsilon", epsilon}, {"sigma", kSigma}, {"cutOffNPFactor", 2.5}, {"cutOffDHFactor", 4.0},
+                  {"dielectricConstant", kDielectric}, {"debyeLength", kDebyeLength}, {"zeroEnergy", 0.3}});
+}
+
+TEST(KimHummer, ContactFormsByTheSignOfEpsilonPlusDebyeHuckel) {
+    EXPECT_TRUE(KimHummer::uses_charges);
+    const double charge_product = 0.9;
+    std::vector<double> radii = lennard_jones_radii();
+    radii.insert(radii.end(), {6.0, 20.0, 35.0});
+    for (const double epsilon : {-kEps, kEps, 0.0}) {
+        SCOPED_TRACE("epsilon = " + std::to_string(epsilon));
+        for (const bool shift : {false, true}) {
+            const auto p = KimHummer::make_pair_params<double>(kim_hummer_values(epsilon), kKcalMolA, 0.0, shift);
+            const auto formula = [&](double r) {
+                const double at_cutoff = shift ? kim_hummer_contact(epsilon, 0.3, kCutoff) : 0.0;
+                const double dh_at_cutoff = shift ? debye_huckel(charge_product, kDebyeCutoff) : 0.0;
+                return (r < kCutoff ? kim_hummer_contact(epsilon, 0.3, r) - at_cutoff : 0.0) +
+                       debye_huckel(charge_product, r) - dh_at_cutoff;
+            };
+            expect_term_matches([&](double r2) { return KimHummer::evaluate(r2, p, charge_product); }, formula, radii);
+        }
+    }
+    // The repulsive form is continuous at r_0 = 2^(1/6) s, where it is +epsilon.
+    const auto p = KimHummer::make_pair_params<double>(kim_hummer_values(kEps), Constants{}, 0.0, false);
+    const double r0 = std::pow(2.0, 1.0 / 6.0) * kSigma;
+    for (const double r : {r0 * (1.0 - 1e-9), r0 * (1.0 + 1e-9)})
+        EXPECT_NEAR(KimHummer::evaluate(r * r, p, 0.0).energy, kEps, 1e-7);
+    // An unlisted type pair keeps the electrostatics only.
+    const auto unlisted = KimHummer::make_unlisted_pair_params<double>(kim_hummer_values(kEps), kKcalMolA, 0.0, false);
+    expect_term_matches([&](double r2) { return KimHummer::evaluate(r2, unlisted, charge_product); },
+                        [&](double r) { return debye_huckel(charge_product, r); }, {1.2, 3.0, 20.0});
+}
+
+TEST(SinglePrecision, NewPairPotentialsMatchDouble) {
+    const std::vector<double> radii = lennard_jones_radii();
+    expect_float_matches_double(
+        [](auto tag) {
+            return SplitLennardJones::make_pair_params<decltype(tag)>(
+                named({{"epsilon", kEps}, {"sigma", kSigma}, {"epsilon_r", 1.7}, {"epsilon_a", 0.6}}), Constants{}, 2.5,
+                false);
+        },
+        [](auto r2, const auto& p) { return SplitLennardJones::evaluate(r2, p); }, radii);
+    expect_float_matches_double(
+        [](auto tag) {
+            return LaTorre::make_pair_params<decltype(tag)>(named({{"epsilon", kEps}, {"sigma", kSigma}, {"w", kWidth}}),
+                                                            Constants{}, 0.0, false);
+        },
+        [](auto r2, const auto& p) { return LaTorre::evaluate(r2, p); }, {1.5, 1.7, 1.9});
+    expect_float_matches_double(
+        [](auto tag) {
+            Constants c;
+            c.largestRadius = 0.9;
+            return Clashed::make_pair_params<decltype(tag)>(named({{"lambda", 3.0}, {"gamma", 1.2}}), c, 0.0, false);
+        },
+        [](auto r2, const auto& p) {
+            using R = decltype(r2);
+            return Clashed::evaluate(r2, p, R(0.4), R(0.7));
+        },
+        {0.3, 0.6, 1.0});
+    expect_float_matches_double(
+        [](auto tag) { return DLVOType1::make_pair_params<decltype(tag)>(dlvo_values(), kKcalMolA, 0.0, false); },
+        [](auto r2, const auto& p) {
+            using R = decltype(r2);
+            return DLVOType1::evaluate(r2, p, R(-0.7), R(kRadiusI), R(kRadiusJ));
+        },
+        {1.2, 1.4, 6.0, 20.0});
+    for (const double epsilon : {-kEps, kEps, 0.0})
+        expect_float_matches_double(
+            [&](auto tag) {
+                return KimHummer::make_pair_params<decltype(tag)>(kim_hummer_values(epsilon), kKcalMolA, 0.0, false);
+            },
+            [](auto r2, const auto& p) { return KimHummer::evaluate(r2, p, decltype(r2)(0.9)); }, {1.2, 1.4, 6.0, 20.0});
 }
 
 }  // namespace

@@ -86,6 +86,28 @@ CASES = {
     "DebyeHuckel": {"nl": NL, "term": {"type": ["NonBonded", "DebyeHuckel"],
                                        "parameters": {"cutOffFactor": 2.0, "condition": "all",
                                                       "dielectricConstant": 80.0, "debyeLength": 1.5}}},
+    "SplitLennardJones": {"nl": NL, "term": {"type": ["NonBonded", "SplitLennardJones"],
+                                             "parameters": {"cutOffFactor": 2.4, "condition": "all",
+                                                            "epsilon_r": 1.5, "epsilon_a": 0.7},
+                                             "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": TABLE}},
+    "LaTorre": {"nl": NL, "term": {"type": ["NonBonded", "LaTorre"], "parameters": {"condition": "all"},
+                                   "labels": ["name_i", "name_j", "epsilon", "sigma", "w"],
+                                   "data": [["A", "A", 0.8, 0.9, 1.0], ["A", "B", 1.2, 0.8, 0.9],
+                                            ["B", "B", 0.6, 1.0, 1.2]]}},
+    "Clashed": {"nl": NL, "term": {"type": ["NonBonded", "Clashed"],
+                                   "parameters": {"condition": "all", "lambda": 2.0, "gamma": 1.5}}},
+    **{f"DLVOType{k}": {"nl": NL, "term": {"type": ["NonBonded", f"DLVOType{k}"],
+                                           "parameters": {"cutOffNPFactor": 2.4, "cutOffDHFactor": 2.0,
+                                                          "dielectricConstant": 80.0, "debyeLength": 1.5,
+                                                          "condition": "all", "shift": k == 2},
+                                           "labels": ["name_i", "name_j", "epsilon", "sigma"],
+                                           "data": TABLE[:2]}} for k in (1, 2, 3)},
+    "KimHummer": {"nl": NL, "term": {"type": ["NonBonded", "KimHummer"],
+                                     "parameters": {"cutOffNPFactor": 2.4, "cutOffDHFactor": 2.0,
+                                                    "dielectricConstant": 80.0, "debyeLength": 1.5,
+                                                    "zeroEnergy": 0.3, "condition": "all"},
+                                     "labels": ["name_i", "name_j", "epsilon", "sigma"],
+                                     "data": [["A", "A", -0.8, 1.0], ["A", "B", 1.2, 0.9], ["B", "B", 0.0, 1.1]]}},
     "Bond1 FixedHarmonic": bonds("Bond1", "FixedHarmonic", 1, ["K", "r0", "position"],
                                  lambda k: [3.0, 0.4, [3.3, 0.2 * k - 1.0, 0.5]]),
     "Bond2 Harmonic": bonds("Bond2", "Harmonic", 2, ["K", "r0"], lambda k: [10.0 + k, 1.0]),
@@ -111,7 +133,8 @@ CASES = {
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_force_is_minus_the_energy_gradient(options, name):
     positions = configuration(seed=sorted(CASES).index(name))
-    charges = list(np.linspace(-1.0, 1.0, N)) if "DebyeHuckel" in name else None
+    charged = any(word in name for word in ("DebyeHuckel", "DLVO", "KimHummer"))
+    charges = list(np.linspace(-1.0, 1.0, N)) if charged else None
     with structmd.Simulation(dict(options, precision="double")) as sim:
         sim.load(document(positions, CASES[name], charges))
         forces = sim.forces

@@ -25,7 +25,7 @@ std::vector<double> evaluate(const Scene& scene, const ForceFieldSpec& spec, con
     ForceFieldContext context;
     context.ntypes = system.types.size();
     context.particles = n;
-    context.constants = {system.units.boltzmann, system.units.electricConversion};
+    context.constants = constants_of(system);
     ForceField<CpuBackend, double> forceField = make_interactors<CpuBackend, double>(backend, spec, context, factories);
 
     Particles<CpuBackend, double> p;

@@ -94,6 +94,9 @@ inline const std::vector<Override>& overrides() {
         // every spring's minimum, each move is undone, and nothing ever moves. Under each of its names
         // (an empty class matches any).
         {{"", "SteepestDescent"}, "h", {0.01}},
+        // zeroEnergy acts only in the rows whose epsilon is 0 (the excluded-volume form); generic
+        // epsilons are all about 1.
+        {{"NonBonded", "KimHummer"}, "epsilon", {0.0}},
     };
     return table;
 }
@@ -154,7 +157,7 @@ inline Json forcefield_entry(const ForceFieldComponent& c) {
     switch (c.kind) {
         case InteractionKind::pair: {
             parameters["condition"] = "all";
-            parameters["cutOffFactor"] = kCutOffFactor;
+            if (c.readsCutOffFactor) parameters["cutOffFactor"] = kCutOffFactor;
             // Entry parameters are numbered after the table's, so no two parameters share a number.
             for (size_t k = 0; k < c.entryParameters.size(); ++k) {
                 const Parameter& p = c.entryParameters[k];
