@@ -1,7 +1,9 @@
-// The text trajectory formats (xyz, sp, lammpstrj, pdb) and the table of every format. Values are
-// written with 8 significant digits (pdb: its fixed columns).
+// The text trajectory formats (xyz, sp, spf, lammpstrj, pdb, and UAMMD-structured's coord, vel and
+// itpv) and the table of every format. Values are written with 8 significant digits (pdb: its fixed
+// columns).
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -95,6 +97,74 @@ protected:
         for (size_t i = 0; i < frame.types.size(); ++i)
             std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", frame.positions[3 * i], frame.positions[3 * i + 1],
                          frame.positions[3 * i + 2], frame.radii[i], frame.types[i]);
+    }
+};
+
+// sp with each particle's force: "x y z radius type fx fy fz".
+class SpfWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_forces() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        const auto& L = frame.box;
+        std::fprintf(f, "#Lx=%.8g;Ly=%.8g;Lz=%.8g;\n", 0.5 * L[0], 0.5 * L[1], 0.5 * L[2]);
+        const double* r = frame.positions.data();
+        const double* F = frame.forces.data();
+        for (size_t i = 0; i < frame.types.size(); ++i)
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %d %.8g %.8g %.8g\n", r[3 * i], r[3 * i + 1], r[3 * i + 2],
+                         frame.radii[i], frame.types[i], F[3 * i], F[3 * i + 1], F[3 * i + 2]);
+    }
+};
+
+// UAMMD-structured's coord: "id x y z vx vy vz" per particle, frames one after the other with no
+// line between them (each frame has as many lines as particles written).
+class CoordWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_velocities() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        const double* r = frame.positions.data();
+        const double* v = frame.velocities.data();
+        for (size_t i = 0; i < frame.ids.size(); ++i)
+            std::fprintf(f, "%lld %.8g %.8g %.8g %.8g %.8g %.8g\n", static_cast<long long>(frame.ids[i]), r[3 * i],
+                         r[3 * i + 1], r[3 * i + 2], v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    }
+};
+
+// UAMMD-structured's vel: "vx vy vz |v|" per particle, frames one after the other.
+class VelocityWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_velocities() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        const double* v = frame.velocities.data();
+        for (size_t i = 0; i < frame.ids.size(); ++i) {
+            const double x = v[3 * i], y = v[3 * i + 1], z = v[3 * i + 2];
+            std::fprintf(f, "%.8g %.8g %.8g %.8g\n", x, y, z, std::sqrt(x * x + y * y + z * z));
+        }
+    }
+};
+
+// UAMMD-structured's itpv: N, an empty line, then "id type x y z vx vy vz" per particle.
+class ItpvWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_velocities() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        const double* r = frame.positions.data();
+        const double* v = frame.velocities.data();
+        std::fprintf(f, "%zu\n\n", frame.ids.size());
+        for (size_t i = 0; i < frame.ids.size(); ++i)
+            std::fprintf(f, "%lld %d %.8g %.8g %.8g %.8g %.8g %.8g\n", static_cast<long long>(frame.ids[i]),
+                         frame.types[i], r[3 * i], r[3 * i + 1], r[3 * i + 2], v[3 * i], v[3 * i + 1], v[3 * i + 2]);
     }
 };
 
@@ -198,13 +268,17 @@ private:
 }  // namespace
 
 const std::vector<std::string>& trajectory_formats() {
-    static const std::vector<std::string> names{"xyz", "sp", "lammpstrj", "dcd", "pdb"};
+    static const std::vector<std::string> names{"xyz", "sp", "spf", "lammpstrj", "dcd", "pdb", "coord", "vel", "itpv"};
     return names;
 }
 
 std::unique_ptr<TrajectoryWriter> make_trajectory_writer(const std::string& format, TrajectoryOptions options) {
     if (format == "xyz") return std::make_unique<XyzWriter>(std::move(options));
     if (format == "sp") return std::make_unique<SpWriter>(std::move(options));
+    if (format == "spf") return std::make_unique<SpfWriter>(std::move(options));
+    if (format == "coord") return std::make_unique<CoordWriter>(std::move(options));
+    if (format == "vel") return std::make_unique<VelocityWriter>(std::move(options));
+    if (format == "itpv") return std::make_unique<ItpvWriter>(std::move(options));
     if (format == "lammpstrj") return std::make_unique<LammpsDumpWriter>(std::move(options));
     if (format == "dcd") return std::make_unique<DcdWriter>(std::move(options));
     if (format == "pdb") return std::make_unique<PdbWriter>(std::move(options));

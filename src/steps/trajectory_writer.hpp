@@ -22,6 +22,8 @@ struct TrajectoryFrame {
     std::vector<double> positions;       // 3n
     std::vector<int32_t> types;          // n rows of global.types, 0-based
     std::vector<double> radii;           // n
+    std::vector<double> velocities;      // 3n for writers that need_velocities(), else empty
+    std::vector<double> forces;          // 3n for writers that need_forces(), else empty
     std::vector<std::string> typeNames;  // indexed by type
 };
 
@@ -46,6 +48,9 @@ public:
     virtual ~TrajectoryWriter() = default;
     // Throws Error(ERR_IO) naming the file and the reason when it cannot be opened or written.
     virtual void write(const TrajectoryFrame& frame) = 0;
+    // What a frame must carry besides positions, types and radii: fetched only for those formats.
+    virtual bool needs_velocities() const { return false; }
+    virtual bool needs_forces() const { return false; }
 };
 
 // The names outputFormat accepts, which are also the file extensions.

@@ -24,6 +24,10 @@ void WriteStep::run(Simulation& sim) {
         sim.get_unwrapped_positions(positions_.data());
     sim.get_types(types_.data());
     sim.get_radii(radii_.data());
+    velocities_.resize(writer_->needs_velocities() ? 3 * n : 0);
+    forces_.resize(writer_->needs_forces() ? 3 * n : 0);
+    if (!velocities_.empty()) sim.get_velocities(velocities_.data());
+    if (!forces_.empty()) sim.get_forces(forces_.data());
 
     frame_.step = sim.current_step();
     frame_.time = sim.current_time();
@@ -34,12 +38,17 @@ void WriteStep::run(Simulation& sim) {
     frame_.positions.clear();
     frame_.types.clear();
     frame_.radii.clear();
+    frame_.velocities.clear();
+    frame_.forces.clear();
     for (int64_t i = 0; i < n; ++i) {
         if (!members_.empty() && !members_[i]) continue;
         frame_.ids.push_back(i);
         frame_.positions.insert(frame_.positions.end(), &positions_[3 * i], &positions_[3 * i] + 3);
         frame_.types.push_back(types_[i]);
         frame_.radii.push_back(radii_[i]);
+        if (!velocities_.empty())
+            frame_.velocities.insert(frame_.velocities.end(), &velocities_[3 * i], &velocities_[3 * i] + 3);
+        if (!forces_.empty()) frame_.forces.insert(frame_.forces.end(), &forces_[3 * i], &forces_[3 * i] + 3);
     }
     writer_->write(frame_);
 }

@@ -270,6 +270,79 @@ def test_sp(sim, tmp_path, pbc):
         assert_positions(frame["xyz"], positions, pbc, atol=1e-6)
 
 
+def run_and_record_motion(sim, doc):
+    """As run_and_record, with each step's velocities and forces: {step: (wrapped, unwrapped, v, F)}."""
+    sim.load(doc)
+    wrapped = np.asarray(sim.positions)
+    unwrapped = wrapped.copy()
+    record = {sim.step_number: (wrapped, unwrapped, np.asarray(sim.velocities), np.asarray(sim.forces))}
+    last = sim.info["final_step"]
+    while sim.step_number < last:
+        sim.step(1)
+        now = np.asarray(sim.positions)
+        unwrapped = unwrapped + minimum_image(now - wrapped)
+        wrapped = now
+        record[sim.step_number] = (wrapped, unwrapped, np.asarray(sim.velocities), np.asarray(sim.forces))
+    return record
+
+
+def rows_of(path, skip_header=lambda line: False):
+    """The numeric rows of a headerless text format, frames one after the other."""
+    return np.array([[float(v) for v in line.split()] for line in path.read_text().splitlines()
+                     if line.strip() and not skip_header(line)])
+
+
+@pytest.mark.parametrize("pbc", [True, False], ids=["wrapped", "unwrapped"])
+def test_uammd_structured_velocity_and_force_formats(sim, tmp_path, pbc):
+    """coord ("id x y z vx vy vz"), vel ("vx vy vz |v|"), itpv (N, a blank line, "id type x y z vx vy vz")
+    and spf (sp with "fx fy fz" after the type), as UAMMD-structured's Output.cu writes them."""
+    writers = {name: writer(tmp_path / "traj", name, pbc=pbc) for name in ("coord", "vel", "itpv", "spf")}
+    record = run_and_record_motion(sim, document(writers))
+    steps = written_steps(0, STEPS)
+    n = len(sim.types)
+    ids = np.arange(n)
+    types = np.asarray(sim.types)
+    position = lambda s: record[s][0 if pbc else 1]
+
+    coord = rows_of(tmp_path / "traj.coord").reshape(len(steps), n, 7)
+    velocity = rows_of(tmp_path / "traj.vel").reshape(len(steps), n, 4)
+    itpv_lines = (tmp_path / "traj.itpv").read_text().splitlines()
+    assert itpv_lines[:2] == [str(n), ""] and len(itpv_lines) == len(steps) * (n + 2)
+    itpv = np.array([[float(v) for v in line.split()] for k, line in enumerate(itpv_lines) if k % (n + 2) >= 2])
+    itpv = itpv.reshape(len(steps), n, 8)
+    spf = read_sp_rows(tmp_path / "traj.spf")
+    assert len(spf) == len(steps)
+    for k, step in enumerate(steps):
+        _, _, v, forces = record[step]
+        np.testing.assert_array_equal(coord[k][:, 0], ids)
+        assert_positions(coord[k][:, 1:4], position(step), pbc, atol=1e-6)
+        np.testing.assert_allclose(coord[k][:, 4:7], v, rtol=1e-7, atol=1e-7)
+        np.testing.assert_allclose(velocity[k][:, :3], v, rtol=1e-7, atol=1e-7)
+        np.testing.assert_allclose(velocity[k][:, 3], np.linalg.norm(v, axis=1), rtol=1e-7, atol=1e-7)
+        np.testing.assert_array_equal(itpv[k][:, 0], ids)
+        np.testing.assert_array_equal(itpv[k][:, 1], types)
+        assert_positions(itpv[k][:, 2:5], position(step), pbc, atol=1e-6)
+        np.testing.assert_allclose(itpv[k][:, 5:8], v, rtol=1e-7, atol=1e-7)
+        half_box, rows = spf[k]
+        np.testing.assert_array_equal(half_box, BOX / 2)
+        assert_positions(rows[:, :3], position(step), pbc, atol=1e-6)
+        np.testing.assert_array_equal(rows[:, 3], [TYPES[t][2] for t in types])
+        np.testing.assert_array_equal(rows[:, 4], types)
+        np.testing.assert_allclose(rows[:, 5:8], forces, rtol=1e-7, atol=1e-6)
+    assert np.any(np.abs(spf[-1][1][:, 5:8]) > 1e-3), "the LJ particles must feel forces for spf to mean anything"
+
+
+def read_sp_rows(path):
+    """[(half box, rows)] of an sp-like file: a '#Lx=..' header per frame, then numeric rows."""
+    frames = []
+    for line in path.read_text().splitlines():
+        if line.startswith("#"):
+            frames.append((np.array([float(part.split("=")[1]) for part in line[1:].split(";") if part]), []))
+        else:
+            frames[-1][1].append([float(v) for v in line.split()])
+    return [(half, np.array(rows)) for half, rows in frames]
+
+
 @pytest.mark.parametrize("pbc", [True, False], ids=["wrapped", "unwrapped"])
 def test_lammpstrj(sim, tmp_path, pbc):
     record = run_and_record(sim, document({"traj": writer(tmp_path / "traj", "lammpstrj", pbc=pbc)}))
@@ -431,7 +504,7 @@ def test_dcd_append_refuses_a_file_of_another_system(options, tmp_path):
 
 def test_an_unknown_format_names_the_parameter_and_the_known_ones(sim, tmp_path):
     with pytest.raises(structmd.InputError,
-                       match=r"simulationStep\.traj\.parameters\.outputFormat.*'gro'.*xyz, sp, lammpstrj, dcd, pdb"):
+                       match=r"simulationStep\.traj\.parameters\.outputFormat.*'gro'.*xyz, sp, spf, lammpstrj, dcd, pdb, coord, vel, itpv"):
         sim.load(document({"traj": writer(tmp_path / "traj", "gro")}))
 
 
