@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "input/read_parameters.hpp"
+#include "steps/center_of_mass.hpp"
 #include "steps/gyration_radius.hpp"
 #include "steps/info_step.hpp"
 #include "steps/mean_square_displacement.hpp"
@@ -22,6 +23,8 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(info_step_entry());
         steps.add(mean_square_displacement_entry());
         steps.add(gyration_radius_entry());
+        steps.add(center_of_mass_position_entry());
+        steps.add(mean_radius_entry());
         steps.add(stress_measure_entry());
         steps.add(write_step_entry());
         return steps;

@@ -194,6 +194,38 @@ def test_gyration_radius_of_a_group(sim, tmp_path):
     assert read_rows(output)[0, 2] == pytest.approx(gyration_radius(positions[1:3]), rel=1e-12)
 
 
+# ---- centre of mass and mean radius --------------------------------------------------------------
+
+def test_centre_of_mass_and_mean_radius_of_a_group_split_by_the_boundary(sim, tmp_path):
+    """Types A (mass 1) and B (mass 2); the group of B particles straddles the x faces of the box
+    ([-5, 5)): the centre is mass-weighted over its unwrapped positions, numpy gives both."""
+    positions = np.array([[4.2, 0.0, 0.0], [5.3, 0.5, 0.0], [5.9, -0.4, 0.3], [0.0, 1.0, 1.0], [4.6, 1.0, -1.0]])
+    types = ["B", "B", "A", "A", "B"]
+    masses = np.array([2.0 if t == "B" else 1.0 for t in types])
+    members = np.array([t == "B" for t in types])
+    files = {"com": tmp_path / "com.dat", "radius": tmp_path / "radius.dat"}
+    doc = document(np.zeros((5, 3)) + [[0.5 * i - 1.0, 0.0, 0.0] for i in range(5)], types=types, steps=1,
+                   force_field={"groups": {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                                           "data": [["bees", "Types", ["B"]]]}},
+                   simulation_steps={
+                       "com": measure("GeometricalMeasure", "CenterOfMassPosition", outputFilePath=str(files["com"]),
+                                      group="bees"),
+                       "radius": measure("GeometricalMeasure", "MeanRadius", outputFilePath=str(files["radius"]),
+                                         group="bees")})
+    sim.load(doc)
+    sim.positions = positions
+    sim.step(1)
+    chosen, weights = positions[members], masses[members]
+    centre = np.sum(weights[:, None] * chosen, axis=0) / weights.sum()
+    radius = np.mean(np.linalg.norm(chosen - centre, axis=1))
+    assert files["com"].read_text().splitlines()[0] == "#step time X Y Z"
+    assert files["radius"].read_text().splitlines()[0] == "#step time Rmean"
+    com_rows, radius_rows = read_rows(files["com"]), read_rows(files["radius"])
+    np.testing.assert_allclose(com_rows[0, 2:5], centre, rtol=1e-12)
+    assert radius_rows[0, 2] == pytest.approx(radius, rel=1e-12)
+    assert centre[0] > BOX / 2 - 0.5, "the unwrapped centre lies past the face, where the group is"
+
+
 # ---- stress --------------------------------------------------------------------------------------
 
 def lj_derivative(r, epsilon=1.0, sigma=1.0):
