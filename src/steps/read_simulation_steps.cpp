@@ -9,6 +9,7 @@
 #include "steps/gyration_radius.hpp"
 #include "steps/info_step.hpp"
 #include "steps/mean_square_displacement.hpp"
+#include "steps/particle_list_measure.hpp"
 #include "steps/stress_measure.hpp"
 #include "steps/thermodynamic_measure.hpp"
 #include "steps/write_step.hpp"
@@ -25,6 +26,9 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(gyration_radius_entry());
         steps.add(center_of_mass_position_entry());
         steps.add(mean_radius_entry());
+        steps.add(distances_measure_entry());
+        steps.add(angles_measure_entry());
+        steps.add(dihedrals_measure_entry());
         steps.add(stress_measure_entry());
         steps.add(write_step_entry());
         return steps;
@@ -150,7 +154,8 @@ std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registr
                               group < 0 ? everyParticle : groups[static_cast<size_t>(group)].members,
                               system,
                               forceField.bonds,
-                              log};
+                              log,
+                              entry.node};
         steps.push_back(step.make(input));
     }
     return steps;

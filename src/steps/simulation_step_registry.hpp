@@ -75,6 +75,7 @@ struct StepInput {
     const input::SystemDescription& system;
     const std::vector<BondSpec>& bonds;   // the force field's bonded terms (PDB CONECT records)
     const Logger& log;
+    const input::TrackedNode& node;       // the entry itself, for steps that read a table (labels, data)
 
     int64_t interval() const { return parameters.integer("intervalStep"); }
     int64_t start() const { return parameters.integer("startStep"); }

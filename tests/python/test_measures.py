@@ -226,6 +226,55 @@ def test_centre_of_mass_and_mean_radius_of_a_group_split_by_the_boundary(sim, tm
     assert centre[0] > BOX / 2 - 0.5, "the unwrapped centre lies past the face, where the group is"
 
 
+# ---- distances, angles and dihedrals of listed particles ------------------------------------------
+
+def dihedral(r0, r1, r2, r3):
+    """IUPAC dihedral of r0-r1-r2-r3 (0 cis, pi trans), written here from the definition."""
+    b1, b2, b3 = r1 - r0, r2 - r1, r3 - r2
+    m, n = np.cross(b1, b2), np.cross(b2, b3)
+    return math.atan2(np.linalg.norm(b2) * np.dot(b1, n), np.dot(m, n))
+
+
+def test_distances_angles_and_dihedrals_of_listed_particles_across_the_boundary(sim, tmp_path):
+    """A chain that leaves the box through its +x face: every value uses minimum images, and the
+    numbers match numpy on the unwrapped chain, row by row."""
+    chain = np.array([[4.0, 0.0, 0.0], [4.9, 0.6, 0.1], [5.6, 0.2, 0.9], [6.3, 1.0, 1.2], [-3.0, -2.0, 0.5]])
+    rows = {"distances": ("DistancesMeasure", ["id_i", "id_j"], [[0, 1], [1, 3], [0, 4]]),
+            "angles": ("AnglesMeasure", ["id_i", "id_j", "id_k"], [[0, 1, 2], [1, 2, 3]]),
+            "dihedrals": ("DihedralsMeasure", ["id_i", "id_j", "id_k", "id_l"], [[0, 1, 2, 3], [3, 2, 1, 0]])}
+    steps = {}
+    for name, (subclass, labels, data) in rows.items():
+        entry = measure("ParticlesListMeasure", subclass, outputFilePath=str(tmp_path / f"{name}.dat"))
+        entry.update(labels=labels, data=data)
+        steps[name] = entry
+    sim.load(document(np.zeros((5, 3)) + [[0.5 * i - 1.0, 0.0, 0.0] for i in range(5)], steps=1,
+                      simulation_steps=steps))
+    sim.positions = chain
+    sim.step(1)
+    minimum = lambda d: d - BOX * np.round(d / BOX)
+    expected = {
+        "distances": [np.linalg.norm(minimum(chain[j] - chain[i])) for i, j in rows["distances"][2]],
+        "angles": [math.acos(np.dot(chain[i] - chain[j], chain[k] - chain[j]) /
+                             (np.linalg.norm(chain[i] - chain[j]) * np.linalg.norm(chain[k] - chain[j])))
+                   for i, j, k in rows["angles"][2]],
+        "dihedrals": [dihedral(*chain[list(ids)]) for ids in rows["dihedrals"][2]],
+    }
+    for name, values in expected.items():
+        path = tmp_path / f"{name}.dat"
+        header = path.read_text().splitlines()[0]
+        assert header.startswith("#step time ") and len(header.split()) == 2 + len(values)
+        written = read_rows(path)
+        np.testing.assert_allclose(written[0, 2:], values, rtol=1e-10, atol=1e-12)
+    assert expected["distances"][2] < 8.0 and abs(expected["dihedrals"][0]) > 0.1
+
+
+def test_a_listed_id_that_does_not_exist_names_its_cell(sim, tmp_path):
+    entry = measure("ParticlesListMeasure", "AnglesMeasure", outputFilePath=str(tmp_path / "a.dat"))
+    entry.update(labels=["id_i", "id_j", "id_k"], data=[[0, 1, 2], [0, 1, 9]])
+    with pytest.raises(structmd.InputError, match=r"simulationStep\.angles\.data\[1\]\[2\].*particle id 9"):
+        sim.load(document([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]], simulation_steps={"angles": entry}))
+
+
 # ---- stress --------------------------------------------------------------------------------------
 
 def lj_derivative(r, epsilon=1.0, sigma=1.0):

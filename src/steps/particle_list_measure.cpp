@@ -1,0 +1,99 @@
+#include "steps/particle_list_measure.hpp"
+
+#include <cmath>
+
+#include "core/box.hpp"
+#include "core/error.hpp"
+#include "forcefield/bonded_geometry.hpp"
+#include "input/tracked_node.hpp"
+
+namespace structmd {
+
+namespace {
+
+const char* const kLabels[4] = {"id_i", "id_j", "id_k", "id_l"};
+
+std::string header(int arity, const std::vector<std::array<int64_t, 4>>& ids) {
+    static const char* const names[5] = {"", "", "d", "angle", "dihedral"};
+    std::string text = "#step time";
+    for (const auto& row : ids) {
+        text += std::string(" ") + names[arity] + "(";
+        for (int k = 0; k < arity; ++k) text += (k ? "," : "") + std::to_string(row[k]);
+        text += ")";
+    }
+    return text;
+}
+
+}  // namespace
+
+ParticleListMeasure::ParticleListMeasure(int arity, std::string name, int64_t interval, int64_t start, int64_t end,
+                                         std::string outputPath, std::vector<std::array<int64_t, 4>> ids)
+    : SimulationStep(name, interval, start, end),
+      arity_(arity),
+      file_("simulationStep." + name, std::move(outputPath), header(arity, ids)),
+      ids_(std::move(ids)) {}
+
+void ParticleListMeasure::run(Simulation& sim) {
+    std::vector<double> xyz(3 * sim.particle_count());
+    sim.get_positions(xyz.data());
+    const std::array<double, 3> lengths = sim.box();
+    const Box<double> box = Box<double>::make(lengths[0], lengths[1], lengths[2]);
+    auto at = [&](int64_t id) { return Vec3<double>{xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]}; };
+    std::FILE* out = file_.stream();
+    std::fprintf(out, "%lld %.17g", static_cast<long long>(sim.current_step()), sim.current_time());
+    for (const auto& row : ids_) {
+        // Each particle placed at the image nearest the one before it, so the chain is whole.
+        Vec3<double> r[4];
+        r[0] = at(row[0]);
+        for (int k = 1; k < arity_; ++k) r[k] = r[k - 1] + box.minimum_image(at(row[k]) - r[k - 1]);
+        double value = 0.0;
+        if (arity_ == 2) {
+            const Vec3<double> d = r[1] - r[0];
+            value = std::sqrt(dot(d, d));
+        } else if (arity_ == 3) {
+            value = bonded_geometry::bond_angle(r[0] - r[1], r[2] - r[1]).theta;
+        } else {
+            value = bonded_geometry::dihedral_of(r).phi;
+        }
+        std::fprintf(out, " %.17g", value);
+    }
+    std::fprintf(out, "\n");
+    file_.flush();
+}
+
+namespace {
+
+template <int Arity>
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    in.require_all_particles();  // the table names the particles
+    const std::vector<std::string> labels(kLabels, kLabels + Arity);
+    const input::Table table = input::read_table(in.node, labels);
+    const int64_t n = in.system.numParticles();
+    std::vector<std::array<int64_t, 4>> ids;
+    for (size_t r = 0; r < table.rows(); ++r) {
+        std::array<int64_t, 4> row{0, 0, 0, 0};
+        for (int k = 0; k < Arity; ++k) {
+            const input::TrackedNode cell = table.cell(r, labels[k]);
+            row[k] = cell.as<int64_t>();
+            if (row[k] < 0 || row[k] >= n)
+                throw input_error(cell.path(), "particle id " + std::to_string(row[k]) + " does not exist (ids are 0.." +
+                                                   std::to_string(n - 1) + ")");
+        }
+        ids.push_back(row);
+    }
+    return std::make_unique<ParticleListMeasure>(Arity, in.name, in.interval(), in.start(), in.end(),
+                                                 in.parameters.text("outputFilePath"), std::move(ids));
+}
+
+SimulationStepEntry entry(const char* subclass, StepFactory factory) {
+    return {{"ParticlesListMeasure", subclass}, step_parameters({{"outputFilePath", StepValue::text, nullptr}}),
+            factory};
+}
+
+}  // namespace
+
+SimulationStepEntry distances_measure_entry() { return entry("DistancesMeasure", make<2>); }
+SimulationStepEntry angles_measure_entry() { return entry("AnglesMeasure", make<3>); }
+SimulationStepEntry dihedrals_measure_entry() { return entry("DihedralsMeasure", make<4>); }
+
+}  // namespace structmd

@@ -1,0 +1,37 @@
+#pragma once
+// ["ParticlesListMeasure", DistancesMeasure | AnglesMeasure | DihedralsMeasure]: for each listed
+// pair, triplet or quadruplet of particle ids, the distance |r_j - r_i|, the angle at j between
+// r_i - r_j and r_k - r_j (in [0, pi]) or the dihedral of i-j-k-l (IUPAC, in [-pi, pi], as the
+// Dihedral bond terms define it), all through minimum images. One line `step time v1 v2 ...` per
+// firing, in the order of the table's rows.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "steps/measure_file.hpp"
+#include "steps/simulation_step.hpp"
+#include "steps/simulation_step_registry.hpp"
+
+namespace structmd {
+
+class ParticleListMeasure : public SimulationStep {
+public:
+    // arity 2, 3 or 4: what each row of `ids` lists.
+    ParticleListMeasure(int arity, std::string name, int64_t interval, int64_t start, int64_t end,
+                        std::string outputPath, std::vector<std::array<int64_t, 4>> ids);
+
+protected:
+    void run(Simulation& sim) override;
+
+private:
+    int arity_;
+    MeasureFile file_;
+    std::vector<std::array<int64_t, 4>> ids_;
+};
+
+SimulationStepEntry distances_measure_entry();
+SimulationStepEntry angles_measure_entry();
+SimulationStepEntry dihedrals_measure_entry();
+
+}  // namespace structmd
