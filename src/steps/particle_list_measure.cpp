@@ -63,6 +63,7 @@ void ParticleListMeasure::run(Simulation& sim) {
 
 namespace {
 
+// The rows of the table, each checked to name existing particles.
 template <int Arity>
 std::unique_ptr<SimulationStep> make(const StepInput& in) {
     in.require_all_particles();  // the table names the particles
@@ -85,15 +86,16 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
                                                  in.parameters.text("outputFilePath"), std::move(ids));
 }
 
-SimulationStepEntry entry(const char* subclass, StepFactory factory) {
+template <int Arity>
+SimulationStepEntry entry(const char* subclass) {
     return {{"ParticlesListMeasure", subclass}, step_parameters({{"outputFilePath", StepValue::text, nullptr}}),
-            factory};
+            make<Arity>, std::vector<std::string>(kLabels, kLabels + Arity)};
 }
 
 }  // namespace
 
-SimulationStepEntry distances_measure_entry() { return entry("DistancesMeasure", make<2>); }
-SimulationStepEntry angles_measure_entry() { return entry("AnglesMeasure", make<3>); }
-SimulationStepEntry dihedrals_measure_entry() { return entry("DihedralsMeasure", make<4>); }
+SimulationStepEntry distances_measure_entry() { return entry<2>("DistancesMeasure"); }
+SimulationStepEntry angles_measure_entry() { return entry<3>("AnglesMeasure"); }
+SimulationStepEntry dihedrals_measure_entry() { return entry<4>("DihedralsMeasure"); }
 
 }  // namespace structmd

@@ -90,6 +90,7 @@ struct SimulationStepEntry {
     ComponentKey key;
     std::vector<StepParameter> parameters;  // every parameter the step reads, in the order read
     StepFactory make;
+    std::vector<std::string> tableLabels = {};  // the required labels of the id table it reads, if any
 };
 
 // The parameters every step reads (intervalStep, startStep, endStep, group) followed by its own.

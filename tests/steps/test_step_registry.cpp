@@ -87,6 +87,18 @@ json document_with(const ComponentKey& key, const json& parameters) {
     return document;
 }
 
+// As above, with a one-row id table (ids 0, 1, ...) for a step that reads one.
+json step_document_with(const SimulationStepEntry& step, const json& parameters) {
+    json document = document_with(step.key, parameters);
+    if (!step.tableLabels.empty()) {
+        json row = json::array();
+        for (size_t k = 0; k < step.tableLabels.size(); ++k) row.push_back(k);
+        document["simulationStep"][kEntry]["labels"] = step.tableLabels;
+        document["simulationStep"][kEntry]["data"] = json::array({row});
+    }
+    return document;
+}
+
 // Every required parameter with a sample value (plus `extra`).
 json required_parameters(const SimulationStepEntry& step, const json& extra = json::object()) {
     json parameters = json::object();
@@ -98,7 +110,7 @@ json required_parameters(const SimulationStepEntry& step, const json& extra = js
 
 // The entry's required parameters, overridden or added to by `extra`, inside the base document.
 json step_document(const SimulationStepEntry& step, const json& extra = json::object()) {
-    return document_with(step.key, required_parameters(step, extra));
+    return step_document_with(step, required_parameters(step, extra));
 }
 
 struct Loaded {
@@ -167,7 +179,7 @@ TEST(StepRegistry, EveryStepReadsExactlyWhatItDeclares) {
         json parameters = json::object();
         for (const StepParameter& parameter : step.parameters)
             parameters[parameter.name] = parameter.required() ? sample_value(parameter) : parameter.fallback;
-        const Loaded loaded = load(document_with(step.key, parameters));
+        const Loaded loaded = load(step_document_with(step, parameters));
         ASSERT_EQ(loaded.steps.size(), 1u);
         EXPECT_NO_THROW(loaded.parsed.system.simulationSteps.at(0).node.check_all_used());
         const auto asked = loaded.parsed.tracking->asked.find(kParametersPath);
@@ -199,7 +211,7 @@ TEST(StepRegistry, EveryMissingRequiredParameterIsNamed) {
             ++required;
             json parameters = required_parameters(step);
             parameters.erase(parameter.name);
-            const std::string what = load_error(document_with(step.key, parameters));
+            const std::string what = load_error(step_document_with(step, parameters));
             EXPECT_TRUE(starts_with(what, kParametersPath + "." + parameter.name + ": missing required parameter"))
                 << what;
         }
@@ -209,7 +221,7 @@ TEST(StepRegistry, EveryMissingRequiredParameterIsNamed) {
 
 TEST(StepRegistry, AStepWithoutParametersNamesItsFirstRequiredOne) {
     for_each_step([](const SimulationStepEntry& step) {
-        json document = document_with(step.key, json::object());
+        json document = step_document_with(step, json::object());
         document["simulationStep"][kEntry].erase("parameters");
         EXPECT_TRUE(starts_with(load_error(document), kParametersPath + ".intervalStep")) << step.key.text();
     });
