@@ -8,6 +8,7 @@
 #include "steps/center_of_mass.hpp"
 #include "steps/gyration_radius.hpp"
 #include "steps/info_step.hpp"
+#include "steps/interactors_energy_measure.hpp"
 #include "steps/mean_square_displacement.hpp"
 #include "steps/particle_list_measure.hpp"
 #include "steps/stress_measure.hpp"
@@ -22,6 +23,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         // Every simulation step the engine knows, one line each, in the order the docs list them.
         steps.add(thermodynamic_measure_entry());
         steps.add(info_step_entry());
+        steps.add(interactors_energy_measure_entry());
         steps.add(mean_square_displacement_entry());
         steps.add(gyration_radius_entry());
         steps.add(center_of_mass_position_entry());
@@ -57,6 +59,7 @@ const char* kind_text(StepValue kind) {
         case StepValue::number: return "number";
         case StepValue::text: return "text";
         case StepValue::flag: return "flag";
+        case StepValue::texts: return "list of texts";
     }
     return "?";
 }
@@ -81,6 +84,12 @@ nlohmann::json read_value(const input::TrackedNode& node, const StepParameter& p
         }
         case StepValue::text: return node.as<std::string>();
         case StepValue::flag: return node.as<bool>();
+        case StepValue::texts: {
+            if (!node.is_array()) throw input_error(node.path(), "expected a list of names");
+            nlohmann::json names = nlohmann::json::array();
+            for (size_t k = 0; k < node.size(); ++k) names.push_back(node.at(k).as<std::string>());
+            return names;
+        }
     }
     throw Error(STRUCTMD_ERR_INTERNAL, node.path() + ": parameter of no known kind");
 }
@@ -125,6 +134,9 @@ std::string StepParameters::text(const std::string& name) const {
     return value(name, StepValue::text).get<std::string>();
 }
 bool StepParameters::flag(const std::string& name) const { return value(name, StepValue::flag).get<bool>(); }
+std::vector<std::string> StepParameters::texts(const std::string& name) const {
+    return value(name, StepValue::texts).get<std::vector<std::string>>();
+}
 std::string StepParameters::path(const std::string& name) const { return entryPath_ + ".parameters." + name; }
 
 void StepInput::require_all_particles() const {

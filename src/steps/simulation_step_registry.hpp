@@ -23,7 +23,7 @@
 namespace structmd {
 
 // What a step parameter holds in JSON.
-enum class StepValue { integer, number, text, flag };
+enum class StepValue { integer, number, text, flag, texts };  // texts: a list of strings
 
 struct StepParameter {
     const char* name;
@@ -50,6 +50,7 @@ public:
     double number(const std::string& name) const;
     std::string text(const std::string& name) const;
     bool flag(const std::string& name) const;
+    std::vector<std::string> texts(const std::string& name) const;
     // <entry>.parameters.<name>, for the factory's own messages.
     std::string path(const std::string& name) const;
 

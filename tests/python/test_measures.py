@@ -226,6 +226,45 @@ def test_centre_of_mass_and_mean_radius_of_a_group_split_by_the_boundary(sim, tm
     assert centre[0] > BOX / 2 - 0.5, "the unwrapped centre lies past the face, where the group is"
 
 
+# ---- energies of listed interaction entries ------------------------------------------------------
+
+def test_interactors_list_energy_measure_writes_each_listed_entry_as_the_api_gives_it(sim, tmp_path):
+    positions = [[0.0, 0.0, 0.0], [1.1, 0.0, 0.0], [0.1, 1.2, 0.2], [1.2, 1.1, 0.9]]
+    bonds = {"type": ["Bond2", "HarmonicCommon_K_r0"], "parameters": {"K": 20.0, "r0": 1.0},
+             "labels": ["id_i", "id_j"], "data": [[0, 1], [2, 3]]}
+    listed, every = tmp_path / "listed.dat", tmp_path / "every.dat"
+    sim.load(document(positions, rng_velocities(len(positions)), steps=4, time_step=0.002,
+                      force_field={"nl": NEIGHBOUR_LIST, "lj": lj_entry(), "bonds": bonds},
+                      simulation_steps={
+                          "listed": measure("ThermodynamicMeasure", "InteractorsListEnergyMeasure", interval=2,
+                                            outputFilePath=str(listed), interactorsList=["bonds"]),
+                          "every": measure("ThermodynamicMeasure", "InteractorsListEnergyMeasure", interval=2,
+                                           outputFilePath=str(every))}))
+    expected = []
+    for _ in range(3):
+        expected.append([sim.step_number, sim.time, sim.energy("lj"), sim.energy("bonds")])
+        if sim.step_number < 4:
+            sim.step(2)
+    expected = np.array(expected)
+    assert listed.read_text().splitlines()[0] == "#step time bonds"
+    assert every.read_text().splitlines()[0] == "#step time lj bonds"
+    np.testing.assert_allclose(read_rows(listed), expected[:, [0, 1, 3]], rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(read_rows(every), expected, rtol=1e-12, atol=1e-14)
+
+
+def rng_velocities(n):
+    return np.random.default_rng(8).normal(0.0, 0.5, size=(n, 3))
+
+
+def test_an_unknown_interactor_names_the_list(sim, tmp_path):
+    entry = measure("ThermodynamicMeasure", "InteractorsListEnergyMeasure", outputFilePath=str(tmp_path / "e.dat"),
+                    interactorsList=["lj", "nl"])
+    with pytest.raises(structmd.InputError,
+                       match=r"simulationStep\.e\.parameters\.interactorsList: no interaction entry named 'nl'"):
+        sim.load(document([[0.0, 0.0, 0.0], [1.5, 0.0, 0.0]], force_field={"nl": NEIGHBOUR_LIST, "lj": lj_entry()},
+                          simulation_steps={"e": entry}))
+
+
 # ---- distances, angles and dihedrals of listed particles ------------------------------------------
 
 def dihedral(r0, r1, r2, r3):

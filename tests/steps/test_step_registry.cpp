@@ -68,6 +68,7 @@ json sample_value(const StepParameter& parameter) {
         case StepValue::integer: return 1;
         case StepValue::number: return 1.0;
         case StepValue::flag: return true;
+        case StepValue::texts: return json::array();
         case StepValue::text: {
             const auto found = text.find(parameter.name);
             if (found == text.end()) {
