@@ -2,10 +2,10 @@
 UAMMD-structured's own generator scripts (at small size, see generate.py and README.md there). Every one
 must load and step; the inputs structmd cannot load yet are listed in UNSUPPORTED.md beside them."""
 
-import copy
 import glob
 import json
 import os
+import sys
 
 import numpy as np
 import pytest
@@ -13,21 +13,10 @@ import pytest
 import structmd
 
 INPUTS_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference", "uammd_inputs")
+sys.path.insert(0, INPUTS_DIR)
+from generate import redirect_outputs  # noqa: E402  (the script that made the inputs rewrites their paths too)
 INPUTS = sorted(p for p in glob.glob(os.path.join(INPUTS_DIR, "*.json")) if os.path.basename(p) != "origins.json")
 STEPS = 10
-
-
-def redirect_outputs(document, directory):
-    """Point every file the input would write into directory (the generators write next to themselves)."""
-    document = copy.deepcopy(document)
-    for entry in (document.get("simulationStep") or {}).values():
-        parameters = entry.get("parameters") if isinstance(entry, dict) else None
-        if not isinstance(parameters, dict):
-            continue
-        for key, value in list(parameters.items()):
-            if isinstance(value, str) and key.lower().endswith("filepath"):
-                parameters[key] = os.path.join(directory, os.path.basename(value) or "output")
-    return document
 
 
 def only_minimisers(document):

@@ -85,19 +85,21 @@ def minimum_image(d):
     return d - BOX * np.round(d / BOX)
 
 
-def run_and_record(sim, doc):
-    """Steps one at a time; {step: (wrapped, unwrapped)} for every step, the final one included."""
+def run_and_record(sim, doc, motion=False):
+    """Steps one at a time; {step: (wrapped, unwrapped)} for every step, the final one included, and
+    with motion=True each step's velocities and forces too: {step: (wrapped, unwrapped, v, F)}."""
     sim.load(doc)
+    extra = lambda: (np.asarray(sim.velocities), np.asarray(sim.forces)) if motion else ()
     wrapped = np.asarray(sim.positions)
     unwrapped = wrapped.copy()  # the initial positions lie inside the box
-    record = {sim.step_number: (wrapped, unwrapped)}
+    record = {sim.step_number: (wrapped, unwrapped) + extra()}
     last = sim.info["final_step"]
     while sim.step_number < last:
         sim.step(1)
         now = np.asarray(sim.positions)
         unwrapped = unwrapped + minimum_image(now - wrapped)
         wrapped = now
-        record[sim.step_number] = (wrapped, unwrapped)
+        record[sim.step_number] = (wrapped, unwrapped) + extra()
     return record
 
 
@@ -133,8 +135,8 @@ def read_sp(path):
         else:
             frames[-1]["rows"].append([float(v) for v in line.split()])
     for frame in frames:
-        rows = np.array(frame.pop("rows"))
-        frame.update(xyz=rows[:, :3], radius=rows[:, 3], type=rows[:, 4])
+        rows = np.array(frame["rows"])
+        frame.update(rows=rows, xyz=rows[:, :3], radius=rows[:, 3], type=rows[:, 4])
     return frames
 
 
@@ -270,22 +272,6 @@ def test_sp(sim, tmp_path, pbc):
         assert_positions(frame["xyz"], positions, pbc, atol=1e-6)
 
 
-def run_and_record_motion(sim, doc):
-    """As run_and_record, with each step's velocities and forces: {step: (wrapped, unwrapped, v, F)}."""
-    sim.load(doc)
-    wrapped = np.asarray(sim.positions)
-    unwrapped = wrapped.copy()
-    record = {sim.step_number: (wrapped, unwrapped, np.asarray(sim.velocities), np.asarray(sim.forces))}
-    last = sim.info["final_step"]
-    while sim.step_number < last:
-        sim.step(1)
-        now = np.asarray(sim.positions)
-        unwrapped = unwrapped + minimum_image(now - wrapped)
-        wrapped = now
-        record[sim.step_number] = (wrapped, unwrapped, np.asarray(sim.velocities), np.asarray(sim.forces))
-    return record
-
-
 def rows_of(path, skip_header=lambda line: False):
     """The numeric rows of a headerless text format, frames one after the other."""
     return np.array([[float(v) for v in line.split()] for line in path.read_text().splitlines()
@@ -297,7 +283,7 @@ def test_uammd_structured_velocity_and_force_formats(sim, tmp_path, pbc):
     """coord ("id x y z vx vy vz"), vel ("vx vy vz |v|"), itpv (N, a blank line, "id type x y z vx vy vz")
     and spf (sp with "fx fy fz" after the type), as UAMMD-structured's Output.cu writes them."""
     writers = {name: writer(tmp_path / "traj", name, pbc=pbc) for name in ("coord", "vel", "itpv", "spf")}
-    record = run_and_record_motion(sim, document(writers))
+    record = run_and_record(sim, document(writers), motion=True)
     steps = written_steps(0, STEPS)
     n = len(sim.types)
     ids = np.arange(n)
@@ -310,7 +296,7 @@ def test_uammd_structured_velocity_and_force_formats(sim, tmp_path, pbc):
     assert itpv_lines[:2] == [str(n), ""] and len(itpv_lines) == len(steps) * (n + 2)
     itpv = np.array([[float(v) for v in line.split()] for k, line in enumerate(itpv_lines) if k % (n + 2) >= 2])
     itpv = itpv.reshape(len(steps), n, 8)
-    spf = read_sp_rows(tmp_path / "traj.spf")
+    spf = read_sp(tmp_path / "traj.spf")
     assert len(spf) == len(steps)
     for k, step in enumerate(steps):
         _, _, v, forces = record[step]
@@ -323,24 +309,13 @@ def test_uammd_structured_velocity_and_force_formats(sim, tmp_path, pbc):
         np.testing.assert_array_equal(itpv[k][:, 1], types)
         assert_positions(itpv[k][:, 2:5], position(step), pbc, atol=1e-6)
         np.testing.assert_allclose(itpv[k][:, 5:8], v, rtol=1e-7, atol=1e-7)
-        half_box, rows = spf[k]
+        half_box, rows = spf[k]["half_box"], spf[k]["rows"]
         np.testing.assert_array_equal(half_box, BOX / 2)
         assert_positions(rows[:, :3], position(step), pbc, atol=1e-6)
         np.testing.assert_array_equal(rows[:, 3], [TYPES[t][2] for t in types])
         np.testing.assert_array_equal(rows[:, 4], types)
         np.testing.assert_allclose(rows[:, 5:8], forces, rtol=1e-7, atol=1e-6)
-    assert np.any(np.abs(spf[-1][1][:, 5:8]) > 1e-3), "the LJ particles must feel forces for spf to mean anything"
-
-
-def read_sp_rows(path):
-    """[(half box, rows)] of an sp-like file: a '#Lx=..' header per frame, then numeric rows."""
-    frames = []
-    for line in path.read_text().splitlines():
-        if line.startswith("#"):
-            frames.append((np.array([float(part.split("=")[1]) for part in line[1:].split(";") if part]), []))
-        else:
-            frames[-1][1].append([float(v) for v in line.split()])
-    return [(half, np.array(rows)) for half, rows in frames]
+    assert np.any(np.abs(spf[-1]["rows"][:, 5:8]) > 1e-3), "the LJ particles must feel forces for spf to mean anything"
 
 
 @pytest.mark.parametrize("pbc", [True, False], ids=["wrapped", "unwrapped"])
