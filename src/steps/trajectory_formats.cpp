@@ -85,6 +85,12 @@ private:
     std::vector<int> numbers_;  // atomic number by type
 };
 
+// The superpunto frame header: the half box lengths.
+void write_sp_header(std::FILE* f, const TrajectoryFrame& frame) {
+    const auto& L = frame.box;
+    std::fprintf(f, "#Lx=%.8g;Ly=%.8g;Lz=%.8g;\n", 0.5 * L[0], 0.5 * L[1], 0.5 * L[2]);
+}
+
 // The superpunto format: a header with the half box lengths, then "x y z radius type" per particle.
 class SpWriter final : public TextTrajectoryWriter {
 public:
@@ -92,8 +98,7 @@ public:
 
 protected:
     void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
-        const auto& L = frame.box;
-        std::fprintf(f, "#Lx=%.8g;Ly=%.8g;Lz=%.8g;\n", 0.5 * L[0], 0.5 * L[1], 0.5 * L[2]);
+        write_sp_header(f, frame);
         for (size_t i = 0; i < frame.types.size(); ++i)
             std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", frame.positions[3 * i], frame.positions[3 * i + 1],
                          frame.positions[3 * i + 2], frame.radii[i], frame.types[i]);
@@ -108,8 +113,7 @@ public:
 
 protected:
     void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
-        const auto& L = frame.box;
-        std::fprintf(f, "#Lx=%.8g;Ly=%.8g;Lz=%.8g;\n", 0.5 * L[0], 0.5 * L[1], 0.5 * L[2]);
+        write_sp_header(f, frame);
         const double* r = frame.positions.data();
         const double* F = frame.forces.data();
         for (size_t i = 0; i < frame.types.size(); ++i)

@@ -38,6 +38,43 @@ void append_position(std::string& text, double x, double y, double z) {
     text.append(digits, end);
 }
 
+// The system and global sections of a one-type system (A: mass 1, radius 0.5) in an orthorhombic box.
+void append_system_and_global(std::string& json, const char* name, const double lengths[3], double temperature) {
+    json += R"({"system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": ")";
+    json += name;
+    json += R"(", "seed": 1}}},)";
+    json += R"("global": {"units": {"type": ["Units", "None"]},)"
+            R"("types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],)"
+            R"( "data": [["A", 1.0, 0.5, 0.0]]},)"
+            R"("ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[[)";
+    for (int axis = 0; axis < 3; ++axis) {
+        append_number(json, lengths[axis]);
+        json += axis < 2 ? "," : "],";
+    }
+    append_number(json, temperature);
+    json += "]]}},";
+}
+
+// An integrator section of one entry, run by a one-stage schedule. entry: the entry's JSON object.
+void append_integrator(std::string& json, const char* name, const std::string& entry, int64_t steps) {
+    json += R"("integrator": {")";
+    json += name;
+    json += R"(": )" + entry;
+    json += R"(, "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],)"
+            R"( "data": [[1, ")";
+    json += name;
+    json += R"(", )";
+    append_integer(json, steps);
+    json += "]]}},";
+}
+
+// {"type": [...], "parameters": {..., "timeStep": dt}}, the parameters before the time step given.
+std::string integrator_entry(const char* type, const std::string& parameters, double timeStep) {
+    std::string entry = std::string(R"({"type": )") + type + R"(, "parameters": {)" + parameters + R"("timeStep": )";
+    append_number(entry, timeStep);
+    return entry + "}}";
+}
+
 }  // namespace
 
 int64_t cells_per_edge(int64_t requested_particles) {
@@ -55,27 +92,10 @@ std::string lj_liquid_input(const LjLiquid& liquid) {
     std::string json;
     // About 45 bytes per state row and 12 per structure row.
     json.reserve(static_cast<size_t>(particles) * 64 + 2048);
-    json += R"({"system": {"info": {"type": ["Simulation", "Information"],)"
-            R"( "parameters": {"name": "lj_liquid", "seed": 1}}},)";
-    json += R"("global": {"units": {"type": ["Units", "None"]},)"
-            R"("types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],)"
-            R"( "data": [["A", 1.0, 0.5, 0.0]]},)"
-            R"("ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[)";
-    json += '[';
-    for (int axis = 0; axis < 3; ++axis) {
-        append_number(json, box);
-        json += axis < 2 ? "," : "],";
-    }
-    append_number(json, kTemperature);
-    json += "]]}},";
-
-    json += R"("integrator": {"vv": {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": )";
-    append_number(json, liquid.timeStep);
-    json += "}},";
-    json += R"("schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],)"
-            R"( "data": [[1, "vv", )";
-    append_integer(json, liquid.scheduleSteps);
-    json += "]]}},";
+    const double lengths[3] = {box, box, box};
+    append_system_and_global(json, "lj_liquid", lengths, kTemperature);
+    append_integrator(json, "vv", integrator_entry(R"(["Verlet", "VelocityVerlet"])", "", liquid.timeStep),
+                      liquid.scheduleSteps);
 
     // Lattice sites shifted by a quarter cell so none sits on the box boundary at -L/2.
     json += R"("state": {"labels": ["id", "position"], "data": [)";
@@ -135,23 +155,9 @@ std::string bead_chains_input(const BeadChains& melt) {
 
     std::string json;
     json.reserve(static_cast<size_t>(particles) * 110 + 2048);
-    json += R"({"system": {"info": {"type": ["Simulation", "Information"],)"
-            R"( "parameters": {"name": "bead_chains", "seed": 1}}},)";
-    json += R"("global": {"units": {"type": ["Units", "None"]},)"
-            R"("types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],)"
-            R"( "data": [["A", 1.0, 0.5, 0.0]]},)"
-            R"("ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[[)";
-    for (int axis = 0; axis < 3; ++axis) {
-        append_number(json, lengths[axis]);
-        json += axis < 2 ? "," : "],";
-    }
-    json += "1.0]]}},";
-    json += R"("integrator": {"bbk": {"type": ["Langevin", "BBK"], "parameters": {"frictionConstant": 1.0, "timeStep": )";
-    append_number(json, melt.timeStep);
-    json += R"(}}, "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],)"
-            R"( "data": [[1, "bbk", )";
-    append_integer(json, melt.scheduleSteps);
-    json += "]]}},";
+    append_system_and_global(json, "bead_chains", lengths, 1.0);
+    append_integrator(json, "bbk", integrator_entry(R"(["Langevin", "BBK"])", R"("frictionConstant": 1.0, )", melt.timeStep),
+                      melt.scheduleSteps);
 
     // Chain c is lattice row (c / rows, c % rows); its beads run along x.
     const auto id_of = [&](int64_t chain, int64_t bead) { return chain * melt.beads + bead; };
