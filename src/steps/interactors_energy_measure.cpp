@@ -34,9 +34,7 @@ namespace {
 
 std::unique_ptr<SimulationStep> make(const StepInput& in) {
     in.require_all_particles();  // an entry's energy is the whole system's
-    std::vector<std::string> entries;
-    for (const input::ComponentEntry& entry : in.system.forceField)
-        if (entry.cls != "Groups" && entry.cls != "VerletConditionalListSet") entries.push_back(entry.name);
+    const std::vector<std::string>& entries = in.forceField.entryNames;
     std::vector<std::string> terms = in.parameters.texts("interactorsList");
     for (const std::string& term : terms)
         if (std::find(entries.begin(), entries.end(), term) == entries.end()) {

@@ -165,7 +165,7 @@ std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registr
                               group,
                               group < 0 ? everyParticle : groups[static_cast<size_t>(group)].members,
                               system,
-                              forceField.bonds,
+                              forceField,
                               log,
                               entry.node};
         steps.push_back(step.make(input));

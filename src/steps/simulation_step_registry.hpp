@@ -74,7 +74,7 @@ struct StepInput {
     int group;                            // the `group` parameter's index in the force field's groups; -1: "All"
     const std::vector<uint8_t>& members;  // that group's members by particle id; empty for "All"
     const input::SystemDescription& system;
-    const std::vector<BondSpec>& bonds;   // the force field's bonded terms (PDB CONECT records)
+    const ForceFieldSpec& forceField;     // its bonded terms (PDB CONECT records) and entry names
     const Logger& log;
     const input::TrackedNode& node;       // the entry itself, for steps that read a table (labels, data)
 

@@ -76,7 +76,7 @@ MoleculeLayout molecule_layout(const StepInput& in) {
     MoleculeLayout layout;
     layout.chain = in.system.chainId;
     layout.residue = in.system.resId;
-    for (const BondSpec& bond : in.bonds) {
+    for (const BondSpec& bond : in.forceField.bonds) {
         if (bond.arity != 2) continue;
         for (size_t k = 0; k + 1 < bond.members.size(); k += 2) {
             const int64_t i = bond.members[k], j = bond.members[k + 1];
