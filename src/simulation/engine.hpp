@@ -127,6 +127,9 @@ public:
                                                    std::to_string(current_step()) + " would overflow the step counter");
         const int64_t last = final_step();
         if (n == 0) return;
+        if (schedule_.stages() == 0)
+            throw Error(STRUCTMD_ERR_STATE, "nothing integrates: the input has no integrator section, or its "
+                                            "schedule lists no integrator (energies and forces can still be read)");
         backend_.activate();
         rollback_.save(backend_, p_, activeStage_, integrators_);
         backend_.begin_steps();

@@ -515,6 +515,23 @@ def test_stepping_past_the_schedule_end_goes_on_with_the_last_integrator(sim):
     assert_usable(sim)
 
 
+@pytest.mark.parametrize("integrator", ["absent", "empty schedule"])
+def test_stepping_without_an_integrator_is_a_state_error_and_energies_still_read(sim, integrator):
+    doc = systems.lj_bond_system()
+    if integrator == "absent":
+        del doc["integrator"]
+    else:
+        doc["integrator"] = {"schedule": {"type": ["Schedule", "Integrator"],
+                                          "labels": ["order", "integrator", "steps"], "data": []}}
+    load(sim, doc)
+    expect(sim, lib.structmd_step(sim, 3), STATE)
+    assert "integrator" in message(sim)
+    check(sim, lib.structmd_step(sim, 0))
+    check(sim, lib.structmd_run(sim))  # the schedule is empty: nothing to do
+    assert get_scalar(sim, "structmd_get_step", "int64_t") == 0
+    assert math.isfinite(energy(sim))
+
+
 def test_run_goes_through_every_schedule_row(sim):
     doc = systems.lj_bond_system()
     doc["integrator"]["fine"] = {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 0.001}}
