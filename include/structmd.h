@@ -222,7 +222,7 @@ STRUCTMD_API structmd_status structmd_load_plugin(const char* path);
  *
  * @param sim     the handle.
  * @param nsteps  number of steps, >= 0; 0 does nothing.
- * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_ARGUMENT for nsteps < 0; STRUCTMD_ERR_IO when an output cannot be written;
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load, or when the input has no integrator to step; STRUCTMD_ERR_ARGUMENT for nsteps < 0; STRUCTMD_ERR_IO when an output cannot be written;
  *         STRUCTMD_ERR_MEMORY when the device cannot hold what a step needs (a neighbour list, say);
  *         STRUCTMD_ERR_DEVICE for a GPU failure; STRUCTMD_ERR_NUMERICAL when a position, velocity
  *         or force became non-finite or a particle moved farther than the neighbour-list skin in
@@ -793,7 +793,7 @@ STRUCTMD_API structmd_status structmd_get_info(const structmd_sim* sim, char* bu
  * @param sim          the handle.
  * @param[out] buffer  receives the text; 512 bytes always suffice.
  * @param size         capacity of buffer in bytes.
- * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_ARGUMENT if buffer is NULL or
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load, or when the input has no integrator to step; STRUCTMD_ERR_ARGUMENT if buffer is NULL or
  *         too small (the message gives the size needed).
  */
 STRUCTMD_API structmd_status structmd_get_counters(structmd_sim* sim, char* buffer, size_t size);
