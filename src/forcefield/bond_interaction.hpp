@@ -7,6 +7,7 @@
 
 #include "forcefield/bond_kernel.hpp"
 #include "forcefield/bond_potential.hpp"
+#include "forcefield/hessian_kernels.hpp"
 #include "forcefield/interactor.hpp"
 
 namespace structmd {
@@ -49,6 +50,19 @@ public:
         backend_.upload(params_, params.data(), params.size());
     }
 
+    // The parameters again in dual numbers (one per bond, as given to the constructor), for the Hessian.
+    void enable_hessian(const std::vector<typename Potential::template Params<Dual<R>>>& params) {
+        hessian_ = true;
+        backend_.upload(dualParams_, params.data(), params.size());
+    }
+    bool has_hessian() const override { return hessian_; }
+    void add_hessian(Particles<B, R>& particles, int seed, Tensor3<R>* blocks) override {
+        backend_.for_each(particles.count, BondHessianKernel<Potential, R>{
+                                               particles.pos.data(), particles.box, index_.firstEntry.data(),
+                                               index_.entries.data(), index_.members.data(), dualParams_.data(),
+                                               seed, blocks});
+    }
+
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
             using Kernel = BondKernel<Potential, R, decltype(force)::value, decltype(energy)::value,
@@ -61,6 +75,8 @@ private:
     const B& backend_;
     BondIndex<B> index_;
     typename B::template Buffer<Params> params_;
+    typename B::template Buffer<typename Potential::template Params<Dual<R>>> dualParams_;
+    bool hessian_ = false;
 };
 
 }  // namespace structmd

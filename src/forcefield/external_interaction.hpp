@@ -2,9 +2,11 @@
 // A field acting on each particle alone (external_potential.hpp), generic in its potential, run by
 // the kernel of external_kernel.hpp.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "forcefield/external_kernel.hpp"
+#include "forcefield/hessian_kernels.hpp"
 #include "forcefield/external_potential.hpp"
 #include "forcefield/interactor.hpp"
 
@@ -17,6 +19,15 @@ public:
 
     ExternalInteraction(const B& backend, InteractorScope scope, const Params& params)
         : Interactor<B, R>(std::move(scope)), backend_(backend), params_(params) {}
+
+    // The parameters again in dual numbers, for the Hessian.
+    void enable_hessian(const typename Potential::template Params<Dual<R>>& params) { dualParams_ = params; }
+    bool has_hessian() const override { return dualParams_.has_value(); }
+    void add_hessian(Particles<B, R>& particles, int seed, Tensor3<R>* blocks) override {
+        backend_.for_each(1, ExternalHessianKernel<Potential, R>{particles.pos.data(), particles.radius.data(),
+                                                                 this->group(), *dualParams_, particles.now(), seed,
+                                                                 blocks});
+    }
 
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
         ForceOutputs<R> own = out;
@@ -32,6 +43,7 @@ public:
 private:
     const B& backend_;
     Params params_;
+    std::optional<typename Potential::template Params<Dual<R>>> dualParams_;
 };
 
 }  // namespace structmd

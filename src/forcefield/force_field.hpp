@@ -83,6 +83,21 @@ public:
         it.compute(p, out);
     }
 
+    // The first term without second derivatives (empty when every term has them).
+    std::string term_without_hessian() const {
+        for (const auto& it : interactors_)
+            if (!it->has_hessian()) return it->name();
+        return {};
+    }
+    // Adds the active terms' shares of the Hessian column of particle `seed` to blocks.
+    void add_hessian(Particles<B, R>& p, int seed, Tensor3<R>* blocks) {
+        for (auto& it : interactors_)
+            if (it->active(p.timeline.evaluating_step())) {
+                it->prepare(p);
+                it->add_hessian(p, seed, blocks);
+            }
+    }
+
 private:
     std::vector<std::shared_ptr<VerletList<B, R>>> lists_;
     std::vector<std::unique_ptr<Interactor<B, R>>> interactors_;

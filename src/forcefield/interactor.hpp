@@ -8,6 +8,7 @@
 #include <vector>
 #include <type_traits>
 
+#include "core/error.hpp"
 #include "core/vec.hpp"
 #include "forcefield/force_outputs.hpp"
 #include "state/particles.hpp"
@@ -59,6 +60,14 @@ public:
     // Brings what compute() needs up to date for the present positions (a neighbour list).
     virtual void prepare(Particles<B, R>&) {}
     virtual void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) = 0;
+
+    // Exact second derivatives (hessian_kernels.hpp), made only for an input that measures them:
+    // whether this term has them, and its share of the Hessian column of particle `seed`, added to
+    // blocks (by particle). Terms of expressions, tables and plugins have none.
+    virtual bool has_hessian() const { return false; }
+    virtual void add_hessian(Particles<B, R>&, int, Tensor3<R>*) {
+        throw Error(STRUCTMD_ERR_INTERNAL, name() + ": a term without second derivatives was asked for them");
+    }
 
     // Keeps alive backend data that the term's parameters point into (a compiled expression, a
     // table's coefficients) for as long as the interactor lives.

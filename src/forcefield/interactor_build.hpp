@@ -23,6 +23,7 @@ struct ForceFieldContext {
     int batches = 1;             // numbered 0 .. batches - 1, in the order of their batchId
     const int* model = nullptr;
     const Logger* log = nullptr;  // for what the build reports (a kernel's compile time)
+    bool hessian = false;  // a measure asks for exact second derivatives: terms make their dual parameters
 };
 
 // What a factory is given: the backend, the engine data, and the force field under construction

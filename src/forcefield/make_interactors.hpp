@@ -32,19 +32,25 @@ struct FactoryEntries {
         registry.add({std::move(key), [](const Build& build, const InteractionSpec& s) -> std::unique_ptr<Interactor<B, R>> {
                           const auto& pair = static_cast<const PairSpec&>(s);
                           const Constants& constants = build.context.constants;
-                          using Params = typename Potential::template Params<PairR>;
-                          Params unlisted{};
-                          if constexpr (acts_on_unlisted_pairs<Potential>::value)
-                              unlisted = Potential::template make_unlisted_pair_params<PairR>(
-                                  pair.shared, constants, pair.cutOffFactor, pair.shift);
-                          const auto table = pair_table_of<Params>(
-                              pair, build.context.ntypes,
-                              [&](const ParameterValues& v) {
-                                  return Potential::template make_pair_params<PairR>(v, constants, pair.cutOffFactor,
+                          // The table in real type T (PairR, or its dual numbers for the Hessian).
+                          const auto tableIn = [&](auto real) {
+                              using T = decltype(real);
+                              using Params = typename Potential::template Params<T>;
+                              Params unlisted{};
+                              if constexpr (acts_on_unlisted_pairs<Potential>::value)
+                                  unlisted = Potential::template make_unlisted_pair_params<T>(
+                                      pair.shared, constants, pair.cutOffFactor, pair.shift);
+                              return pair_table_of<Params>(
+                                  pair, build.context.ntypes,
+                                  [&](const ParameterValues& v) {
+                                      return Potential::template make_pair_params<T>(v, constants, pair.cutOffFactor,
                                                                                      pair.shift);
-                              },
-                              unlisted);
-                          return make_pair_interaction<B, R, Potential, PairR>(build, pair, table);
+                                  },
+                                  unlisted);
+                          };
+                          auto interactor = make_pair_interaction<B, R, Potential, PairR>(build, pair, tableIn(PairR{}));
+                          if (build.context.hessian) interactor->enable_hessian(tableIn(Dual<PairR>{}));
+                          return interactor;
                       }});
     }
 
@@ -52,10 +58,20 @@ struct FactoryEntries {
     void bond(ComponentKey key, const std::vector<std::string>& = {}) {
         registry.add({std::move(key), [](const Build& build, const InteractionSpec& s) -> std::unique_ptr<Interactor<B, R>> {
                           const Constants& constants = build.context.constants;
-                          return make_bond_interaction<B, R, Potential>(
-                              build, static_cast<const BondSpec&>(s), [&](const ParameterValues& v) {
+                          const auto& bond = static_cast<const BondSpec&>(s);
+                          auto interactor = make_bond_interaction<B, R, Potential>(
+                              build, bond, [&](const ParameterValues& v) {
                                   return Potential::template make_params<R>(v, constants);
                               });
+                          if (build.context.hessian)
+                              interactor->enable_hessian(
+                                  bonds_in_group<typename Potential::template Params<Dual<R>>>(
+                                      build, bond,
+                                      [&](const ParameterValues& v) {
+                                          return Potential::template make_params<Dual<R>>(v, constants);
+                                      })
+                                      .params);
+                          return interactor;
                       }});
     }
 
@@ -63,9 +79,14 @@ struct FactoryEntries {
     void external(ComponentKey key) {
         registry.add({std::move(key), [](const Build& build, const InteractionSpec& s) -> std::unique_ptr<Interactor<B, R>> {
                           const auto& external = static_cast<const ExternalSpec&>(s);
-                          return std::make_unique<ExternalInteraction<B, R, Potential>>(
+                          const Constants& constants = build.context.constants;
+                          auto interactor = std::make_unique<ExternalInteraction<B, R, Potential>>(
                               build.backend, build.scope(external),
-                              Potential::template make_params<R>(external.values, build.context.constants));
+                              Potential::template make_params<R>(external.values, constants));
+                          if (build.context.hessian)
+                              interactor->enable_hessian(
+                                  Potential::template make_params<Dual<R>>(external.values, constants));
+                          return interactor;
                       }});
     }
 

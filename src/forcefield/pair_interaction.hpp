@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "forcefield/hessian_kernels.hpp"
 #include "forcefield/interactor.hpp"
 #include "forcefield/pair_kernel.hpp"
 #include "neighbour/verlet_list.hpp"
@@ -24,6 +25,19 @@ public:
 
     bool pairwise() const override { return true; }
 
+    // The table again in dual numbers, for the Hessian.
+    void enable_hessian(const std::vector<typename Potential::template Params<Dual<PairR>>>& table) {
+        hessian_ = true;
+        backend_.upload(dualTable_, table.data(), table.size());
+    }
+    bool has_hessian() const override { return hessian_; }
+    void add_hessian(Particles<B, R>& particles, int seed, Tensor3<R>* blocks) override {
+        backend_.for_each(particles.count,
+                          PairHessianKernel<Potential, R, PairR>{particles.charge.data(), particles.radius.data(),
+                                                                 this->group(), list_->view(), dualTable_.data(),
+                                                                 ntypes_, seed, blocks});
+    }
+
     void prepare(Particles<B, R>& p) override { list_->update(p.pos, p.count, p.box, p.version); }
 
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
@@ -41,6 +55,8 @@ private:
     const B& backend_;
     std::shared_ptr<VerletList<B, R>> list_;
     typename B::template Buffer<Params> table_;
+    typename B::template Buffer<typename Potential::template Params<Dual<PairR>>> dualTable_;
+    bool hessian_ = false;
     int ntypes_;
 };
 

@@ -99,7 +99,14 @@ public:
         context_.batch = p_.batchIndex.empty() ? nullptr : p_.batchIndex.data();
         context_.model = p_.model.data();
         context_.log = &log_;
+        const auto hessianStep = std::find_if(steps_.begin(), steps_.end(), [](const auto& s) { return s->needs_hessian(); });
+        context_.hessian = hessianStep != steps_.end();
         forceField_ = make_force_field(spec.forceField, components, nullptr);
+        if (const std::string term = forceField_.term_without_hessian(); context_.hessian && !term.empty())
+            throw Error(STRUCTMD_ERR_UNSUPPORTED,
+                        "simulationStep." + (*hessianStep)->name() + ".parameters.mode: \"Analytical\" needs the second "
+                        "derivatives of every term, and forceField entry '" + term +
+                        "' (an expression, a table or a plugin) has none; \"Numerical\" differentiates its forces instead");
         integrators_ = make_integrators(spec.integrators, forceField_);
         const double skin = forceField_.smallest_skin();
         p_.maxMove2 = std::isfinite(skin) ? skin * skin : 1e300;
@@ -257,6 +264,45 @@ public:
             const R row[9] = {t.xx, t.xy, t.xz, t.yx, t.yy, t.yz, t.zx, t.zy, t.zz};
             std::copy(row, row + 9, w + 9 * i);
         }
+    }
+
+    void hessian_column(int64_t id, double* blocks) override {
+        if (!context_.hessian) throw Error(STRUCTMD_ERR_STATE, "no step of this input asks for second derivatives");
+        backend_.activate();
+        backend_.resize(hessian_, p_.count);
+        backend_.fill(hessian_, zero_tensor<R>());
+        forceField_.add_hessian(p_, static_cast<int>(id), hessian_.data());
+        const std::vector<Tensor3<R>> values = download(hessian_);
+        for (int64_t j = 0; j < p_.count; ++j) {
+            const Tensor3<R>& t = values[j];
+            const R block[9] = {t.xx, t.xy, t.xz, t.yx, t.yy, t.yz, t.zx, t.zy, t.zz};
+            std::copy(block, block + 9, blocks + 9 * j);
+        }
+    }
+
+    // The particle is moved in the positions array and back; the version moves on each time, so
+    // neither a cached force nor a list refresh of the moved positions outlives the call.
+    void forces_with_displaced(int64_t id, const double displacement[3], double* f) override {
+        backend_.activate();
+        upload_ids(&id, 1);
+        const Real4<R> original = *gather(p_.pos, subsetIds_, 1);
+        const Vec3<R> moved = p_.box.wrap(Vec3<R>{R(original.x + displacement[0]), R(original.y + displacement[1]),
+                                                  R(original.z + displacement[2])});
+        const auto place = [&](const Real4<R>& value) {
+            *hostVectors_.reserve(1) = value;
+            scatter(hostVectors_, p_.pos, 1);
+            ++p_.version;
+        };
+        place(Real4<R>{moved.x, moved.y, moved.z, original.w});
+        backend_.resize(probedForces_, p_.count);
+        backend_.fill(probedForces_, Real4<R>{R(0), R(0), R(0), R(0)});
+        ForceOutputs<R> out;
+        out.force = probedForces_.data();
+        forceField_.prepare(p_);
+        forceField_.compute_all(p_, out);
+        ForceCache<B, R>::count(out, evaluations_);
+        place(original);
+        download_vectors(probedForces_, f);
     }
 
     void set_positions(const double* xyz) override {
@@ -692,6 +738,8 @@ private:
     CallbackTerm<B, R> callbacks_;  // the host's force callbacks
     // The ids of the last subset call on the backend, and on the host to compare the next with.
     typename B::template Buffer<int64_t> subsetIds_;
+    typename B::template Buffer<Tensor3<R>> hessian_;        // a Hessian column, made when asked
+    typename B::template Buffer<Real4<R>> probedForces_;     // forces at displaced positions, made when asked
     std::vector<int64_t> uploadedIds_;
     // Host staging of every transfer of particle arrays (pinned on CUDA): packed and unpacked here.
     typename B::template Staging<Real4<R>> hostVectors_;

@@ -70,6 +70,15 @@ public:
     // Per-particle virial of the non-bonded pair terms, 1/2 sum_j (-r_ij) (x) F_ij, row-major (9n).
     virtual void get_pair_virials(double* w) = 0;
 
+    // The Hessian of the force field's potential energy (its terms only: no external forces, no
+    // callbacks), one column of 3x3 blocks at a time: for particle `id`, blocks[9 j + 3 a + b] =
+    // d2U / dx_id^a dx_j^b for every particle j, in id order. Exact second derivatives; only for an
+    // input whose steps ask for them (SimulationStep::needs_hessian), else ERR_STATE.
+    virtual void hessian_column(int64_t id, double* blocks) = 0;
+    // The forces of the force field's terms alone (as hessian_column) with particle `id` displaced by
+    // `displacement`, in id order (3n); the state is as it was afterwards.
+    virtual void forces_with_displaced(int64_t id, const double displacement[3], double* f) = 0;
+
     virtual void set_positions(const double* xyz) = 0;
     virtual void set_velocities(const double* v) = 0;
     virtual void set_box(const double lengths[3]) = 0;

@@ -7,6 +7,7 @@
 #include "input/read_parameters.hpp"
 #include "steps/center_of_mass.hpp"
 #include "steps/gyration_radius.hpp"
+#include "steps/hessian_measure.hpp"
 #include "steps/info_step.hpp"
 #include "steps/interactors_energy_measure.hpp"
 #include "steps/mean_square_displacement.hpp"
@@ -32,6 +33,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(angles_measure_entry());
         steps.add(dihedrals_measure_entry());
         steps.add(stress_measure_entry());
+        steps.add(hessian_measure_entry());
         steps.add(write_step_entry());
         return steps;
     }();

@@ -16,6 +16,9 @@ public:
     virtual ~SimulationStep() = default;
 
     const std::string& name() const { return name_; }
+    // Whether the step reads exact second derivatives (Simulation::hessian_column): the force field
+    // then makes them.
+    virtual bool needs_hessian() const { return false; }
 
     // Fires when start <= step <= end and step is a multiple of the interval; the state the
     // schedule ends in is given to every step whose window holds it.

@@ -1,0 +1,155 @@
+#pragma once
+// Second derivatives of the force field, one column of 3x3 blocks at a time: for a chosen particle s
+// ("the seed"), the block of each particle j is H[j] = d2U / dx_s dx_j (row: the seed's axis,
+// column: j's). Each term's own functor is evaluated in dual numbers (core/dual.hpp) seeded on the
+// seed's coordinates, so the derivative of its forces is exact and no second formula exists to keep
+// in step with the first. Only the seed's neighbours, and the bonds it is in, contribute.
+#include "core/dual.hpp"
+#include "core/hd.hpp"
+#include "core/vec.hpp"
+#include "forcefield/pair_kernel.hpp"
+#include "neighbour/neighbour_view.hpp"
+#include "state/step_clock.hpp"
+
+namespace structmd {
+
+template <class R>
+SMD_HD SMD_INLINE Vec3<Dual<R>> constant_dual(Vec3<R> a) {
+    return {Dual<R>(a.x, R(0)), Dual<R>(a.y, R(0)), Dual<R>(a.z, R(0))};
+}
+
+// a with unit derivative along `axis`: the seed displaced along that axis.
+template <class R>
+SMD_HD SMD_INLINE Vec3<Dual<R>> seeded_dual(Vec3<R> a, int axis) {
+    Vec3<Dual<R>> d = constant_dual(a);
+    (axis == 0 ? d.x : axis == 1 ? d.y : d.z).d = R(1);
+    return d;
+}
+
+template <class R>
+SMD_HD SMD_INLINE Box<Dual<R>> constant_dual(const Box<R>& box) {
+    return {constant_dual(box.length), constant_dual(box.inverse)};
+}
+
+// Row `axis` of the block: minus the derivative of the force f (a dual vector seeded on that axis).
+template <class R>
+SMD_HD SMD_INLINE void subtract_force_derivative(Tensor3<R>& h, int axis, const Vec3<Dual<R>>& f) {
+    R* row = axis == 0 ? &h.xx : axis == 1 ? &h.yx : &h.zx;
+    row[0] -= f.x.d;
+    row[1] -= f.y.d;
+    row[2] -= f.z.d;
+}
+
+// A radial pair term U(r) with g = U'(r)/r: the seed s and each neighbour j at d = r_j - r_s add
+// B = 2 g' d d^T + g I (g' = dg/d(r^2)) to H[s] and -B to H[j]. g' is the dual part of g evaluated at
+// the dual r^2 = (r2, 1).
+template <class Potential, class R, class PairR>
+struct PairHessianKernel {
+    using Params = typename Potential::template Params<Dual<PairR>>;
+    const R* charge;
+    const R* radius;
+    const uint8_t* group;
+    NeighbourView<R> neighbours;
+    const Params* table;  // ntypes x ntypes
+    int ntypes;
+    int seed;
+    Tensor3<R>* blocks;
+
+    SMD_HD void operator()(int64_t k) const {
+        const NeighbourView<R>& v = neighbours;
+        const int s = v.order[k];
+        if (s != seed || (group && !group[s])) return;
+        const Real4<R> ps = v.positions[k];
+        const Params* row = table + static_cast<int>(ps.w) * ntypes;
+        Tensor3<R> self = zero_tensor<R>();
+        v.for_each_neighbour(static_cast<int>(k), [&](int slot) {
+            const int j = v.order[slot];
+            const Real4<R> pj = v.positions[slot];
+            const Vec3<R> d = v.box.minimum_image(xyz(pj) - xyz(ps));
+            const Dual<PairR> r2(PairR(dot(d, d)), PairR(1));
+            const Params& p = row[static_cast<int>(pj.w)];
+            if (!(r2 < p.cutoff2) || (group && !group[j])) return;
+            constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
+            const PairTerm<Dual<PairR>> t = evaluate_pair<Potential>(
+                r2, p, Dual<PairR>(charges ? PairR(charge[s] * charge[j]) : PairR(0)),
+                Dual<PairR>(radii ? PairR(radius[s]) : PairR(0)), Dual<PairR>(radii ? PairR(radius[j]) : PairR(0)));
+            const R g = R(t.dudr_over_r.v);
+            Tensor3<R> b = (R(2) * R(t.dudr_over_r.d)) * outer(d, d);
+            b.xx += g;
+            b.yy += g;
+            b.zz += g;
+            self += b;
+            blocks[j] += R(-1) * b;
+        });
+        blocks[s] += self;
+    }
+};
+
+// A bonded term of N particles: for particle i in a bond with the seed, minus the derivative of the
+// force on i as the seed moves along each axis.
+template <class Potential, class R>
+struct BondHessianKernel {
+    static constexpr int N = Potential::arity;
+    using Params = typename Potential::template Params<Dual<R>>;
+    const Real4<R>* pos;
+    Box<R> box;
+    const int* firstEntry;
+    const int* entries;
+    const int* members;
+    const Params* params;
+    int seed;
+    Tensor3<R>* blocks;
+
+    SMD_HD void operator()(int64_t i) const {
+        Tensor3<R> h = zero_tensor<R>();
+        const Box<Dual<R>> dualBox = constant_dual(box);
+        for (int k = firstEntry[i]; k < firstEntry[i + 1]; ++k) {
+            const int b = entries[k] / N;
+            const int slot = entries[k] % N;
+            const int* ids = members + N * b;
+            int seedSlot = -1;
+            for (int m = 0; m < N; ++m)
+                if (ids[m] == seed) seedSlot = m;
+            if (seedSlot < 0) continue;
+            Vec3<R> r[N];
+            r[0] = xyz(pos[ids[0]]);
+            for (int m = 1; m < N; ++m)
+                r[m] = r[m - 1] + box.minimum_image(xyz(pos[ids[m]]) - xyz(pos[ids[m - 1]]));
+            for (int axis = 0; axis < 3; ++axis) {
+                Vec3<Dual<R>> rd[N];
+                for (int m = 0; m < N; ++m) rd[m] = m == seedSlot ? seeded_dual(r[m], axis) : constant_dual(r[m]);
+                Vec3<Dual<R>> force[N];
+                Potential::compute(rd, params[b], dualBox, force);
+                subtract_force_derivative(h, axis, force[slot]);
+            }
+        }
+        blocks[i] += h;
+    }
+};
+
+// A field on each particle alone: only the seed's own block, from its force's derivative.
+template <class Potential, class R>
+struct ExternalHessianKernel {
+    using Params = typename Potential::template Params<Dual<R>>;
+    const Real4<R>* pos;
+    const R* radius;
+    const uint8_t* group;
+    Params params;
+    ClockView now;
+    int seed;
+    Tensor3<R>* blocks;
+
+    SMD_HD void operator()(int64_t) const {
+        if (group && !group[seed]) return;
+        Tensor3<R> h = zero_tensor<R>();
+        for (int axis = 0; axis < 3; ++axis) {
+            Vec3<Dual<R>> f{Dual<R>(0), Dual<R>(0), Dual<R>(0)};
+            Potential::compute(seeded_dual(xyz(pos[seed]), axis), Dual<R>(radius[seed]), params,
+                               Dual<R>(R(now.time())), f);
+            subtract_force_derivative(h, axis, f);
+        }
+        blocks[seed] += h;
+    }
+};
+
+}  // namespace structmd
