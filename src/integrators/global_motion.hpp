@@ -126,7 +126,7 @@ struct RemoveRigidMotion {
     R dt;
     RigidMotion motion;
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) return;
         Real4<R> v = vel[i];
         double r[3];
         midpoint(pos[i], image[i], v, box, dt, r);

@@ -34,6 +34,14 @@ SMD_HD SMD_INLINE Real4<R> displaced(Real4<R> p, const Vec3<R>& d, const Box<R>&
     return p;
 }
 
+// A particle of mass 0 has no inertia to integrate: the inertial integrators (velocity Verlet, the
+// Langevin ones) hold it fixed, position and velocity, as OpenMM does; its forces still act on the
+// others. Overdamped and minimising integrators do not read the mass.
+template <class R>
+SMD_HD SMD_INLINE bool held_fixed(const Real4<R>& v) {
+    return !(v.w > R(0));
+}
+
 // Half a kick: v += dt/2 F/m (the mass rides in v.w); a negative dt kicks back.
 template <class R>
 SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {

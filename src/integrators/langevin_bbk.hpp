@@ -34,7 +34,7 @@ struct HalfKickBack {
     const uint8_t* group;
     R dt;
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) return;
         vel[i] = half_kick(vel[i], force[i], -dt);
     }
 };
@@ -53,7 +53,7 @@ struct BbkStep {
     ClockView now;
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) return;
         Real4<R> v = vel[i];
         const Real4<R> f = force[i];
         const R m = v.w;

@@ -25,7 +25,7 @@ struct GjfDrift {
     ClockView now;
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) return;
         Real4<R> v = vel[i];
         const Real4<R> f = force[i];
         const R m = v.w;
@@ -57,7 +57,7 @@ struct GjfKick {
     R dt;
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) return;
         const Real4<R> f = force[i];
         const Real4<R> v = half_kick(vel[i], f, dt);
         vel[i] = v;

@@ -7,6 +7,7 @@
 
 #include "core/random.hpp"
 #include "core/vec.hpp"
+#include "integrators/integrator.hpp"
 #include "state/step_clock.hpp"
 
 namespace structmd {
@@ -32,7 +33,7 @@ struct DrawThermalVelocities {
     ClockView now;
     R kT;
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) return;
         Real4<R> v = vel[i];
         const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::velocityReset, i, now.step());
         const R sigma = sqrt(kT / v.w);

@@ -17,7 +17,7 @@ struct VerletKickDrift {
     R dt;
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) return;
         const Real4<R> v = half_kick(vel[i], force[i], dt);
         vel[i] = v;
         const Vec3<R> move = dt * xyz(v);
@@ -37,7 +37,7 @@ struct VerletKick {
     R dt;
     FaultSlot fault;
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) return;
         const Real4<R> f = force[i];
         const Real4<R> v = half_kick(vel[i], f, dt);
         vel[i] = v;

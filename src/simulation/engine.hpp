@@ -114,6 +114,9 @@ public:
     }
 
     int64_t particle_count() const override { return p_.count; }
+    int64_t massive_count() const override {
+        return std::count_if(masses_.begin(), masses_.end(), [](double m) { return m > 0.0; });
+    }
     int64_t current_step() const override { return p_.timeline.step(); }
     double current_time() const override { return p_.timeline.time(); }
     double boltzmann() const override { return boltzmann_; }

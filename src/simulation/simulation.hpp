@@ -38,6 +38,9 @@ public:
     virtual ~Simulation() = default;
 
     virtual int64_t particle_count() const = 0;
+    // The particles of mass > 0: under inertial dynamics only they move (held_fixed), so only they
+    // carry degrees of freedom.
+    virtual int64_t massive_count() const = 0;
     virtual int64_t current_step() const = 0;
     virtual double current_time() const = 0;
     virtual int64_t final_step() const = 0;  // where the schedule ends
@@ -141,7 +144,7 @@ public:
     virtual std::optional<double> overdamped_kT() const = 0;
 
     // The kinetic energy, temperature and pressure as the dynamics defines them. Inertial: K from the
-    // velocities, T = 2K / (3 N k_B), P = (2K + tr W) / (3V). Overdamped: no momenta, so K = 0; the
+    // velocities, T = 2K / (3 N k_B) with N the particles of mass > 0, P = (2K + tr W) / (3V). Overdamped: no momenta, so K = 0; the
     // temperature is the bath's and the pressure's ideal part N k_B T / V uses it.
     struct Thermodynamics {
         double kinetic = 0.0;
@@ -158,7 +161,7 @@ public:
             t.pressure = (static_cast<double>(particle_count()) * *kT + t.virialTrace / 3.0) / volume();
         } else {
             t.kinetic = energy("kinetic");
-            t.temperature = kinetic_temperature(t.kinetic, particle_count(), boltzmann());
+            t.temperature = kinetic_temperature(t.kinetic, massive_count(), boltzmann());
             t.pressure = virial_pressure(t.kinetic, t.virialTrace, volume());
         }
         return t;

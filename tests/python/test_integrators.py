@@ -527,6 +527,51 @@ def test_an_integrator_restricted_to_a_group_moves_only_its_particles(options, k
         assert np.all(np.any(sim.positions[mobile] != start_positions[mobile], axis=1)), "the group must move"
 
 
+FIXED_CASES = {
+    "VelocityVerlet": verlet(0.002),
+    "BBK": langevin("BBK", 0.002, 1.0),
+    "BBK stopTransRotSteps": langevin("BBK", 0.002, 1.0, stopTransRotSteps=5),
+    "GJF": langevin("GJF", 0.002, 1.0),
+}
+
+
+@pytest.mark.parametrize("kind", FIXED_CASES)
+def test_inertial_integrators_hold_a_particle_of_mass_zero_fixed_while_its_forces_act(options, tmp_path, kind):
+    """Every third particle has mass 0: it keeps its position and zero velocity (its velocity is not
+    drawn either), the others feel it and move, and the temperature counts 3 degrees of freedom per
+    particle of mass > 0 only."""
+    positions, box = perturbed_lattice(4, 1.6, 0.25, seed=4)
+    n = len(positions)
+    types = ["anchor" if i % 3 == 0 else "light" for i in range(n)]
+    anchors = [i for i in range(n) if types[i] == "anchor"]
+    free = [i for i in range(n) if types[i] != "anchor"]
+    force_field = lennard_jones()
+    force_field["lj"]["data"] += [["anchor", "anchor", 1.0, 1.0], ["anchor", "light", 1.0, 1.0],
+                                  ["anchor", "heavy", 1.0, 1.0]]
+    doc = document(positions, types, {"integrate": FIXED_CASES[kind]}, [("integrate", 40)],
+                   force_field=force_field, box=box)
+    doc["global"]["types"]["data"] = TYPES + [["anchor", 0.0, 0.5, 0.0]]
+    doc["simulationStep"] = {"thermo": {"type": ["ThermodynamicMeasure", "ThermodynamicQuantityMeasure"],
+                                        "parameters": {"intervalStep": 10,
+                                                       "outputFilePath": str(tmp_path / "thermo.dat")}}}
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+        start = sim.positions
+        assert np.all(sim.velocities[anchors] == 0.0)
+        assert np.all(np.linalg.norm(sim.forces[anchors], axis=1) > 1e-3), "the anchors must feel forces"
+        sim.run()
+        assert np.array_equal(sim.positions[anchors], start[anchors])
+        assert np.all(sim.velocities[anchors] == 0.0)
+        assert np.all(np.isfinite(sim.velocities))
+        assert np.all(np.any(sim.positions[free] != start[free], axis=1)), "the others must move"
+    lines = (tmp_path / "thermo.dat").read_text().splitlines()
+    header = lines[0].lstrip("#").split()
+    rows = np.array([[float(x) for x in line.split()] for line in lines if not line.startswith("#")])
+    kinetic, temperature = rows[:, header.index("kinetic")], rows[:, header.index("temperature")]
+    assert np.all(kinetic > 0.0)
+    np.testing.assert_allclose(temperature, 2.0 * kinetic / (3.0 * len(free)), rtol=1e-8)
+
+
 # ---- reproducibility -----------------------------------------------------------------------------
 
 REPRODUCIBLE = {
