@@ -64,7 +64,7 @@ public:
 private:
     template <class B, class R, class PairR, class Add>
     void add_for(Add& add) {
-        FactoryEntries<B, R, PairR> entries;
+        FactoryEntries<B, R, PairR, /*WithHessian=*/false> entries;
         add(entries);
         auto& target = set_.template factories_to_fill<B, R, PairR>();
         for (const auto& entry : entries.registry.entries()) target.add(entry);

@@ -9,6 +9,7 @@
 #include "forcefield/bond_potential.hpp"
 #include "forcefield/hessian_kernels.hpp"
 #include "forcefield/interactor.hpp"
+#include "forcefield/pair_force_kernels.hpp"
 
 namespace structmd {
 
@@ -48,6 +49,15 @@ public:
                     const std::vector<Params>& params)
         : Interactor<B, R>(std::move(scope)), backend_(backend), index_(backend, particles, members) {
         backend_.upload(params_, params.data(), params.size());
+    }
+
+    bool has_pair_forces() const override { return true; }
+    void add_pair_forces(Particles<B, R>& particles, int seed, Real4<R>* out) override {
+        if constexpr (Potential::arity > 1)
+            backend_.for_each(particles.count, BondForceOnSeedKernel<Potential, R>{
+                                                   particles.pos.data(), particles.box, index_.firstEntry.data(),
+                                                   index_.entries.data(), index_.members.data(), params_.data(),
+                                                   seed, out});
     }
 
     // The parameters again in dual numbers (one per bond, as given to the constructor), for the Hessian.

@@ -20,6 +20,10 @@ public:
     ExternalInteraction(const B& backend, InteractorScope scope, const Params& params)
         : Interactor<B, R>(std::move(scope)), backend_(backend), params_(params) {}
 
+    // A field exerts no force from another particle.
+    bool has_pair_forces() const override { return true; }
+    void add_pair_forces(Particles<B, R>&, int, Real4<R>*) override {}
+
     // The parameters again in dual numbers, for the Hessian.
     void enable_hessian(const typename Potential::template Params<Dual<R>>& params) { dualParams_ = params; }
     bool has_hessian() const override { return dualParams_.has_value(); }

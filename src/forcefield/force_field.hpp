@@ -89,6 +89,20 @@ public:
             if (!it->has_hessian()) return it->name();
         return {};
     }
+    // The first term that cannot split its forces between pairs (empty when every term can).
+    std::string term_without_pair_forces() const {
+        for (const auto& it : interactors_)
+            if (!it->has_pair_forces()) return it->name();
+        return {};
+    }
+    // Adds the forces each particle exerts on particle `seed` through the active terms to out.
+    void add_pair_forces(Particles<B, R>& p, int seed, Real4<R>* out) {
+        for (auto& it : interactors_)
+            if (it->active(p.timeline.evaluating_step())) {
+                it->prepare(p);
+                it->add_pair_forces(p, seed, out);
+            }
+    }
     // Adds the active terms' shares of the Hessian column of particle `seed` to blocks.
     void add_hessian(Particles<B, R>& p, int seed, Tensor3<R>* blocks) {
         for (auto& it : interactors_)

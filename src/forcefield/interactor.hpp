@@ -69,6 +69,14 @@ public:
         throw Error(STRUCTMD_ERR_INTERNAL, name() + ": a term without second derivatives was asked for them");
     }
 
+    // The forces other particles exert through this term on particle `seed` (pair_force_kernels.hpp),
+    // added to out (by particle): whether the term can split its forces so, and the split. A term of
+    // one particle (a field, a tether) exerts none.
+    virtual bool has_pair_forces() const { return false; }
+    virtual void add_pair_forces(Particles<B, R>&, int, Real4<R>*) {
+        throw Error(STRUCTMD_ERR_INTERNAL, name() + ": a term without pair forces was asked for them");
+    }
+
     // Keeps alive backend data that the term's parameters point into (a compiled expression, a
     // table's coefficients) for as long as the interactor lives.
     void own(std::shared_ptr<const void> data) { owned_.push_back(std::move(data)); }

@@ -21,8 +21,10 @@
 
 namespace structmd {
 
-// Pair terms evaluate in PairR (float for mixed precision); everything else in R.
-template <class B, class R, class PairR>
+// Pair terms evaluate in PairR (float for mixed precision); everything else in R. WithHessian: the
+// factories can also make each term's parameters in dual numbers (core/dual.hpp), which needs
+// functors that call their math functions unqualified; the built-in ones do, a plugin's need not.
+template <class B, class R, class PairR, bool WithHessian = true>
 struct FactoryEntries {
     using Build = InteractorBuild<B, R>;
     Registry<InteractorFactory<B, R>> registry;
@@ -49,7 +51,8 @@ struct FactoryEntries {
                                   unlisted);
                           };
                           auto interactor = make_pair_interaction<B, R, Potential, PairR>(build, pair, tableIn(PairR{}));
-                          if (build.context.hessian) interactor->enable_hessian(tableIn(Dual<PairR>{}));
+                          if constexpr (WithHessian)
+                              if (build.context.hessian) interactor->enable_hessian(tableIn(Dual<PairR>{}));
                           return interactor;
                       }});
     }
@@ -63,9 +66,10 @@ struct FactoryEntries {
                               build, bond, [&](const ParameterValues& v) {
                                   return Potential::template make_params<R>(v, constants);
                               });
-                          if (build.context.hessian)
-                              interactor->enable_hessian(
-                                  bonds_in_group<typename Potential::template Params<Dual<R>>>(
+                          if constexpr (WithHessian)
+                              if (build.context.hessian)
+                                  interactor->enable_hessian(
+                                      bonds_in_group<typename Potential::template Params<Dual<R>>>(
                                       build, bond,
                                       [&](const ParameterValues& v) {
                                           return Potential::template make_params<Dual<R>>(v, constants);
@@ -83,9 +87,10 @@ struct FactoryEntries {
                           auto interactor = std::make_unique<ExternalInteraction<B, R, Potential>>(
                               build.backend, build.scope(external),
                               Potential::template make_params<R>(external.values, constants));
-                          if (build.context.hessian)
-                              interactor->enable_hessian(
-                                  Potential::template make_params<Dual<R>>(external.values, constants));
+                          if constexpr (WithHessian)
+                              if (build.context.hessian)
+                                  interactor->enable_hessian(
+                                      Potential::template make_params<Dual<R>>(external.values, constants));
                           return interactor;
                       }});
     }

@@ -7,6 +7,7 @@
 
 #include "forcefield/hessian_kernels.hpp"
 #include "forcefield/interactor.hpp"
+#include "forcefield/pair_force_kernels.hpp"
 #include "forcefield/pair_kernel.hpp"
 #include "neighbour/verlet_list.hpp"
 
@@ -24,6 +25,13 @@ public:
     }
 
     bool pairwise() const override { return true; }
+
+    bool has_pair_forces() const override { return true; }
+    void add_pair_forces(Particles<B, R>& particles, int seed, Real4<R>* out) override {
+        backend_.for_each(particles.count, PairForceOnSeedKernel<Potential, R, PairR>{
+                                               particles.charge.data(), particles.radius.data(), this->group(),
+                                               list_->view(), table_.data(), ntypes_, seed, out});
+    }
 
     // The table again in dual numbers, for the Hessian.
     void enable_hessian(const std::vector<typename Potential::template Params<Dual<PairR>>>& table) {

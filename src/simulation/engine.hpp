@@ -102,6 +102,13 @@ public:
         const auto hessianStep = std::find_if(steps_.begin(), steps_.end(), [](const auto& s) { return s->needs_hessian(); });
         context_.hessian = hessianStep != steps_.end();
         forceField_ = make_force_field(spec.forceField, components, nullptr);
+        const auto pairForceStep = std::find_if(steps_.begin(), steps_.end(), [](const auto& s) { return s->needs_pair_forces(); });
+        pairForces_ = pairForceStep != steps_.end();
+        if (const std::string term = forceField_.term_without_pair_forces(); pairForces_ && !term.empty())
+            throw Error(STRUCTMD_ERR_UNSUPPORTED,
+                        "simulationStep." + (*pairForceStep)->name() + ".parameters.mode: \"Pairwise_force\" splits the "
+                        "forces of every term between pairs, and forceField entry '" + term +
+                        "' (an expression, a table or a plugin) cannot; \"Total_force\" works with every term");
         if (const std::string term = forceField_.term_without_hessian(); context_.hessian && !term.empty())
             throw Error(STRUCTMD_ERR_UNSUPPORTED,
                         "simulationStep." + (*hessianStep)->name() + ".parameters.mode: \"Analytical\" needs the second "
@@ -281,6 +288,15 @@ public:
             const R block[9] = {t.xx, t.xy, t.xz, t.yx, t.yy, t.yz, t.zx, t.zy, t.zz};
             std::copy(block, block + 9, blocks + 9 * j);
         }
+    }
+
+    void pair_forces_on(int64_t id, double* f) override {
+        if (!pairForces_) throw Error(STRUCTMD_ERR_STATE, "no step of this input asks for pair forces");
+        backend_.activate();
+        backend_.resize(probedForces_, p_.count);
+        backend_.fill(probedForces_, Real4<R>{R(0), R(0), R(0), R(0)});
+        forceField_.add_pair_forces(p_, static_cast<int>(id), probedForces_.data());
+        download_vectors(probedForces_, f);
     }
 
     // The particle is moved in the positions array and back; the version moves on each time, so
@@ -742,7 +758,8 @@ private:
     // The ids of the last subset call on the backend, and on the host to compare the next with.
     typename B::template Buffer<int64_t> subsetIds_;
     typename B::template Buffer<Tensor3<R>> hessian_;        // a Hessian column, made when asked
-    typename B::template Buffer<Real4<R>> probedForces_;     // forces at displaced positions, made when asked
+    typename B::template Buffer<Real4<R>> probedForces_;     // forces at displaced positions or between pairs, made when asked
+    bool pairForces_ = false;                                // a step reads pair_forces_on
     std::vector<int64_t> uploadedIds_;
     // Host staging of every transfer of particle arrays (pinned on CUDA): packed and unpacked here.
     typename B::template Staging<Real4<R>> hostVectors_;

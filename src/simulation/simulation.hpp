@@ -78,6 +78,11 @@ public:
     // d2U / dx_id^a dx_j^b for every particle j, in id order. Exact second derivatives; only for an
     // input whose steps ask for them (SimulationStep::needs_hessian), else ERR_STATE.
     virtual void hessian_column(int64_t id, double* blocks) = 0;
+    // The forces each particle j exerts on particle `id` through the force field's terms (as
+    // hessian_column), 3n in id order: pair forces, and bonds split into central pair forces; fields
+    // and tethers of one particle exert none. Only for an input whose steps ask for them
+    // (SimulationStep::needs_pair_forces), else ERR_STATE.
+    virtual void pair_forces_on(int64_t id, double* f) = 0;
     // The forces of the force field's terms alone (as hessian_column) with particle `id` displaced by
     // `displacement`, in id order (3n); the state is as it was afterwards.
     virtual void forces_with_displaced(int64_t id, const double displacement[3], double* f) = 0;

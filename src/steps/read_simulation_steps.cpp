@@ -11,6 +11,7 @@
 #include "steps/info_step.hpp"
 #include "steps/interactors_energy_measure.hpp"
 #include "steps/mean_square_displacement.hpp"
+#include "steps/pairwise_force_measure.hpp"
 #include "steps/particle_list_measure.hpp"
 #include "steps/stress_measure.hpp"
 #include "steps/thermodynamic_measure.hpp"
@@ -34,6 +35,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(dihedrals_measure_entry());
         steps.add(stress_measure_entry());
         steps.add(hessian_measure_entry());
+        steps.add(pairwise_force_measure_entry());
         steps.add(write_step_entry());
         return steps;
     }();

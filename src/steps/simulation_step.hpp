@@ -19,6 +19,8 @@ public:
     // Whether the step reads exact second derivatives (Simulation::hessian_column): the force field
     // then makes them.
     virtual bool needs_hessian() const { return false; }
+    // Whether it reads the forces between pairs (Simulation::pair_forces_on): every term must split them.
+    virtual bool needs_pair_forces() const { return false; }
 
     // Fires when start <= step <= end and step is a multiple of the interval; the state the
     // schedule ends in is given to every step whose window holds it.

@@ -1,0 +1,141 @@
+#pragma once
+// The forces the other particles exert on one chosen particle s ("the seed"), term by term: a pair
+// term's force between s and each neighbour, and each bond's forces split into central pair forces.
+// A bond of N <= 4 particles whose energy depends on their relative positions only has forces
+// F_a = sum_b c_ab (r_a - r_b) (c_ab = c_ba), unique where the geometry is not degenerate; the c_ab
+// are found from the bond's own forces by least squares, so every bond functor splits without a
+// formula of its own. The force b exerts on a is then c_ab (r_a - r_b).
+#include "core/box.hpp"
+#include "core/hd.hpp"
+#include "core/real_limits.hpp"
+#include "core/vec.hpp"
+#include "forcefield/pair_kernel.hpp"
+#include "neighbour/neighbour_view.hpp"
+
+namespace structmd {
+
+// c[p] for the pairs p = (a, b), a < b, in the order (0,1), (0,2), ..., (N-2,N-1): the least-squares
+// solution of F_a = sum_b c_ab (r_a - r_b). Normal equations A c = y with A_pq = (u_p . u_q) times
+// the overlap of the pairs' signs and y_p = u_p . (F_a - F_b), u_p = r_a - r_b. A is symmetric and
+// positive semi-definite; a ridge of 100 eps times its largest diagonal element makes it definite,
+// so elimination needs no pivoting, and where the split is not unique (collinear or coplanar
+// particles) it takes the smallest c.
+template <int N, class R>
+SMD_HD SMD_INLINE void central_force_split(const Vec3<R>* r, const Vec3<R>* force, R* c) {
+    constexpr int P = N * (N - 1) / 2;
+    int first[P], second[P];
+    Vec3<R> u[P];
+    for (int a = 0, p = 0; a < N; ++a)
+        for (int b = a + 1; b < N; ++b, ++p) {
+            first[p] = a;
+            second[p] = b;
+            u[p] = r[a] - r[b];
+        }
+    R A[P][P];
+    R largest = R(0);
+    for (int p = 0; p < P; ++p) {
+        for (int q = 0; q < P; ++q) {
+            const int overlap = (first[p] == first[q]) + (second[p] == second[q]) - (first[p] == second[q]) -
+                                (second[p] == first[q]);
+            A[p][q] = R(overlap) * dot(u[p], u[q]);
+        }
+        c[p] = dot(u[p], force[first[p]] - force[second[p]]);
+        largest = A[p][p] > largest ? A[p][p] : largest;
+    }
+    const R ridge = R(100) * machine_epsilon<R>() * largest;
+    for (int p = 0; p < P; ++p) A[p][p] += ridge;
+    for (int col = 0; col < P; ++col)
+        for (int row = col + 1; row < P; ++row) {
+            const R factor = A[row][col] / A[col][col];
+            for (int k = col; k < P; ++k) A[row][k] -= factor * A[col][k];
+            c[row] -= factor * c[col];
+        }
+    for (int row = P - 1; row >= 0; --row) {
+        for (int k = row + 1; k < P; ++k) c[row] -= A[row][k] * c[k];
+        c[row] /= A[row][row];
+    }
+}
+
+// A radial pair term: neighbour j exerts (U'(r)/r) (r_j - r_s) on the seed.
+template <class Potential, class R, class PairR>
+struct PairForceOnSeedKernel {
+    using Params = typename Potential::template Params<PairR>;
+    const R* charge;
+    const R* radius;
+    const uint8_t* group;
+    NeighbourView<R> neighbours;
+    const Params* table;  // ntypes x ntypes
+    int ntypes;
+    int seed;
+    Real4<R>* out;
+
+    SMD_HD void operator()(int64_t k) const {
+        const NeighbourView<R>& v = neighbours;
+        const int s = v.order[k];
+        if (s != seed || (group && !group[s])) return;
+        const Real4<R> ps = v.positions[k];
+        const Params* row = table + static_cast<int>(ps.w) * ntypes;
+        v.for_each_neighbour(static_cast<int>(k), [&](int slot) {
+            const int j = v.order[slot];
+            const Real4<R> pj = v.positions[slot];
+            const Vec3<R> d = v.box.minimum_image(xyz(pj) - xyz(ps));
+            const PairR r2 = PairR(dot(d, d));
+            const Params& p = row[static_cast<int>(pj.w)];
+            if (!(r2 < p.cutoff2) || (group && !group[j])) return;
+            constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
+            const PairTerm<PairR> t = evaluate_pair<Potential>(
+                r2, p, charges ? PairR(charge[s] * charge[j]) : PairR(0), radii ? PairR(radius[s]) : PairR(0),
+                radii ? PairR(radius[j]) : PairR(0));
+            const Vec3<R> f = R(t.dudr_over_r) * d;
+            out[j].x += f.x;
+            out[j].y += f.y;
+            out[j].z += f.z;
+        });
+    }
+};
+
+// A bonded term of N >= 2 particles: for particle i in a bond with the seed, the central force that i
+// exerts on the seed in that bond.
+template <class Potential, class R>
+struct BondForceOnSeedKernel {
+    static constexpr int N = Potential::arity;
+    using Params = typename Potential::template Params<R>;
+    const Real4<R>* pos;
+    Box<R> box;
+    const int* firstEntry;
+    const int* entries;
+    const int* members;
+    const Params* params;
+    int seed;
+    Real4<R>* out;
+
+    SMD_HD void operator()(int64_t i) const {
+        if (i == seed) return;
+        Vec3<R> total{R(0), R(0), R(0)};
+        for (int k = firstEntry[i]; k < firstEntry[i + 1]; ++k) {
+            const int b = entries[k] / N;
+            const int slot = entries[k] % N;
+            const int* ids = members + N * b;
+            int seedSlot = -1;
+            for (int m = 0; m < N; ++m)
+                if (ids[m] == seed) seedSlot = m;
+            if (seedSlot < 0) continue;
+            Vec3<R> r[N];
+            r[0] = xyz(pos[ids[0]]);
+            for (int m = 1; m < N; ++m)
+                r[m] = r[m - 1] + box.minimum_image(xyz(pos[ids[m]]) - xyz(pos[ids[m - 1]]));
+            Vec3<R> force[N];
+            Potential::compute(r, params[b], box, force);
+            R c[N * (N - 1) / 2];
+            central_force_split<N>(r, force, c);
+            const int a = seedSlot < slot ? seedSlot : slot, z = seedSlot < slot ? slot : seedSlot;
+            const int pair = a * N - a * (a + 1) / 2 + (z - a - 1);
+            total += c[pair] * (r[seedSlot] - r[slot]);
+        }
+        out[i].x += total.x;
+        out[i].y += total.y;
+        out[i].z += total.z;
+    }
+};
+
+}  // namespace structmd
