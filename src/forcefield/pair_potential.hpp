@@ -34,11 +34,15 @@
 namespace structmd {
 
 // What potentials take from the system besides their parameters: the physical constants of the
-// input's units, and the largest particle radius (the range of a potential of radii scales with it).
+// input's units, the largest particle radius (the range of a potential of radii scales with it) and
+// the ensemble's temperature (a term given in units of k_B T scales with it).
 struct Constants {
     double boltzmann = 1.0;
     double electricConversion = 1.0;
     double largestRadius = 0.0;
+    double temperature = 0.0;  // k_B T = boltzmann * temperature
+
+    double kT() const { return boltzmann * temperature; }
 };
 
 template <class Potential, class = void>

@@ -345,7 +345,7 @@ void warn_unlisted_type_pairs(const SystemDescription& system, const ForceFieldS
 Constants constants_of(const SystemDescription& system) {
     const double largestRadius =
         system.radius.empty() ? 0.0 : *std::max_element(system.radius.begin(), system.radius.end());
-    return {system.units.boltzmann, system.units.electricConversion, largestRadius};
+    return {system.units.boltzmann, system.units.electricConversion, largestRadius, system.temperature};
 }
 
 ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& log,
