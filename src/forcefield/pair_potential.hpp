@@ -45,6 +45,22 @@ struct Constants {
     double kT() const { return boltzmann * temperature; }
 };
 
+// A potential whose constants are numbers in one unit system declares
+//   static constexpr const char* required_units;   // "KcalMol_A"
+// and an input in other units is refused.
+template <class Potential, class = void>
+struct has_required_units : std::false_type {};
+template <class Potential>
+struct has_required_units<Potential, std::void_t<decltype(Potential::required_units)>> : std::true_type {};
+
+template <class Potential>
+const char* required_units_of() {
+    if constexpr (has_required_units<Potential>::value)
+        return Potential::required_units;
+    else
+        return "";
+}
+
 template <class Potential, class = void>
 struct has_cutoff_key : std::false_type {};
 template <class Potential>
