@@ -39,6 +39,7 @@
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/lennard_jones_general.hpp"
 #include "forcefield/lennard_jones_wca.hpp"
+#include "forcefield/max_distance_restraint.hpp"
 #include "forcefield/morse.hpp"
 #include "forcefield/plates.hpp"
 #include "forcefield/spherical_shell.hpp"
@@ -100,6 +101,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12"});
     v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12Common_epsilon_sigma"}, {"epsilon", "sigma"});
     v.template bond<RadialBond<DebyeHuckel>>({"Bond2", "DebyeHuckel"});
+    v.template bond<RadialBond<MaxDistanceRestraint>>({"Bond2", "MaxDistanceRestraint"});
     v.template configurable<TabulatedBond>({"Bond2", "Tabulated"});
 
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngular"});
