@@ -32,6 +32,7 @@
 #include "forcefield/fixed_harmonic.hpp"
 #include "forcefield/gaussian_bond.hpp"
 #include "forcefield/harmonic_angle.hpp"
+#include "forcefield/harmonic_anisotropic.hpp"
 #include "forcefield/harmonic_bond.hpp"
 #include "forcefield/kim_hummer.hpp"
 #include "forcefield/kratky_porod.hpp"
@@ -74,6 +75,7 @@ void visit_builtin_forcefield(Visitor& v) {
 
     v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});
     v.template bond<ConstantForceBond>({"Bond1", "ConstantForce"});
+    v.template bond<FixedHarmonicAnisotropic>({"Bond1", "FixedHarmonicAnisotropic"});
 
     using Harmonic = RadialBond<HarmonicBond>;
     v.template bond<Harmonic>({"Bond2", "Harmonic"});
@@ -102,6 +104,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12Common_epsilon_sigma"}, {"epsilon", "sigma"});
     v.template bond<RadialBond<DebyeHuckel>>({"Bond2", "DebyeHuckel"});
     v.template bond<RadialBond<MaxDistanceRestraint>>({"Bond2", "MaxDistanceRestraint"});
+    v.template bond<HarmonicAnisotropicBond>({"Bond2", "HarmonicAnisotropic"});
     v.template configurable<TabulatedBond>({"Bond2", "Tabulated"});
 
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngular"});
