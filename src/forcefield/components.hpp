@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "forcefield/best_chen_hummer_angle.hpp"
 #include "forcefield/clashed.hpp"
 #include "forcefield/constant_force_bond.hpp"
 #include "forcefield/debye_huckel.hpp"
@@ -112,6 +113,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngularCommon_K_theta0"}, {"K", "theta0"});
     v.template bond<KratkyPorod>({"Bond3", "KratkyPorod"});
     v.template bond<KratkyPorod>({"Bond3", "KratkyPorodCommon_K"}, {"K"});
+    v.template bond<BestChenHummerAngle>({"Bond3", "BestChenHummerAngular"});
     v.template configurable<TabulatedAngle>({"Bond3", "Tabulated"});
 
     v.template bond<Dihedral>({"Bond4", "Dihedral"});
