@@ -35,6 +35,7 @@
 #include "forcefield/harmonic_angle.hpp"
 #include "forcefield/harmonic_anisotropic.hpp"
 #include "forcefield/harmonic_bond.hpp"
+#include "forcefield/idp_fourier_dihedral.hpp"
 #include "forcefield/kim_hummer.hpp"
 #include "forcefield/kratky_porod.hpp"
 #include "forcefield/la_torre.hpp"
@@ -119,6 +120,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<Dihedral>({"Bond4", "Dihedral"});
     v.template bond<Dihedral>({"Bond4", "DihedralCommon_n_K_phi0"}, {"n", "K", "phi0"});
     v.template bond<Dihedral4>({"Bond4", "Dihedral4"});
+    v.template bond<IdpFourierDihedral>({"Bond4", "IDP_Fourier"});
     v.template configurable<TabulatedDihedral>({"Bond4", "Tabulated"});
 
     v.template external<ExternalConstantForce>({"External", "ConstantForce"});
