@@ -24,6 +24,9 @@ struct ForceFieldComponent {
     std::vector<Parameter> parameters;       // pairs: per type pair; bonds: per bond; externals: the entry's
     std::vector<Parameter> entryParameters;  // pairs: given once in the entry's "parameters"
     std::vector<std::string> common;         // bonds: given once for every bond (the Common_ variants)
+    // The one unit system the component is defined in (its constants are numbers in those units, as
+    // "KcalMol_A"); empty: any. An input in other units is refused, naming the entry's type.
+    std::string units;
     // Pairs: the largest distance at which the term acts with these values (shared and one row's).
     std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
     bool readsCutOffFactor = true;  // pairs: the entry gives "cutOffFactor" (else its own cut-off parameter)

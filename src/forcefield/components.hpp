@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "forcefield/best_chen_hummer_angle.hpp"
 #include "forcefield/clashed.hpp"
 #include "forcefield/constant_force_bond.hpp"
 #include "forcefield/debye_huckel.hpp"
@@ -32,13 +33,16 @@
 #include "forcefield/fixed_harmonic.hpp"
 #include "forcefield/gaussian_bond.hpp"
 #include "forcefield/harmonic_angle.hpp"
+#include "forcefield/harmonic_anisotropic.hpp"
 #include "forcefield/harmonic_bond.hpp"
+#include "forcefield/idp_fourier_dihedral.hpp"
 #include "forcefield/kim_hummer.hpp"
 #include "forcefield/kratky_porod.hpp"
 #include "forcefield/la_torre.hpp"
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/lennard_jones_general.hpp"
 #include "forcefield/lennard_jones_wca.hpp"
+#include "forcefield/max_distance_restraint.hpp"
 #include "forcefield/morse.hpp"
 #include "forcefield/plates.hpp"
 #include "forcefield/spherical_shell.hpp"
@@ -73,6 +77,7 @@ void visit_builtin_forcefield(Visitor& v) {
 
     v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});
     v.template bond<ConstantForceBond>({"Bond1", "ConstantForce"});
+    v.template bond<FixedHarmonicAnisotropic>({"Bond1", "FixedHarmonicAnisotropic"});
 
     using Harmonic = RadialBond<HarmonicBond>;
     v.template bond<Harmonic>({"Bond2", "Harmonic"});
@@ -100,6 +105,8 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12"});
     v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12Common_epsilon_sigma"}, {"epsilon", "sigma"});
     v.template bond<RadialBond<DebyeHuckel>>({"Bond2", "DebyeHuckel"});
+    v.template bond<RadialBond<MaxDistanceRestraint>>({"Bond2", "MaxDistanceRestraint"});
+    v.template bond<HarmonicAnisotropicBond>({"Bond2", "HarmonicAnisotropic"});
     v.template configurable<TabulatedBond>({"Bond2", "Tabulated"});
 
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngular"});
@@ -107,11 +114,13 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngularCommon_K_theta0"}, {"K", "theta0"});
     v.template bond<KratkyPorod>({"Bond3", "KratkyPorod"});
     v.template bond<KratkyPorod>({"Bond3", "KratkyPorodCommon_K"}, {"K"});
+    v.template bond<BestChenHummerAngle>({"Bond3", "BestChenHummerAngular"});
     v.template configurable<TabulatedAngle>({"Bond3", "Tabulated"});
 
     v.template bond<Dihedral>({"Bond4", "Dihedral"});
     v.template bond<Dihedral>({"Bond4", "DihedralCommon_n_K_phi0"}, {"n", "K", "phi0"});
     v.template bond<Dihedral4>({"Bond4", "Dihedral4"});
+    v.template bond<IdpFourierDihedral>({"Bond4", "IDP_Fourier"});
     v.template configurable<TabulatedDihedral>({"Bond4", "Tabulated"});
 
     v.template external<ExternalConstantForce>({"External", "ConstantForce"});

@@ -34,12 +34,32 @@
 namespace structmd {
 
 // What potentials take from the system besides their parameters: the physical constants of the
-// input's units, and the largest particle radius (the range of a potential of radii scales with it).
+// input's units, the largest particle radius (the range of a potential of radii scales with it) and
+// the ensemble's temperature (a term given in units of k_B T scales with it).
 struct Constants {
     double boltzmann = 1.0;
     double electricConversion = 1.0;
     double largestRadius = 0.0;
+    double temperature = 0.0;  // k_B T = boltzmann * temperature
+
+    double kT() const { return boltzmann * temperature; }
 };
+
+// A potential whose constants are numbers in one unit system declares
+//   static constexpr const char* required_units;   // "KcalMol_A"
+// and an input in other units is refused.
+template <class Potential, class = void>
+struct has_required_units : std::false_type {};
+template <class Potential>
+struct has_required_units<Potential, std::void_t<decltype(Potential::required_units)>> : std::true_type {};
+
+template <class Potential>
+const char* required_units_of() {
+    if constexpr (has_required_units<Potential>::value)
+        return Potential::required_units;
+    else
+        return "";
+}
 
 template <class Potential, class = void>
 struct has_cutoff_key : std::false_type {};

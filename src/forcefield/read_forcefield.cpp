@@ -345,7 +345,7 @@ void warn_unlisted_type_pairs(const SystemDescription& system, const ForceFieldS
 Constants constants_of(const SystemDescription& system) {
     const double largestRadius =
         system.radius.empty() ? 0.0 : *std::max_element(system.radius.begin(), system.radius.end());
-    return {system.units.boltzmann, system.units.electricConversion, largestRadius};
+    return {system.units.boltzmann, system.units.electricConversion, largestRadius, system.temperature};
 }
 
 ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& log,
@@ -367,6 +367,11 @@ ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& lo
         const ForceFieldComponent& registered =
             registry.at({entry.cls, entry.subclass}, entry.node.path() + ".type", "component");
         const ForceFieldComponent component = registered.configure ? registered.configure(entry, system) : registered;
+        if (!component.units.empty() && component.units != system.units.name)
+            throw input_error(entry.node.path() + ".type",
+                              component.key.text() + " is defined in " + component.units +
+                                  " units only (its constants are numbers in them); the input's units (global.units) are " +
+                                  system.units.name);
         switch (component.kind) {
             case InteractionKind::pair: read_pair(component, entry, system, ff); break;
             case InteractionKind::bond: read_bonds(component, entry, system, ff); break;

@@ -12,8 +12,9 @@ namespace structmd {
 ForceFieldSpec read_forcefield(const input::SystemDescription& system, const Logger& log,
                                const Registry<ForceFieldComponent>& registry = forcefield_registry());
 
-// The units' constants and the largest particle radius (its type's or the state's), which potentials
-// of radii scale their range with; the reader and the engines must see the same.
+// The units' constants, the largest particle radius (its type's or the state's), which potentials
+// of radii scale their range with, and the ensemble's temperature; the reader and the engines must
+// see the same.
 Constants constants_of(const input::SystemDescription& system);
 
 }  // namespace structmd

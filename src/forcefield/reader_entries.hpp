@@ -21,6 +21,7 @@ struct ReaderEntries {
     void pair(ComponentKey key) {
         ForceFieldComponent c = component(std::move(key), InteractionKind::pair, Potential::pair_parameters());
         c.entryParameters = Potential::entry_parameters();
+        c.units = required_units_of<Potential>();
         c.actingCutoff = [](const ParameterValues& v, const Constants& constants, double cutOffFactor, bool shift) {
             return std::sqrt(static_cast<double>(
                 Potential::template make_pair_params<double>(v, constants, cutOffFactor, shift).cutoff2));
@@ -41,6 +42,7 @@ struct ReaderEntries {
     void bond(ComponentKey key, std::vector<std::string> common = {}) {
         ForceFieldComponent c = component(std::move(key), InteractionKind::bond, Potential::parameters());
         c.arity = Potential::arity;
+        c.units = required_units_of<Potential>();
         for (const std::string& name : common)
             if (std::none_of(c.parameters.begin(), c.parameters.end(),
                              [&](const Parameter& p) { return name == p.name; }))
@@ -51,7 +53,9 @@ struct ReaderEntries {
 
     template <class Potential>
     void external(ComponentKey key) {
-        registry.add(component(std::move(key), InteractionKind::external, Potential::parameters()));
+        ForceFieldComponent c = component(std::move(key), InteractionKind::external, Potential::parameters());
+        c.units = required_units_of<Potential>();
+        registry.add(std::move(c));
     }
 
     template <class Component>

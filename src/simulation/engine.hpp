@@ -456,9 +456,20 @@ public:
                                                    precise(half_shortest_edge(boxLengths_[0], boxLengths_[1],
                                                                               boxLengths_[2])) + ")");
         // Built beside the present ones: a failure (a kernel that does not compile, memory) changes nothing.
-        ForceField<B, R> forceField = make_force_field(spec.forceField, components, &forceField_);
-        std::vector<std::unique_ptr<Integrator<B, R>>> integrators = make_integrators(spec.integrators, forceField);
-        for (size_t k = 0; k < integrators.size(); ++k) integrators[k]->restore(integrators_[k]->state());
+        // The new constants (a new temperature, which a term in units of k_B T scales with) are in the
+        // context the force field is made with; a failure puts the old ones back.
+        const Constants previousConstants = context_.constants;
+        context_.constants = spec.constants;
+        ForceField<B, R> forceField;
+        std::vector<std::unique_ptr<Integrator<B, R>>> integrators;
+        try {
+            forceField = make_force_field(spec.forceField, components, &forceField_);
+            integrators = make_integrators(spec.integrators, forceField);
+            for (size_t k = 0; k < integrators.size(); ++k) integrators[k]->restore(integrators_[k]->state());
+        } catch (...) {
+            context_.constants = previousConstants;
+            throw;
+        }
         forceField_.adapt();
         retiredListBuilds_ += forceField_.builds();
         forceField_ = std::move(forceField);

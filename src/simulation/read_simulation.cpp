@@ -62,6 +62,7 @@ std::unique_ptr<input::ParsedDocument> read_parameter_document(const std::string
 RuntimeSpec read_runtime_spec(const input::SystemDescription& system, const Logger& log,
                               const Registry<ForceFieldComponent>& components) {
     RuntimeSpec spec;
+    spec.constants = constants_of(system);
     spec.forceField = read_forcefield(system, log, components);
     spec.integrators = read_integrators(system, spec.forceField.groups, spec.schedule);
     // The entries read here must use every key they hold (a parameter the component does not take

@@ -18,7 +18,9 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
 // What structmd_set_parameter may change, read again from the parsed document after a parameter in
 // it changed: the force field and the integrators, validated as a load validates them (every key of
 // their entries must be used). The particles are the description's; their tables are not read.
+// The constants come again too: the ensemble's temperature may be what changed.
 struct RuntimeSpec {
+    Constants constants;
     ForceFieldSpec forceField;
     std::vector<IntegratorSpec> integrators;
     std::vector<ScheduleStage> schedule;

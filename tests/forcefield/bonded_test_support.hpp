@@ -151,17 +151,19 @@ inline Balance balance_of(const V* r, const V* force) {
 
 // Energy and force of the float instantiation against the double one, relative to
 // max(|U|, energy_scale) and max(max |F|, force_scale): the scales keep the comparison relative to
-// the term's strength where U or F happens to be near zero.
+// the term's strength where U or F happens to be near zero. `constants`: the units and temperature
+// the parameters are made with.
 struct FloatAgreement {
     double energy;
     double force;
 };
 
 template <class Term>
-inline FloatAgreement float_agreement(const V* r, const double* values, double energy_scale, double force_scale) {
+inline FloatAgreement float_agreement(const V* r, const double* values, double energy_scale, double force_scale,
+                                      const Constants& constants = kConstants) {
     constexpr int N = Term::arity;
-    const auto pd = Term::template make_params<double>(values_in_order(Term::parameters(), values), kConstants);
-    const auto pf = Term::template make_params<float>(values_in_order(Term::parameters(), values), kConstants);
+    const auto pd = Term::template make_params<double>(values_in_order(Term::parameters(), values), constants);
+    const auto pf = Term::template make_params<float>(values_in_order(Term::parameters(), values), constants);
     const Box<float> box_f = Box<float>::make(kBox.length.x, kBox.length.y, kBox.length.z);
     Vec3<float> rf[N], ff[N];
     V fd[N];

@@ -1,6 +1,6 @@
-// HarmonicAngle and KratkyPorod against finite differences of their energy, the angle from the arc
-// cosine, the conservation laws, their float instantiation, and the straight, folded and nearly
-// straight chains where the angle's gradient degenerates.
+// HarmonicAngle, KratkyPorod and BestChenHummerAngle against finite differences of their energy, the
+// angle from the arc cosine, the conservation laws, their float instantiation, and the straight,
+// folded and nearly straight chains where the angle's gradient degenerates.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "forcefield/best_chen_hummer_angle.hpp"
 #include "forcefield/harmonic_angle.hpp"
 #include "forcefield/kratky_porod.hpp"
 
@@ -281,6 +282,127 @@ TEST(KratkyPorod, NearlyStraightChainIsSmooth) {
         }
     }
     report("KratkyPorod within 1e-6 of pi: force vs exact", worst);
+}
+
+// ---- BestChenHummerAngle: no parameters, the paper's constants in kcal/mol and radians ----
+
+// U of Best, Chen and Hummer as the input format writes it: the logarithm of the sum of the two
+// exponentials, taken as written (no log-sum-exp).
+double best_chen_hummer_energy(double theta) {
+    const double gamma = 0.1;
+    const double alpha = std::exp(-gamma * (106.4 * (theta - 1.60) * (theta - 1.60) + 4.3));
+    const double beta = std::exp(-gamma * 26.3 * (theta - 2.27) * (theta - 2.27));
+    return -std::log(alpha + beta) / gamma;
+}
+
+using BCH = BestChenHummerAngle;
+const auto kBchParams = BCH::make_params<double>(values_in_order(BCH::parameters(), nullptr), kConstants);
+
+TEST(BestChenHummerAngle, ForceIsMinusGradientOfEnergy) {
+    double worst = 0.0;
+    for (const Chain<3>& c : angle_chains(61)) {
+        const double error = finite_difference_error<BCH>(c.r, kBchParams, 1e-3);
+        EXPECT_LT(error, kForceTolerance);
+        worst = std::max(worst, error);
+    }
+    report("BestChenHummerAngle force vs finite differences", worst);
+}
+
+TEST(BestChenHummerAngle, EnergyMatchesAngleFromArcCosine) {
+    double worst = 0.0;
+    for (const Chain<3>& c : angle_chains(62)) {
+        V force[3];
+        const double energy = BCH::compute(c.r, kBchParams, kBox, force);
+        const double theta = angle_by_arc_cosine(c.unwrapped[0], c.unwrapped[1], c.unwrapped[2]);
+        const double expected = best_chen_hummer_energy(theta);
+        // U crosses zero near the beta well: relative to 1 kcal/mol there.
+        const double error = std::fabs(energy - expected) / std::max(std::fabs(expected), 1.0);
+        EXPECT_LT(error, 1e-9);
+        worst = std::max(worst, error);
+    }
+    report("BestChenHummerAngle energy vs formula", worst);
+}
+
+TEST(BestChenHummerAngle, ForcesAndTorquesSumToZero) {
+    Balance worst{0, 0};
+    for (const Chain<3>& c : angle_chains(63)) {
+        V force[3];
+        BCH::compute(c.r, kBchParams, kBox, force);
+        const Balance b = balance_of<3>(c.r, force);
+        EXPECT_LT(b.net_force, kBalanceTolerance);
+        EXPECT_LT(b.torque, kBalanceTolerance);
+        worst = {std::max(worst.net_force, b.net_force), std::max(worst.torque, b.torque)};
+    }
+    report("BestChenHummerAngle net force", worst.net_force);
+    report("BestChenHummerAngle net torque", worst.torque);
+}
+
+TEST(BestChenHummerAngle, FloatAgreesWithDouble) {
+    FloatAgreement worst{0, 0};
+    for (const Chain<3>& c : angle_chains(64)) {
+        const FloatAgreement a = float_agreement<BCH>(c.r, nullptr, 1.0, 1.0);
+        EXPECT_LT(a.energy, kFloatTolerance);
+        EXPECT_LT(a.force, kFloatTolerance);
+        worst = {std::max(worst.energy, a.energy), std::max(worst.force, a.force)};
+    }
+    report("BestChenHummerAngle float vs double energy", worst.energy);
+    report("BestChenHummerAngle float vs double force", worst.force);
+}
+
+// Over the whole range of theta, the straight and folded chains included, the log-sum-exp form
+// equals the formula, and U has two wells: a helical one, pulled from theta_alpha = 1.60 towards the
+// extended one by their mixing (to 1.704), and the extended one near theta_beta = 2.27 (at 2.251),
+// separated by a barrier.
+TEST(BestChenHummerAngle, TwoWellsHelicalAndExtended) {
+    const double arm0 = 1.1, arm2 = 0.9;
+    const V along = unit(V{0.3, -0.8, 0.5});
+    const V across = unit(cross_product(along, V{1.0, 0.2, -0.4}));
+    const V vertex{0.1, 0.2, -0.3};
+    std::vector<double> energies;
+    const int steps = 31400;
+    double worst = 0.0;
+    for (int k = 0; k <= steps; ++k) {
+        const double theta = kPi * k / steps;
+        const V r[3] = {vertex + arm0 * along, vertex,
+                        vertex + arm2 * (std::cos(theta) * along + std::sin(theta) * across)};
+        V force[3];
+        const double energy = BCH::compute(r, kBchParams, kBox, force);
+        ASSERT_TRUE(std::isfinite(energy) && std::isfinite(force[0].x) && std::isfinite(force[2].x)) << theta;
+        worst = std::max(worst, std::fabs(energy - best_chen_hummer_energy(theta)) /
+                                    std::max(std::fabs(best_chen_hummer_energy(theta)), 1.0));
+        energies.push_back(energy);
+    }
+    EXPECT_LT(worst, 1e-9);
+    std::vector<int> minima;
+    for (int k = 1; k < steps; ++k)
+        if (energies[k] < energies[k - 1] && energies[k] < energies[k + 1]) minima.push_back(k);
+    ASSERT_EQ(minima.size(), 2u);
+    EXPECT_NEAR(kPi * minima[0] / steps, 1.704, 1e-3);
+    EXPECT_NEAR(kPi * minima[1] / steps, 2.251, 1e-3);
+    const double barrier = *std::max_element(energies.begin() + minima[0], energies.begin() + minima[1]);
+    EXPECT_GT(barrier, energies[minima[0]] + 0.1);
+    EXPECT_GT(barrier, energies[minima[1]] + 0.1);
+    std::printf("[ wells    ] BestChenHummerAngle: U = %.4f at %.4f, %.4f at %.4f, barrier %.4f kcal/mol\n",
+                energies[minima[0]], kPi * minima[0] / steps, energies[minima[1]], kPi * minima[1] / steps, barrier);
+    report("BestChenHummerAngle energy vs formula over [0, pi]", worst);
+}
+
+// dU/dtheta does not vanish at pi: the straight chain feels the one-sided limit of the force,
+// |F_0| = |dU/dtheta| / |arm 0|, balanced.
+TEST(BestChenHummerAngle, StraightChainForceIsAOneSidedLimit) {
+    const double arm0 = 1.1, arm2 = 0.7;
+    const V along = unit(V{0.3, -0.8, 0.5});
+    const V vertex{0.1, 0.2, -0.3};
+    const V r[3] = {vertex + arm0 * along, vertex, vertex - arm2 * along};
+    V force[3];
+    const double energy = BCH::compute(r, kBchParams, kBox, force);
+    EXPECT_NEAR(energy, best_chen_hummer_energy(kPi), 1e-12 * std::fabs(energy));
+    const double h = 1e-6;
+    const double slope = (best_chen_hummer_energy(kPi) - best_chen_hummer_energy(kPi - h)) / h;
+    EXPECT_NEAR(length(force[0]), std::fabs(slope) / arm0, 1e-5 * std::fabs(slope) / arm0);
+    const Balance b = balance_of<3>(r, force);
+    EXPECT_LT(b.net_force, kBalanceTolerance);
+    EXPECT_LT(b.torque, kBalanceTolerance);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// Dihedral and Dihedral4 against finite differences of their energy, the IUPAC angle built by hand
-// and by projection, the conservation laws and their float instantiation, and the collinear chain
-// that has no dihedral.
+// Dihedral, Dihedral4 and IdpFourierDihedral against finite differences of their energy, the IUPAC
+// angle built by hand and by projection, the conservation laws and their float instantiation, and
+// the collinear chain that has no dihedral.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "forcefield/dihedral.hpp"
+#include "forcefield/idp_fourier_dihedral.hpp"
 
 #include "bonded_test_support.hpp"
 
@@ -235,6 +236,121 @@ TEST(Dihedral4, FloatAgreesWithDouble) {
     }
     report("Dihedral4 float vs double energy", worst.energy);
     report("Dihedral4 float vs double force", worst.force);
+}
+
+// ---- IdpFourierDihedral: no parameters, the paper's coefficients in units of k_B T ----
+
+// KcalMol_A at 300 K: k_B T = 0.596 kcal/mol.
+const Constants kRoomTemperature{1.987191e-3, 332.0716, 0.0, 300.0};
+const double kRoomKT = 1.987191e-3 * 300.0;
+
+// U of Smith, Ho and O'Hern as the input format writes it.
+double idp_fourier_energy(double kT, double phi) {
+    const double A[4] = {0.705, -0.313, -0.079, 0.041};
+    const double B[4] = {-0.175, -0.093, 0.030, 0.030};
+    double energy = 0.0;
+    for (int s = 1; s <= 4; ++s) energy += A[s - 1] * std::cos(s * phi) + B[s - 1] * std::sin(s * phi);
+    return kT * energy;
+}
+
+using Idp = IdpFourierDihedral;
+ParamsOf<Idp> idp_params(const Constants& constants) {
+    return Idp::make_params<double>(values_in_order(Idp::parameters(), nullptr), constants);
+}
+
+TEST(IdpFourierDihedral, ForceIsMinusGradientOfEnergy) {
+    double worst = 0.0;
+    for (const Chain<4>& c : dihedral_chains(71)) {
+        const double error = finite_difference_error<Idp>(c.r, idp_params(kRoomTemperature), 1e-3 * kRoomKT);
+        EXPECT_LT(error, kForceTolerance);
+        worst = std::max(worst, error);
+    }
+    report("IdpFourierDihedral force vs finite differences", worst);
+}
+
+TEST(IdpFourierDihedral, EnergyMatchesProjectedDihedral) {
+    double worst = 0.0;
+    for (const Chain<4>& c : dihedral_chains(72)) {
+        V force[4];
+        const double energy = Idp::compute(c.r, idp_params(kRoomTemperature), kBox, force);
+        const double phi = dihedral_by_projection(c.unwrapped[0], c.unwrapped[1], c.unwrapped[2], c.unwrapped[3]);
+        const double expected = idp_fourier_energy(kRoomKT, phi);
+        const double error = std::fabs(energy - expected) / std::max(std::fabs(expected), 1e-3 * kRoomKT);
+        EXPECT_LT(error, 1e-8);
+        worst = std::max(worst, error);
+    }
+    report("IdpFourierDihedral energy vs formula", worst);
+}
+
+// The sine terms tell +phi from -phi: on the hand-built IUPAC chains U(+90) = kT (B1 - A2 - B3 + A4)
+// and U(-90) = kT (-B1 - A2 + B3 + A4), with cis and trans as checks of the cosine terms.
+TEST(IdpFourierDihedral, IupacSignConvention) {
+    struct Case {
+        double turn;
+        double expected_over_kT;
+    };
+    for (const Case& c : {Case{0.5 * kPi, -0.175 + 0.313 - 0.030 + 0.041}, Case{-0.5 * kPi, 0.175 + 0.313 + 0.030 + 0.041},
+                          Case{0.0, 0.705 - 0.313 - 0.079 + 0.041}, Case{kPi, -0.705 - 0.313 + 0.079 + 0.041}}) {
+        V r[4], force[4];
+        iupac_chain(c.turn, r);
+        EXPECT_NEAR(Idp::compute(r, idp_params(kRoomTemperature), kBox, force), c.expected_over_kT * kRoomKT, 1e-12)
+            << "turn " << c.turn;
+    }
+}
+
+// U is in units of k_B T: energies and forces scale with the temperature, and vanish at T = 0.
+TEST(IdpFourierDihedral, ScalesWithTheTemperature) {
+    const Chain<4> c = dihedral_chains(73)[0];
+    Constants hot = kRoomTemperature, frozen = kRoomTemperature;
+    hot.temperature = 600.0;
+    frozen.temperature = 0.0;
+    V f_room[4], f_hot[4], f_frozen[4];
+    const double e_room = Idp::compute(c.r, idp_params(kRoomTemperature), kBox, f_room);
+    const double e_hot = Idp::compute(c.r, idp_params(hot), kBox, f_hot);
+    EXPECT_NEAR(e_hot, 2.0 * e_room, 1e-14 * kRoomKT);
+    EXPECT_EQ(Idp::compute(c.r, idp_params(frozen), kBox, f_frozen), 0.0);
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_LT(max_abs(f_hot[k] - 2.0 * f_room[k]), 1e-13 * kRoomKT * (1.0 + max_abs(f_room[k])));
+        EXPECT_EQ(max_abs(f_frozen[k]), 0.0);
+    }
+}
+
+TEST(IdpFourierDihedral, ForcesAndTorquesSumToZero) {
+    Balance worst{0, 0};
+    for (const Chain<4>& c : dihedral_chains(74)) {
+        V force[4];
+        Idp::compute(c.r, idp_params(kRoomTemperature), kBox, force);
+        const Balance b = balance_of<4>(c.r, force);
+        EXPECT_LT(b.net_force, kBalanceTolerance);
+        EXPECT_LT(b.torque, kBalanceTolerance);
+        worst = {std::max(worst.net_force, b.net_force), std::max(worst.torque, b.torque)};
+    }
+    report("IdpFourierDihedral net force", worst.net_force);
+    report("IdpFourierDihedral net torque", worst.torque);
+}
+
+TEST(IdpFourierDihedral, FloatAgreesWithDouble) {
+    FloatAgreement worst{0, 0};
+    for (const Chain<4>& c : dihedral_chains(75)) {
+        // The terms' scales, as for Dihedral4: kT sum |A_s|, |B_s| and kT sum s (|A_s| + |B_s|).
+        const FloatAgreement a = float_agreement<Idp>(c.r, nullptr, 1.5 * kRoomKT, 3.0 * kRoomKT, kRoomTemperature);
+        EXPECT_LT(a.energy, kFloatTolerance);
+        EXPECT_LT(a.force, kFloatTolerance);
+        worst = {std::max(worst.energy, a.energy), std::max(worst.force, a.force)};
+    }
+    report("IdpFourierDihedral float vs double energy", worst.energy);
+    report("IdpFourierDihedral float vs double force", worst.force);
+}
+
+TEST(IdpFourierDihedral, CollinearTripleFeelsNoForce) {
+    const V first[4] = {{-1.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {1.5, 0.8, 0.1}};
+    const V second[4] = {{-0.5, 0.7, 0.2}, {0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {2.0, 0.0, 0.0}};
+    for (const V* r : {first, second}) {
+        V force[4];
+        EXPECT_NEAR(Idp::compute(r, idp_params(kRoomTemperature), kBox, force), idp_fourier_energy(kRoomKT, 0.0),
+                    1e-15);
+        for (int k = 0; k < 4; ++k) EXPECT_EQ(max_abs(force[k]), 0.0);
+    }
 }
 
 }  // namespace

@@ -15,10 +15,12 @@
 #include "forcefield/dlvo.hpp"
 #include "forcefield/gaussian_bond.hpp"
 #include "forcefield/kim_hummer.hpp"
+#include "forcefield/harmonic_bond.hpp"
 #include "forcefield/la_torre.hpp"
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/lennard_jones_general.hpp"
 #include "forcefield/lennard_jones_wca.hpp"
+#include "forcefield/max_distance_restraint.hpp"
 #include "forcefield/morse.hpp"
 #include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
@@ -385,6 +387,35 @@ TEST(Gaussian, MatchesTheFormula) {
     EXPECT_EQ(at<GaussianBond>(0.0, p).dudr_over_r, 0.0);
 }
 
+TEST(MaxDistanceRestraint, FreeUpToTheLargestDistanceHarmonicBeyond) {
+    const double K = 12.0, largest = 1.7;
+    const double values[] = {K, largest};
+    const auto p = MaxDistanceRestraint::make_bond_params<double>(
+        values_in_order(MaxDistanceRestraint::bond_parameters(), values), Constants{});
+    expect_energy_and_derivative<MaxDistanceRestraint>(
+        p, [&](double r) { return 0.5 * K * (r - largest) * (r - largest); }, {1.75, 2.0, 3.0, 8.0});
+    expect_no_interaction<MaxDistanceRestraint>(p, {0.0, 0.5, 1.0, 1.69, largest});
+    // U and U' continuous at maxDistance: just beyond it both are of the order of the step.
+    const PairTerm<double> beyond = at<MaxDistanceRestraint>(largest * (1.0 + 1e-9), p);
+    EXPECT_LT(beyond.energy, 1e-15 * K);
+    EXPECT_LT(beyond.dudr_over_r * largest, 1e-7 * K);
+    EXPECT_GT(beyond.dudr_over_r, 0.0);
+}
+
+// maxDistance = 0 leaves the bond a harmonic spring of rest length 0, zero force at r = 0 included.
+TEST(MaxDistanceRestraint, ZeroDistanceIsTheHarmonicBondOfRestLengthZero) {
+    const double restraint_values[] = {12.0, 0.0}, harmonic_values[] = {12.0, 0.0};
+    const auto restraint = MaxDistanceRestraint::make_bond_params<double>(
+        values_in_order(MaxDistanceRestraint::bond_parameters(), restraint_values), Constants{});
+    const auto harmonic =
+        HarmonicBond::make_bond_params<double>(values_in_order(HarmonicBond::bond_parameters(), harmonic_values), Constants{});
+    for (const double r : {0.0, 0.3, 1.0, 4.0}) {
+        const PairTerm<double> a = at<MaxDistanceRestraint>(r, restraint), b = at<HarmonicBond>(r, harmonic);
+        EXPECT_DOUBLE_EQ(a.energy, b.energy) << "r = " << r;
+        EXPECT_DOUBLE_EQ(a.dudr_over_r, b.dudr_over_r) << "r = " << r;
+    }
+}
+
 template <class Potential>
 void check_single_precision_pair(double epsilon, const std::vector<double>& radii) {
     expect_float_matches_double(
@@ -418,6 +449,7 @@ TEST(SinglePrecision, MatchesDouble) {
     check_single_precision_bond<DebyeHuckel>({-0.8, kDielectric, kDebyeLength, 20.0}, {1.0, 4.0, 15.0});
     check_single_precision_bond<MorseBond>({1.5, 2.2, 0.4}, {0.9, 1.2, 1.7, 2.3});
     check_single_precision_bond<GaussianBond>({3.1, 2.0, 0.3}, {0.5, 1.2, 2.3, 3.0});
+    check_single_precision_bond<MaxDistanceRestraint>({12.0, 1.7}, {1.9, 2.3, 3.0, 8.0});
     expect_float_matches_double(
         [](auto tag) {
             return DebyeHuckel::make_params<decltype(tag)>(kDielectric, kDebyeLength, kDebyeCutoff, kKcalMolA);

@@ -101,11 +101,13 @@ inline std::string number(double x) {
 
 inline std::string vec_text(const Vec3& v) { return "[" + number(v[0]) + ", " + number(v[1]) + ", " + number(v[2]) + "]"; }
 
-// A whole input document (units None, two types A and B of mass 1, cubic periodic box, one
-// VelocityVerlet integrator with a long schedule) around the given forceField entries.
+// A whole input document (units None and temperature 1 unless given, two types A and B of mass 1,
+// cubic periodic box, one VelocityVerlet integrator with a long schedule) around the given forceField
+// entries. `units`: global.units' subclass.
 inline std::string input_document(double box_length, const std::vector<Vec3>& positions,
                                   const std::vector<std::string>& type_names, const std::vector<Vec3>& velocities,
-                                  const std::string& force_field, double time_step) {
+                                  const std::string& force_field, double time_step, const std::string& units = "None",
+                                  double temperature = 1.0) {
     std::string state, structure;
     for (std::size_t i = 0; i < positions.size(); ++i) {
         const std::string separator = i == 0 ? "" : ",\n";
@@ -115,11 +117,11 @@ inline std::string input_document(double box_length, const std::vector<Vec3>& po
     }
     const std::string box = number(box_length);
     return "{\"system\": {\"info\": {\"type\": [\"Simulation\", \"Information\"], \"parameters\": {\"name\": \"physics\"}}},\n"
-           "\"global\": {\"units\": {\"type\": [\"Units\", \"None\"]},\n"
+           "\"global\": {\"units\": {\"type\": [\"Units\", \"" + units + "\"]},\n"
            "  \"types\": {\"type\": [\"Types\", \"Basic\"], \"labels\": [\"name\", \"mass\", \"radius\", \"charge\"],\n"
            "            \"data\": [[\"A\", 1.0, 0.5, 0.0], [\"B\", 1.0, 0.5, 0.0]]},\n"
            "  \"ensemble\": {\"type\": [\"Ensemble\", \"NVT\"], \"labels\": [\"box\", \"temperature\"], \"data\": [[[" +
-           box + ", " + box + ", " + box + "], 1.0]]}},\n"
+           box + ", " + box + ", " + box + "], " + number(temperature) + "]]}},\n"
            "\"integrator\": {\"vv\": {\"type\": [\"Verlet\", \"VelocityVerlet\"], \"parameters\": {\"timeStep\": " +
            number(time_step) + "}},\n"
            "  \"schedule\": {\"type\": [\"Schedule\", \"Integrator\"], \"labels\": [\"order\", \"integrator\", \"steps\"],\n"

@@ -20,6 +20,8 @@ struct SmallSystem {
     std::vector<Vec3> positions;
     std::vector<std::string> types;
     std::string force_field;
+    std::string units = "None";
+    double temperature = 1.0;
 };
 
 const std::string kTwoTypeLennardJones =
@@ -134,6 +136,84 @@ SmallSystem bonded_lennard_jones_system() {
     return s;
 }
 
+Vec3 separation(const Vec3& a, const Vec3& b, double box_length) {
+    Vec3 d{};
+    for (int k = 0; k < 3; ++k) d[k] = minimum_image(b[k] - a[k], box_length);
+    return d;
+}
+
+double angle_at(const Vec3& a, const Vec3& b, const Vec3& c, double box_length) {
+    const Vec3 u = separation(b, a, box_length), w = separation(b, c, box_length);
+    double uw = 0.0, uu = 0.0, ww = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        uw += u[k] * w[k];
+        uu += u[k] * u[k];
+        ww += w[k] * w[k];
+    }
+    return std::acos(uw / std::sqrt(uu * ww));
+}
+
+// A C-alpha-like chain (KcalMol_A units, 300 K) from a box corner, so that bonds cross the boundary,
+// under every bonded term of issue 14: anisotropic springs along the chain, restraints between
+// beads two apart (some stretched beyond maxDistance, some not), two particles tethered anisotropically
+// to points across the boundary, Best-Chen-Hummer angles and IDP dihedrals. Each bead is drawn so
+// that its angle stays 0.3 rad from 0 and pi, every restraint is 0.01 from its maxDistance and every
+// separation component 0.01 from 0: no stencil straddles a kink of the restraint or a cusp of a spring.
+SmallSystem issue14_bonded_system() {
+    const double box = 6.0;
+    SplitMix64 rng(1414);
+    std::vector<Vec3> positions{{2.7, 2.8, 2.6}};
+    const auto clear_of_zero = [](const Vec3& d) {
+        return std::abs(d[0]) > 0.01 && std::abs(d[1]) > 0.01 && std::abs(d[2]) > 0.01;
+    };
+    while (positions.size() < 10) {
+        Vec3 direction{rng.normal(), rng.normal(), rng.normal()};
+        const double norm = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+        Vec3 next = positions.back();
+        for (int k = 0; k < 3; ++k) next[k] += 3.8 / 4.0 * direction[k] / norm;  // 0.95
+        next = wrapped(next, box);
+        if (!clear_of_zero(separation(positions.back(), next, box))) continue;
+        if (positions.size() >= 2) {
+            const double theta = angle_at(positions[positions.size() - 2], positions.back(), next, box);
+            if (theta < 0.3 || theta > 3.14159 - 0.3) continue;
+            if (!clear_of_zero(separation(positions[positions.size() - 2], next, box))) continue;
+        }
+        positions.push_back(next);
+    }
+    std::string anisotropic, restraints, angles, dihedrals;
+    const auto add = [](std::string& rows, const std::string& row) { rows += (rows.empty() ? "" : ", ") + row; };
+    for (std::size_t i = 0; i + 1 < positions.size(); ++i)
+        add(anisotropic, "[" + std::to_string(i) + ", " + std::to_string(i + 1) + ", [30.0, 45.0, 60.0], [0.3, 0.5, 0.2]]");
+    for (std::size_t i = 0; i + 2 < positions.size(); ++i) {
+        const Vec3 d = separation(positions[i], positions[i + 2], box);
+        const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        // Alternately 0.2 shorter and 0.2 longer than the pair's distance (never within 0.01 of it).
+        const double largest = r + (i % 2 == 0 ? -0.2 : 0.2);
+        add(restraints, "[" + std::to_string(i) + ", " + std::to_string(i + 2) + ", 20.0, " + number(largest) + "]");
+    }
+    for (std::size_t i = 0; i + 2 < positions.size(); ++i)
+        add(angles, "[" + std::to_string(i) + ", " + std::to_string(i + 1) + ", " + std::to_string(i + 2) + "]");
+    for (std::size_t i = 0; i + 3 < positions.size(); ++i)
+        add(dihedrals, "[" + std::to_string(i) + ", " + std::to_string(i + 1) + ", " + std::to_string(i + 2) + ", " +
+                           std::to_string(i + 3) + "]");
+    const std::string force_field =
+        "\"anisotropic\": {\"type\": [\"Bond2\", \"HarmonicAnisotropic\"], \"labels\": [\"id_i\", \"id_j\", \"K\", \"r0\"],\n"
+        "                \"data\": [" + anisotropic + "]},\n"
+        "\"restraints\": {\"type\": [\"Bond2\", \"MaxDistanceRestraint\"], \"labels\": [\"id_i\", \"id_j\", \"K\", \"maxDistance\"],\n"
+        "               \"data\": [" + restraints + "]},\n"
+        "\"tethers\": {\"type\": [\"Bond1\", \"FixedHarmonicAnisotropic\"], \"labels\": [\"id_i\", \"K\", \"r0\", \"position\"],\n"
+        "            \"data\": [[0, [5.0, 8.0, 3.0], [0.4, 0.0, 0.7], [-2.8, -2.9, 2.5]],\n"
+        "                     [5, [6.0, 2.0, 9.0], [0.1, 0.6, 0.3], [0.3, -0.4, 0.5]]]},\n"
+        "\"caAngles\": {\"type\": [\"Bond3\", \"BestChenHummerAngular\"], \"labels\": [\"id_i\", \"id_j\", \"id_k\"],\n"
+        "             \"data\": [" + angles + "]},\n"
+        "\"caDihedrals\": {\"type\": [\"Bond4\", \"IDP_Fourier\"], \"labels\": [\"id_i\", \"id_j\", \"id_k\", \"id_l\"],\n"
+        "                \"data\": [" + dihedrals + "]}";
+    SmallSystem s{box, positions, std::vector<std::string>(positions.size(), "A"), force_field};
+    s.units = "KcalMol_A";
+    s.temperature = 300.0;
+    return s;
+}
+
 bool crosses_boundary(const Vec3& a, const Vec3& b, double box_length) {
     for (int k = 0; k < 3; ++k)
         if (std::abs(b[k] - a[k]) > 0.5 * box_length) return true;
@@ -145,7 +225,8 @@ void check_forces_by_finite_differences(const std::string& label, const SmallSys
     ASSERT_EQ(structmd_create(create_options("cpu", "double").c_str(), &raw), STRUCTMD_OK) << structmd_last_error(nullptr);
     SimHandle handle(raw);
     structmd_sim* sim = handle.get();
-    const std::string document = input_document(s.box_length, s.positions, s.types, {}, s.force_field, 0.005);
+    const std::string document =
+        input_document(s.box_length, s.positions, s.types, {}, s.force_field, 0.005, s.units, s.temperature);
     ASSERT_STRUCTMD_OK(sim, structmd_load_string(sim, document.c_str()));
 
     const auto n = static_cast<std::int64_t>(s.positions.size());
@@ -209,6 +290,16 @@ TEST(FiniteDifference, BondedLennardJonesChain) {
             ASSERT_GT(d, 0.65) << "pair " << i << "-" << j << " overlaps";
         }
     check_forces_by_finite_differences("lj + bonds", s);
+}
+
+// Every bonded term of issue 14 at once, through the reader, the bond kernels and the energy sum.
+TEST(FiniteDifference, Issue14BondedTermsAcrossBoundary) {
+    const SmallSystem s = issue14_bonded_system();
+    int bonds_across = 0;
+    for (std::size_t i = 0; i + 1 < s.positions.size(); ++i)
+        bonds_across += crosses_boundary(s.positions[i], s.positions[i + 1], s.box_length) ? 1 : 0;
+    ASSERT_GE(bonds_across, 1);
+    check_forces_by_finite_differences("issue 14 bonded terms", s);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // Compares structmd's CPU backend with LAMMPS on the configurations written by
 // tests/reference/make_lammps_reference.py (an LJ liquid, LJ with bonds) and
 // make_lammps_reference_forcefield.py (a Kremer-Grest FENE + WCA melt with bonded exclusions,
-// molecules with bonds, angles and dihedrals, a Kob-Andersen mixture): forces, per-particle
+// molecules with bonds, angles and dihedrals, the same molecules as C-alpha chains with
+// Best-Chen-Hummer angles and IDP_Fourier dihedrals, a Kob-Andersen mixture): forces, per-particle
 // energies, the energy of every forceField entry and the virial tensor, in double, mixed and single
 // precision.
 #include "physics_support.hpp"
@@ -123,7 +124,10 @@ INSTANTIATE_TEST_SUITE_P(Cases, LammpsReference,
                                            ReferenceCase{"molecules", "mixed", 2e-6},
                                            ReferenceCase{"lj_mixture", "double", 1e-9},
                                            ReferenceCase{"lj_mixture", "single", 1e-5},
-                                           ReferenceCase{"lj_mixture", "mixed", 2e-6}),
+                                           ReferenceCase{"lj_mixture", "mixed", 2e-6},
+                                           ReferenceCase{"ca_chains", "double", 1e-9},
+                                           ReferenceCase{"ca_chains", "single", 1e-5},
+                                           ReferenceCase{"ca_chains", "mixed", 2e-6}),
                          [](const ::testing::TestParamInfo<ReferenceCase>& info) {
                              return info.param.name + "_" + info.param.precision;
                          });

