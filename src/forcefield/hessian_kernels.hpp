@@ -8,7 +8,7 @@
 #include "core/hd.hpp"
 #include "core/vec.hpp"
 #include "forcefield/pair_kernel.hpp"
-#include "neighbour/neighbour_view.hpp"
+#include "forcefield/seed_traversal.hpp"
 #include "state/step_clock.hpp"
 
 namespace structmd {
@@ -56,23 +56,15 @@ struct PairHessianKernel {
     Tensor3<R>* blocks;
 
     SMD_HD void operator()(int64_t k) const {
-        const NeighbourView<R>& v = neighbours;
-        const int s = v.order[k];
-        if (s != seed || (group && !group[s])) return;
-        const Real4<R> ps = v.positions[k];
-        const Params* row = table + static_cast<int>(ps.w) * ntypes;
         Tensor3<R> self = zero_tensor<R>();
-        v.for_each_neighbour(static_cast<int>(k), [&](int slot) {
-            const int j = v.order[slot];
-            const Real4<R> pj = v.positions[slot];
-            const Vec3<R> d = v.box.minimum_image(xyz(pj) - xyz(ps));
-            const Dual<PairR> r2(PairR(dot(d, d)), PairR(1));
-            const Params& p = row[static_cast<int>(pj.w)];
-            if (!(r2 < p.cutoff2) || (group && !group[j])) return;
+        bool hasPartners = false;
+        for_each_partner_of_seed<Dual<PairR>>(neighbours, k, seed, group, table, ntypes,
+                                              [&](int j, const Vec3<R>& d, const Params& p) {
             constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
             const PairTerm<Dual<PairR>> t = evaluate_pair<Potential>(
-                r2, p, Dual<PairR>(charges ? PairR(charge[s] * charge[j]) : PairR(0)),
-                Dual<PairR>(radii ? PairR(radius[s]) : PairR(0)), Dual<PairR>(radii ? PairR(radius[j]) : PairR(0)));
+                Dual<PairR>(PairR(dot(d, d)), PairR(1)), p,
+                Dual<PairR>(charges ? PairR(charge[seed] * charge[j]) : PairR(0)),
+                Dual<PairR>(radii ? PairR(radius[seed]) : PairR(0)), Dual<PairR>(radii ? PairR(radius[j]) : PairR(0)));
             const R g = R(t.dudr_over_r.v);
             Tensor3<R> b = (R(2) * R(t.dudr_over_r.d)) * outer(d, d);
             b.xx += g;
@@ -80,8 +72,9 @@ struct PairHessianKernel {
             b.zz += g;
             self += b;
             blocks[j] += R(-1) * b;
+            hasPartners = true;
         });
-        blocks[s] += self;
+        if (hasPartners) blocks[seed] += self;
     }
 };
 
@@ -103,18 +96,8 @@ struct BondHessianKernel {
     SMD_HD void operator()(int64_t i) const {
         Tensor3<R> h = zero_tensor<R>();
         const Box<Dual<R>> dualBox = constant_dual(box);
-        for (int k = firstEntry[i]; k < firstEntry[i + 1]; ++k) {
-            const int b = entries[k] / N;
-            const int slot = entries[k] % N;
-            const int* ids = members + N * b;
-            int seedSlot = -1;
-            for (int m = 0; m < N; ++m)
-                if (ids[m] == seed) seedSlot = m;
-            if (seedSlot < 0) continue;
-            Vec3<R> r[N];
-            r[0] = xyz(pos[ids[0]]);
-            for (int m = 1; m < N; ++m)
-                r[m] = r[m - 1] + box.minimum_image(xyz(pos[ids[m]]) - xyz(pos[ids[m - 1]]));
+        for_each_bond_with_seed<N>(i, seed, pos, box, firstEntry, entries, members,
+                                   [&](int b, int slot, int seedSlot, const Vec3<R>* r) {
             for (int axis = 0; axis < 3; ++axis) {
                 Vec3<Dual<R>> rd[N];
                 for (int m = 0; m < N; ++m) rd[m] = m == seedSlot ? seeded_dual(r[m], axis) : constant_dual(r[m]);
@@ -122,7 +105,7 @@ struct BondHessianKernel {
                 Potential::compute(rd, params[b], dualBox, force);
                 subtract_force_derivative(h, axis, force[slot]);
             }
-        }
+        });
         blocks[i] += h;
     }
 };

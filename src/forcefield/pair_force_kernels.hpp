@@ -1,7 +1,8 @@
 #pragma once
 // The forces the other particles exert on one chosen particle s ("the seed"), term by term: a pair
 // term's force between s and each neighbour, and each bond's forces split into central pair forces.
-// A bond of N <= 4 particles whose energy depends on their relative positions only has forces
+// A two-particle bond's force on one particle is all the other's (a direction-dependent spring's
+// too). A bond of three or four particles whose energy depends on their relative positions only has forces
 // F_a = sum_b c_ab (r_a - r_b) (c_ab = c_ba), unique where the geometry is not degenerate; the c_ab
 // are found from the bond's own forces by least squares, so every bond functor splits without a
 // formula of its own. The force b exerts on a is then c_ab (r_a - r_b).
@@ -10,7 +11,7 @@
 #include "core/real_limits.hpp"
 #include "core/vec.hpp"
 #include "forcefield/pair_kernel.hpp"
-#include "neighbour/neighbour_view.hpp"
+#include "forcefield/seed_traversal.hpp"
 
 namespace structmd {
 
@@ -70,22 +71,12 @@ struct PairForceOnSeedKernel {
     Real4<R>* out;
 
     SMD_HD void operator()(int64_t k) const {
-        const NeighbourView<R>& v = neighbours;
-        const int s = v.order[k];
-        if (s != seed || (group && !group[s])) return;
-        const Real4<R> ps = v.positions[k];
-        const Params* row = table + static_cast<int>(ps.w) * ntypes;
-        v.for_each_neighbour(static_cast<int>(k), [&](int slot) {
-            const int j = v.order[slot];
-            const Real4<R> pj = v.positions[slot];
-            const Vec3<R> d = v.box.minimum_image(xyz(pj) - xyz(ps));
-            const PairR r2 = PairR(dot(d, d));
-            const Params& p = row[static_cast<int>(pj.w)];
-            if (!(r2 < p.cutoff2) || (group && !group[j])) return;
+        for_each_partner_of_seed<PairR>(neighbours, k, seed, group, table, ntypes,
+                                        [&](int j, const Vec3<R>& d, const Params& p) {
             constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
             const PairTerm<PairR> t = evaluate_pair<Potential>(
-                r2, p, charges ? PairR(charge[s] * charge[j]) : PairR(0), radii ? PairR(radius[s]) : PairR(0),
-                radii ? PairR(radius[j]) : PairR(0));
+                PairR(dot(d, d)), p, charges ? PairR(charge[seed] * charge[j]) : PairR(0),
+                radii ? PairR(radius[seed]) : PairR(0), radii ? PairR(radius[j]) : PairR(0));
             const Vec3<R> f = R(t.dudr_over_r) * d;
             out[j].x += f.x;
             out[j].y += f.y;
@@ -94,8 +85,8 @@ struct PairForceOnSeedKernel {
     }
 };
 
-// A bonded term of N >= 2 particles: for particle i in a bond with the seed, the central force that i
-// exerts on the seed in that bond.
+// A bonded term of N >= 2 particles: for particle i in a bond with the seed, the force that i exerts
+// on the seed in that bond: the bond's whole force on the seed for N = 2, its central split for more.
 template <class Potential, class R>
 struct BondForceOnSeedKernel {
     static constexpr int N = Potential::arity;
@@ -112,26 +103,19 @@ struct BondForceOnSeedKernel {
     SMD_HD void operator()(int64_t i) const {
         if (i == seed) return;
         Vec3<R> total{R(0), R(0), R(0)};
-        for (int k = firstEntry[i]; k < firstEntry[i + 1]; ++k) {
-            const int b = entries[k] / N;
-            const int slot = entries[k] % N;
-            const int* ids = members + N * b;
-            int seedSlot = -1;
-            for (int m = 0; m < N; ++m)
-                if (ids[m] == seed) seedSlot = m;
-            if (seedSlot < 0) continue;
-            Vec3<R> r[N];
-            r[0] = xyz(pos[ids[0]]);
-            for (int m = 1; m < N; ++m)
-                r[m] = r[m - 1] + box.minimum_image(xyz(pos[ids[m]]) - xyz(pos[ids[m - 1]]));
+        for_each_bond_with_seed<N>(i, seed, pos, box, firstEntry, entries, members,
+                                   [&](int b, int slot, int seedSlot, const Vec3<R>* r) {
             Vec3<R> force[N];
             Potential::compute(r, params[b], box, force);
-            R c[N * (N - 1) / 2];
-            central_force_split<N>(r, force, c);
-            const int a = seedSlot < slot ? seedSlot : slot, z = seedSlot < slot ? slot : seedSlot;
-            const int pair = a * N - a * (a + 1) / 2 + (z - a - 1);
-            total += c[pair] * (r[seedSlot] - r[slot]);
-        }
+            if constexpr (N == 2) {
+                total += force[seedSlot];  // all of it comes from the other particle, central or not
+            } else {
+                R c[N * (N - 1) / 2];
+                central_force_split<N>(r, force, c);
+                const int a = seedSlot < slot ? seedSlot : slot, z = seedSlot < slot ? slot : seedSlot;
+                total += c[a * N - a * (a + 1) / 2 + (z - a - 1)] * (r[seedSlot] - r[slot]);
+            }
+        });
         out[i].x += total.x;
         out[i].y += total.y;
         out[i].z += total.z;

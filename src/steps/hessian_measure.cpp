@@ -63,14 +63,11 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
     if (precision > 30)
         throw input_error(in.parameters.path("outputPrecision"),
                           "expected at most 30 decimals, got " + std::to_string(precision));
-    std::vector<int64_t> members;
-    for (int64_t id = 0; id < in.system.numParticles(); ++id)
-        if (in.members.empty() || in.members[id]) members.push_back(id);
     return std::make_unique<HessianMeasure>(in.name, in.interval(), in.start(), in.end(),
                                             in.parameters.text("outputFilePath"),
                                             mode == "Analytical" ? HessianMeasure::Mode::analytical
                                                                  : HessianMeasure::Mode::numerical,
-                                            static_cast<int>(precision), std::move(members));
+                                            static_cast<int>(precision), in.member_ids());
 }
 
 }  // namespace

@@ -43,13 +43,10 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
     if (mode != "Pairwise_force" && mode != "Total_force")
         throw input_error(in.parameters.path("mode"),
                           "expected \"Pairwise_force\" or \"Total_force\", got \"" + mode + "\"");
-    std::vector<int64_t> members;
-    for (int64_t id = 0; id < in.system.numParticles(); ++id)
-        if (in.members.empty() || in.members[id]) members.push_back(id);
     return std::make_unique<PairwiseForceMeasure>(
         in.name, in.interval(), in.start(), in.end(), in.parameters.text("outputFilePath"),
         mode == "Pairwise_force" ? PairwiseForceMeasure::Mode::pairwise : PairwiseForceMeasure::Mode::total,
-        std::move(members));
+        in.member_ids());
 }
 
 }  // namespace

@@ -61,19 +61,14 @@ void ParticleListMeasure::run(Simulation& sim) {
     file_.flush();
 }
 
-namespace {
-
-// The rows of the table, each checked to name existing particles.
-template <int Arity>
-std::unique_ptr<SimulationStep> make(const StepInput& in) {
+std::vector<std::array<int64_t, 4>> read_particle_ids(const StepInput& in, const std::vector<std::string>& labels) {
     in.require_all_particles();  // the table names the particles
-    const std::vector<std::string> labels(kLabels, kLabels + Arity);
     const input::Table table = input::read_table(in.node, labels);
     const int64_t n = in.system.numParticles();
     std::vector<std::array<int64_t, 4>> ids;
     for (size_t r = 0; r < table.rows(); ++r) {
         std::array<int64_t, 4> row{0, 0, 0, 0};
-        for (int k = 0; k < Arity; ++k) {
+        for (size_t k = 0; k < labels.size(); ++k) {
             const input::TrackedNode cell = table.cell(r, labels[k]);
             row[k] = cell.as<int64_t>();
             if (row[k] < 0 || row[k] >= n)
@@ -82,8 +77,17 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
         }
         ids.push_back(row);
     }
+    return ids;
+}
+
+namespace {
+
+template <int Arity>
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    const std::vector<std::array<int64_t, 4>> ids =
+        read_particle_ids(in, std::vector<std::string>(kLabels, kLabels + Arity));
     return std::make_unique<ParticleListMeasure>(Arity, in.name, in.interval(), in.start(), in.end(),
-                                                 in.parameters.text("outputFilePath"), std::move(ids));
+                                                 in.parameters.text("outputFilePath"), ids);
 }
 
 template <int Arity>

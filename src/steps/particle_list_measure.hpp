@@ -30,6 +30,10 @@ private:
     std::vector<std::array<int64_t, 4>> ids_;
 };
 
+// The rows of the step's table of particle ids (one column per label, at most four), each checked to
+// name a particle; ERR_UNSUPPORTED unless the step's group is "All" (the table names the particles).
+std::vector<std::array<int64_t, 4>> read_particle_ids(const StepInput& in, const std::vector<std::string>& labels);
+
 SimulationStepEntry distances_measure_entry();
 SimulationStepEntry angles_measure_entry();
 SimulationStepEntry dihedrals_measure_entry();

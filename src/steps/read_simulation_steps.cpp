@@ -13,6 +13,7 @@
 #include "steps/mean_square_displacement.hpp"
 #include "steps/pairwise_force_measure.hpp"
 #include "steps/particle_list_measure.hpp"
+#include "steps/potential_measure.hpp"
 #include "steps/stress_measure.hpp"
 #include "steps/thermodynamic_measure.hpp"
 #include "steps/write_step.hpp"
@@ -33,6 +34,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(distances_measure_entry());
         steps.add(angles_measure_entry());
         steps.add(dihedrals_measure_entry());
+        steps.add(potential_measure_entry());
         steps.add(stress_measure_entry());
         steps.add(hessian_measure_entry());
         steps.add(pairwise_force_measure_entry());
@@ -148,6 +150,13 @@ void StepInput::require_all_particles() const {
         throw Error(STRUCTMD_ERR_UNSUPPORTED, parameters.path("group") +
                                                   ": this step measures the whole system; a group other than "
                                                   "\"All\" is not supported");
+}
+
+std::vector<int64_t> StepInput::member_ids() const {
+    std::vector<int64_t> ids;
+    for (int64_t id = 0; id < system.numParticles(); ++id)
+        if (members.empty() || members[id]) ids.push_back(id);
+    return ids;
 }
 
 std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registry<SimulationStepEntry>& registry,

@@ -83,6 +83,8 @@ struct StepInput {
     int64_t end() const { return parameters.integer("endStep"); }
     // For a step that measures the whole system: ERR_UNSUPPORTED at <path>.group unless it is "All".
     void require_all_particles() const;
+    // The ids of the group's particles in ascending order (every particle for "All").
+    std::vector<int64_t> member_ids() const;
 };
 
 using StepFactory = std::unique_ptr<SimulationStep> (*)(const StepInput&);

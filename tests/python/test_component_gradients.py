@@ -138,13 +138,19 @@ CASES = {
 }
 
 
-@pytest.mark.parametrize("name", sorted(CASES))
-def test_force_is_minus_the_energy_gradient(options, name):
+def case_document(name):
+    """The configuration of case `name` (its own seed) and its input, with charges where the term reads them."""
     positions = configuration(seed=sorted(CASES).index(name))
     charged = any(word in name for word in ("DebyeHuckel", "DLVO", "KimHummer"))
     charges = list(np.linspace(-1.0, 1.0, N)) if charged else None
+    return positions, document(positions, CASES[name], charges)
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_force_is_minus_the_energy_gradient(options, name):
+    positions, doc = case_document(name)
     with structmd.Simulation(dict(options, precision="double")) as sim:
-        sim.load(document(positions, CASES[name], charges))
+        sim.load(doc)
         forces = sim.forces
         assert np.all(np.isfinite(forces))
         assert np.max(np.abs(forces)) > 0.0, "the term must act on this configuration"

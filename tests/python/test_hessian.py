@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import structmd
-from test_component_gradients import CASES, N, configuration, document
+from test_component_gradients import CASES, N, case_document, configuration, document
 
 
 def hessian_step(path, mode, group=None):
@@ -59,10 +59,7 @@ def as_matrix(blocks):
 
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_both_modes_match_central_differences_of_the_forces(options, tmp_path, name):
-    positions = configuration(seed=sorted(CASES).index(name))
-    charged = any(word in name for word in ("DebyeHuckel", "DLVO", "KimHummer"))
-    charges = list(np.linspace(-1.0, 1.0, N)) if charged else None
-    doc = document(positions, CASES[name], charges)
+    _, doc = case_document(name)
     doc["simulationStep"] = {"analytical": hessian_step(tmp_path / "analytical.dat", "Analytical"),
                              "numerical": hessian_step(tmp_path / "numerical.dat", "Numerical")}
     with structmd.Simulation(dict(options, precision="double")) as sim:

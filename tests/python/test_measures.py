@@ -307,6 +307,47 @@ def test_distances_angles_and_dihedrals_of_listed_particles_across_the_boundary(
     assert expected["distances"][2] < 8.0 and abs(expected["dihedrals"][0]) > 0.1
 
 
+def test_potential_measure_splits_energy_and_force_by_entry_for_listed_particles(sim, tmp_path):
+    """A Lennard-Jones liquid with a harmonic bond: per listed particle, each entry's energy and force
+    (with its magnitude) against the LJ and harmonic formulas written here; torques are zero."""
+    positions = [[0.0, 0.0, 0.0], [1.1, 0.0, 0.0], [0.4, 1.0, 0.2], [4.7, -0.3, 0.1], [-4.8, 0.2, -0.4]]
+    force_field = {"nl": NEIGHBOUR_LIST, "lj": lj_entry(),
+                   "spring": {"type": ["Bond2", "Harmonic"], "labels": ["id_i", "id_j", "K", "r0"],
+                              "data": [[0, 2, 30.0, 1.2]]}}
+    entry = measure("ParticlesListMeasure", "PotentialMeasure", outputFilePath=str(tmp_path / "p.dat"))
+    entry.update(labels=["id"], data=[[3], [0], [2]])
+    sim.load(document(positions, force_field=force_field, steps=1, simulation_steps={"potential": entry}))
+    sim.step(1)
+    lines = (tmp_path / "p.dat").read_text().splitlines()
+    columns = ["Energy", "ForceX", "ForceY", "ForceZ", "ForceMod", "TorqueX", "TorqueY", "TorqueZ", "TorqueMod"]
+    assert lines[0].split() == ["#", "id"] + [t + c for t in ("lj", "spring") for c in columns]
+    assert lines[1] == "# 0"
+    rows = {int(line.split()[0]): np.array([float(x) for x in line.split()[1:]]) for line in lines[2:5]}
+    assert sorted(rows) == [0, 2, 3]
+    p = np.array(positions)
+    for i, values in rows.items():
+        lj_energy, lj_force = 0.0, np.zeros(3)
+        for j in range(len(p)):
+            d = minimum_image(p[i] - p[j])
+            r = np.linalg.norm(d)
+            if j == i or r >= 2.5:
+                continue
+            lj_energy += 0.5 * 4 * (r ** -12 - r ** -6)  # half of each pair's energy
+            lj_force += -4 * (-12 * r ** -13 + 6 * r ** -7) * d / r
+        spring_energy, spring_force = 0.0, np.zeros(3)
+        if i in (0, 2):
+            d = minimum_image(p[i] - p[2 - i])
+            r = np.linalg.norm(d)
+            spring_energy = 0.5 * 0.5 * 30.0 * (r - 1.2) ** 2
+            spring_force = -30.0 * (r - 1.2) * d / r
+        for offset, energy, force in ((0, lj_energy, lj_force), (9, spring_energy, spring_force)):
+            block = values[offset:offset + 9]
+            np.testing.assert_allclose(block[:4], [energy, *force], rtol=1e-10, atol=1e-12)
+            assert block[4] == pytest.approx(np.linalg.norm(force), rel=1e-10, abs=1e-12)
+            assert np.all(block[5:] == 0.0)
+    assert np.linalg.norm(rows[3][1:4]) > 0.1 and rows[3][9] == 0.0
+
+
 def test_a_listed_id_that_does_not_exist_names_its_cell(sim, tmp_path):
     entry = measure("ParticlesListMeasure", "AnglesMeasure", outputFilePath=str(tmp_path / "a.dat"))
     entry.update(labels=["id_i", "id_j", "id_k"], data=[[0, 1, 2], [0, 1, 9]])
