@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "input/read_parameters.hpp"
 #include "steps/center_of_mass.hpp"
+#include "steps/force_between_sets_measure.hpp"
 #include "steps/gyration_radius.hpp"
 #include "steps/hessian_measure.hpp"
 #include "steps/info_step.hpp"
@@ -38,6 +39,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(stress_measure_entry());
         steps.add(hessian_measure_entry());
         steps.add(pairwise_force_measure_entry());
+        steps.add(force_between_sets_measure_entry());
         steps.add(write_step_entry());
         return steps;
     }();

@@ -133,3 +133,33 @@ def test_an_unknown_mode_names_its_path(tmp_path):
     with structmd.Simulation(OPTIONS) as sim:
         with pytest.raises(structmd.InputError, match=r"simulationStep\.pairs\.parameters\.mode.*Pairwise_force"):
             sim.load(doc)
+
+
+def test_force_between_sets_sums_the_pair_forces_from_one_set_on_the_other(tmp_path):
+    """Three sets over a bonded chain with Lennard-Jones between all pairs: each line is the sum of the
+    pair forces from its first set's particles on its second set's, as PairwiseForceMeasure writes
+    them in the same firing; and the reverse line is its opposite."""
+    force_field = dict(CASES["Bond3 HarmonicAngular"], nl=CASES["LennardJonesType1"]["nl"],
+                       lj=CASES["LennardJonesType1"]["term"])
+    doc = document(configuration(seed=5), force_field)
+    sets = {"head": [0, 1, 2, 3], "middle": [4, 5, 6, 7], "tail": [8, 9, 10]}
+    doc["simulationStep"] = {
+        "pairs": force_step(tmp_path / "pairs.dat", "Pairwise_force"),
+        "sets": {"type": ["MechanicalMeasure", "ForceBetweenSetsMeasure"],
+                 "parameters": {"intervalStep": 1, "outputFilePath": str(tmp_path / "sets.dat")},
+                 "labels": ["name", "id_list"], "data": [[name, ids] for name, ids in sets.items()]}}
+    with structmd.Simulation(dict(OPTIONS, precision="double")) as sim:
+        sim.load(doc)
+        sim.step(1)
+    pairs = {(int(s), int(r)): np.array(f) for s, r, *f in first_firing(tmp_path / "pairs.dat",
+                                                                        ["#From", "To", "Fx", "Fy", "Fz"])}
+    lines = (tmp_path / "sets.dat").read_text().splitlines()
+    assert lines[0].split() == ["#From", "To", "Fx", "Fy", "Fz"] and lines[1].startswith("# step 0 ")
+    written = {(line.split()[0], line.split()[1]): np.array([float(x) for x in line.split()[2:]])
+               for line in lines[2:8]}
+    assert sorted(written) == sorted((a, b) for a in sets for b in sets if a != b)
+    for (source, receiver), f in written.items():
+        expected = sum((pairs.get((j, i), np.zeros(3)) for i in sets[receiver] for j in sets[source]), np.zeros(3))
+        np.testing.assert_allclose(f, expected, rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(written[(receiver, source)], -f, rtol=1e-9, atol=1e-9)
+    assert np.linalg.norm(written[("head", "middle")]) > 0.0
