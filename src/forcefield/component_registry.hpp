@@ -23,6 +23,11 @@ struct ForceFieldComponent {
     int arity = 0;                           // bonds: particles per bond
     std::vector<Parameter> parameters;       // pairs: per type pair; bonds: per bond; externals: the entry's
     std::vector<Parameter> entryParameters;  // pairs: given once in the entry's "parameters"
+    // Externals of per-type parameters (the Surface family): the columns of the entry's table, one
+    // row per type named by "name", and columns that table may also have but nobody reads; both empty
+    // for an external that takes "parameters" only.
+    std::vector<Parameter> typeParameters;
+    std::vector<std::string> ignoredTypeColumns;
     std::vector<std::string> common;         // bonds: given once for every bond (the Common_ variants)
     // The one unit system the component is defined in (its constants are numbers in those units, as
     // "KcalMol_A"); empty: any. An input in other units is refused, naming the entry's type.

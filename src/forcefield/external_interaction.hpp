@@ -1,9 +1,10 @@
 #pragma once
 // A field acting on each particle alone (external_potential.hpp), generic in its potential, run by
-// the kernel of external_kernel.hpp.
+// the kernels of external_kernel.hpp: one Params for every particle, or one per type.
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "forcefield/external_kernel.hpp"
 #include "forcefield/hessian_kernels.hpp"
@@ -48,6 +49,40 @@ private:
     const B& backend_;
     Params params_;
     std::optional<typename Potential::template Params<Dual<R>>> dualParams_;
+};
+
+// A field of per-type parameters: `table` and `listed` hold one entry per type.
+template <class B, class R, class Potential>
+class TypedExternalInteraction : public Interactor<B, R> {
+public:
+    using Params = typename Potential::template Params<R>;
+
+    TypedExternalInteraction(const B& backend, InteractorScope scope, const std::vector<Params>& table,
+                             const std::vector<uint8_t>& listed)
+        : Interactor<B, R>(std::move(scope)), backend_(backend) {
+        backend_.upload(table_, table.data(), table.size());
+        backend_.upload(listed_, listed.data(), listed.size());
+    }
+
+    // A field exerts no force from another particle.
+    bool has_pair_forces() const override { return true; }
+    void add_pair_forces(Particles<B, R>&, int, Real4<R>*) override {}
+
+    void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
+        ForceOutputs<R> own = out;
+        own.virial = nullptr;
+        dispatch_outputs(own, [&](auto force, auto energy, auto) {
+            backend_.for_each(particles.count,
+                              TypedExternalKernel<Potential, R, decltype(force)::value, decltype(energy)::value>{
+                                  particles.pos.data(), particles.radius.data(), this->group(), table_.data(),
+                                  listed_.data(), particles.now(), own});
+        });
+    }
+
+private:
+    const B& backend_;
+    typename B::template Buffer<Params> table_;
+    typename B::template Buffer<uint8_t> listed_;
 };
 
 }  // namespace structmd

@@ -99,7 +99,20 @@ struct BondSpec : InteractionSpec {
 };
 
 struct ExternalSpec : InteractionSpec {
-    ParameterValues values;
+    struct Row {
+        int type;
+        ParameterValues values;  // the component's per-type parameters
+    };
+    ParameterValues values;  // the entry's "parameters"
+    bool perType = false;    // the component has per-type parameters (a table of types)
+    std::vector<Row> rows;   // perType: each listed type once
+
+    // What the functor is given for one type: the entry's parameters and the row's.
+    ParameterValues values_of(const Row& row) const {
+        ParameterValues merged = values;
+        for (const auto& [name, numbers] : row.values.all()) merged.set(name, numbers);
+        return merged;
+    }
 };
 
 struct ForceFieldSpec {

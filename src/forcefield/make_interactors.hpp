@@ -84,14 +84,27 @@ struct FactoryEntries {
         registry.add({std::move(key), [](const Build& build, const InteractionSpec& s) -> std::unique_ptr<Interactor<B, R>> {
                           const auto& external = static_cast<const ExternalSpec&>(s);
                           const Constants& constants = build.context.constants;
-                          auto interactor = std::make_unique<ExternalInteraction<B, R, Potential>>(
-                              build.backend, build.scope(external),
-                              Potential::template make_params<R>(external.values, constants));
-                          if constexpr (WithHessian)
-                              if (build.context.hessian)
-                                  interactor->enable_hessian(
-                                      Potential::template make_params<Dual<R>>(external.values, constants));
-                          return interactor;
+                          if constexpr (has_type_parameters<Potential>::value) {
+                              using Params = typename Potential::template Params<R>;
+                              std::vector<Params> table(build.context.ntypes);
+                              std::vector<uint8_t> listed(build.context.ntypes, 0);
+                              for (const ExternalSpec::Row& row : external.rows) {
+                                  table[row.type] = Potential::template make_params<R>(external.values_of(row),
+                                                                                       constants);
+                                  listed[row.type] = 1;
+                              }
+                              return std::make_unique<TypedExternalInteraction<B, R, Potential>>(
+                                  build.backend, build.scope(external), table, listed);
+                          } else {
+                              auto interactor = std::make_unique<ExternalInteraction<B, R, Potential>>(
+                                  build.backend, build.scope(external),
+                                  Potential::template make_params<R>(external.values, constants));
+                              if constexpr (WithHessian)
+                                  if (build.context.hessian)
+                                      interactor->enable_hessian(
+                                          Potential::template make_params<Dual<R>>(external.values, constants));
+                              return interactor;
+                          }
                       }});
     }
 

@@ -316,16 +316,39 @@ void read_bonds(const ForceFieldComponent& component, const ComponentEntry& entr
 
 // ---- external fields --------------------------------------------------------------------------
 
-void read_external(const ForceFieldComponent& component, const ComponentEntry& entry, const SystemDescription&,
+void read_external(const ForceFieldComponent& component, const ComponentEntry& entry, const SystemDescription& system,
                    ForceFieldSpec& ff) {
     ExternalSpec external;
     read_common(component, entry, ff, external);
     external.values = input::read_parameters(entry.node, component.parameters);
+    external.perType = !component.typeParameters.empty();
+    if (external.perType) {
+        std::vector<std::string> columns = {"name"};
+        for (const Parameter& p : component.typeParameters) columns.push_back(p.name);
+        const input::Table table = input::read_table(entry.node, columns, component.ignoredTypeColumns);
+        std::set<int> seen;
+        for (size_t r = 0; r < table.rows(); ++r) {
+            ExternalSpec::Row row;
+            row.type = type_of(system, table.cell(r, "name"));
+            for (const Parameter& p : component.typeParameters)
+                row.values.set(p.name, input::read_parameter(table.cell(r, p.name), p));
+            if (!seen.insert(row.type).second) throw input_error(table.row(r).path(), "type listed twice");
+            external.rows.push_back(std::move(row));
+        }
+    }
     ff.externals.push_back(std::move(external));
 }
 
-void warn_unlisted_type_pairs(const SystemDescription& system, const ForceFieldSpec& ff, const Logger& log) {
+// Type pairs a pair table does not list, and types a per-type external's table does not list, act not.
+void warn_unlisted_types(const SystemDescription& system, const ForceFieldSpec& ff, const Logger& log) {
     const int ntypes = static_cast<int>(system.types.size());
+    for (const ExternalSpec& external : ff.externals) {
+        if (!external.perType) continue;
+        for (int a = 0; a < ntypes; ++a)
+            if (std::none_of(external.rows.begin(), external.rows.end(),
+                             [&](const ExternalSpec::Row& r) { return r.type == a; }))
+                log.warning(external.path + ": type " + system.types[a].name + " is not listed and feels nothing");
+    }
     for (const PairSpec& pair : ff.pairs) {
         if (pair.everyTypePair || pair.unlistedPairsInteract) continue;
         for (int a = 0; a < ntypes; ++a)
@@ -379,7 +402,7 @@ ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& lo
         }
         ff.entryNames.push_back(entry.name);
     }
-    warn_unlisted_type_pairs(system, ff, log);
+    warn_unlisted_types(system, ff, log);
     return ff;
 }
 

@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "forcefield/component_registry.hpp"
+#include "forcefield/external_potential.hpp"
 
 namespace structmd {
 
@@ -55,6 +56,9 @@ struct ReaderEntries {
     void external(ComponentKey key) {
         ForceFieldComponent c = component(std::move(key), InteractionKind::external, Potential::parameters());
         c.units = required_units_of<Potential>();
+        if constexpr (has_type_parameters<Potential>::value) c.typeParameters = Potential::type_parameters();
+        if constexpr (has_ignored_type_columns<Potential>::value)
+            c.ignoredTypeColumns = Potential::ignored_type_columns();
         registry.add(std::move(c));
     }
 

@@ -38,6 +38,12 @@ inline const std::vector<std::string>& chain_types() {
     return types;
 }
 
+// The types, one row each of a table of types.
+inline const std::vector<std::string>& type_names() {
+    static const std::vector<std::string> names = {"A", "B"};
+    return names;
+}
+
 // The unordered type pairs of a pair table, one row each.
 inline const std::vector<std::array<const char*, 2>>& type_pairs() {
     static const std::vector<std::array<const char*, 2>> pairs = {{"A", "A"}, {"A", "B"}, {"B", "B"}};
@@ -206,6 +212,21 @@ inline Json forcefield_entry(const ForceFieldComponent& c) {
         case InteractionKind::external:
             for (size_t k = 0; k < c.parameters.size(); ++k)
                 parameters[c.parameters[k].name] = json_of(c.parameters[k], numbers_for(c.key, c.parameters[k], k, 0));
+            // A table of types (the Surface family): one row per type, numbered after the entry's own.
+            if (!c.typeParameters.empty()) {
+                Json labels = Json::array({"name"});
+                for (const Parameter& p : c.typeParameters) labels.push_back(p.name);
+                Json data = Json::array();
+                for (size_t row = 0; row < type_names().size(); ++row) {
+                    Json line = Json::array({type_names()[row]});
+                    for (size_t k = 0; k < c.typeParameters.size(); ++k)
+                        line.push_back(json_of(c.typeParameters[k], numbers_for(c.key, c.typeParameters[k],
+                                                                                c.parameters.size() + k, int(row))));
+                    data.push_back(line);
+                }
+                entry["labels"] = labels;
+                entry["data"] = data;
+            }
             break;
     }
     if (!parameters.empty()) entry["parameters"] = parameters;

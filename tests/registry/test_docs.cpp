@@ -151,6 +151,8 @@ std::vector<Documented> documented_parameters(const ForceFieldComponent& c) {
         all.push_back({p.name, once ? "parameters" : "labels", p.required()});
     }
     for (const Parameter& p : c.entryParameters) all.push_back({p.name, "parameters", p.required()});
+    for (const Parameter& p : c.typeParameters) all.push_back({p.name, "labels", p.required()});
+    if (!c.typeParameters.empty()) all.push_back({"name", "labels", true});
     return all;
 }
 

@@ -27,10 +27,12 @@ const std::vector<double> kTimes = {0.0, 1.0};
 
 std::vector<ComponentKey> forcefield_keys() { return schema_forcefield_keys(); }
 
-// Every parameter a component reads: per type pair, per bond or per entry, and a pair entry's own.
+// Every parameter a component reads: per type pair, per bond or per entry, a pair entry's own, and
+// an external's per type.
 std::vector<Parameter> all_parameters(const ForceFieldComponent& c) {
     std::vector<Parameter> all = c.parameters;
     all.insert(all.end(), c.entryParameters.begin(), c.entryParameters.end());
+    all.insert(all.end(), c.typeParameters.begin(), c.typeParameters.end());
     return all;
 }
 
@@ -41,7 +43,7 @@ bool holds(const ParameterValues& values, const std::string& name) {
 }
 
 // The numbers of one parameter wherever the spec's one interaction keeps them: one slot per type-pair
-// row or per bond, or one for the entry.
+// row, per type row or per bond, or one for the entry.
 using Slots = std::vector<std::vector<double>>;
 
 Slots get(const ForceFieldSpec& spec, const std::string& name) {
@@ -51,7 +53,9 @@ Slots get(const ForceFieldSpec& spec, const std::string& name) {
         if (holds(pair.shared, name)) return {pair.shared.vector(name)};
         for (const PairSpec::Row& row : pair.rows) slots.push_back(row.values.vector(name));
     } else if (!spec.externals.empty()) {
-        slots.push_back(spec.externals[0].values.vector(name));
+        const ExternalSpec& external = spec.externals[0];
+        if (holds(external.values, name)) return {external.values.vector(name)};
+        for (const ExternalSpec::Row& row : external.rows) slots.push_back(row.values.vector(name));
     } else {
         const BondSpec& bonds = spec.bonds.at(0);
         const size_t width = static_cast<size_t>(width_of(bonds.schema));
@@ -70,7 +74,12 @@ void put(ForceFieldSpec& spec, const std::string& name, const Slots& slots) {
         }
         for (size_t r = 0; r < pair.rows.size(); ++r) pair.rows[r].values.set(name, slots.at(r));
     } else if (!spec.externals.empty()) {
-        spec.externals[0].values.set(name, slots.at(0));
+        ExternalSpec& external = spec.externals[0];
+        if (holds(external.values, name)) {
+            external.values.set(name, slots.at(0));
+            return;
+        }
+        for (size_t r = 0; r < external.rows.size(); ++r) external.rows[r].values.set(name, slots.at(r));
     } else {
         BondSpec& bonds = spec.bonds.at(0);
         const size_t width = static_cast<size_t>(width_of(bonds.schema));
@@ -101,7 +110,10 @@ ForceFieldSpec reorder(ForceFieldSpec spec, const std::vector<size_t>& order, bo
         pair.shared = permuted(pair.shared, order);
         for (PairSpec::Row& row : pair.rows) row.values = permuted(row.values, order);
     }
-    for (ExternalSpec& external : spec.externals) external.values = permuted(external.values, order);
+    for (ExternalSpec& external : spec.externals) {
+        external.values = permuted(external.values, order);
+        for (ExternalSpec::Row& row : external.rows) row.values = permuted(row.values, order);
+    }
     for (BondSpec& bonds : spec.bonds) {
         std::vector<Parameter> schema;
         for (size_t k : order) schema.push_back(bonds.schema.at(k));
@@ -164,9 +176,8 @@ protected:
 };
 
 TEST_P(ParameterOrder, AnotherParameterOrderGivesIdenticalResults) {
-    const size_t n = component_->kind == InteractionKind::pair ? std::max(component_->parameters.size(),
-                                                                          component_->entryParameters.size())
-                                                               : component_->parameters.size();
+    const size_t n = std::max({component_->parameters.size(), component_->entryParameters.size(),
+                               component_->typeParameters.size()});
     if (n < 2) return;  // nothing to reorder
     for (const std::vector<size_t>& order : orders_of(n)) {
         std::string text;

@@ -111,6 +111,19 @@ void expect_values_of_input(const ForceFieldComponent& c, const Json& entry, con
             EXPECT_EQ(external.values.all().size(), c.parameters.size()) << "values beyond the schema";
             for (const Parameter& p : c.parameters)
                 EXPECT_EQ(external.values.vector(p.name), numbers_of(parameters.at(p.name))) << p.name;
+            EXPECT_EQ(external.perType, !c.typeParameters.empty());
+            if (!external.perType) break;
+            const Json& data = entry.at("data");
+            ASSERT_EQ(external.rows.size(), data.size());
+            for (size_t r = 0; r < data.size(); ++r) {
+                const ExternalSpec::Row& row = external.rows[r];
+                EXPECT_EQ(type_names().at(row.type), data[r][column(entry, "name")].get<std::string>()) << "row " << r;
+                EXPECT_EQ(row.values.all().size(), c.typeParameters.size())
+                    << "row " << r << " holds values beyond the schema";
+                for (const Parameter& p : c.typeParameters)
+                    EXPECT_EQ(row.values.vector(p.name), numbers_of(data[r][column(entry, p.name)]))
+                        << "row " << r << ", " << p.name;
+            }
             break;
         }
     }
@@ -222,7 +235,7 @@ TEST(ForceFieldRoundTripDefaults, OmittedParametersTakeTheirDefaultOrAreAskedFor
             }
         }
         if (!entry.contains("labels") || c.kind == InteractionKind::pair) continue;
-        for (const Parameter& p : c.parameters) {
+        for (const Parameter& p : c.kind == InteractionKind::external ? c.typeParameters : c.parameters) {
             if (is_common(c, p)) continue;
             SCOPED_TRACE(std::string("column ") + p.name);
             Json without = entry;
