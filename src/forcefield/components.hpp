@@ -7,7 +7,7 @@
 // A visitor has
 //   template <class Potential> void pair(ComponentKey key);                 // NonBonded, over a list
 //   template <class Potential> void bond(ComponentKey key, std::vector<std::string> common = {});
-//   template <class Potential> void external(ComponentKey key);
+//   template <class Potential> void external(ComponentKey key);   // External and Surface entries
 //   template <class Component> void configurable(ComponentKey key);
 // `common` names the bond parameters given once in the entry's "parameters" for every bond (the
 // Common_ variants) rather than as table columns. A configurable component (an expression, a
@@ -31,6 +31,7 @@
 #include "forcefield/external_constant_force.hpp"
 #include "forcefield/fene_bond.hpp"
 #include "forcefield/fixed_harmonic.hpp"
+#include "forcefield/flat_surfaces.hpp"
 #include "forcefield/gaussian_bond.hpp"
 #include "forcefield/harmonic_angle.hpp"
 #include "forcefield/harmonic_anisotropic.hpp"
@@ -126,6 +127,16 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template external<ExternalConstantForce>({"External", "ConstantForce"});
     v.template external<Plates>({"External", "Plates"});
     v.template external<SphericalShell>({"External", "SphericalShell"});
+
+    v.template external<SurfaceLennardJonesType1>({"Surface", "SurfaceLennardJonesType1"});
+    v.template external<SurfaceLennardJonesType2>({"Surface", "SurfaceLennardJonesType2"});
+    v.template external<SurfaceWCAType1>({"Surface", "SurfaceWCAType1"});
+    v.template external<SurfaceWCAType2>({"Surface", "SurfaceWCAType2"});
+    v.template external<SurfaceGeneralLennardJonesType1>({"Surface", "SurfaceGeneralLennardJonesType1"});
+    v.template external<SurfaceGeneralLennardJonesType2>({"Surface", "SurfaceGeneralLennardJonesType2"});
+    v.template external<SurfaceIntegratedLennardJonesType2>({"Surface", "SurfaceIntegratedLennardJonesType2"});
+    v.template external<SurfaceAnchorage>({"Surface", "SurfaceAnchorage"});
+    v.template external<ParabolaSurface>({"Surface", "ParabolaSurface"});
 
     v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
     v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});

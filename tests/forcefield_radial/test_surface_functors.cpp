@@ -1,0 +1,255 @@
+// The Surface family (flat_surfaces.hpp): energies against the formulas of the input
+// specification, written out here independently of the functors; forces against a central finite
+// difference of the functor's energy in x, y and z, on both sides of each wall; the cutoffs, where
+// the energy must reach zero; and single precision against double.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <string>
+
+#include "forcefield/flat_surfaces.hpp"
+
+using namespace structmd;
+
+namespace {
+
+constexpr double kEnergyTolerance = 1e-10;          // relative, double against the formula
+constexpr double kForceTolerance = 1e-6;            // relative to |F|, against the central difference
+constexpr double kSinglePrecisionTolerance = 1e-4;  // relative, float against double
+
+struct WorstErrors {
+    double energy = 0.0;
+    double force = 0.0;
+    double single_precision = 0.0;
+    int points = 0;
+};
+WorstErrors worst;
+
+class PrintWorstErrors : public ::testing::Environment {
+public:
+    void TearDown() override {
+        std::printf("%d points; worst relative errors: energy %.3g, force %.3g, float against double %.3g\n",
+                    worst.points, worst.energy, worst.force, worst.single_precision);
+    }
+};
+::testing::Environment* const print_worst_errors = ::testing::AddGlobalTestEnvironment(new PrintWorstErrors);
+
+double norm(Vec3<double> v) { return std::sqrt(dot(v, v)); }
+
+std::string describe(Vec3<double> r) {
+    return "r = (" + std::to_string(r.x) + ", " + std::to_string(r.y) + ", " + std::to_string(r.z) + ")";
+}
+
+template <class Surface>
+double energy_at(Vec3<double> r, const typename Surface::template Params<double>& p) {
+    Vec3<double> ignored;
+    return Surface::compute(r, 0.5, p, 0.0, ignored);
+}
+
+// The energy equals the given value (both zero, or within kEnergyTolerance) and the force minus the
+// central difference of the energy along each axis.
+template <class Surface>
+void expect_energy_and_force(Vec3<double> r, const typename Surface::template Params<double>& p,
+                             double expected_energy) {
+    SCOPED_TRACE(describe(r));
+    ++worst.points;
+    Vec3<double> force;
+    const double energy = Surface::compute(r, 0.5, p, 0.0, force);
+    const double energy_error =
+        expected_energy == 0.0 ? std::fabs(energy) : std::fabs(energy - expected_energy) / std::fabs(expected_energy);
+    EXPECT_LT(energy_error, kEnergyTolerance) << energy << " against " << expected_energy;
+    const double h = 1e-6;
+    const auto minus_slope = [&](Vec3<double> axis) {
+        return -(energy_at<Surface>(r + h * axis, p) - energy_at<Surface>(r - h * axis, p)) / (2.0 * h);
+    };
+    const Vec3<double> numeric{minus_slope({1, 0, 0}), minus_slope({0, 1, 0}), minus_slope({0, 0, 1})};
+    const double scale = std::max(norm(numeric), 1e-3);
+    const double force_error = norm(force - numeric) / scale;
+    EXPECT_LT(force_error, kForceTolerance)
+        << "force (" << force.x << ", " << force.y << ", " << force.z << ") against (" << numeric.x << ", " << numeric.y
+        << ", " << numeric.z << ")";
+    worst.energy = std::max(worst.energy, energy_error);
+    worst.force = std::max(worst.force, force_error);
+}
+
+template <class Surface, class Make>
+void expect_float_matches_double(Make make, Vec3<double> r) {
+    SCOPED_TRACE(describe(r));
+    const auto pd = make(double{});
+    const auto pf = make(float{});
+    Vec3<double> fd;
+    Vec3<float> ff;
+    const double ed = Surface::compute(r, 0.5, pd, 0.0, fd);
+    const float ef = Surface::compute(Vec3<float>{float(r.x), float(r.y), float(r.z)}, 0.5f, pf, 0.0f, ff);
+    ASSERT_GT(std::fabs(ed), 0.0) << "the point must feel the surface";
+    const double energy_error = std::fabs(ef - ed) / std::fabs(ed);
+    const double force_error = norm(Vec3<double>{ff.x - fd.x, ff.y - fd.y, ff.z - fd.z}) / norm(fd);
+    EXPECT_LT(energy_error, kSinglePrecisionTolerance);
+    EXPECT_LT(force_error, kSinglePrecisionTolerance);
+    worst.single_precision = std::max({worst.single_precision, energy_error, force_error});
+}
+
+// ---- flat surfaces ---------------------------------------------------------------------------------
+
+constexpr double kSurface = -1.5;  // z_s
+constexpr double kSigma = 0.9;
+
+double lj1(double eps, double sigma, double d) {
+    const double s6 = std::pow(sigma / std::fabs(d), 6);
+    return 4.0 * eps * (s6 * s6 - s6);
+}
+double lj2(double eps, double sigma, double d) {
+    const double s6 = std::pow(sigma / std::fabs(d), 6);
+    return eps * (s6 * s6 - 2.0 * s6);
+}
+double wca1(double eps, double sigma, double d) {
+    return std::fabs(d) < std::pow(2.0, 1.0 / 6.0) * sigma ? lj1(eps, sigma, d) + eps : 0.0;
+}
+double wca2(double eps, double sigma, double d) { return std::fabs(d) < sigma ? lj2(eps, sigma, d) + eps : 0.0; }
+double integrated(double eps, double sigma, double d) {
+    const double s3 = std::pow(sigma / std::fabs(d), 3);
+    return eps * (s3 * s3 * s3 - 2.0 * s3);
+}
+
+// Points at distances |d| in [0.75 sigma, 3 sigma] from the wall, on both sides, at random x and y.
+template <class Surface>
+void check_flat_surface(double eps, const std::function<double(double)>& formula, double far = 3.0) {
+    const auto p = Surface::template make_params<double>(kSurface, eps, kSigma);
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> lateral(-20.0, 20.0), distance(0.75 * kSigma, far * kSigma);
+    for (int k = 0; k < 40; ++k) {
+        const double d = (k % 2 ? 1.0 : -1.0) * distance(rng);
+        const Vec3<double> r{lateral(rng), lateral(rng), kSurface + d};
+        expect_energy_and_force<Surface>(r, p, formula(d));
+        Vec3<double> force;
+        Surface::compute(r, 0.5, p, 0.0, force);
+        EXPECT_EQ(force.x, 0.0);
+        EXPECT_EQ(force.y, 0.0);
+    }
+}
+
+TEST(SurfaceLennardJones, Type1IsTheTwelveSixPotentialOfTheDistanceToTheWall) {
+    for (const double eps : {1.0, 0.4})
+        check_flat_surface<SurfaceLennardJonesType1>(eps, [eps](double d) { return lj1(eps, kSigma, d); });
+}
+
+TEST(SurfaceLennardJones, Type2HasItsMinusEpsMinimumAtSigma) {
+    for (const double eps : {1.0, 0.4})
+        check_flat_surface<SurfaceLennardJonesType2>(eps, [eps](double d) { return lj2(eps, kSigma, d); });
+    const auto p = SurfaceLennardJonesType2::make_params<double>(kSurface, 0.4, kSigma);
+    EXPECT_NEAR(energy_at<SurfaceLennardJonesType2>({0.0, 0.0, kSurface + kSigma}, p), -0.4, 1e-14);
+    EXPECT_NEAR(energy_at<SurfaceLennardJonesType2>({0.0, 0.0, kSurface - kSigma}, p), -0.4, 1e-14);
+}
+
+TEST(SurfaceWCA, BothTypesAreRepulsiveAndReachZeroAtTheirMinimum) {
+    check_flat_surface<SurfaceWCAType1>(1.3, [](double d) { return wca1(1.3, kSigma, d); });
+    check_flat_surface<SurfaceWCAType2>(1.3, [](double d) { return wca2(1.3, kSigma, d); });
+    const auto p1 = SurfaceWCAType1::make_params<double>(kSurface, 1.3, kSigma);
+    const auto p2 = SurfaceWCAType2::make_params<double>(kSurface, 1.3, kSigma);
+    const double r1 = std::pow(2.0, 1.0 / 6.0) * kSigma;
+    for (const double side : {-1.0, 1.0}) {
+        // Just inside the cutoff the energy is O(delta^2) and the force O(delta); beyond it both are 0.
+        EXPECT_LT(energy_at<SurfaceWCAType1>({0.0, 0.0, kSurface + side * (r1 - 1e-6)}, p1), 1e-9);
+        EXPECT_EQ(energy_at<SurfaceWCAType1>({0.0, 0.0, kSurface + side * (r1 + 1e-9)}, p1), 0.0);
+        EXPECT_LT(energy_at<SurfaceWCAType2>({0.0, 0.0, kSurface + side * (kSigma - 1e-6)}, p2), 1e-9);
+        EXPECT_EQ(energy_at<SurfaceWCAType2>({0.0, 0.0, kSurface + side * (kSigma + 1e-9)}, p2), 0.0);
+        Vec3<double> force;
+        SurfaceWCAType1::compute({0.0, 0.0, kSurface + side * 0.95 * kSigma}, 0.5, p1, 0.0, force);
+        EXPECT_GT(side * force.z, 0.0) << "pushes away from the wall";
+    }
+}
+
+TEST(SurfaceGeneralLennardJones, IsWCAForPositiveEpsilonAndTheFullPotentialOfItsMagnitudeForNegative) {
+    check_flat_surface<SurfaceGeneralLennardJonesType1>(0.8, [](double d) { return wca1(0.8, kSigma, d); });
+    check_flat_surface<SurfaceGeneralLennardJonesType1>(-0.8, [](double d) { return lj1(0.8, kSigma, d); });
+    check_flat_surface<SurfaceGeneralLennardJonesType2>(0.8, [](double d) { return wca2(0.8, kSigma, d); });
+    check_flat_surface<SurfaceGeneralLennardJonesType2>(-0.8, [](double d) { return lj2(0.8, kSigma, d); });
+    // eps = 0 is the (vanishing) WCA form, not an attraction.
+    const auto zero = SurfaceGeneralLennardJonesType2::make_params<double>(kSurface, 0.0, kSigma);
+    EXPECT_EQ(energy_at<SurfaceGeneralLennardJonesType2>({0.0, 0.0, kSurface + 2.0}, zero), 0.0);
+}
+
+TEST(SurfaceIntegratedLennardJones, Type2IsTheNineThreeWallOfTheReference) {
+    for (const double eps : {1.0, 0.4})
+        check_flat_surface<SurfaceIntegratedLennardJonesType2>(eps,
+                                                               [eps](double d) { return integrated(eps, kSigma, d); });
+    // Minimum at (3/2)^(1/6) sigma with value -(4/3) sqrt(2/3) eps, zero force there.
+    const auto p = SurfaceIntegratedLennardJonesType2::make_params<double>(kSurface, 0.4, kSigma);
+    const Vec3<double> at_minimum{0.0, 0.0, kSurface + std::pow(1.5, 1.0 / 6.0) * kSigma};
+    Vec3<double> force;
+    const double energy = SurfaceIntegratedLennardJonesType2::compute(at_minimum, 0.5, p, 0.0, force);
+    EXPECT_NEAR(energy, -0.4 * 4.0 / 3.0 * std::sqrt(2.0 / 3.0), 1e-14);
+    EXPECT_NEAR(force.z, 0.0, 1e-13);
+}
+
+TEST(SurfaceAnchorage, IsAHarmonicWellOfHalfWidthSigma) {
+    const double eps = 2.5;
+    const auto p = SurfaceAnchorage::make_params<double>(
+        [&] {
+            ParameterValues v;
+            v.set("surfacePosition", {kSurface});
+            v.set("epsilon", {eps});
+            v.set("sigma", {kSigma});
+            return v;
+        }(),
+        Constants{});
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> lateral(-20.0, 20.0), inside(-0.98 * kSigma, 0.98 * kSigma),
+        outside(1.02 * kSigma, 4.0 * kSigma);
+    for (int k = 0; k < 20; ++k) {
+        const double d = inside(rng);
+        expect_energy_and_force<SurfaceAnchorage>({lateral(rng), lateral(rng), kSurface + d}, p,
+                                                  0.5 * eps * (d * d / (kSigma * kSigma) - 1.0));
+        const double far = (k % 2 ? 1.0 : -1.0) * outside(rng);
+        expect_energy_and_force<SurfaceAnchorage>({lateral(rng), lateral(rng), kSurface + far}, p, 0.0);
+    }
+    EXPECT_NEAR(energy_at<SurfaceAnchorage>({0.0, 0.0, kSurface}, p), -0.5 * eps, 1e-15);
+    // The energy is continuous at the edges of the well.
+    EXPECT_NEAR(energy_at<SurfaceAnchorage>({0.0, 0.0, kSurface + kSigma * (1.0 - 1e-9)}, p), 0.0, 1e-8);
+}
+
+TEST(ParabolaSurface, PullsParticlesBelowTheWallBackAndLeavesThoseAboveAlone) {
+    const double eps = 7.0;
+    ParameterValues v;
+    v.set("surfacePosition", {kSurface});
+    v.set("epsilon", {eps});
+    const auto p = ParabolaSurface::make_params<double>(v, Constants{});
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<double> lateral(-20.0, 20.0), depth(0.01, 3.0);
+    for (int k = 0; k < 20; ++k) {
+        const double below = depth(rng);
+        expect_energy_and_force<ParabolaSurface>({lateral(rng), lateral(rng), kSurface - below}, p,
+                                                 0.5 * eps * below * below);
+        expect_energy_and_force<ParabolaSurface>({lateral(rng), lateral(rng), kSurface + depth(rng)}, p, 0.0);
+    }
+    Vec3<double> force;
+    ParabolaSurface::compute({0.0, 0.0, kSurface - 0.5}, 0.5, p, 0.0, force);
+    EXPECT_DOUBLE_EQ(force.z, 3.5);
+}
+
+TEST(SinglePrecision, MatchesDouble) {
+    for (const double z : {kSurface - 0.8, kSurface + 0.95, kSurface + 2.0}) {
+        const Vec3<double> r{3.0, -4.0, z};
+        expect_float_matches_double<SurfaceLennardJonesType1>(
+            [](auto tag) { return SurfaceLennardJonesType1::make_params<decltype(tag)>(kSurface, 1.1, kSigma); }, r);
+        expect_float_matches_double<SurfaceGeneralLennardJonesType2>(
+            [](auto tag) {
+                return SurfaceGeneralLennardJonesType2::make_params<decltype(tag)>(kSurface, -0.7, kSigma);
+            },
+            r);
+        expect_float_matches_double<SurfaceIntegratedLennardJonesType2>(
+            [](auto tag) {
+                return SurfaceIntegratedLennardJonesType2::make_params<decltype(tag)>(kSurface, 0.6, kSigma);
+            },
+            r);
+    }
+    expect_float_matches_double<SurfaceWCAType1>(
+        [](auto tag) { return SurfaceWCAType1::make_params<decltype(tag)>(kSurface, 1.0, kSigma); },
+        {1.0, 2.0, kSurface + 0.85});
+}
+
+}  // namespace
