@@ -45,6 +45,7 @@
 #include "forcefield/lennard_jones_wca.hpp"
 #include "forcefield/max_distance_restraint.hpp"
 #include "forcefield/morse.hpp"
+#include "forcefield/plain_cylinder.hpp"
 #include "forcefield/plates.hpp"
 #include "forcefield/spherical_shell.hpp"
 #include "forcefield/split_lennard_jones.hpp"
@@ -137,6 +138,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template external<SurfaceIntegratedLennardJonesType2>({"Surface", "SurfaceIntegratedLennardJonesType2"});
     v.template external<SurfaceAnchorage>({"Surface", "SurfaceAnchorage"});
     v.template external<ParabolaSurface>({"Surface", "ParabolaSurface"});
+    v.template external<WCAPlainCylinder>({"Surface", "WCA_PlainCylinder"});
 
     v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
     v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});

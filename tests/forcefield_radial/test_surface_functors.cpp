@@ -1,7 +1,8 @@
-// The Surface family (flat_surfaces.hpp): energies against the formulas of the input
-// specification, written out here independently of the functors; forces against a central finite
-// difference of the functor's energy in x, y and z, on both sides of each wall; the cutoffs, where
-// the energy must reach zero; and single precision against double.
+// The Surface family (flat_surfaces.hpp, plain_cylinder.hpp): energies against the formulas of the
+// input specification, written out here independently of the functors; forces against a central
+// finite difference of the functor's energy in x, y and z, on both sides of each wall and in every
+// region of the plain cylinder; the cutoffs, where the energy must reach zero; and single precision
+// against double.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "forcefield/flat_surfaces.hpp"
+#include "forcefield/plain_cylinder.hpp"
 
 using namespace structmd;
 
@@ -231,6 +233,95 @@ TEST(ParabolaSurface, PullsParticlesBelowTheWallBackAndLeavesThoseAboveAlone) {
     EXPECT_DOUBLE_EQ(force.z, 3.5);
 }
 
+// ---- plain cylinder --------------------------------------------------------------------------------
+
+constexpr double kPlane = 0.7;   // z0
+constexpr double kRadius = 2.0;  // R
+constexpr double kCylinderEpsilon = 1.2;
+constexpr double kCylinderSigma = 0.8;
+
+// The distance from r to the surface of the solid {z < z0, rho > R}, as the smaller of the distances
+// to its two faces: the annulus {z = z0, rho >= R} and the wall {rho = R, z <= z0}. Only meaningful
+// outside the solid.
+double distance_to_solid(Vec3<double> r) {
+    const double rho = std::hypot(r.x, r.y);
+    const double dz = r.z - kPlane;
+    const double to_annulus = rho >= kRadius ? std::fabs(dz) : std::hypot(kRadius - rho, dz);
+    const double to_wall = r.z <= kPlane ? std::fabs(rho - kRadius) : std::hypot(rho - kRadius, dz);
+    return std::min(to_annulus, to_wall);
+}
+
+double cylinder_energy(Vec3<double> r) {
+    const bool solid = r.z < kPlane && std::hypot(r.x, r.y) >= kRadius;
+    return solid ? 0.0 : wca1(kCylinderEpsilon, kCylinderSigma, distance_to_solid(r));
+}
+
+WCAPlainCylinder::Params<double> cylinder() {
+    return WCAPlainCylinder::make_params<double>(kPlane, kRadius, kCylinderEpsilon, kCylinderSigma);
+}
+
+// A point at cylindrical coordinates (rho, phi, z).
+Vec3<double> cylindrical(double rho, double phi, double z) { return {rho * std::cos(phi), rho * std::sin(phi), z}; }
+
+TEST(WCAPlainCylinder, EnergyIsTheWCAOfTheDistanceToTheSolidInEveryRegion) {
+    const auto p = cylinder();
+    std::mt19937 rng(44);
+    std::uniform_real_distribution<double> angle(0.0, 6.283185307179586), gap(0.7, 0.89);
+    for (int k = 0; k < 30; ++k) {
+        const double phi = angle(rng);
+        const double g = gap(rng) * kCylinderSigma * 1.1;  // within the WCA range 2^(1/6) sigma
+        // Above the plane beyond the well's mouth: the plane acts.
+        const Vec3<double> plane = cylindrical(kRadius + 0.1 + 2.0 * gap(rng), phi, kPlane + g);
+        // In the well, below the plane: its wall acts.
+        const Vec3<double> wall = cylindrical(kRadius - g, phi, kPlane - 0.2 - 3.0 * gap(rng));
+        // Above the mouth: the rim acts, at distance g in a direction between the axis and the plane.
+        const double tilt = 0.2 + 1.2 * gap(rng);
+        const Vec3<double> rim = cylindrical(kRadius - g * std::cos(tilt), phi, kPlane + g * std::sin(tilt));
+        for (const Vec3<double>& r : {plane, wall, rim}) {
+            ASSERT_NEAR(distance_to_solid(r), g, 1e-12) << describe(r);
+            expect_energy_and_force<WCAPlainCylinder>(r, p, cylinder_energy(r));
+            ASSERT_GT(cylinder_energy(r), 0.0);
+        }
+        // Beyond the range of the WCA potential, in each region, and inside the solid: nothing.
+        for (const Vec3<double>& r :
+             {cylindrical(kRadius + 1.0, phi, kPlane + 1.0), cylindrical(kRadius - 1.0, phi, kPlane - 5.0),
+              cylindrical(kRadius - 0.8, phi, kPlane + 0.8), cylindrical(kRadius + 0.3, phi, kPlane - 0.3)})
+            expect_energy_and_force<WCAPlainCylinder>(r, p, 0.0);
+    }
+}
+
+TEST(WCAPlainCylinder, EnergyIsContinuousAcrossTheRegions) {
+    const auto p = cylinder();
+    const double e = 1e-9;
+    const double g = 0.75;
+    // Across rho = R above the plane (plane <-> rim), and across z = z0 inside the well (wall <-> rim).
+    const double across_rho = energy_at<WCAPlainCylinder>(cylindrical(kRadius + e, 0.3, kPlane + g), p);
+    const double before_rho = energy_at<WCAPlainCylinder>(cylindrical(kRadius - e, 0.3, kPlane + g), p);
+    EXPECT_NEAR(across_rho, before_rho, 1e-6 * across_rho);
+    const double across_z = energy_at<WCAPlainCylinder>(cylindrical(kRadius - g, 1.1, kPlane + e), p);
+    const double before_z = energy_at<WCAPlainCylinder>(cylindrical(kRadius - g, 1.1, kPlane - e), p);
+    EXPECT_NEAR(across_z, before_z, 1e-6 * across_z);
+    EXPECT_NEAR(across_z, wca1(kCylinderEpsilon, kCylinderSigma, g), 1e-6);
+}
+
+TEST(WCAPlainCylinder, OnTheAxisTheForceIsAlongZOnly) {
+    // A narrow well (R < 2^(1/6) sigma): on its axis the whole rim, or the whole wall, is equally near.
+    const auto p = WCAPlainCylinder::make_params<double>(kPlane, 0.85, kCylinderEpsilon, kCylinderSigma);
+    for (const double z : {kPlane - 2.0, kPlane + 0.3}) {
+        Vec3<double> force;
+        const double energy = WCAPlainCylinder::compute({0.0, 0.0, z}, 0.5, p, 0.0, force);
+        const double g = z < kPlane ? 0.85 : std::hypot(0.85, z - kPlane);
+        EXPECT_NEAR(energy, wca1(kCylinderEpsilon, kCylinderSigma, g), 1e-12);
+        EXPECT_TRUE(std::isfinite(force.z));
+        EXPECT_EQ(force.x, 0.0);
+        EXPECT_EQ(force.y, 0.0);
+    }
+    // Without a well (R = 0), as in the reference's test input, the axis above the plane sees the plane.
+    const auto flat = WCAPlainCylinder::make_params<double>(kPlane, 0.0, kCylinderEpsilon, kCylinderSigma);
+    expect_energy_and_force<WCAPlainCylinder>({0.0, 0.0, kPlane + 0.8}, flat,
+                                              wca1(kCylinderEpsilon, kCylinderSigma, 0.8));
+}
+
 TEST(SinglePrecision, MatchesDouble) {
     for (const double z : {kSurface - 0.8, kSurface + 0.95, kSurface + 2.0}) {
         const Vec3<double> r{3.0, -4.0, z};
@@ -250,6 +341,14 @@ TEST(SinglePrecision, MatchesDouble) {
     expect_float_matches_double<SurfaceWCAType1>(
         [](auto tag) { return SurfaceWCAType1::make_params<decltype(tag)>(kSurface, 1.0, kSigma); },
         {1.0, 2.0, kSurface + 0.85});
+    for (const Vec3<double>& r :
+         {cylindrical(kRadius + 1.0, 0.4, kPlane + 0.8), cylindrical(kRadius - 0.8, 2.0, kPlane - 1.0),
+          cylindrical(kRadius - 0.5, -1.0, kPlane + 0.6)})
+        expect_float_matches_double<WCAPlainCylinder>(
+            [](auto tag) {
+                return WCAPlainCylinder::make_params<decltype(tag)>(kPlane, kRadius, kCylinderEpsilon, kCylinderSigma);
+            },
+            r);
 }
 
 }  // namespace

@@ -93,6 +93,12 @@ inline const std::vector<Override>& overrides() {
         {{"External", "SphericalShell"}, "shellRadius", {6.0}},
         {{"External", "SphericalShell"}, "minShellRadius", {4.0}},
         {{"External", "SphericalShell"}, "maxShellRadius", {9.0}},
+        // The plain cylinder's solid must leave the chain outside it, and near enough to act on it:
+        // the plane below the chain, and a well of radius 2 whose rim is within 2^(1/6) sigma of
+        // particles 1 and 2 (generic values put every particle inside the solid, where it feels
+        // nothing). Not -1, which the changes of registry.order leave where it is.
+        {{"Surface", "WCA_PlainCylinder"}, "plainPosition", {-0.8}},
+        {{"Surface", "WCA_PlainCylinder"}, "cylinderRadius", {2.0}},
         // Its validate() accepts only 0 (removing the centre-of-mass motion is not supported); the
         // schema says only "an integer".
         {{"Langevin", "BBK"}, "stopTransRotSteps", {0.0}},
