@@ -1,5 +1,6 @@
 // Checks F = -dU/dx: the engine's forces against a five-point central difference of its own potential
-// energy, on small random systems whose interactions cross the periodic boundary.
+// energy, on small random systems whose interactions cross the periodic boundary, and on particles
+// among the walls of the Surface family, with their per-type tables.
 #include "physics_support.hpp"
 
 #include <cstdio>
@@ -22,6 +23,7 @@ struct SmallSystem {
     std::string force_field;
     std::string units = "None";
     double temperature = 1.0;
+    std::vector<std::string> acting;  // entries that must act on the configuration (nonzero energy)
 };
 
 const std::string kTwoTypeLennardJones =
@@ -249,11 +251,138 @@ void check_forces_by_finite_differences(const std::string& label, const SmallSys
         xyz[c] = original;
         numerical[c] = -derivative / (12.0 * kStep);
     }
+    for (const std::string& term : s.acting) {
+        double energy = 0.0;
+        ASSERT_STRUCTMD_OK(sim, structmd_get_energy(sim, term.c_str(), &energy));
+        EXPECT_NE(energy, 0.0) << term << " does not act on the configuration: the check would miss it";
+    }
     const double deviation = max_relative_deviation(forces, numerical);
     std::printf("[ deviation ] finite differences %s: %.3e (max |F| %.3g, tolerance %.0e)\n", label.c_str(), deviation,
                 max_abs(numerical), kTolerance);
     EXPECT_GT(max_abs(numerical), 1.0) << "the configuration exerts almost no force: the check would be empty";
     EXPECT_LT(deviation, kTolerance);
+}
+
+// ---- Surface walls ------------------------------------------------------------------------------
+
+// One Surface entry: its component, the plane (or the plain cylinder's z0 and R) and per type
+// (epsilon, sigma); a type with no row is not listed.
+struct Wall {
+    std::string name;
+    std::string subclass;
+    std::string parameters;
+    std::vector<std::pair<std::string, std::pair<double, double>>> rows;
+    double plane = 0.0;
+};
+
+std::string wall_entries(const std::vector<Wall>& walls) {
+    std::string text;
+    for (const Wall& w : walls) {
+        std::string data;
+        for (const auto& [type, values] : w.rows)
+            data += std::string(data.empty() ? "" : ", ") + "[\"" + type + "\", " + number(values.first) + ", " +
+                    number(values.second) + "]";
+        text += std::string(text.empty() ? "" : ",\n") + "\"" + w.name + "\": {\"type\": [\"Surface\", \"" +
+                w.subclass + "\"], \"parameters\": {" + w.parameters +
+                "}, \"labels\": [\"name\", \"epsilon\", \"sigma\"], \"data\": [" + data + "]}";
+    }
+    return text;
+}
+
+const std::pair<double, double>* row_of(const Wall& w, const std::string& type) {
+    for (const auto& row : w.rows)
+        if (row.first == type) return &row.second;
+    return nullptr;
+}
+
+// Every flat wall of the family, on particles of both types in a slab of a box of 12; each wall's
+// table differs by type, the 9-3 wall lists A only (B must feel nothing from it), and the parabola's
+// table carries the sigma column it ignores.
+std::vector<Wall> flat_walls() {
+    return {
+        {"lj1", "SurfaceLennardJonesType1", "\"surfacePosition\": -5.2", {{"A", {1.0, 1.0}}, {"B", {0.6, 1.2}}}, -5.2},
+        {"lj2", "SurfaceLennardJonesType2", "\"surfacePosition\": 5.2", {{"A", {0.8, 1.0}}, {"B", {1.2, 0.9}}}, 5.2},
+        {"wca1", "SurfaceWCAType1", "\"surfacePosition\": -2.5", {{"A", {1.0, 0.8}}, {"B", {1.5, 0.7}}}, -2.5},
+        {"wca2", "SurfaceWCAType2", "\"surfacePosition\": 2.5", {{"A", {1.0, 0.8}}, {"B", {0.5, 0.9}}}, 2.5},
+        {"general1", "SurfaceGeneralLennardJonesType1", "\"surfacePosition\": -0.8",
+         {{"A", {-0.7, 0.6}}, {"B", {1.0, 0.7}}}, -0.8},
+        {"general2", "SurfaceGeneralLennardJonesType2", "\"surfacePosition\": 0.8",
+         {{"A", {0.9, 0.6}}, {"B", {-0.4, 0.7}}}, 0.8},
+        {"integrated", "SurfaceIntegratedLennardJonesType2", "\"surfacePosition\": -5.6", {{"A", {0.5, 0.8}}}, -5.6},
+        {"anchor", "SurfaceAnchorage", "\"surfacePosition\": 1.6", {{"A", {3.0, 1.2}}, {"B", {2.0, 0.9}}}, 1.6},
+        {"floor", "ParabolaSurface", "\"surfacePosition\": -1.5", {{"A", {4.0, 1.0}}, {"B", {2.5, 1.0}}}, -1.5},
+    };
+}
+
+// Clear of every place where a wall is steep or not smooth enough for the stencil: each Lennard-Jones
+// plane by 0.85 sigma, the WCA cutoffs, the edges of the anchorage well and the parabola's plane by
+// 0.01 (the stencil spans 2e-4).
+bool clear_of_walls(const std::vector<Wall>& walls, double z, const std::string& type) {
+    for (const Wall& w : walls) {
+        const auto* row = row_of(w, type);
+        if (!row) continue;
+        const double d = std::abs(z - w.plane), sigma = row->second;
+        if (w.subclass == "ParabolaSurface") {
+            if (d < 0.01) return false;
+        } else if (w.subclass == "SurfaceAnchorage") {
+            if (std::abs(d - sigma) < 0.01) return false;
+        } else {
+            if (d < 0.85 * sigma) return false;
+            const bool type2 = w.subclass.back() == '2';
+            if (std::abs(d - (type2 ? 1.0 : std::pow(2.0, 1.0 / 6.0)) * sigma) < 0.01) return false;
+        }
+    }
+    return true;
+}
+
+SmallSystem flat_surfaces_system() {
+    const std::vector<Wall> walls = flat_walls();
+    SmallSystem s{12.0, {}, {}, wall_entries(walls)};
+    for (const Wall& w : walls) s.acting.push_back(w.name);
+    SplitMix64 rng(4242);
+    // z within +-4.5: the wrapped coordinate never jumps across the box edge within reach of a wall.
+    while (s.positions.size() < 40) {
+        const Vec3 r{rng.uniform(-6.0, 6.0), rng.uniform(-6.0, 6.0), rng.uniform(-4.5, 4.5)};
+        const std::string type = s.positions.size() % 2 ? "B" : "A";
+        if (!clear_of_walls(walls, r[2], type)) continue;
+        s.positions.push_back(r);
+        s.types.push_back(type);
+    }
+    return s;
+}
+
+// The plain cylinder (z0 = -1, R = 3): particles near the plane beyond the well's mouth, near the
+// well's wall below the plane and near the rim above the mouth, each between 0.85 sigma and the WCA
+// range from the solid, and 0.01 clear of the region boundaries (z = z0 and rho = R), where the
+// distance is only once differentiable.
+SmallSystem plain_cylinder_system() {
+    const double plane = -1.0, radius = 3.0;
+    const Wall well{"well", "WCA_PlainCylinder", "\"plainPosition\": -1.0, \"cylinderRadius\": 3.0",
+                    {{"A", {1.0, 0.8}}, {"B", {0.7, 1.0}}}};
+    SmallSystem s{12.0, {}, {}, wall_entries({well})};
+    s.acting = {"well"};
+    SplitMix64 rng(77);
+    while (s.positions.size() < 24) {
+        const std::string type = s.positions.size() % 2 ? "B" : "A";
+        const double sigma = row_of(well, type)->second;
+        const double gap = rng.uniform(0.85, 1.1) * sigma;
+        const double phi = rng.uniform(0.0, 2.0 * M_PI);
+        double rho = 0.0, z = 0.0;
+        switch (s.positions.size() % 3) {
+            case 0: rho = rng.uniform(radius + 0.01, 5.5), z = plane + gap; break;     // the plane
+            case 1: rho = radius - gap, z = rng.uniform(-5.5, plane - 0.01); break;     // the wall
+            default: {                                                                  // the rim
+                const double tilt = rng.uniform(0.05, 0.5 * M_PI - 0.05);
+                rho = radius - gap * std::cos(tilt), z = plane + gap * std::sin(tilt);
+            }
+        }
+        if (std::abs(rho - radius) < 0.01 || std::abs(z - plane) < 0.01 ||
+            std::abs(gap - std::pow(2.0, 1.0 / 6.0) * sigma) < 0.01)
+            continue;
+        s.positions.push_back({rho * std::cos(phi), rho * std::sin(phi), z});
+        s.types.push_back(type);
+    }
+    return s;
 }
 
 TEST(FiniteDifference, LennardJonesTwoTypesAcrossBoundary) {
@@ -300,6 +429,14 @@ TEST(FiniteDifference, Issue14BondedTermsAcrossBoundary) {
         bonds_across += crosses_boundary(s.positions[i], s.positions[i + 1], s.box_length) ? 1 : 0;
     ASSERT_GE(bonds_across, 1);
     check_forces_by_finite_differences("issue 14 bonded terms", s);
+}
+
+TEST(FiniteDifference, FlatSurfaceWallsWithPerTypeTables) {
+    check_forces_by_finite_differences("surface walls", flat_surfaces_system());
+}
+
+TEST(FiniteDifference, PlainCylinderInEachRegion) {
+    check_forces_by_finite_differences("plain cylinder", plain_cylinder_system());
 }
 
 }  // namespace
