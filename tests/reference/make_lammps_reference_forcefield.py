@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Builds the LAMMPS reference data that tests/physics/test_lammps_forcefield.cpp checks structmd against:
-three systems whose force fields go beyond plain LJ and harmonic bonds.
+systems whose force fields go beyond plain LJ and harmonic bonds.
 
   kg_melt      Kremer-Grest bead-spring melt: FENE bonds (Bond2 FeneCommon_r0_K_R0) and WCA
                (NonBonded WCAType1) between every pair except bonded ones (nonExcluded list).
@@ -9,6 +9,8 @@ three systems whose force fields go beyond plain LJ and harmonic bonds.
   lj_mixture   Kob-Andersen 80:20 binary LJ mixture, per-pair epsilon, sigma and cutoff 2.5 sigma_ij.
   ca_chains    the molecules of `molecules` as C-alpha chains in KcalMol_A units at 300 K: harmonic
                bonds, Bond3 BestChenHummerAngular angles, Bond4 IDP_Fourier dihedrals, LJ beyond 1-4.
+  surfaces, plain_cylinder   the walls of the Surface family, through LAMMPS's fix wall/* (see the
+               section "Surfaces" below for the conversions and what LAMMPS cannot express).
 
 For each case this writes
   data/<case>.json         the structmd input (UAMMD-structured JSON, /work/shared/spec/input-format.md),
@@ -59,7 +61,7 @@ rejection without transcendental functions). An independent numpy evaluation of 
 pairs, the spec's formulas) is checked against LAMMPS before anything is written, and the numpy forces
 are checked against a central difference of the numpy energy.
 
-Usage: python3 tests/reference/make_lammps_reference_forcefield.py [--lmp /usr/bin/lmp] [--cases ca_chains ...]
+Usage: python3 tests/reference/make_lammps_reference_forcefield.py [--lmp /usr/bin/lmp] [--cases NAME ...]
 """
 import argparse
 import dataclasses
@@ -808,15 +810,401 @@ def write_case(lmp, system):
     print(f"{system.case}: {len(system.positions)} particles, L = {system.box_length:.6f}, {terms}")
 
 
+# ---------------------------------------------------------------------------------------------------
+# Surfaces: the walls of UAMMD-structured's ["Surface", ...] family
+#
+# Two cases, particles of types A and B with no pair term, in a periodic box of 12:
+#   surfaces        every flat wall at once, its planes spread through the box, particles on both
+#                   sides of each (the 9-3 wall lists type A only);
+#   plain_cylinder  ["Surface","WCA_PlainCylinder"], particles near its plane and near its well's wall.
+# LAMMPS expresses each flat wall with one `fix wall/...` per (type, side of the plane), the particles
+# of that type on that side as its group, with `pbc yes` (the box stays periodic):
+#   SurfaceLennardJonesType1 eps, s   wall/lj126 eps s, cutoff 1000 s (its shift, 4e-18 eps, is far below
+#                                     the tolerance)
+#   SurfaceLennardJonesType2 eps, s   wall/lj126 eps 2^(-1/6) s: 4 eps[(s'/r)^12 - (s'/r)^6] is
+#                                     eps[(s/r)^12 - 2 (s/r)^6]
+#   SurfaceWCAType1/2                 the same cut at 2^(1/6) s and s: LAMMPS shifts its walls to 0 at the
+#                                     cutoff, which adds exactly +eps there
+#   SurfaceGeneralLennardJonesType1/2 the WCA form for eps >= 0, the full one with |eps| for eps < 0
+#   SurfaceIntegratedLennardJonesType2 eps[(s/r)^9 - 2 (s/r)^3] is wall/lj93 (eps_L[2/15 (s_L/r)^9 -
+#                                     (s_L/r)^3]) with s_L = (15/4)^(1/6) s, eps_L = 2 sqrt(4/15) eps,
+#                                     cutoff 1e5 s
+#   ParabolaSurface eps               wall/harmonic (eps_L (r - r_c)^2 for r < r_c) at z_s - L with r_c = L
+#                                     and eps_L = eps/2: eps/2 (z - z_s)^2 below z_s, nothing above
+#   SurfaceAnchorage eps, s           wall/harmonic at z_s - s (zlo, particles in (z_s - s, z_s)) and
+#                                     z_s + s (zhi, particles in (z_s, z_s + s)), r_c = s, eps_L =
+#                                     eps/(2 s^2), which gives eps/2 (d/s)^2; the constant -eps/2 of every
+#                                     particle in the well is added to LAMMPS's energy here (its forces
+#                                     are LAMMPS's own)
+#   WCA_PlainCylinder eps, s          wall/region lj126 eps s, cutoff 2^(1/6) s, on the union of the block
+#                                     z >= z0 and the infinite cylinder rho < R. LAMMPS's union finds the
+#                                     plane and the well's wall but not the rim (the edge where they meet:
+#                                     it keeps only contacts on the faces of its sub-regions), so no
+#                                     particle of this case is above the well's mouth; the functor and
+#                                     finite-difference tests cover the rim.
+# LAMMPS's fix walls have no per-atom energy, and add nothing to the pair virial (nor does structmd's
+# Surface), so these references hold forces and the energy of each entry.
+
+SURFACE_BOX = 12.0
+SURFACE_PARTICLES = 60
+SURFACE_MIN_GAP = 0.8  # in sigma: no particle closer to a Lennard-Jones plane
+SURFACE_GUARD = 1e-6   # no particle this close to a cutoff, a well edge or the parabola's plane
+LJ_FAR_CUTOFF = 1000.0
+LJ93_FAR_CUTOFF = 1e5
+
+
+@dataclasses.dataclass
+class Surface:
+    name: str
+    subclass: str
+    plane: float
+    rows: dict  # type -> (epsilon, sigma); a type not in it is not listed
+
+    @property
+    def lennard_jones(self):
+        return self.subclass not in ("ParabolaSurface", "SurfaceAnchorage")
+
+    def form(self, eps):
+        """("full" or "wca", shape 1, 2 or 93, depth) of a Lennard-Jones wall for a type's epsilon."""
+        shape = 93 if "Integrated" in self.subclass else int(self.subclass[-1])
+        if "WCA" in self.subclass or ("General" in self.subclass and eps >= 0.0):
+            return "wca", shape, eps
+        return "full", shape, abs(eps)
+
+
+FLAT_SURFACES = [
+    Surface("lj1", "SurfaceLennardJonesType1", 0.3, {"A": (1.0, 1.0), "B": (0.6, 1.2)}),
+    Surface("lj2", "SurfaceLennardJonesType2", -0.9, {"A": (0.8, 1.0), "B": (1.2, 0.9)}),
+    Surface("wca1", "SurfaceWCAType1", 2.1, {"A": (1.0, 0.8), "B": (1.5, 0.7)}),
+    Surface("wca2", "SurfaceWCAType2", -2.3, {"A": (1.0, 0.8), "B": (0.5, 0.9)}),
+    Surface("general1", "SurfaceGeneralLennardJonesType1", 3.4, {"A": (-0.7, 0.6), "B": (1.0, 0.7)}),
+    Surface("general2", "SurfaceGeneralLennardJonesType2", -3.6, {"A": (0.9, 0.6), "B": (-0.4, 0.7)}),
+    Surface("integrated", "SurfaceIntegratedLennardJonesType2", 4.7, {"A": (0.5, 0.8)}),
+    Surface("anchor", "SurfaceAnchorage", 1.0, {"A": (3.0, 1.2), "B": (2.0, 0.9)}),
+    Surface("floor", "ParabolaSurface", -1.6, {"A": (4.0, None), "B": (2.5, None)}),
+]
+CYLINDER_PLANE, CYLINDER_RADIUS = -1.0, 3.0
+CYLINDER_ROWS = {"A": (1.0, 0.8), "B": (0.7, 1.0)}
+
+
+def lj_shape(shape, s_over_r):
+    """g(x) and x g'(x) of the shapes, x = s/r: 4(x^12 - x^6), x^12 - 2x^6, x^9 - 2x^3."""
+    if shape == 1:
+        return 4.0 * (s_over_r**12 - s_over_r**6), 4.0 * (12.0 * s_over_r**12 - 6.0 * s_over_r**6)
+    if shape == 2:
+        return s_over_r**12 - 2.0 * s_over_r**6, 12.0 * s_over_r**12 - 12.0 * s_over_r**6
+    return s_over_r**9 - 2.0 * s_over_r**3, 9.0 * s_over_r**9 - 6.0 * s_over_r**3
+
+
+def wca_range(shape, sigma):
+    return (WCA_FACTOR if shape == 1 else 1.0) * sigma
+
+
+def flat_surface_term(surface, z, eps, sigma):
+    """U and F_z of one particle at height z, straight from the input specification."""
+    d = z - surface.plane
+    if surface.subclass == "ParabolaSurface":
+        return (0.5 * eps * d * d, -eps * d) if d <= 0.0 else (0.0, 0.0)
+    if surface.subclass == "SurfaceAnchorage":
+        return (0.5 * eps * ((d / sigma) ** 2 - 1.0), -eps * d / sigma**2) if abs(d) <= sigma else (0.0, 0.0)
+    form, shape, depth = surface.form(eps)
+    if form == "wca" and abs(d) >= wca_range(shape, sigma):
+        return 0.0, 0.0
+    g, x_dg = lj_shape(shape, sigma / abs(d))
+    # dU/d|d| = -depth x g'(x) / |d|, so F_z = -dU/dz = depth x g'(x) / d.
+    return depth * g + (depth if form == "wca" else 0.0), depth * x_dg / d
+
+
+def cylinder_offset(position):
+    """v from the nearest point of the plain cylinder's solid to the particle, or None inside it."""
+    x, y, z = position
+    rho = math.hypot(x, y)
+    in_well, above = rho < CYLINDER_RADIUS, z >= CYLINDER_PLANE
+    if not (in_well or above):
+        return None
+    radial = rho - CYLINDER_RADIUS if in_well else 0.0
+    return np.array([radial * x / rho, radial * y / rho, z - CYLINDER_PLANE if above else 0.0])
+
+
+def surface_reference(case, positions, types):
+    """Per entry the energy of each particle, and the total force, from the specification's formulas."""
+    n = len(positions)
+    forces = np.zeros((n, 3))
+    energies = {}
+    if case == "plain_cylinder":
+        energies["well"] = np.zeros(n)
+        for i, r in enumerate(positions):
+            v = cylinder_offset(r)
+            eps, sigma = CYLINDER_ROWS[types[i]]
+            gap = float(np.linalg.norm(v))
+            if gap < WCA_FACTOR * sigma:
+                g, x_dg = lj_shape(1, sigma / gap)
+                energies["well"][i] = eps * g + eps
+                forces[i] += eps * x_dg / gap**2 * v
+        return forces, energies
+    for surface in FLAT_SURFACES:
+        energies[surface.name] = np.zeros(n)
+        for i, r in enumerate(positions):
+            if types[i] not in surface.rows:
+                continue
+            energy, force_z = flat_surface_term(surface, r[2], *surface.rows[types[i]])
+            energies[surface.name][i] = energy
+            forces[i, 2] += force_z
+    return forces, energies
+
+
+def clear_of_surfaces(z, type_name):
+    for surface in FLAT_SURFACES:
+        if type_name not in surface.rows:
+            continue
+        eps, sigma = surface.rows[type_name]
+        d = abs(z - surface.plane)
+        if surface.subclass == "ParabolaSurface":
+            edges = [0.0]
+        elif surface.subclass == "SurfaceAnchorage":
+            edges = [0.0, sigma]
+        else:
+            if d < SURFACE_MIN_GAP * sigma:
+                return False
+            form, shape, _ = surface.form(eps)
+            edges = [wca_range(shape, sigma)] if form == "wca" else []
+        if any(abs(d - edge) < SURFACE_GUARD for edge in edges):
+            return False
+    return True
+
+
+def surfaces_configuration():
+    """Random x, y; z within +-5.4 (clear of the box's z faces), clear of every plane and edge."""
+    rng = SplitMix64(20250114)
+    half = 0.5 * SURFACE_BOX
+    positions, types = [], []
+    while len(positions) < SURFACE_PARTICLES:
+        type_name = "B" if len(positions) % 3 == 2 else "A"
+        r = [rng.uniform(-half, half), rng.uniform(-half, half), rng.uniform(-5.4, 5.4)]
+        if clear_of_surfaces(r[2], type_name):
+            positions.append(r)
+            types.append(type_name)
+    return np.array(positions), types
+
+
+def plain_cylinder_configuration():
+    """Half the particles above the plane beyond the well's mouth, half in the well below the plane,
+    each between 0.8 sigma and 1.3 sigma from the solid (some beyond the WCA range, which must give 0)."""
+    rng = SplitMix64(20250115)
+    positions, types = [], []
+    while len(positions) < 24:
+        type_name = "B" if len(positions) % 3 == 2 else "A"
+        sigma = CYLINDER_ROWS[type_name][1]
+        gap = rng.uniform(0.8, 1.3) * sigma
+        phi = rng.uniform(0.0, 2.0 * math.pi)
+        if len(positions) % 2 == 0:
+            rho, z = rng.uniform(CYLINDER_RADIUS + 0.05, 5.5), CYLINDER_PLANE + gap
+        else:
+            rho, z = CYLINDER_RADIUS - gap, rng.uniform(-5.5, CYLINDER_PLANE - 0.05)
+        if abs(gap - WCA_FACTOR * sigma) < SURFACE_GUARD:
+            continue
+        positions.append([rho * math.cos(phi), rho * math.sin(phi), z])
+        types.append(type_name)
+    return np.array(positions), types
+
+
+def check_surface_finite_difference(case, positions, types):
+    forces, _ = surface_reference(case, positions, types)
+    worst = 0.0
+    for i in range(len(positions)):
+        for axis in range(3):
+            energies = []
+            for sign in (1.0, -1.0):
+                displaced = positions.copy()
+                displaced[i, axis] += sign * FINITE_DIFFERENCE_STEP
+                energies.append(sum(e.sum() for e in surface_reference(case, displaced, types)[1].values()))
+            worst = max(worst, abs(-(energies[0] - energies[1]) / (2.0 * FINITE_DIFFERENCE_STEP) - forces[i, axis]))
+    deviation = worst / np.abs(forces).max()
+    print(f"  {case}: numpy forces vs central difference of numpy energy: {deviation:.2e}")
+    assert deviation < FINITE_DIFFERENCE_TOLERANCE, f"{case}: numpy forces are not -grad U"
+
+
+def lammps_surface_fixes(case, positions, types):
+    """The group and fix commands, and per structmd entry the LAMMPS fix ids whose energies it sums
+    and the constant LAMMPS leaves out."""
+    lines, fixes, constants = [], {}, {}
+
+    def group(name, ids):
+        lines.append(f"group {name} id " + " ".join(str(i + 1) for i in ids))
+
+    if case == "plain_cylinder":
+        lines += [f"region plane block INF INF INF INF {CYLINDER_PLANE!r} INF",
+                  f"region well cylinder z 0.0 0.0 {CYLINDER_RADIUS!r} INF INF",
+                  "region free union 2 plane well"]
+        fixes["well"], constants["well"] = [], 0.0
+        for type_name, (eps, sigma) in CYLINDER_ROWS.items():
+            group(f"well_{type_name}", [i for i, t in enumerate(types) if t == type_name])
+            lines.append(f"fix well_{type_name} well_{type_name} wall/region free lj126 {eps!r} {sigma!r} "
+                         f"{WCA_FACTOR * sigma!r}")
+            fixes["well"].append(f"well_{type_name}")
+        return lines, fixes, constants
+    for surface in FLAT_SURFACES:
+        fixes[surface.name], constants[surface.name] = [], 0.0
+        for type_name, (eps, sigma) in surface.rows.items():
+            members = [i for i, t in enumerate(types) if t == type_name]
+            d = {i: positions[i, 2] - surface.plane for i in members}
+            if surface.subclass == "ParabolaSurface":
+                sides = [("all", "zlo", surface.plane - SURFACE_BOX, members)]
+                style, coefficients, cutoff = "harmonic", f"{eps / 2.0!r} 1.0", SURFACE_BOX
+            elif surface.subclass == "SurfaceAnchorage":
+                inside = [i for i in members if abs(d[i]) < sigma]
+                constants[surface.name] += -0.5 * eps * len(inside)
+                sides = [("below", "zlo", surface.plane - sigma, [i for i in inside if d[i] < 0.0]),
+                         ("above", "zhi", surface.plane + sigma, [i for i in inside if d[i] > 0.0])]
+                style, coefficients, cutoff = "harmonic", f"{eps / (2.0 * sigma**2)!r} 1.0", sigma
+            else:
+                form, shape, depth = surface.form(eps)
+                sides = [("above", "zlo", surface.plane, [i for i in members if d[i] > 0.0]),
+                         ("below", "zhi", surface.plane, [i for i in members if d[i] < 0.0])]
+                if shape == 93:
+                    style = "lj93"
+                    coefficients = f"{2.0 * math.sqrt(4.0 / 15.0) * depth!r} {(15.0 / 4.0) ** (1.0 / 6.0) * sigma!r}"
+                    cutoff = LJ93_FAR_CUTOFF * sigma
+                else:
+                    style = "lj126"
+                    sigma_lammps = sigma if shape == 1 else sigma * 2.0 ** (-1.0 / 6.0)
+                    coefficients = f"{depth!r} {sigma_lammps!r}"
+                    cutoff = wca_range(shape, sigma) if form == "wca" else LJ_FAR_CUTOFF * sigma
+            for side, face, coordinate, ids in sides:
+                if not ids:
+                    continue
+                fix = f"{surface.name}_{type_name}_{side}"
+                group(fix, ids)
+                lines.append(f"fix {fix} {fix} wall/{style} {face} {coordinate!r} {coefficients} {cutoff!r} pbc yes")
+                fixes[surface.name].append(fix)
+    return lines, fixes, constants
+
+
+def run_lammps_surfaces(lmp, case, positions, types):
+    half = 0.5 * SURFACE_BOX
+    type_id = {"A": 1, "B": 2}
+    data = ["structmd reference configuration", "", f"{len(positions)} atoms", "2 atom types", "",
+            f"{-half!r} {half!r} xlo xhi", f"{-half!r} {half!r} ylo yhi", f"{-half!r} {half!r} zlo zhi", "",
+            "Masses", "", "1 1.0", "2 1.0", "", "Atoms", ""]
+    data += [f"{i + 1} {type_id[t]} {x:.17g} {y:.17g} {z:.17g}"
+             for i, ((x, y, z), t) in enumerate(zip(positions, types))]
+    fix_lines, fixes, constants = lammps_surface_fixes(case, positions, types)
+    all_fixes = [f for ids in fixes.values() for f in ids]
+    script = ["units lj", "atom_style atomic", "boundary p p p", "atom_modify map array", "read_data system.data",
+              *fix_lines, "thermo_style custom step " + " ".join(f"f_{f}" for f in all_fixes),
+              "dump atoms all custom 1 atoms.dump id fx fy fz", "dump_modify atoms format float %.17g sort id",
+              "run 0", 'print "' + " ".join(f"$(f_{f}:%.17g)" for f in all_fixes) + '" file totals.txt screen no']
+    with tempfile.TemporaryDirectory(prefix="structmd-lammps-") as tmp:
+        workdir = pathlib.Path(tmp)
+        (workdir / "system.data").write_text("\n".join(data) + "\n")
+        (workdir / "in.reference").write_text("\n".join(script) + "\n")
+        run = subprocess.run([lmp, "-in", "in.reference", "-log", "none", "-screen", "screen.txt", "-nocite"],
+                             cwd=workdir)
+        screen = (workdir / "screen.txt").read_text()
+        if run.returncode != 0:
+            raise RuntimeError(f"lmp failed:\n{screen[-3000:]}")
+        # No pair style: LAMMPS warns that it sorts no atoms and makes no ghosts, neither of which a
+        # fix wall needs.
+        harmless = ("No fixes defined", "Atom sorting therefore disabled", "Communication cutoff is 0.0")
+        warnings = [line for line in screen.splitlines()
+                    if line.startswith("WARNING") and not any(h in line for h in harmless)]
+        assert not warnings, f"{case}: LAMMPS warned:\n" + "\n".join(warnings)
+        dump = (workdir / "atoms.dump").read_text().splitlines()
+        version = subprocess.run([lmp, "-h"], capture_output=True, text=True).stdout.strip().splitlines()[0]
+        totals = dict(zip(all_fixes, (float(v) for v in (workdir / "totals.txt").read_text().split())))
+    atoms_header = next(k for k, line in enumerate(dump) if line.startswith("ITEM: ATOMS"))
+    table = np.array([[float(v) for v in line.split()] for line in dump[atoms_header + 1:]])
+    assert np.array_equal(table[:, 0], np.arange(1, len(positions) + 1)), "dump not sorted by id"
+    terms = {name: sum(totals[f] for f in ids) + constants[name] for name, ids in fixes.items()}
+    return {"lammps_version": version, "forces": table[:, 1:4], "terms": terms}
+
+
+def surface_entries(case):
+    def entry(name, subclass, parameters, rows):
+        labels = ["name", "epsilon", "sigma"]
+        body = ", ".join(json_row([t, eps, 1.0 if sigma is None else sigma]) for t, (eps, sigma) in rows.items())
+        return (f'      "{name}": {{"type": ["Surface", "{subclass}"], "parameters": {json_row(parameters)},\n'
+                f'        "labels": {json.dumps(labels)}, "data": [{body}]}}')
+
+    if case == "plain_cylinder":
+        return entry("well", "WCA_PlainCylinder",
+                     {"plainPosition": CYLINDER_PLANE, "cylinderRadius": CYLINDER_RADIUS}, CYLINDER_ROWS)
+    return ",\n".join(entry(s.name, s.subclass, {"surfacePosition": s.plane}, s.rows) for s in FLAT_SURFACES)
+
+
+def surface_input(case, positions, types):
+    state_rows = ",\n    ".join(json_row([i, [float(c) for c in p]]) for i, p in enumerate(positions))
+    structure_rows = ", ".join(json_row([i, t]) for i, t in enumerate(types))
+    box = json_row([SURFACE_BOX] * 3)
+    return f"""{{
+  "system": {{"info": {{"type": ["Simulation", "Information"], "parameters": {{"name": "{case}", "seed": 1}}}}}},
+  "global": {{
+    "units": {{"type": ["Units", "None"]}},
+    "types": {{"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"], "data": [["A", 1.0, 0.5, 0.0], ["B", 1.0, 0.5, 0.0]]}},
+    "ensemble": {{"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[{box}, 1.0]]}},
+    "fundamental": {{"type": ["Fundamental", "Time"], "parameters": {{"timeStep": 0.001}}}}
+  }},
+  "integrator": {{
+    "vv": {{"type": ["Verlet", "VelocityVerlet"], "parameters": {{"timeStep": 0.001}}}},
+    "schedule": {{"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"], "data": [[1, "vv", 100000]]}}
+  }},
+  "state": {{"labels": ["id", "position"], "data": [
+    {state_rows}]}},
+  "topology": {{
+    "structure": {{"labels": ["id", "type"], "data": [{structure_rows}]}},
+    "forceField": {{
+{surface_entries(case)}
+    }}
+  }}
+}}
+"""
+
+
+def write_surface_case(lmp, case):
+    positions, types = surfaces_configuration() if case == "surfaces" else plain_cylinder_configuration()
+    check_surface_finite_difference(case, positions, types)
+    forces, energies = surface_reference(case, positions, types)
+    for name, per_particle in energies.items():
+        # An entry whose particles' energies cancel would make its relative deviation meaningless.
+        assert abs(per_particle.sum()) > 0.05 * np.abs(per_particle).sum() > 0.0, f"{case}: {name} cancels or is 0"
+    lammps = run_lammps_surfaces(lmp, case, positions, types)
+    checks = {"forces": np.abs(forces - lammps["forces"]).max() / np.abs(lammps["forces"]).max()}
+    for name, per_particle in energies.items():
+        checks[f"energy {name}"] = abs(per_particle.sum() - lammps["terms"][name]) / abs(lammps["terms"][name])
+    for what, deviation in checks.items():
+        print(f"  {case}: numpy vs LAMMPS {what}: {deviation:.2e}")
+        assert deviation < NUMPY_TOLERANCE, f"{case}: numpy and LAMMPS disagree on {what} ({deviation:.2e})"
+    reference = {
+        "case": case,
+        "source": f"LAMMPS ({lammps['lammps_version']}), units lj, serial, fix wall/* (no per-atom energies, "
+                  "no virial); written by tests/reference/make_lammps_reference_forcefield.py",
+        "num_particles": len(positions),
+        "box": [SURFACE_BOX] * 3,
+        "energy": {"potential": sum(lammps["terms"].values()), **lammps["terms"]},
+        "forces": as_lists(lammps["forces"]),
+    }
+    text = surface_input(case, positions, types)
+    json.loads(text)
+    DATA_DIR.mkdir(exist_ok=True)
+    (DATA_DIR / f"{case}.json").write_text(text)
+    (DATA_DIR / f"{case}.lammps.json").write_text(compact_json(reference))
+    terms = ", ".join(f"{name} {value:.10g}" for name, value in lammps["terms"].items())
+    print(f"{case}: {len(positions)} particles, {terms}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--lmp", default="lmp", help="LAMMPS executable (default: lmp on PATH)")
     builds = {build.__name__: build for build in (kg_melt, molecules, lj_mixture, ca_chains)}
-    parser.add_argument("--cases", nargs="+", choices=sorted(builds), default=list(builds),
+    surfaces = ["surfaces", "plain_cylinder"]
+    parser.add_argument("--cases", nargs="+", choices=sorted(builds) + surfaces, default=list(builds) + surfaces,
                         help="the cases to write (default: all; ca_chains needs LAMMPS's EXTRA-MOLECULE)")
     args = parser.parse_args()
     for case in args.cases:
-        write_case(args.lmp, builds[case]())
+        if case in surfaces:
+            write_surface_case(args.lmp, case)
+        else:
+            write_case(args.lmp, builds[case]())
 
 
 if __name__ == "__main__":
