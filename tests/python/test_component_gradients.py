@@ -68,6 +68,18 @@ def pair(subclass, table=TABLE, shift=False):
                                "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": table}}
 
 
+# Surface walls: per type (epsilon, sigma); the planes keep 0.4 or more from the particles (|z| <= 1.6), and
+# the WCA ones (WIDE: reaching 1.6 from their plane) act on some of them.
+TYPE_TABLE = [["A", 0.8, 0.9], ["B", 1.2, 0.8]]
+WIDE_TABLE = [["A", 0.8, 1.5], ["B", 1.2, 1.4]]
+WIDE_NEGATIVE = [["A", -0.8, 1.5], ["B", 1.2, 1.4]]
+
+
+def surface(subclass, parameters, table):
+    return {"term": {"type": ["Surface", subclass], "parameters": parameters,
+                     "labels": ["name", "epsilon", "sigma"], "data": table}}
+
+
 def chain(ids, arity):
     return [ids[k:k + arity] for k in range(0, len(ids) - arity + 1)]
 
@@ -135,6 +147,19 @@ CASES = {
                                  "parameters": {"platesSeparation": 6.0, "platesEpsilon": 0.5}}},
     "External SphericalShell": {"term": {"type": ["External", "SphericalShell"],
                                          "parameters": {"shellCenter": [3.5, 0.0, 0.0], "shellRadius": 4.0}}},
+    **{f"Surface {name}": surface(name, {"surfacePosition": plane}, table)
+       for name, plane, table in [("SurfaceLennardJonesType1", 2.5, TYPE_TABLE),
+                                  ("SurfaceLennardJonesType2", 2.5, TYPE_TABLE),
+                                  ("SurfaceWCAType1", 2.2, WIDE_TABLE), ("SurfaceWCAType2", 2.2, WIDE_TABLE),
+                                  ("SurfaceGeneralLennardJonesType1", 2.2, WIDE_NEGATIVE),
+                                  ("SurfaceGeneralLennardJonesType2", 2.2, WIDE_NEGATIVE),
+                                  ("SurfaceIntegratedLennardJonesType2", 2.5, TYPE_TABLE)]},
+    "Surface SurfaceAnchorage": surface("SurfaceAnchorage", {"surfacePosition": 0.5},
+                                        [["A", 3.0, 1.2], ["B", 2.0, 0.9]]),
+    "Surface ParabolaSurface": surface("ParabolaSurface", {"surfacePosition": 0.2},
+                                       [["A", 4.0, 1.0], ["B", 2.5, 1.0]]),
+    "Surface WCA_PlainCylinder": surface("WCA_PlainCylinder", {"plainPosition": -2.0, "cylinderRadius": 3.0},
+                                         [["A", 1.0, 0.9], ["B", 0.7, 1.0]]),
 }
 
 
