@@ -51,15 +51,16 @@ private:
     std::optional<typename Potential::template Params<Dual<R>>> dualParams_;
 };
 
-// A field of per-type parameters: `table` and `listed` hold one entry per type.
+// A field of per-type parameters: `table` and `listed` hold one entry per type, or per (batch, type)
+// when `batch` (the batch of each particle, backend memory) is given.
 template <class B, class R, class Potential>
 class TypedExternalInteraction : public Interactor<B, R> {
 public:
     using Params = typename Potential::template Params<R>;
 
     TypedExternalInteraction(const B& backend, InteractorScope scope, const std::vector<Params>& table,
-                             const std::vector<uint8_t>& listed)
-        : Interactor<B, R>(std::move(scope)), backend_(backend) {
+                             const std::vector<uint8_t>& listed, const int* batch, int ntypes)
+        : Interactor<B, R>(std::move(scope)), backend_(backend), batch_(batch), ntypes_(ntypes) {
         backend_.upload(table_, table.data(), table.size());
         backend_.upload(listed_, listed.data(), listed.size());
     }
@@ -75,7 +76,7 @@ public:
             backend_.for_each(particles.count,
                               TypedExternalKernel<Potential, R, decltype(force)::value, decltype(energy)::value>{
                                   particles.pos.data(), particles.radius.data(), this->group(), table_.data(),
-                                  listed_.data(), particles.now(), own});
+                                  listed_.data(), batch_, ntypes_, particles.now(), own});
         });
     }
 
@@ -83,6 +84,8 @@ private:
     const B& backend_;
     typename B::template Buffer<Params> table_;
     typename B::template Buffer<uint8_t> listed_;
+    const int* batch_;
+    int ntypes_;
 };
 
 }  // namespace structmd

@@ -28,7 +28,8 @@ struct ExternalKernel {
 };
 
 // The same for a potential of per-type parameters (external_potential.hpp): each particle takes the
-// Params of its type (pos.w) from `table`; a type whose `listed` is 0 feels nothing.
+// Params of its type (pos.w) from `table`, in the row of its batch when `batch` is given (a batched
+// table, ntypes entries per batch); an entry whose `listed` is 0 acts on nothing.
 template <class Potential, class R, bool WantForce, bool WantEnergy>
 struct TypedExternalKernel {
     using Params = typename Potential::template Params<R>;
@@ -37,16 +38,18 @@ struct TypedExternalKernel {
     const uint8_t* group;
     const Params* table;
     const uint8_t* listed;
+    const int* batch;
+    int ntypes;
     ClockView now;
     ForceOutputs<R> out;
 
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
         const Real4<R> p = pos[i];
-        const int type = static_cast<int>(p.w);
-        if (!listed[type]) return;
+        const int at = static_cast<int>(p.w) + (batch ? batch[i] * ntypes : 0);
+        if (!listed[at]) return;
         Vec3<R> f{0, 0, 0};
-        const R e = Potential::compute(xyz(p), radius[i], table[type], R(now.time()), f);
+        const R e = Potential::compute(xyz(p), radius[i], table[at], R(now.time()), f);
         add_to_outputs<WantForce, WantEnergy, false>(out, i, f, e, zero_tensor<R>());
     }
 };

@@ -101,11 +101,12 @@ struct BondSpec : InteractionSpec {
 struct ExternalSpec : InteractionSpec {
     struct Row {
         int type;
+        int batch = -1;          // the batch (numbered as ForceFieldContext's) of a batched table; -1: all
         ParameterValues values;  // the component's per-type parameters
     };
     ParameterValues values;  // the entry's "parameters"
     bool perType = false;    // the component has per-type parameters (a table of types)
-    std::vector<Row> rows;   // perType: each listed type once
+    std::vector<Row> rows;   // perType: each listed type once, or each (batch, type) of a batched table
 
     // What the functor is given for one type: the entry's parameters and the row's.
     ParameterValues values_of(const Row& row) const {

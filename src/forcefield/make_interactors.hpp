@@ -85,16 +85,21 @@ struct FactoryEntries {
                           const auto& external = static_cast<const ExternalSpec&>(s);
                           const Constants& constants = build.context.constants;
                           if constexpr (has_type_parameters<Potential>::value) {
+                              // One row of types, or one per batch for a batched table.
                               using Params = typename Potential::template Params<R>;
-                              std::vector<Params> table(build.context.ntypes);
-                              std::vector<uint8_t> listed(build.context.ntypes, 0);
+                              const size_t ntypes = build.context.ntypes;
+                              const bool batched = !external.rows.empty() && external.rows.front().batch >= 0;
+                              const size_t size = ntypes * (batched ? build.context.batches : 1);
+                              std::vector<Params> table(size);
+                              std::vector<uint8_t> listed(size, 0);
                               for (const ExternalSpec::Row& row : external.rows) {
-                                  table[row.type] = Potential::template make_params<R>(external.values_of(row),
-                                                                                       constants);
-                                  listed[row.type] = 1;
+                                  const size_t at = (batched ? row.batch * ntypes : 0) + row.type;
+                                  table[at] = Potential::template make_params<R>(external.values_of(row), constants);
+                                  listed[at] = 1;
                               }
                               return std::make_unique<TypedExternalInteraction<B, R, Potential>>(
-                                  build.backend, build.scope(external), table, listed);
+                                  build.backend, build.scope(external), table, listed,
+                                  batched ? build.context.batch : nullptr, static_cast<int>(ntypes));
                           } else {
                               auto interactor = std::make_unique<ExternalInteraction<B, R, Potential>>(
                                   build.backend, build.scope(external),

@@ -323,16 +323,32 @@ void read_external(const ForceFieldComponent& component, const ComponentEntry& e
     external.values = input::read_parameters(entry.node, component.parameters);
     external.perType = !component.typeParameters.empty();
     if (external.perType) {
-        std::vector<std::string> columns = {"name"};
+        // A batchId column (UAMMD-structured's batched tables) gives each batch its own rows.
+        std::vector<std::string> columns = {"name"}, optional = component.ignoredTypeColumns;
         for (const Parameter& p : component.typeParameters) columns.push_back(p.name);
-        const input::Table table = input::read_table(entry.node, columns, component.ignoredTypeColumns);
-        std::set<int> seen;
+        optional.push_back("batchId");
+        const input::Table table = input::read_table(entry.node, columns, optional);
+        const bool batched = table.has("batchId");
+        std::vector<int32_t> batchIds = system.batchId;  // the batches, numbered in the order of their id
+        std::sort(batchIds.begin(), batchIds.end());
+        batchIds.erase(std::unique(batchIds.begin(), batchIds.end()), batchIds.end());
+        std::set<std::pair<int, int>> seen;
         for (size_t r = 0; r < table.rows(); ++r) {
             ExternalSpec::Row row;
             row.type = type_of(system, table.cell(r, "name"));
+            if (batched) {
+                const TrackedNode cell = table.cell(r, "batchId");
+                const int64_t id = cell.as<int64_t>();
+                const auto at = std::lower_bound(batchIds.begin(), batchIds.end(), id);
+                if (at == batchIds.end() || *at != id)
+                    throw input_error(cell.path(), "no particle has batchId " + std::to_string(id));
+                row.batch = static_cast<int>(at - batchIds.begin());
+            }
             for (const Parameter& p : component.typeParameters)
                 row.values.set(p.name, input::read_parameter(table.cell(r, p.name), p));
-            if (!seen.insert(row.type).second) throw input_error(table.row(r).path(), "type listed twice");
+            if (!seen.insert({row.batch, row.type}).second)
+                throw input_error(table.row(r).path(),
+                                  batched ? "type listed twice for this batchId" : "type listed twice");
             external.rows.push_back(std::move(row));
         }
     }
@@ -348,6 +364,21 @@ void warn_unlisted_types(const SystemDescription& system, const ForceFieldSpec& 
             if (std::none_of(external.rows.begin(), external.rows.end(),
                              [&](const ExternalSpec::Row& r) { return r.type == a; }))
                 log.warning(external.path + ": type " + system.types[a].name + " is not listed and feels nothing");
+        // A batched table: the particles of a (batch, type) it does not list feel nothing either.
+        if (external.rows.empty() || external.rows.front().batch < 0) continue;
+        std::set<std::pair<int, int>> listed, present;
+        for (const ExternalSpec::Row& r : external.rows) listed.insert({r.batch, r.type});
+        std::vector<int32_t> batchIds = system.batchId;
+        std::sort(batchIds.begin(), batchIds.end());
+        batchIds.erase(std::unique(batchIds.begin(), batchIds.end()), batchIds.end());
+        for (int64_t i = 0; i < system.numParticles(); ++i) {
+            const int batch = static_cast<int>(std::lower_bound(batchIds.begin(), batchIds.end(), system.batchId[i]) -
+                                               batchIds.begin());
+            const std::pair<int, int> key{batch, system.typeIndex[i]};
+            if (!listed.count(key) && present.insert(key).second)
+                log.warning(external.path + ": type " + system.types[key.second].name + " of batchId " +
+                            std::to_string(batchIds[batch]) + " is not listed and feels nothing");
+        }
     }
     for (const PairSpec& pair : ff.pairs) {
         if (pair.everyTypePair || pair.unlistedPairsInteract) continue;

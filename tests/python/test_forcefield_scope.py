@@ -1,5 +1,6 @@
 """Which pairs and particles each interaction acts on, and when: exclusions (nonExcluded), intra- and
-inter-model lists, groups, batches and startStep/endStep. Each test compares the engine with the
+inter-model lists, groups, batches, the per-type (and per-batch) tables of the Surface walls and
+startStep/endStep. Each test compares the engine with the
 energy of the pairs that must interact, summed here independently, so ignoring the rule fails it."""
 
 import itertools
@@ -187,6 +188,51 @@ def test_batches_never_interact_and_their_energies_are_read_separately(sim, opti
         np.testing.assert_allclose(sim.forces[:len(CLUSTER)], alone.forces, rtol=1e-12, atol=1e-12)
     with pytest.raises(structmd.ArgumentError, match="batchId '7'"):
         sim.energy("lj@batch:7")
+
+
+def surface_lj2(z, plane, epsilon, sigma):
+    """SurfaceLennardJonesType2 of a particle at height z."""
+    x = sigma / abs(z - plane)
+    return epsilon * (x**12 - 2.0 * x**6)
+
+
+SURFACE_POSITIONS = [[0.0, 0.0, 1.0], [1.0, 2.0, -1.4], [-2.0, 1.0, 2.2], [3.0, -1.0, 0.8], [0.5, 0.5, -0.9],
+                     [-3.0, 3.0, 1.7]]
+
+
+def surface_entry(rows, labels=("name", "epsilon", "sigma")):
+    return {"type": ["Surface", "SurfaceLennardJonesType2"], "parameters": {"surfacePosition": 0.2},
+            "labels": list(labels), "data": rows}
+
+
+def test_a_surface_acts_on_each_particle_by_its_type_and_not_on_unlisted_types(sim):
+    types = ["A", "B", "A", "B", "A", "B"]
+    sim.load(document(SURFACE_POSITIONS, types=types, force_field={"wall": surface_entry([["A", 0.7, 0.9]])}))
+    expected = [surface_lj2(p[2], 0.2, 0.7, 0.9) if t == "A" else 0.0 for p, t in zip(SURFACE_POSITIONS, types)]
+    np.testing.assert_allclose(sim.particle_energies, expected, rtol=1e-12, atol=0.0)
+    assert np.all(np.asarray(sim.forces)[1::2] == 0.0)
+
+
+def test_a_batched_surface_table_gives_each_batch_its_own_rows(sim):
+    # batchIds 3 and 7 (numbered 0 and 1 inside the engine); type B of batch 7 is not listed.
+    types = ["A", "B", "A", "B", "A", "B"]
+    batch = [3, 3, 7, 7, 7, 3]
+    rows = {(3, "A"): (0.7, 0.9), (3, "B"): (1.3, 0.8), (7, "A"): (0.4, 1.1)}
+    table = [[t, eps, sigma, b] for (b, t), (eps, sigma) in rows.items()]
+    sim.load(document(SURFACE_POSITIONS, types=types, batch=batch,
+                      force_field={"wall": surface_entry(table, ("name", "epsilon", "sigma", "batchId"))}))
+    expected = [surface_lj2(p[2], 0.2, *rows[(b, t)]) if (b, t) in rows else 0.0
+                for p, t, b in zip(SURFACE_POSITIONS, types, batch)]
+    np.testing.assert_allclose(sim.particle_energies, expected, rtol=1e-12, atol=0.0)
+    assert sim.energy("wall@batch:7") == pytest.approx(expected[2] + expected[4], rel=1e-12)
+
+
+def test_a_batched_surface_row_of_a_batch_no_particle_has_names_its_cell(sim):
+    doc = document(SURFACE_POSITIONS, batch=[0, 0, 0, 1, 1, 1], force_field={
+        "wall": surface_entry([["A", 0.7, 0.9, 0], ["A", 0.7, 0.9, 2]], ("name", "epsilon", "sigma", "batchId"))})
+    with pytest.raises(structmd.InputError,
+                       match=r"topology\.forceField\.wall\.data\[1\]\[3\].*no particle has batchId 2"):
+        sim.load(doc)
 
 
 def test_start_and_end_step_switch_a_term_on_and_off(sim):
