@@ -69,6 +69,18 @@ public:
     bool has_pair_forces() const override { return true; }
     void add_pair_forces(Particles<B, R>&, int, Real4<R>*) override {}
 
+    // The table again in dual numbers (laid out as `table`), for the Hessian.
+    void enable_hessian(const std::vector<typename Potential::template Params<Dual<R>>>& table) {
+        backend_.upload(dualTable_, table.data(), table.size());
+        hessian_ = true;
+    }
+    bool has_hessian() const override { return hessian_; }
+    void add_hessian(Particles<B, R>& particles, int seed, Tensor3<R>* blocks) override {
+        backend_.for_each(1, TypedExternalHessianKernel<Potential, R>{
+                                 particles.pos.data(), particles.radius.data(), this->group(), dualTable_.data(),
+                                 listed_.data(), batch_, ntypes_, particles.now(), seed, blocks});
+    }
+
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
         ForceOutputs<R> own = out;
         own.virial = nullptr;
@@ -86,6 +98,8 @@ private:
     typename B::template Buffer<uint8_t> listed_;
     const int* batch_;
     int ntypes_;
+    typename B::template Buffer<typename Potential::template Params<Dual<R>>> dualTable_;
+    bool hessian_ = false;
 };
 
 }  // namespace structmd

@@ -135,4 +135,34 @@ struct ExternalHessianKernel {
     }
 };
 
+// The same for a field of per-type parameters (TypedExternalKernel's table, in dual numbers).
+template <class Potential, class R>
+struct TypedExternalHessianKernel {
+    using Params = typename Potential::template Params<Dual<R>>;
+    const Real4<R>* pos;
+    const R* radius;
+    const uint8_t* group;
+    const Params* table;
+    const uint8_t* listed;
+    const int* batch;
+    int ntypes;
+    ClockView now;
+    int seed;
+    Tensor3<R>* blocks;
+
+    SMD_HD void operator()(int64_t) const {
+        if (group && !group[seed]) return;
+        const int at = static_cast<int>(pos[seed].w) + (batch ? batch[seed] * ntypes : 0);
+        if (!listed[at]) return;
+        Tensor3<R> h = zero_tensor<R>();
+        for (int axis = 0; axis < 3; ++axis) {
+            Vec3<Dual<R>> f{Dual<R>(0), Dual<R>(0), Dual<R>(0)};
+            Potential::compute(seeded_dual(xyz(pos[seed]), axis), Dual<R>(radius[seed]), table[at],
+                               Dual<R>(R(now.time())), f);
+            subtract_force_derivative(h, axis, f);
+        }
+        blocks[seed] += h;
+    }
+};
+
 }  // namespace structmd

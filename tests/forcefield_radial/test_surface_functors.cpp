@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 
+#include "core/dual.hpp"
 #include "forcefield/flat_surfaces.hpp"
 #include "forcefield/plain_cylinder.hpp"
 
@@ -320,6 +321,70 @@ TEST(WCAPlainCylinder, OnTheAxisTheForceIsAlongZOnly) {
     const auto flat = WCAPlainCylinder::make_params<double>(kPlane, 0.0, kCylinderEpsilon, kCylinderSigma);
     expect_energy_and_force<WCAPlainCylinder>({0.0, 0.0, kPlane + 0.8}, flat,
                                               wca1(kCylinderEpsilon, kCylinderSigma, 0.8));
+}
+
+// Each functor evaluated in dual numbers (core/dual.hpp, what the Hessian measure does) gives the
+// derivative of its force: against a central difference of the double force, row by row.
+template <class Surface, class Make>
+void expect_dual_second_derivatives(Make make, Vec3<double> r) {
+    SCOPED_TRACE(describe(r));
+    const auto p = make(double{});
+    const auto pd = make(Dual<double>{});
+    const double h = 1e-6;
+    for (int axis = 0; axis < 3; ++axis) {
+        Vec3<Dual<double>> rd{Dual<double>(r.x), Dual<double>(r.y), Dual<double>(r.z)};
+        (axis == 0 ? rd.x : axis == 1 ? rd.y : rd.z).d = 1.0;
+        Vec3<Dual<double>> f{Dual<double>(0.0), Dual<double>(0.0), Dual<double>(0.0)};
+        Surface::compute(rd, Dual<double>(0.5), pd, Dual<double>(0.0), f);
+        const Vec3<double> step{axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0};
+        Vec3<double> ahead, behind;
+        Surface::compute(r + step, 0.5, p, 0.0, ahead);
+        Surface::compute(r - step, 0.5, p, 0.0, behind);
+        const Vec3<double> numeric = (1.0 / (2.0 * h)) * (ahead - behind);
+        const Vec3<double> exact{f.x.d, f.y.d, f.z.d};
+        EXPECT_LT(norm(exact - numeric), 1e-6 * std::max(norm(numeric), 1.0))
+            << "axis " << axis << ": (" << exact.x << ", " << exact.y << ", " << exact.z << ") against (" << numeric.x
+            << ", " << numeric.y << ", " << numeric.z << ")";
+        Vec3<double> value;
+        Surface::compute(r, 0.5, p, 0.0, value);
+        EXPECT_DOUBLE_EQ(f.z.v, value.z);
+    }
+}
+
+TEST(DualNumbers, GiveTheDerivativesOfTheForces) {
+    for (const double z : {kSurface - 0.8, kSurface + 0.95, kSurface + 2.0}) {
+        const Vec3<double> r{3.0, -4.0, z};
+        expect_dual_second_derivatives<SurfaceLennardJonesType1>(
+            [](auto tag) { return SurfaceLennardJonesType1::make_params<decltype(tag)>(kSurface, 1.1, kSigma); }, r);
+        expect_dual_second_derivatives<SurfaceWCAType2>(
+            [](auto tag) { return SurfaceWCAType2::make_params<decltype(tag)>(kSurface, 1.1, kSigma); }, r);
+        expect_dual_second_derivatives<SurfaceGeneralLennardJonesType1>(
+            [](auto tag) {
+                return SurfaceGeneralLennardJonesType1::make_params<decltype(tag)>(kSurface, -0.7, kSigma);
+            },
+            r);
+        expect_dual_second_derivatives<SurfaceIntegratedLennardJonesType2>(
+            [](auto tag) {
+                return SurfaceIntegratedLennardJonesType2::make_params<decltype(tag)>(kSurface, 0.6, kSigma);
+            },
+            r);
+        ParameterValues v;
+        v.set("surfacePosition", {kSurface});
+        v.set("epsilon", {2.5});
+        v.set("sigma", {kSigma});
+        expect_dual_second_derivatives<SurfaceAnchorage>(
+            [&](auto tag) { return SurfaceAnchorage::make_params<decltype(tag)>(v, Constants{}); }, r);
+        expect_dual_second_derivatives<ParabolaSurface>(
+            [&](auto tag) { return ParabolaSurface::make_params<decltype(tag)>(v, Constants{}); }, r);
+    }
+    for (const Vec3<double>& r :
+         {cylindrical(kRadius + 1.0, 0.4, kPlane + 0.6), cylindrical(kRadius - 0.6, 2.0, kPlane - 1.0),
+          cylindrical(kRadius - 0.4, -1.0, kPlane + 0.5)})
+        expect_dual_second_derivatives<WCAPlainCylinder>(
+            [](auto tag) {
+                return WCAPlainCylinder::make_params<decltype(tag)>(kPlane, kRadius, kCylinderEpsilon, kCylinderSigma);
+            },
+            r);
 }
 
 TEST(SinglePrecision, MatchesDouble) {

@@ -10,7 +10,7 @@ import pytest
 import structmd
 from test_component_gradients import BOX, CASES, N, TABLE, case_document, configuration, document
 
-ONE_PARTICLE = ("Bond1", "External")  # terms that exert no force from another particle
+ONE_PARTICLE = ("Bond1", "External", "Surface")  # terms that exert no force from another particle
 
 
 def force_step(path, mode, group=None):
