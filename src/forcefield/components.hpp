@@ -51,6 +51,7 @@
 #include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
 #include "forcefield/tabulated.hpp"
+#include "forcefield/wca_polyhedron.hpp"
 
 namespace structmd {
 
@@ -139,6 +140,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template external<SurfaceAnchorage>({"Surface", "SurfaceAnchorage"});
     v.template external<ParabolaSurface>({"Surface", "ParabolaSurface"});
     v.template external<WCAPlainCylinder>({"Surface", "WCA_PlainCylinder"});
+    v.template configurable<WCAPolyhedron>({"Surface", "WCA_Polyhedron"});
 
     v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
     v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});

@@ -1,12 +1,14 @@
 #pragma once
 // What the factories of the built-in components (make_interactors.hpp) and of the configurable
 // ones (expression_component.hpp) share: the parameter table of a pair term, one entry per ordered
-// type pair, and the bonds of a bond entry that act in its group, each with its parameters.
+// type pair, the bonds of a bond entry that act in its group, each with its parameters, and the
+// table of an external field of per-type parameters.
 #include <algorithm>
 #include <memory>
 #include <vector>
 
 #include "forcefield/bond_interaction.hpp"
+#include "forcefield/external_interaction.hpp"
 #include "forcefield/interactor_build.hpp"
 #include "forcefield/pair_interaction.hpp"
 
@@ -59,6 +61,45 @@ BondsInGroup<Params> bonds_in_group(const InteractorBuild<B, R>& build, const Bo
     }
     return bonds;
 }
+
+// The table of an external entry of per-type parameters (ExternalSpec::perType): one entry per type,
+// or per (batch, type) for a batched table, each listed row's Params made by make(values).
+struct TypedExternalLayout {
+    const ExternalSpec& external;
+    size_t ntypes;
+    bool batched;
+    size_t size;
+
+    template <class B, class R>
+    TypedExternalLayout(const InteractorBuild<B, R>& build, const ExternalSpec& e)
+        : external(e),
+          ntypes(build.context.ntypes),
+          batched(!e.rows.empty() && e.rows.front().batch >= 0),
+          size(ntypes * (batched ? build.context.batches : 1)) {}
+
+    size_t at(const ExternalSpec::Row& row) const { return (batched ? row.batch * ntypes : 0) + row.type; }
+
+    template <class Params, class Make>
+    std::vector<Params> table(Make&& make) const {
+        std::vector<Params> table(size);
+        for (const ExternalSpec::Row& row : external.rows) table[at(row)] = make(external.values_of(row));
+        return table;
+    }
+
+    std::vector<uint8_t> listed() const {
+        std::vector<uint8_t> listed(size, 0);
+        for (const ExternalSpec::Row& row : external.rows) listed[at(row)] = 1;
+        return listed;
+    }
+
+    template <class Potential, class B, class R>
+    std::unique_ptr<TypedExternalInteraction<B, R, Potential>> make(
+        const InteractorBuild<B, R>& build, const std::vector<typename Potential::template Params<R>>& table) const {
+        return std::make_unique<TypedExternalInteraction<B, R, Potential>>(
+            build.backend, build.scope(external), table, listed(), batched ? build.context.batch : nullptr,
+            static_cast<int>(ntypes));
+    }
+};
 
 template <class B, class R, class Potential, class Make>
 std::unique_ptr<BondInteraction<B, R, Potential>> make_bond_interaction(const InteractorBuild<B, R>& build,

@@ -85,27 +85,15 @@ struct FactoryEntries {
                           const auto& external = static_cast<const ExternalSpec&>(s);
                           const Constants& constants = build.context.constants;
                           if constexpr (has_type_parameters<Potential>::value) {
-                              // One row of types, or one per batch for a batched table, in real type T
-                              // (R, or its dual numbers for the Hessian).
-                              const size_t ntypes = build.context.ntypes;
-                              const bool batched = !external.rows.empty() && external.rows.front().batch >= 0;
-                              const size_t size = ntypes * (batched ? build.context.batches : 1);
-                              const auto at = [&](const ExternalSpec::Row& row) {
-                                  return (batched ? row.batch * ntypes : 0) + row.type;
-                              };
+                              const TypedExternalLayout layout(build, external);
                               const auto tableIn = [&](auto real) {
                                   using T = decltype(real);
-                                  std::vector<typename Potential::template Params<T>> table(size);
-                                  for (const ExternalSpec::Row& row : external.rows)
-                                      table[at(row)] =
-                                          Potential::template make_params<T>(external.values_of(row), constants);
-                                  return table;
+                                  return layout.template table<typename Potential::template Params<T>>(
+                                      [&](const ParameterValues& v) {
+                                          return Potential::template make_params<T>(v, constants);
+                                      });
                               };
-                              std::vector<uint8_t> listed(size, 0);
-                              for (const ExternalSpec::Row& row : external.rows) listed[at(row)] = 1;
-                              auto interactor = std::make_unique<TypedExternalInteraction<B, R, Potential>>(
-                                  build.backend, build.scope(external), tableIn(R{}), listed,
-                                  batched ? build.context.batch : nullptr, static_cast<int>(ntypes));
+                              auto interactor = layout.template make<Potential>(build, tableIn(R{}));
                               if constexpr (WithHessian)
                                   if (build.context.hessian) interactor->enable_hessian(tableIn(Dual<R>{}));
                               return interactor;

@@ -11,10 +11,13 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "core/dual.hpp"
 #include "forcefield/flat_surfaces.hpp"
 #include "forcefield/plain_cylinder.hpp"
+#include "forcefield/wca_polyhedron.hpp"
 
 using namespace structmd;
 
@@ -323,6 +326,130 @@ TEST(WCAPlainCylinder, OnTheAxisTheForceIsAlongZOnly) {
                                               wca1(kCylinderEpsilon, kCylinderSigma, 0.8));
 }
 
+// ---- polyhedron -----------------------------------------------------------------------------------
+
+// A cube of half-edge 1.5 centred on c, as 12 triangles (each square face split along a diagonal, the
+// two halves wound either way: the order of a face's vertices must not matter).
+constexpr double kHalfEdge = 1.5;
+const Vec3<double> kCubeCentre{0.3, -0.2, 0.1};
+constexpr double kCubeEpsilon = 0.9;
+constexpr double kCubeSigma = 0.7;
+
+struct Mesh {
+    std::vector<Vec3<double>> vertices;
+    std::vector<int> faces;
+};
+
+const Mesh& cube() {
+    static const Mesh mesh = [] {
+        Mesh m;
+        for (int k = 0; k < 8; ++k)
+            m.vertices.push_back(kCubeCentre + Vec3<double>{k & 1 ? kHalfEdge : -kHalfEdge,
+                                                            k & 2 ? kHalfEdge : -kHalfEdge,
+                                                            k & 4 ? kHalfEdge : -kHalfEdge});
+        // Each face by its four corners in order around it.
+        const int quads[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+        for (const auto& q : quads) m.faces.insert(m.faces.end(), {q[0], q[1], q[2], q[0], q[3], q[2]});
+        return m;
+    }();
+    return mesh;
+}
+
+template <class R>
+WCAPolyhedronPotential::Params<R> cube_params(const std::vector<Vec3<R>>& vertices) {
+    ParameterValues v;
+    v.set("epsilon", {kCubeEpsilon});
+    v.set("sigma", {kCubeSigma});
+    return WCAPolyhedronPotential::make_params<R>(v, vertices.data(), cube().faces.data(),
+                                                  static_cast<int>(cube().faces.size() / 3));
+}
+
+template <class R>
+std::vector<Vec3<R>> cube_vertices() {
+    std::vector<Vec3<R>> out;
+    for (const Vec3<double>& x : cube().vertices) out.push_back({R(x.x), R(x.y), R(x.z)});
+    return out;
+}
+
+// The distance from r to the cube's surface, from the box's own geometry: inside, to the nearest face;
+// outside, the length of the part of |r - c| beyond the half-edge along each axis.
+double distance_to_cube(Vec3<double> r) {
+    const Vec3<double> d = r - kCubeCentre;
+    const double q[3] = {std::fabs(d.x) - kHalfEdge, std::fabs(d.y) - kHalfEdge, std::fabs(d.z) - kHalfEdge};
+    if (q[0] <= 0.0 && q[1] <= 0.0 && q[2] <= 0.0) return -std::max({q[0], q[1], q[2]});
+    double s = 0.0;
+    for (double x : q) s += std::max(x, 0.0) * std::max(x, 0.0);
+    return std::sqrt(s);
+}
+
+TEST(WCAPolyhedron, EnergyIsTheWCAOfTheDistanceToTheMeshInsideAndOutside) {
+    const std::vector<Vec3<double>> vertices = cube_vertices<double>();
+    const auto p = cube_params<double>(vertices);
+    std::mt19937 rng(91);
+    std::normal_distribution<double> gaussian;
+    std::uniform_real_distribution<double> gap(0.6, 0.78), spread(-1.2, 1.2);
+    int acting = 0;
+    for (int k = 0; k < 60; ++k) {
+        // Near a face from either side, near an edge and near a corner from outside, and far away.
+        const int axis = k % 3;
+        const double side = k % 2 ? 1.0 : -1.0;
+        Vec3<double> d{spread(rng), spread(rng), spread(rng)};
+        const double g = gap(rng);
+        Vec3<double> r;
+        switch (k % 5) {
+            case 0:
+                (axis == 0 ? d.x : axis == 1 ? d.y : d.z) = side * (kHalfEdge + g);
+                r = kCubeCentre + d;
+                break;
+            case 1:
+                (axis == 0 ? d.x : axis == 1 ? d.y : d.z) = side * (kHalfEdge - g);
+                r = kCubeCentre + d;
+                break;
+            case 2: {
+                Vec3<double> u{gaussian(rng), gaussian(rng), 0.0};
+                u = (g / norm(u)) * Vec3<double>{std::fabs(u.x), std::fabs(u.y), 0.0};
+                r = kCubeCentre + Vec3<double>{side * (kHalfEdge + u.x), kHalfEdge + u.y, spread(rng)};
+                break;
+            }
+            case 3: {
+                Vec3<double> u{std::fabs(gaussian(rng)), std::fabs(gaussian(rng)), std::fabs(gaussian(rng))};
+                r = kCubeCentre + Vec3<double>{kHalfEdge, -kHalfEdge, side * kHalfEdge} +
+                    (g / norm(u)) * Vec3<double>{u.x, -u.y, side * u.z};
+                break;
+            }
+            default: r = kCubeCentre + Vec3<double>{4.0 * side, spread(rng), spread(rng)};
+        }
+        const double expected = distance_to_cube(r) < std::pow(2.0, 1.0 / 6.0) * kCubeSigma
+                                    ? wca1(kCubeEpsilon, kCubeSigma, distance_to_cube(r))
+                                    : 0.0;
+        acting += expected > 0.0;
+        expect_energy_and_force<WCAPolyhedronPotential>(r, p, expected);
+    }
+    EXPECT_GE(acting, 40);
+}
+
+TEST(WCAPolyhedron, ForceIsAlongTheFaceNormalEdgeOrCorner) {
+    const std::vector<Vec3<double>> vertices = cube_vertices<double>();
+    const auto p = cube_params<double>(vertices);
+    Vec3<double> force;
+    // Above the +z face, beyond the +x+y edge, beyond the +x-y-z corner, and inside near the -x face.
+    WCAPolyhedronPotential::compute(kCubeCentre + Vec3<double>{0.2, 0.4, kHalfEdge + 0.7}, 0.5, p, 0.0, force);
+    EXPECT_NEAR(force.x, 0.0, 1e-12);
+    EXPECT_NEAR(force.y, 0.0, 1e-12);
+    EXPECT_GT(force.z, 0.0);
+    WCAPolyhedronPotential::compute(kCubeCentre + Vec3<double>{kHalfEdge + 0.5, kHalfEdge + 0.5, 0.3}, 0.5, p, 0.0,
+                                    force);
+    EXPECT_NEAR(force.x, force.y, 1e-12 * std::fabs(force.x));
+    EXPECT_NEAR(force.z, 0.0, 1e-12);
+    WCAPolyhedronPotential::compute(kCubeCentre + Vec3<double>{kHalfEdge + 0.4, -kHalfEdge - 0.4, -kHalfEdge - 0.4},
+                                    0.5, p, 0.0, force);
+    EXPECT_NEAR(force.x, -force.y, 1e-12 * std::fabs(force.x));
+    EXPECT_NEAR(force.y, force.z, 1e-12 * std::fabs(force.x));
+    WCAPolyhedronPotential::compute(kCubeCentre + Vec3<double>{-kHalfEdge + 0.6, 0.1, 0.2}, 0.5, p, 0.0, force);
+    EXPECT_GT(force.x, 0.0) << "pushes inside particles away from the face too";
+    EXPECT_NEAR(force.y, 0.0, 1e-12);
+}
+
 // Each functor evaluated in dual numbers (core/dual.hpp, what the Hessian measure does) gives the
 // derivative of its force: against a central difference of the double force, row by row.
 template <class Surface, class Make>
@@ -385,6 +512,21 @@ TEST(DualNumbers, GiveTheDerivativesOfTheForces) {
                 return WCAPlainCylinder::make_params<decltype(tag)>(kPlane, kRadius, kCylinderEpsilon, kCylinderSigma);
             },
             r);
+}
+
+TEST(DualNumbers, GiveTheDerivativesOfThePolyhedronForces) {
+    const std::vector<Vec3<double>> vertices = cube_vertices<double>();
+    const std::vector<Vec3<Dual<double>>> dualVertices = cube_vertices<Dual<double>>();
+    const auto make = [&](auto tag) {
+        if constexpr (std::is_same_v<decltype(tag), double>)
+            return cube_params<double>(vertices);
+        else
+            return cube_params<Dual<double>>(dualVertices);
+    };
+    for (const Vec3<double>& r :
+         {kCubeCentre + Vec3<double>{0.2, 0.4, kHalfEdge + 0.7}, kCubeCentre + Vec3<double>{kHalfEdge + 0.5, 1.9, 0.3},
+          kCubeCentre + Vec3<double>{1.8, -1.9, -1.85}, kCubeCentre + Vec3<double>{-kHalfEdge + 0.6, 0.1, 0.2}})
+        expect_dual_second_derivatives<WCAPolyhedronPotential>(make, r);
 }
 
 TEST(SinglePrecision, MatchesDouble) {

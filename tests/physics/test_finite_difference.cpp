@@ -1,6 +1,6 @@
 // Checks F = -dU/dx: the engine's forces against a five-point central difference of its own potential
 // energy, on small random systems whose interactions cross the periodic boundary, and on particles
-// among the walls of the Surface family, with their per-type tables.
+// among the walls of the Surface family (with their per-type tables) and near a triangulated surface.
 #include "physics_support.hpp"
 
 #include <cstdio>
@@ -385,6 +385,50 @@ SmallSystem plain_cylinder_system() {
     return s;
 }
 
+// A cube of half-edge 2 as a WCA_Polyhedron of 12 triangles: particles outside it near its faces,
+// edges and corners, and inside it near one face. Inside, the distance is that to the nearest face, and
+// where two faces are equally near it has a kink: inside particles keep 0.05 clear of those planes.
+SmallSystem polyhedron_system() {
+    const double h = 2.0;
+    std::string vertices, faces;
+    for (int k = 0; k < 8; ++k)
+        vertices += std::string(k ? ", " : "") + vec_text({k & 1 ? h : -h, k & 2 ? h : -h, k & 4 ? h : -h});
+    const int quads[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+    for (const auto& q : quads)
+        faces += std::string(faces.empty() ? "" : ", ") + "[" + std::to_string(q[0]) + ", " + std::to_string(q[1]) +
+                 ", " + std::to_string(q[2]) + "], [" + std::to_string(q[0]) + ", " + std::to_string(q[3]) + ", " +
+                 std::to_string(q[2]) + "]";
+    const std::string entry = "\"cube\": {\"type\": [\"Surface\", \"WCA_Polyhedron\"], \"parameters\": {\"vertex\": [" +
+                              vertices + "], \"faces\": [" + faces +
+                              "]}, \"labels\": [\"name\", \"epsilon\", \"sigma\"], "
+                              "\"data\": [[\"A\", 1.0, 0.8], [\"B\", 0.6, 1.0]]}";
+    SmallSystem s{12.0, {}, {}, entry};
+    s.acting = {"cube"};
+    SplitMix64 rng(2718);
+    while (s.positions.size() < 24) {
+        const std::string type = s.positions.size() % 2 ? "B" : "A";
+        const double sigma = type == "A" ? 0.8 : 1.0;
+        const double reach = h + sigma;
+        Vec3 r{rng.uniform(-reach, reach), rng.uniform(-reach, reach), rng.uniform(-reach, reach)};
+        double outside = 0.0, inside[3];
+        for (int k = 0; k < 3; ++k) {
+            const double q = std::abs(r[k]) - h;
+            outside += q > 0.0 ? q * q : 0.0;
+            inside[k] = -q;
+        }
+        double gap = std::sqrt(outside);
+        if (outside == 0.0) {
+            std::sort(inside, inside + 3);
+            if (inside[1] - inside[0] < 0.05) continue;
+            gap = inside[0];
+        }
+        if (gap < 0.8 * sigma || gap > 1.1 * sigma) continue;
+        s.positions.push_back(r);
+        s.types.push_back(type);
+    }
+    return s;
+}
+
 TEST(FiniteDifference, LennardJonesTwoTypesAcrossBoundary) {
     const SmallSystem s = lennard_jones_system();
     int interacting_across = 0;
@@ -437,6 +481,10 @@ TEST(FiniteDifference, FlatSurfaceWallsWithPerTypeTables) {
 
 TEST(FiniteDifference, PlainCylinderInEachRegion) {
     check_forces_by_finite_differences("plain cylinder", plain_cylinder_system());
+}
+
+TEST(FiniteDifference, PolyhedronInsideAndOutside) {
+    check_forces_by_finite_differences("polyhedron", polyhedron_system());
 }
 
 }  // namespace

@@ -75,6 +75,12 @@ WIDE_TABLE = [["A", 0.8, 1.5], ["B", 1.2, 1.4]]
 WIDE_NEGATIVE = [["A", -0.8, 1.5], ["B", 1.2, 1.4]]
 
 
+# A cube of half-edge 1.2 about the origin, as 12 triangles; the particles (|x| >= 1.9) are outside it.
+CUBE = {"vertex": [[x, y, z] for z in (-1.2, 1.2) for y in (-1.2, 1.2) for x in (-1.2, 1.2)],
+        "faces": [f for a, b, c, d in [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4),
+                                       (1, 3, 7, 5)] for f in ([a, b, c], [a, d, c])]}
+
+
 def surface(subclass, parameters, table):
     return {"term": {"type": ["Surface", subclass], "parameters": parameters,
                      "labels": ["name", "epsilon", "sigma"], "data": table}}
@@ -160,6 +166,7 @@ CASES = {
                                        [["A", 4.0, 1.0], ["B", 2.5, 1.0]]),
     "Surface WCA_PlainCylinder": surface("WCA_PlainCylinder", {"plainPosition": -2.0, "cylinderRadius": 3.0},
                                          [["A", 1.0, 0.9], ["B", 0.7, 1.0]]),
+    "Surface WCA_Polyhedron": surface("WCA_Polyhedron", CUBE, [["A", 1.0, 1.5], ["B", 0.7, 1.4]]),
 }
 
 
