@@ -88,12 +88,16 @@ json document_with(const ComponentKey& key, const json& parameters) {
     return document;
 }
 
-// As above, with a one-row id table (ids 0, 1, ...) for a step that reads one.
+// As above, with a one-row table for a step that reads one: particle ids 0, 1, ... in its id columns,
+// a set's name and its list of ids where it names sets.
 json step_document_with(const SimulationStepEntry& step, const json& parameters) {
     json document = document_with(step.key, parameters);
     if (!step.tableLabels.empty()) {
         json row = json::array();
-        for (size_t k = 0; k < step.tableLabels.size(); ++k) row.push_back(k);
+        for (size_t k = 0; k < step.tableLabels.size(); ++k) {
+            const std::string& label = step.tableLabels[k];
+            row.push_back(label == "name" ? json("set") : label == "id_list" ? json::array({0, 1}) : json(k));
+        }
         document["simulationStep"][kEntry]["labels"] = step.tableLabels;
         document["simulationStep"][kEntry]["data"] = json::array({row});
     }
