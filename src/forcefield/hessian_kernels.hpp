@@ -110,7 +110,20 @@ struct BondHessianKernel {
     }
 };
 
-// A field on each particle alone: only the seed's own block, from its force's derivative.
+// A field on a particle at position x: its own block, minus the derivative of its force.
+template <class Potential, class R>
+SMD_HD SMD_INLINE Tensor3<R> field_block(Vec3<R> x, R radius, const typename Potential::template Params<Dual<R>>& p,
+                                         R time) {
+    Tensor3<R> h = zero_tensor<R>();
+    for (int axis = 0; axis < 3; ++axis) {
+        Vec3<Dual<R>> f{Dual<R>(0), Dual<R>(0), Dual<R>(0)};
+        Potential::compute(seeded_dual(x, axis), Dual<R>(radius), p, Dual<R>(time), f);
+        subtract_force_derivative(h, axis, f);
+    }
+    return h;
+}
+
+// A field on each particle alone: only the seed's own block.
 template <class Potential, class R>
 struct ExternalHessianKernel {
     using Params = typename Potential::template Params<Dual<R>>;
@@ -124,14 +137,7 @@ struct ExternalHessianKernel {
 
     SMD_HD void operator()(int64_t) const {
         if (group && !group[seed]) return;
-        Tensor3<R> h = zero_tensor<R>();
-        for (int axis = 0; axis < 3; ++axis) {
-            Vec3<Dual<R>> f{Dual<R>(0), Dual<R>(0), Dual<R>(0)};
-            Potential::compute(seeded_dual(xyz(pos[seed]), axis), Dual<R>(radius[seed]), params,
-                               Dual<R>(R(now.time())), f);
-            subtract_force_derivative(h, axis, f);
-        }
-        blocks[seed] += h;
+        blocks[seed] += field_block<Potential>(xyz(pos[seed]), radius[seed], params, R(now.time()));
     }
 };
 
@@ -154,14 +160,7 @@ struct TypedExternalHessianKernel {
         if (group && !group[seed]) return;
         const int at = static_cast<int>(pos[seed].w) + (batch ? batch[seed] * ntypes : 0);
         if (!listed[at]) return;
-        Tensor3<R> h = zero_tensor<R>();
-        for (int axis = 0; axis < 3; ++axis) {
-            Vec3<Dual<R>> f{Dual<R>(0), Dual<R>(0), Dual<R>(0)};
-            Potential::compute(seeded_dual(xyz(pos[seed]), axis), Dual<R>(radius[seed]), table[at],
-                               Dual<R>(R(now.time())), f);
-            subtract_force_derivative(h, axis, f);
-        }
-        blocks[seed] += h;
+        blocks[seed] += field_block<Potential>(xyz(pos[seed]), radius[seed], table[at], R(now.time()));
     }
 };
 
