@@ -111,11 +111,6 @@ struct Dual {
     friend SMD_HD SMD_INLINE bool isnan(Dual a) { return isnan(a.v) || isnan(a.d); }
 };
 
-template <class R>
-struct is_dual : std::false_type {};
-template <class R>
-struct is_dual<Dual<R>> : std::true_type {};
-
 template <>
 SMD_HD SMD_INLINE constexpr Dual<float> machine_epsilon<Dual<float>>() {
     return Dual<float>(machine_epsilon<float>(), 0.0f);

@@ -7,6 +7,13 @@
 
 namespace structmd {
 
+// The parameters of a contact term with screened electrostatics (DLVO, KimHummer), given once in the
+// entry: each part's range (in units of sigma and of the Debye length) and the medium.
+inline std::vector<Parameter> contact_and_screening_parameters() {
+    return {number("cutOffNPFactor", "1", Must::be_positive), number("cutOffDHFactor", "1", Must::be_positive),
+            number("dielectricConstant", "1", Must::be_positive), number("debyeLength", "length", Must::be_positive)};
+}
+
 struct DebyeHuckel {
     static constexpr bool uses_charges = true;
 

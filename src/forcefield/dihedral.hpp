@@ -44,6 +44,7 @@ struct Dihedral4 {
     struct Params {
         R K[4];     // K_n for n = 1..4
         R phi0[4];  // phi0_n for n = 1..4
+        R offset;   // added to U: 0 here; a Fourier series written in this form (IDP_Fourier) takes -sum K_n
     };
 
     static std::vector<Parameter> parameters() { return {numbers("K", 4, "energy"), numbers("phi0", 4, "radian")}; }
@@ -54,13 +55,14 @@ struct Dihedral4 {
             p.K[k] = R(v.vector("K")[k]);
             p.phi0[k] = R(v.vector("phi0")[k]);
         }
+        p.offset = R(0);
         return p;
     }
 
     template <class R>
     static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
         const bonded_geometry::DihedralAngle<R> angle = bonded_geometry::dihedral_of(r);
-        R energy = 0;
+        R energy = p.offset;
         R dudphi = 0;
         for (int k = 0; k < 4; ++k) {
             const R n = R(k + 1);

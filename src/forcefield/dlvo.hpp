@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "forcefield/debye_huckel.hpp"
 #include "forcefield/lennard_jones.hpp"
 
 namespace structmd {
@@ -30,14 +31,8 @@ struct DLVO {
         R cutoff2;     // the larger of the two
     };
 
-    static std::vector<Parameter> pair_parameters() {
-        return {number("epsilon", "energy"), number("sigma", "length", Must::be_positive)};
-    }
-    static std::vector<Parameter> entry_parameters() {
-        return {number("cutOffNPFactor", "1", Must::be_positive), number("cutOffDHFactor", "1", Must::be_positive),
-                number("dielectricConstant", "1", Must::be_positive),
-                number("debyeLength", "length", Must::be_positive)};
-    }
+    static std::vector<Parameter> pair_parameters() { return EpsilonSigmaPair<DLVO>::pair_parameters(); }
+    static std::vector<Parameter> entry_parameters() { return contact_and_screening_parameters(); }
 
     template <class R>
     static Params<R> make_pair_params(const ParameterValues& v, const Constants& c, double, bool shift) {

@@ -27,6 +27,13 @@ struct ExternalKernel {
     }
 };
 
+// The entry of particle i (position p) in a per-type table: its type, in the row of its batch when
+// `batch` is given (ntypes entries per batch).
+template <class R>
+SMD_HD SMD_INLINE int typed_entry(const Real4<R>& p, const int* batch, int64_t i, int ntypes) {
+    return static_cast<int>(p.w) + (batch ? batch[i] * ntypes : 0);
+}
+
 // The same for a potential of per-type parameters (external_potential.hpp): each particle takes the
 // Params of its type (pos.w) from `table`, in the row of its batch when `batch` is given (a batched
 // table, ntypes entries per batch); an entry whose `listed` is 0 acts on nothing.
@@ -46,7 +53,7 @@ struct TypedExternalKernel {
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
         const Real4<R> p = pos[i];
-        const int at = static_cast<int>(p.w) + (batch ? batch[i] * ntypes : 0);
+        const int at = typed_entry(p, batch, i, ntypes);
         if (!listed[at]) return;
         Vec3<R> f{0, 0, 0};
         const R e = Potential::compute(xyz(p), radius[i], table[at], R(now.time()), f);

@@ -7,6 +7,7 @@
 #include "core/dual.hpp"
 #include "core/hd.hpp"
 #include "core/vec.hpp"
+#include "forcefield/external_kernel.hpp"
 #include "forcefield/pair_kernel.hpp"
 #include "forcefield/seed_traversal.hpp"
 #include "state/step_clock.hpp"
@@ -60,11 +61,8 @@ struct PairHessianKernel {
         bool hasPartners = false;
         for_each_partner_of_seed<Dual<PairR>>(neighbours, k, seed, group, table, ntypes,
                                               [&](int j, const Vec3<R>& d, const Params& p) {
-            constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
-            const PairTerm<Dual<PairR>> t = evaluate_pair<Potential>(
-                Dual<PairR>(PairR(dot(d, d)), PairR(1)), p,
-                Dual<PairR>(charges ? PairR(charge[seed] * charge[j]) : PairR(0)),
-                Dual<PairR>(radii ? PairR(radius[seed]) : PairR(0)), Dual<PairR>(radii ? PairR(radius[j]) : PairR(0)));
+            const PairTerm<Dual<PairR>> t =
+                evaluate_pair_of<Potential>(Dual<PairR>(PairR(dot(d, d)), PairR(1)), p, charge, radius, seed, j);
             const R g = R(t.dudr_over_r.v);
             Tensor3<R> b = (R(2) * R(t.dudr_over_r.d)) * outer(d, d);
             b.xx += g;
@@ -158,7 +156,7 @@ struct TypedExternalHessianKernel {
 
     SMD_HD void operator()(int64_t) const {
         if (group && !group[seed]) return;
-        const int at = static_cast<int>(pos[seed].w) + (batch ? batch[seed] * ntypes : 0);
+        const int at = typed_entry(pos[seed], batch, seed, ntypes);
         if (!listed[at]) return;
         blocks[seed] += field_block<Potential>(xyz(pos[seed]), radius[seed], table[at], R(now.time()));
     }

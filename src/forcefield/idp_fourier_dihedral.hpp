@@ -8,47 +8,30 @@
 // temperature makes the force field again. The sine terms make U odd in part: the sign convention
 // of phi matters, and is UAMMD-structured's (the IUPAC one). A chain with three consecutive
 // particles collinear has no dihedral: no force, and the energy at phi = 0 (as Dihedral).
-#include "forcefield/bond_potential.hpp"
-#include "forcefield/bonded_geometry.hpp"
+#include <cmath>
+
+#include "forcefield/dihedral.hpp"
 
 namespace structmd {
 
-struct IdpFourierDihedral {
-    static constexpr int arity = 4;
-
-    template <class R>
-    struct Params {
-        R A[4];  // k_B T A_s, s = 1..4 (energy)
-        R B[4];  // k_B T B_s
-    };
-
+// Each harmonic is Dihedral4's: A cos(s phi) + B sin(s phi) = K [1 + cos(s phi - phi0)] - K with
+// K = sqrt(A^2 + B^2) and phi0 = atan2(B, A); the -K add up to the offset.
+struct IdpFourierDihedral : Dihedral4 {
     static std::vector<Parameter> parameters() { return {}; }
     template <class R>
     static Params<R> make_params(const ParameterValues&, const Constants& c) {
         static constexpr double A[4] = {0.705, -0.313, -0.079, 0.041};
         static constexpr double B[4] = {-0.175, -0.093, 0.030, 0.030};
         Params<R> p;
+        double offset = 0.0;
         for (int s = 0; s < 4; ++s) {
-            p.A[s] = R(A[s] * c.kT());
-            p.B[s] = R(B[s] * c.kT());
+            const double K = std::hypot(A[s], B[s]) * c.kT();
+            p.K[s] = R(K);
+            p.phi0[s] = R(std::atan2(B[s], A[s]));
+            offset -= K;
         }
+        p.offset = R(offset);
         return p;
-    }
-
-    template <class R>
-    static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
-        const bonded_geometry::DihedralAngle<R> angle = bonded_geometry::dihedral_of(r);
-        R energy = 0;
-        R dudphi = 0;
-        for (int k = 0; k < 4; ++k) {
-            const R s = R(k + 1);
-            const R c = cos(s * angle.phi);
-            const R sn = sin(s * angle.phi);
-            energy += p.A[k] * c + p.B[k] * sn;
-            dudphi += s * (p.B[k] * c - p.A[k] * sn);
-        }
-        bonded_geometry::write_dihedral_forces(angle, dudphi, force);
-        return energy;
     }
 };
 

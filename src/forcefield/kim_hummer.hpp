@@ -33,14 +33,11 @@ struct KimHummer {
         R cutoff2;  // the larger of the two
     };
 
-    static std::vector<Parameter> pair_parameters() {
-        return {number("epsilon", "energy"), number("sigma", "length", Must::be_positive)};
-    }
+    static std::vector<Parameter> pair_parameters() { return EpsilonSigmaPair<KimHummer>::pair_parameters(); }
     static std::vector<Parameter> entry_parameters() {
-        return {number("cutOffNPFactor", "1", Must::be_positive), number("cutOffDHFactor", "1", Must::be_positive),
-                number("dielectricConstant", "1", Must::be_positive),
-                number("debyeLength", "length", Must::be_positive),
-                with_default(number("zeroEnergy", "energy", Must::be_non_negative), 0.01)};
+        std::vector<Parameter> parameters = contact_and_screening_parameters();
+        parameters.push_back(with_default(number("zeroEnergy", "energy", Must::be_non_negative), 0.01));
+        return parameters;
     }
 
     template <class R>

@@ -73,10 +73,7 @@ struct PairForceOnSeedKernel {
     SMD_HD void operator()(int64_t k) const {
         for_each_partner_of_seed<PairR>(neighbours, k, seed, group, table, ntypes,
                                         [&](int j, const Vec3<R>& d, const Params& p) {
-            constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
-            const PairTerm<PairR> t = evaluate_pair<Potential>(
-                PairR(dot(d, d)), p, charges ? PairR(charge[seed] * charge[j]) : PairR(0),
-                radii ? PairR(radius[seed]) : PairR(0), radii ? PairR(radius[j]) : PairR(0));
+            const PairTerm<PairR> t = evaluate_pair_of<Potential>(PairR(dot(d, d)), p, charge, radius, seed, j);
             const Vec3<R> f = R(t.dudr_over_r) * d;
             out[j].x += f.x;
             out[j].y += f.y;

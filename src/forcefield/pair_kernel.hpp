@@ -46,6 +46,16 @@ SMD_HD SMD_INLINE PairTerm<R> evaluate_pair(R r2, const typename Potential::temp
         return Potential::evaluate(r2, p);
 }
 
+// The potential for particles i and j at r2, in the real T of r2 and p, given the per-particle data it
+// declares: charges and radii are read only by the potentials that use them (no load otherwise).
+template <class Potential, class T, class R>
+SMD_HD SMD_INLINE PairTerm<T> evaluate_pair_of(T r2, const typename Potential::template Params<T>& p, const R* charge,
+                                               const R* radius, int i, int j) {
+    constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
+    return evaluate_pair<Potential>(r2, p, charges ? T(charge[i] * charge[j]) : T(0), radii ? T(radius[i]) : T(0),
+                                    radii ? T(radius[j]) : T(0));
+}
+
 // Positions, separations and sums in R; the potential itself in PairR (float under mixed precision:
 // the separation is taken in double, so its accuracy does not fall with the size of the box).
 // Runs over the list's slots (neighbour_view.hpp); what belongs to a particle (charge, group,
@@ -77,11 +87,7 @@ struct PairKernel {
             const PairR r2 = PairR(dot(rij, rij));
             const Params& p = row[static_cast<int>(pj.w)];
             if (!(r2 < p.cutoff2) || (group && !group[v.order[s]])) return;
-            // Per-particle data is read only by the potentials that declare it (no load otherwise).
-            constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
-            const PairTerm<PairR> t = evaluate_pair<Potential>(
-                r2, p, charges ? PairR(charge[i] * charge[v.order[s]]) : PairR(0),
-                radii ? PairR(radius[i]) : PairR(0), radii ? PairR(radius[v.order[s]]) : PairR(0));
+            const PairTerm<PairR> t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, v.order[s]);
             const R dudrOverR = R(t.dudr_over_r);
             if (WantForce) f += dudrOverR * rij;
             if (WantEnergy) e += R(0.5) * R(t.energy);
