@@ -293,10 +293,12 @@ public:
     }
 
     // Kernels queued since read n values from the staging directly (its pointer is the device's
-    // too): counted as copied, and kept until they are done.
+    // too): counted as copied, and kept until they are done. Launches a step graph still holds are
+    // issued first, or the event would pass before they read and the host could overwrite the values.
     template <class T>
     void read_from_host(Staging<T>& host, size_t n) const {
         transfers_.hostToDevice += n * sizeof(T);
+        issue_recorded();
         host.mark_read_by(stream_);
     }
 
