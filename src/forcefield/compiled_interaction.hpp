@@ -81,13 +81,16 @@ private:
 template <class B, class R, class PairR>
 class CompiledPairInteraction : public Interactor<B, R> {
 public:
-    // table: the Params of each ordered type pair (ntypes x ntypes), cutoff2 first.
+    // table: the Params of each ordered type pair (ntypes x ntypes, one such block per batch when
+    // batch is given), cutoff2 first.
     CompiledPairInteraction(const B& backend, InteractorScope scope, std::shared_ptr<VerletList<B, R>> list,
-                            const RuntimeSource& source, const std::vector<PairR>& table, int ntypes)
+                            const RuntimeSource& source, const std::vector<PairR>& table, int ntypes,
+                            const int* batch)
         : Interactor<B, R>(std::move(scope)),
           backend_(backend),
           list_(std::move(list)),
           ntypes_(ntypes),
+          batch_(batch),
           kernels_(backend, "forcefield/pair_kernel.hpp", source, true, [](auto F, auto E, auto V) {
               return std::string("&structmd::for_each_lanes_kernel<structmd::PairKernel<RuntimePotential, ") +
                      real_type_name<R>() + ", " + real_type_name<PairR>() + ", " + F + ", " + E + ", " + V + ">>";
@@ -108,7 +111,8 @@ public:
             using Kernel = PairKernel<OpaquePairPotential, R, PairR, F, E, V>;
             backend_.for_each_lanes_compiled(
                 kernels_(F, E, V), particles.count,
-                Kernel{particles.charge.data(), particles.radius.data(), this->group(), view, table_.data(), ntypes_, out});
+                Kernel{particles.charge.data(), particles.radius.data(), this->group(), view,
+                       PairTable<PairR>{table_.data(), ntypes_, batch_}, out});
         });
     }
 
@@ -117,6 +121,7 @@ private:
     std::shared_ptr<VerletList<B, R>> list_;
     typename B::template Buffer<PairR> table_;
     int ntypes_;
+    const int* batch_;
     OutputKernels<B> kernels_;
 };
 

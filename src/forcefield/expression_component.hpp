@@ -82,7 +82,7 @@ struct ExpressionPairComponent {
         const ExpressionConfig& config = expression_config(s);
         const double cutOff = pair.shared["cutOff"];
         using Params = InterpretedPair::Params<PairR>;
-        auto table = pair_table_of<Params>(pair, build.context.ntypes, [&](const ParameterValues& v) {
+        auto table = pair_table_of<Params>(pair, build.context, [&](const ParameterValues& v) {
             const std::vector<double> columns = config.columns_of(v);
             Params p{};
             p.cutoff2 = PairR(cutOff * cutOff);
@@ -99,7 +99,7 @@ struct ExpressionPairComponent {
             auto interactor = std::make_unique<CompiledPairInteraction<B, R, PairR>>(
                 build.backend, build.scope(pair), build.listFor(pair),
                 compiled_source(config, "ExpressionPair<RuntimeExpression>"), flat,
-                static_cast<int>(build.context.ntypes));
+                static_cast<int>(build.context.ntypes), batches_for(build, pair));
             log_compile_time(build.context.log, s.path, interactor->compile_seconds());
             return interactor;
         } else {

@@ -72,6 +72,7 @@ struct PairSpec : InteractionSpec {
     struct Row {
         int typeI, typeJ;
         ParameterValues values;  // the component's per-type-pair parameters
+        int batch = -1;          // the batch (numbered as ForceFieldContext's) of a batched table; -1: all
     };
     int list = 0;  // index into ForceFieldSpec::lists
     PairCondition condition = PairCondition::all;
@@ -82,6 +83,9 @@ struct PairSpec : InteractionSpec {
     bool everyTypePair = false;  // the component has no per-type-pair parameters
     bool unlistedPairsInteract = false;  // type pairs the table does not list interact (DLVO's electrostatics)
     double cutoff = 0.0;     // the largest distance at which the term acts, from its functor
+
+    // A batchId column gives each batch its own rows (and its own table).
+    bool batched() const { return !rows.empty() && rows.front().batch >= 0; }
 
     // What the functor is given for one type pair: the shared parameters and the row's.
     ParameterValues values_of(const Row& row) const {

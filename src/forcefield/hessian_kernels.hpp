@@ -51,15 +51,14 @@ struct PairHessianKernel {
     const R* radius;
     const uint8_t* group;
     NeighbourView<R> neighbours;
-    const Params* table;  // ntypes x ntypes
-    int ntypes;
+    PairTable<Params> table;
     int seed;
     Tensor3<R>* blocks;
 
     SMD_HD void operator()(int64_t k) const {
         Tensor3<R> self = zero_tensor<R>();
         bool hasPartners = false;
-        for_each_partner_of_seed<Dual<PairR>>(neighbours, k, seed, group, table, ntypes,
+        for_each_partner_of_seed<Dual<PairR>>(neighbours, k, seed, group, table,
                                               [&](int j, const Vec3<R>& d, const Params& p) {
             const PairTerm<Dual<PairR>> t =
                 evaluate_pair_of<Potential>(Dual<PairR>(PairR(dot(d, d)), PairR(1)), p, charge, radius, seed, j);

@@ -16,26 +16,37 @@ namespace structmd {
 
 // make(values) gives the Params of a type pair from its parameters (the shared ones and its row's).
 // Unlisted type pairs take `unlisted`: by default value-initialised parameters (zero cutoff), which
-// never interact; a term without per-type-pair parameters gives every type pair the same.
+// never interact; a term without per-type-pair parameters gives every type pair the same. A
+// batched table (PairSpec::batched) has one ntypes x ntypes block per batch of the context.
 template <class Params, class Make>
-std::vector<Params> pair_table_of(const PairSpec& pair, size_t ntypes, Make&& make, const Params& unlisted = Params{}) {
+std::vector<Params> pair_table_of(const PairSpec& pair, const ForceFieldContext& context, Make&& make,
+                                  const Params& unlisted = Params{}) {
+    const size_t ntypes = context.ntypes;
     if (pair.everyTypePair) return std::vector<Params>(ntypes * ntypes, make(pair.shared));
-    std::vector<Params> table(ntypes * ntypes, unlisted);
+    const size_t blocks = pair.batched() ? static_cast<size_t>(context.batches) : 1;
+    std::vector<Params> table(blocks * ntypes * ntypes, unlisted);
     for (const PairSpec::Row& row : pair.rows) {
         const Params p = make(pair.values_of(row));
-        table[row.typeI * ntypes + row.typeJ] = p;
-        table[row.typeJ * ntypes + row.typeI] = p;
+        const size_t block = pair.batched() ? static_cast<size_t>(row.batch) * ntypes * ntypes : 0;
+        table[block + row.typeI * ntypes + row.typeJ] = p;
+        table[block + row.typeJ * ntypes + row.typeI] = p;
     }
     return table;
+}
+
+// The particles' batches a pair term's kernels are given: only those of a batched table need them.
+template <class B, class R>
+const int* batches_for(const InteractorBuild<B, R>& build, const PairSpec& pair) {
+    return pair.batched() ? build.context.batch : nullptr;
 }
 
 template <class B, class R, class Potential, class PairR>
 std::unique_ptr<PairInteraction<B, R, Potential, PairR>> make_pair_interaction(
     const InteractorBuild<B, R>& build, const PairSpec& pair,
     const std::vector<typename Potential::template Params<PairR>>& table) {
-    return std::make_unique<PairInteraction<B, R, Potential, PairR>>(build.backend, build.scope(pair),
-                                                                     build.listFor(pair), table,
-                                                                     static_cast<int>(build.context.ntypes));
+    return std::make_unique<PairInteraction<B, R, Potential, PairR>>(
+        build.backend, build.scope(pair), build.listFor(pair), table, static_cast<int>(build.context.ntypes),
+        batches_for(build, pair));
 }
 
 // The bonds of a bond entry that act in its group: N particle indices and one Params each.

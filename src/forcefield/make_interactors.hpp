@@ -43,7 +43,7 @@ struct FactoryEntries {
                                   unlisted = Potential::template make_unlisted_pair_params<T>(
                                       pair.shared, constants, pair.cutOffFactor, pair.shift);
                               return pair_table_of<Params>(
-                                  pair, build.context.ntypes,
+                                  pair, build.context,
                                   [&](const ParameterValues& v) {
                                       return Potential::template make_pair_params<T>(v, constants, pair.cutOffFactor,
                                                                                      pair.shift);

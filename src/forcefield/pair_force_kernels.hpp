@@ -65,13 +65,12 @@ struct PairForceOnSeedKernel {
     const R* radius;
     const uint8_t* group;
     NeighbourView<R> neighbours;
-    const Params* table;  // ntypes x ntypes
-    int ntypes;
+    PairTable<Params> table;
     int seed;
     Real4<R>* out;
 
     SMD_HD void operator()(int64_t k) const {
-        for_each_partner_of_seed<PairR>(neighbours, k, seed, group, table, ntypes,
+        for_each_partner_of_seed<PairR>(neighbours, k, seed, group, table,
                                         [&](int j, const Vec3<R>& d, const Params& p) {
             const PairTerm<PairR> t = evaluate_pair_of<Potential>(PairR(dot(d, d)), p, charge, radius, seed, j);
             const Vec3<R> f = R(t.dudr_over_r) * d;

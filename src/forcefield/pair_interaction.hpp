@@ -18,9 +18,10 @@ class PairInteraction : public Interactor<B, R> {
 public:
     using Params = typename Potential::template Params<PairR>;
 
+    // batch: the particles' batches when the table has one ntypes x ntypes block per batch, else null.
     PairInteraction(const B& backend, InteractorScope scope, std::shared_ptr<VerletList<B, R>> list,
-                    const std::vector<Params>& table, int ntypes)
-        : Interactor<B, R>(std::move(scope)), backend_(backend), list_(std::move(list)), ntypes_(ntypes) {
+                    const std::vector<Params>& table, int ntypes, const int* batch = nullptr)
+        : Interactor<B, R>(std::move(scope)), backend_(backend), list_(std::move(list)), ntypes_(ntypes), batch_(batch) {
         backend_.upload(table_, table.data(), table.size());
     }
 
@@ -30,7 +31,7 @@ public:
     void add_pair_forces(Particles<B, R>& particles, int seed, Real4<R>* out) override {
         backend_.for_each(particles.count, PairForceOnSeedKernel<Potential, R, PairR>{
                                                particles.charge.data(), particles.radius.data(), this->group(),
-                                               list_->view(), table_.data(), ntypes_, seed, out});
+                                               list_->view(), table_of(table_), seed, out});
     }
 
     // The table again in dual numbers, for the Hessian.
@@ -42,8 +43,8 @@ public:
     void add_hessian(Particles<B, R>& particles, int seed, Tensor3<R>* blocks) override {
         backend_.for_each(particles.count,
                           PairHessianKernel<Potential, R, PairR>{particles.charge.data(), particles.radius.data(),
-                                                                 this->group(), list_->view(), dualTable_.data(),
-                                                                 ntypes_, seed, blocks});
+                                                                 this->group(), list_->view(), table_of(dualTable_),
+                                                                 seed, blocks});
     }
 
     void prepare(Particles<B, R>& p) override { list_->update(p.pos, p.count, p.box, p.version); }
@@ -54,18 +55,23 @@ public:
             backend_.for_each_lanes(particles.count,
                               PairKernel<Potential, R, PairR, decltype(force)::value, decltype(energy)::value,
                                          decltype(virial)::value>{particles.charge.data(), particles.radius.data(),
-                                                                  this->group(), view, table_.data(), ntypes_,
-                                                                  out});
+                                                                  this->group(), view, table_of(table_), out});
         });
     }
 
 private:
+    template <class P>
+    PairTable<P> table_of(const typename B::template Buffer<P>& table) const {
+        return PairTable<P>{table.data(), ntypes_, batch_};
+    }
+
     const B& backend_;
     std::shared_ptr<VerletList<B, R>> list_;
     typename B::template Buffer<Params> table_;
     typename B::template Buffer<typename Potential::template Params<Dual<PairR>>> dualTable_;
     bool hessian_ = false;
     int ntypes_;
+    const int* batch_;
 };
 
 }  // namespace structmd

@@ -46,6 +46,20 @@ SMD_HD SMD_INLINE PairTerm<R> evaluate_pair(R r2, const typename Potential::temp
         return Potential::evaluate(r2, p);
 }
 
+// The parameters of a pair term by type pair: one ntypes x ntypes table, or one per batch
+// (UAMMD-structured's batchId column) chosen by the first particle's batch, as batches never share
+// a pair.
+template <class Params>
+struct PairTable {
+    const Params* entries;  // ntypes x ntypes, or batches x ntypes x ntypes when `batch` is given
+    int ntypes;
+    const int* batch;  // by particle; null: one table for every batch
+
+    SMD_HD SMD_INLINE const Params* row_of(int i, int type) const {
+        return entries + (static_cast<int64_t>(batch ? batch[i] * ntypes : 0) + type) * ntypes;
+    }
+};
+
 // The potential for particles i and j at r2, in the real T of r2 and p, given the per-particle data it
 // declares: charges and radii are read only by the potentials that use them (no load otherwise).
 template <class Potential, class T, class R>
@@ -67,8 +81,7 @@ struct PairKernel {
     const R* radius;       // by particle, read only by potentials of radii
     const uint8_t* group;  // by particle; null: every particle takes part
     NeighbourView<R> neighbours;
-    const Params* table;  // ntypes x ntypes
-    int ntypes;
+    PairTable<Params> table;
     ForceOutputs<R> out;
 
     SMD_HD void operator()(int64_t k, Lanes lanes) const {
@@ -77,7 +90,7 @@ struct PairKernel {
         if (group && !group[i]) return;
         const Real4<R> pi = v.positions[k];
         const Vec3<R> ri = xyz(pi);
-        const Params* row = table + static_cast<int>(pi.w) * ntypes;
+        const Params* row = table.row_of(i, static_cast<int>(pi.w));
         Vec3<R> f{0, 0, 0};
         R e = 0;
         Tensor3<R> w = zero_tensor<R>();

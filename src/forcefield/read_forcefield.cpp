@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <set>
+#include <tuple>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -218,6 +219,30 @@ void choose_list(const ComponentEntry& entry, ForceFieldSpec& ff, PairSpec& pair
                                                               list.name + "' (its conditions: " + names + ")");
 }
 
+// The batches, numbered 0, 1, ... in the order of their batchId, as ForceFieldContext numbers them.
+class BatchNumbering {
+public:
+    explicit BatchNumbering(const SystemDescription& system) : system_(system), ids_(system.batchId) {
+        std::sort(ids_.begin(), ids_.end());
+        ids_.erase(std::unique(ids_.begin(), ids_.end()), ids_.end());
+    }
+    // The number of the batchId a table's cell names.
+    int of_cell(const TrackedNode& cell) const {
+        const int64_t id = cell.as<int64_t>();
+        const auto at = std::lower_bound(ids_.begin(), ids_.end(), id);
+        if (at == ids_.end() || *at != id) throw input_error(cell.path(), "no particle has batchId " + std::to_string(id));
+        return static_cast<int>(at - ids_.begin());
+    }
+    int of_particle(int64_t i) const {
+        return static_cast<int>(std::lower_bound(ids_.begin(), ids_.end(), system_.batchId[i]) - ids_.begin());
+    }
+    int64_t id(int number) const { return ids_[number]; }
+
+private:
+    const SystemDescription& system_;
+    std::vector<int32_t> ids_;
+};
+
 void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry, const SystemDescription& system,
                ForceFieldSpec& ff) {
     PairSpec pair;
@@ -234,18 +259,23 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
     if (pair.everyTypePair) {
         pair.cutoff = component.actingCutoff(pair.shared, constants, pair.cutOffFactor, pair.shift);
     } else {
+        // A batchId column (UAMMD-structured's batched tables) gives each batch its own rows.
         std::vector<std::string> columns = {"name_i", "name_j"};
         for (const Parameter& p : component.parameters) columns.push_back(p.name);
-        const input::Table table = input::read_table(entry.node, columns);
-        std::set<std::pair<int, int>> seen;
+        const input::Table table = input::read_table(entry.node, columns, {"batchId"});
+        const bool batched = table.has("batchId");
+        const BatchNumbering batches(system);
+        std::set<std::tuple<int, int, int>> seen;
         for (size_t r = 0; r < table.rows(); ++r) {
             PairSpec::Row row;
             row.typeI = type_of(system, table.cell(r, "name_i"));
             row.typeJ = type_of(system, table.cell(r, "name_j"));
+            if (batched) row.batch = batches.of_cell(table.cell(r, "batchId"));
             for (const Parameter& p : component.parameters)
                 row.values.set(p.name, input::read_parameter(table.cell(r, p.name), p));
-            if (!seen.insert(std::minmax(row.typeI, row.typeJ)).second)
-                throw input_error(table.row(r).path(), "type pair listed twice");
+            if (!seen.insert({row.batch, std::min(row.typeI, row.typeJ), std::max(row.typeI, row.typeJ)}).second)
+                throw input_error(table.row(r).path(),
+                                  batched ? "type pair listed twice for this batchId" : "type pair listed twice");
             pair.cutoff = std::max(pair.cutoff, component.actingCutoff(pair.values_of(row), constants,
                                                                        pair.cutOffFactor, pair.shift));
             pair.rows.push_back(std::move(row));
@@ -329,21 +359,12 @@ void read_external(const ForceFieldComponent& component, const ComponentEntry& e
         optional.push_back("batchId");
         const input::Table table = input::read_table(entry.node, columns, optional);
         const bool batched = table.has("batchId");
-        std::vector<int32_t> batchIds = system.batchId;  // the batches, numbered in the order of their id
-        std::sort(batchIds.begin(), batchIds.end());
-        batchIds.erase(std::unique(batchIds.begin(), batchIds.end()), batchIds.end());
+        const BatchNumbering batches(system);
         std::set<std::pair<int, int>> seen;
         for (size_t r = 0; r < table.rows(); ++r) {
             ExternalSpec::Row row;
             row.type = type_of(system, table.cell(r, "name"));
-            if (batched) {
-                const TrackedNode cell = table.cell(r, "batchId");
-                const int64_t id = cell.as<int64_t>();
-                const auto at = std::lower_bound(batchIds.begin(), batchIds.end(), id);
-                if (at == batchIds.end() || *at != id)
-                    throw input_error(cell.path(), "no particle has batchId " + std::to_string(id));
-                row.batch = static_cast<int>(at - batchIds.begin());
-            }
+            if (batched) row.batch = batches.of_cell(table.cell(r, "batchId"));
             for (const Parameter& p : component.typeParameters)
                 row.values.set(p.name, input::read_parameter(table.cell(r, p.name), p));
             if (!seen.insert({row.batch, row.type}).second)
@@ -358,6 +379,9 @@ void read_external(const ForceFieldComponent& component, const ComponentEntry& e
 // Type pairs a pair table does not list, and types a per-type external's table does not list, act not.
 void warn_unlisted_types(const SystemDescription& system, const ForceFieldSpec& ff, const Logger& log) {
     const int ntypes = static_cast<int>(system.types.size());
+    const BatchNumbering batches(system);
+    std::set<std::pair<int, int>> present;  // the (batch, type) of each particle
+    for (int64_t i = 0; i < system.numParticles(); ++i) present.insert({batches.of_particle(i), system.typeIndex[i]});
     for (const ExternalSpec& external : ff.externals) {
         if (!external.perType) continue;
         for (int a = 0; a < ntypes; ++a)
@@ -366,22 +390,28 @@ void warn_unlisted_types(const SystemDescription& system, const ForceFieldSpec& 
                 log.warning(external.path + ": type " + system.types[a].name + " is not listed and feels nothing");
         // A batched table: the particles of a (batch, type) it does not list feel nothing either.
         if (external.rows.empty() || external.rows.front().batch < 0) continue;
-        std::set<std::pair<int, int>> listed, present;
+        std::set<std::pair<int, int>> listed;
         for (const ExternalSpec::Row& r : external.rows) listed.insert({r.batch, r.type});
-        std::vector<int32_t> batchIds = system.batchId;
-        std::sort(batchIds.begin(), batchIds.end());
-        batchIds.erase(std::unique(batchIds.begin(), batchIds.end()), batchIds.end());
-        for (int64_t i = 0; i < system.numParticles(); ++i) {
-            const int batch = static_cast<int>(std::lower_bound(batchIds.begin(), batchIds.end(), system.batchId[i]) -
-                                               batchIds.begin());
-            const std::pair<int, int> key{batch, system.typeIndex[i]};
-            if (!listed.count(key) && present.insert(key).second)
-                log.warning(external.path + ": type " + system.types[key.second].name + " of batchId " +
-                            std::to_string(batchIds[batch]) + " is not listed and feels nothing");
-        }
+        for (const auto& [batch, type] : present)
+            if (!listed.count({batch, type}))
+                log.warning(external.path + ": type " + system.types[type].name + " of batchId " +
+                            std::to_string(batches.id(batch)) + " is not listed and feels nothing");
     }
     for (const PairSpec& pair : ff.pairs) {
         if (pair.everyTypePair || pair.unlistedPairsInteract) continue;
+        if (pair.batched()) {
+            // Only the type pairs a batch holds matter, within that batch.
+            std::set<std::tuple<int, int, int>> listed;
+            for (const PairSpec::Row& r : pair.rows)
+                listed.insert({r.batch, std::min(r.typeI, r.typeJ), std::max(r.typeI, r.typeJ)});
+            for (const auto& [batch, a] : present)
+                for (auto b = present.lower_bound({batch, a}); b != present.end() && b->first == batch; ++b)
+                    if (!listed.count({batch, a, b->second}))
+                        log.warning(pair.path + ": type pair (" + system.types[a].name + ", " +
+                                    system.types[b->second].name + ") of batchId " + std::to_string(batches.id(batch)) +
+                                    " is not listed and does not interact");
+            continue;
+        }
         for (int a = 0; a < ntypes; ++a)
             for (int b = a; b < ntypes; ++b) {
                 const bool listed = std::any_of(pair.rows.begin(), pair.rows.end(), [&](const PairSpec::Row& r) {

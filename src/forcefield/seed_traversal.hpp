@@ -5,20 +5,21 @@
 #include "core/box.hpp"
 #include "core/hd.hpp"
 #include "core/vec.hpp"
+#include "forcefield/pair_kernel.hpp"
 #include "neighbour/neighbour_view.hpp"
 
 namespace structmd {
 
 // For slot k of the list, when it holds the seed (and the seed is in the group): visit(j, d, p) for
 // each neighbour j in the group within the cutoff of their type pair's parameters p (a row of the
-// ntypes x ntypes table), d = r_j - r_s by minimum image. PairR: the real of the pair distance.
+// pair table), d = r_j - r_s by minimum image. PairR: the real of the pair distance.
 template <class PairR, class R, class Params, class Visit>
 SMD_HD SMD_INLINE void for_each_partner_of_seed(const NeighbourView<R>& v, int64_t k, int seed, const uint8_t* group,
-                                                const Params* table, int ntypes, Visit&& visit) {
+                                                const PairTable<Params>& table, Visit&& visit) {
     const int s = v.order[k];
     if (s != seed || (group && !group[s])) return;
     const Real4<R> ps = v.positions[k];
-    const Params* row = table + static_cast<int>(ps.w) * ntypes;
+    const Params* row = table.row_of(s, static_cast<int>(ps.w));
     v.for_each_neighbour(static_cast<int>(k), [&](int slot) {
         const int j = v.order[slot];
         const Real4<R> pj = v.positions[slot];

@@ -190,6 +190,70 @@ def test_batches_never_interact_and_their_energies_are_read_separately(sim, opti
         sim.energy("lj@batch:7")
 
 
+def test_a_batched_pair_table_gives_each_batch_its_own_type_pairs(sim, options, tmp_path):
+    # Two copies of the cluster (types A and B) with batchIds 5 and 2 (numbered 1 and 0 inside the
+    # engine), each with its own parameters; batch 2 lists no (B, B) row, so its B particles never meet.
+    types = ["A", "B", "A", "B", "A", "B"]
+    shifted = [[x + 0.3, y + 0.2, z + 0.1] for x, y, z in CLUSTER]
+    batch = [5] * len(CLUSTER) + [2] * len(shifted)
+    rows = {5: {("A", "A"): (1.0, 1.0), ("A", "B"): (0.6, 0.9), ("B", "B"): (1.4, 1.05)},
+            2: {("A", "A"): (0.8, 1.1), ("A", "B"): (1.2, 0.95)}}
+    table = [[a, b, eps, sigma, batchId] for batchId, pairs in rows.items() for (a, b), (eps, sigma) in pairs.items()]
+    entry = {"type": ["NonBonded", "LennardJonesType1"], "parameters": {"cutOffFactor": 2.5, "condition": "all"},
+             "labels": ["name_i", "name_j", "epsilon", "sigma", "batchId"], "data": table}
+    positions = CLUSTER + shifted
+    doc = document(positions, types=types * 2, batch=batch,
+                   force_field={"nl": {"type": ["VerletConditionalListSet", "all"]}, "lj": entry})
+    # The Hessian reads the table around one particle at a time: exact against central differences.
+    doc["simulationStep"] = {mode: {"type": ["MechanicalMeasure", "HessianMeasure"],
+                                    "parameters": {"intervalStep": 1000, "mode": mode, "outputPrecision": 12,
+                                                   "outputFilePath": str(tmp_path / f"{mode}.dat")}}
+                             for mode in ("Analytical", "Numerical")}
+    sim.load(doc)
+    sim.step(1)
+    hessians = [np.loadtxt(tmp_path / f"{mode}.dat")[:, 2:] for mode in ("Analytical", "Numerical")]
+    scale = np.max(np.abs(hessians[0]))
+    assert scale > 1.0 and np.max(np.abs(hessians[0] - hessians[1])) < 1e-6 * scale
+    sim.positions = positions
+
+    def batch_energy(members, pairs):
+        total = 0.0
+        for i, j in itertools.combinations(members, 2):
+            key = tuple(sorted((types[i % 6], types[j % 6])))
+            if key not in pairs:
+                continue
+            epsilon, sigma = pairs[key]
+            r = np.linalg.norm(minimum_image(np.subtract(positions[j], positions[i]), 12.0))
+            if r < 2.5 * sigma:
+                total += lj(r, epsilon, sigma)
+        return total
+
+    first, second = range(6), range(6, 12)
+    assert sim.energy("lj@batch:5") == pytest.approx(batch_energy(first, rows[5]), rel=1e-12)
+    assert sim.energy("lj@batch:2") == pytest.approx(batch_energy(second, rows[2]), rel=1e-12)
+    # Each batch alone, unbatched, with its rows: the same forces.
+    for members, batchId in ((first, 5), (second, 2)):
+        alone_table = [[a, b, eps, sigma] for (a, b), (eps, sigma) in rows[batchId].items()]
+        alone_entry = dict(entry, labels=entry["labels"][:4], data=alone_table)
+        with structmd.Simulation(options) as alone:
+            alone.load(document([positions[i] for i in members], types=types,
+                                force_field={"nl": {"type": ["VerletConditionalListSet", "all"]}, "lj": alone_entry}))
+            np.testing.assert_allclose(sim.forces[list(members)], alone.forces, rtol=1e-12, atol=1e-12)
+
+
+def test_a_batched_pair_table_names_the_row_of_a_missing_batch_or_a_repeated_pair(sim):
+    entry = lj_entry()
+    entry["labels"] = entry["labels"] + ["batchId"]
+    doc = document(CLUSTER, batch=[0, 0, 0, 1, 1, 1], force_field={
+        "nl": {"type": ["VerletConditionalListSet", "all"]},
+        "lj": dict(entry, data=[["A", "A", 1.0, 1.0, 0], ["A", "A", 1.0, 1.0, 3]])})
+    with pytest.raises(structmd.InputError, match=r"topology\.forceField\.lj\.data\[1\]\[4\].*no particle has batchId 3"):
+        sim.load(doc)
+    doc["topology"]["forceField"]["lj"]["data"] = [["A", "A", 1.0, 1.0, 1], ["A", "A", 0.5, 1.0, 1]]
+    with pytest.raises(structmd.InputError, match=r"topology\.forceField\.lj\.data\[1\].*listed twice for this batchId"):
+        sim.load(doc)
+
+
 def surface_lj2(z, plane, epsilon, sigma):
     """SurfaceLennardJonesType2 of a particle at height z."""
     x = sigma / abs(z - plane)
