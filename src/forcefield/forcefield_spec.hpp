@@ -16,6 +16,7 @@
 #include "core/parameters.hpp"
 #include "core/registry.hpp"
 #include "neighbour/pair_filter.hpp"
+#include "neighbour/pair_filter_inputs.hpp"
 
 namespace structmd {
 
@@ -64,8 +65,8 @@ struct NeighbourListSpec {
     std::string path;
     ComponentKey key;  // ["VerletConditionalListSet", condition]
     double verletFactor = 1.1;
-    double minimumCutoff = 0.0;              // the entry's cutOff parameter
-    std::vector<std::vector<int>> excluded;  // nonExcluded: by particle id, sorted ids never paired
+    double minimumCutoff = 0.0;  // the entry's cutOff parameter
+    PairFilterInputs filterInputs;  // exclusions, types or type groups, charges: what its conditions read
 };
 
 struct PairSpec : InteractionSpec {

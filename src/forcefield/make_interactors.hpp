@@ -151,7 +151,7 @@ ForceField<B, R> make_interactors(const B& backend, const ForceFieldSpec& spec, 
         for (const PairSpec& other : spec.pairs)
             if (other.list == pair.list && other.condition == pair.condition) cutoff = std::max(cutoff, other.cutoff);
         auto list = std::make_shared<VerletList<B, R>>(backend, cutoff, entry.verletFactor, pair.condition,
-                                                       entry.excluded, context.batch, context.batches,
+                                                       entry.filterInputs, context.batch, context.batches,
                                                        context.model);
         lists.push_back(list);
         listKeys.push_back(key);

@@ -20,18 +20,39 @@ namespace {
 
 // ["VerletConditionalListSet", condition]: the conditions a pair term on such a list may ask for.
 struct NeighbourCondition {
+    enum class Reads { nothing, types, typeGroups };
     ComponentKey key;
     std::vector<std::pair<std::string, PairCondition>> conditions;
     bool excludes = false;  // reads an id/id_list table of pairs that never interact
+    bool charges = false;   // some condition asks whether particles are charged
+    Reads kind = Reads::nothing;
 };
 
 const Registry<NeighbourCondition>& neighbour_conditions() {
     static const Registry<NeighbourCondition> known = [] {
+        using Reads = NeighbourCondition::Reads;
+        const std::pair<std::string, PairCondition> intra{"intra", PairCondition::intra},
+            inter{"inter", PairCondition::inter}, charged{"charged", PairCondition::charged},
+            interCharged{"charged", PairCondition::interCharged};
         Registry<NeighbourCondition> r;
         r.add({{"VerletConditionalListSet", "all"}, {{"all", PairCondition::all}}});
-        r.add({{"VerletConditionalListSet", "nonExcluded"}, {{"nonExcluded", PairCondition::nonExcluded}}, true});
-        r.add({{"VerletConditionalListSet", "intra_inter"},
-               {{"intra", PairCondition::intra}, {"inter", PairCondition::inter}}});
+        r.add({{"VerletConditionalListSet", "nonExcluded"}, {{"nonExcluded", PairCondition::all}}, true});
+        r.add({{"VerletConditionalListSet", "intra_inter"}, {intra, inter}});
+        r.add({{"VerletConditionalListSet", "nonExclIntra_nonExclInter"}, {intra, inter}, true});
+        r.add({{"VerletConditionalListSet", "nonExclIntra_nonExclInter_nonExclCharged"}, {intra, inter, charged}, true,
+               true});
+        // UAMMD-structured registers this one as nonExcIntra_nonExcInter_nonExcInterCharged and
+        // documents it with "Excl": both spellings are accepted.
+        for (const char* name : {"nonExclIntra_nonExclInter_nonExclInterCharged", "nonExcIntra_nonExcInter_nonExcInterCharged"})
+            r.add({{"VerletConditionalListSet", name}, {intra, inter, interCharged}, true, true});
+        r.add({{"VerletConditionalListSet", "interDifferentType"}, {{"inter", PairCondition::interDifferentType}}, false,
+               false, Reads::types});
+        r.add({{"VerletConditionalListSet", "nonExclTypeGroup1Intra_nonExclTypeGroup2Intra_nonExclInter_nonExclNoGroup"},
+               {{"typeGroup1Intra", PairCondition::typeGroup1Intra},
+                {"typeGroup2Intra", PairCondition::typeGroup2Intra},
+                {"inter", PairCondition::typeGroupsInter},
+                {"noGroup", PairCondition::noTypeGroup}},
+               true, false, Reads::typeGroups});
         return r;
     }();
     return known;
@@ -153,6 +174,27 @@ void read_groups(const ComponentEntry& entry, const SystemDescription& system, F
 
 // ---- neighbour lists --------------------------------------------------------------------------
 
+// By particle: 1 or 2 for a type in the entry's typeGroup1 or typeGroup2 (type names), else 0.
+std::vector<int> type_groups_of(const ComponentEntry& entry, const SystemDescription& system) {
+    std::vector<int> groupOfType(system.types.size(), 0);
+    for (int group : {1, 2}) {
+        const std::string key = "typeGroup" + std::to_string(group);
+        const TrackedNode params = input::parameters_of(entry.node);
+        if (!params.valid() || !params.has(key))
+            throw input_error(parameter_path(entry, key), "missing required parameter: a list of type names");
+        const TrackedNode names = params.at(key);
+        if (!names.is_array()) throw input_error(names.path(), "expected a list of type names");
+        for (size_t k = 0; k < names.size(); ++k) {
+            int& slot = groupOfType[type_of(system, names.at(k))];
+            if (slot != 0) throw input_error(names.at(k).path(), "a type can be in one type group only");
+            slot = group;
+        }
+    }
+    std::vector<int> groups(system.numParticles());
+    for (size_t i = 0; i < groups.size(); ++i) groups[i] = groupOfType[system.typeIndex[i]];
+    return groups;
+}
+
 void read_neighbour_list(const ComponentEntry& entry, const SystemDescription& system, ForceFieldSpec& ff) {
     NeighbourListSpec list;
     list.name = entry.name;
@@ -165,7 +207,13 @@ void read_neighbour_list(const ComponentEntry& entry, const SystemDescription& s
                      with_default(number("cutOff", "length", Must::be_non_negative), 0.0)});
     list.verletFactor = values["cutOffVerletFactor"];
     list.minimumCutoff = values["cutOff"];
-    if (condition.excludes) list.excluded.assign(system.numParticles(), {});
+    PairFilterInputs& inputs = list.filterInputs;
+    if (condition.charges)
+        for (double q : system.charge) inputs.charged.push_back(q != 0.0 ? 1 : 0);
+    if (condition.kind == NeighbourCondition::Reads::types) inputs.kind = system.typeIndex;
+    if (condition.kind == NeighbourCondition::Reads::typeGroups) inputs.kind = type_groups_of(entry, system);
+    std::vector<std::vector<int>>& excluded = inputs.excluded;
+    if (condition.excludes) excluded.assign(system.numParticles(), {});
     if (condition.excludes && entry.node.has("data")) {
         const input::Table table = input::read_table(entry.node, {"id", "id_list"});
         for (size_t r = 0; r < table.rows(); ++r) {
@@ -175,16 +223,16 @@ void read_neighbour_list(const ComponentEntry& entry, const SystemDescription& s
             for (size_t k = 0; k < others.size(); ++k) {
                 const int64_t other = checked_id(system, others.at(k));
                 if (other == id) throw input_error(others.at(k).path(), "a particle cannot exclude itself");
-                list.excluded[id].push_back(static_cast<int>(other));
+                excluded[id].push_back(static_cast<int>(other));
             }
         }
-        for (auto& ids : list.excluded) {
+        for (auto& ids : excluded) {
             std::sort(ids.begin(), ids.end());
             ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
         }
-        for (size_t i = 0; i < list.excluded.size(); ++i)
-            for (int j : list.excluded[i])
-                if (!std::binary_search(list.excluded[j].begin(), list.excluded[j].end(), static_cast<int>(i)))
+        for (size_t i = 0; i < excluded.size(); ++i)
+            for (int j : excluded[i])
+                if (!std::binary_search(excluded[j].begin(), excluded[j].end(), static_cast<int>(i)))
                     throw input_error(list.path + ".data", "exclusions must be symmetric: " + std::to_string(i) +
                                                                " excludes " + std::to_string(j) +
                                                                " but not the reverse");

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "neighbour/pair_filter_inputs.hpp"
 #include "neighbour/verlet_list_kernels.hpp"
 
 namespace structmd {
@@ -15,18 +16,26 @@ namespace structmd {
 template <class B, class R>
 class VerletList {
 public:
-    // excluded: for nonExcluded lists, the sorted ids each particle never pairs with (else empty);
-    // batch (numbered 0 .. batches - 1) and model: backend arrays by particle, or null where not needed.
+    // inputs: what the condition reads about each particle (exclusions, types, charges); batch
+    // (numbered 0 .. batches - 1) and model: backend arrays by particle, or null where not needed.
     VerletList(const B& backend, double cutoff, double verletFactor, PairCondition condition,
-               const std::vector<std::vector<int>>& excluded, const int* batch, int batches, const int* model)
+               const PairFilterInputs& inputs, const int* batch, int batches, const int* model)
         : backend_(backend), cutoff_(cutoff), listRadius_(cutoff * verletFactor), batch_(batch), batches_(batches) {
         backend_.resize(control_, kControlSlots);
         backend_.fill(control_, 0);
         filter_.condition = condition;
         filter_.model = model;
-        if (condition == PairCondition::nonExcluded) {
+        if (!inputs.kind.empty()) {
+            backend_.upload(kind_, inputs.kind.data(), inputs.kind.size());
+            filter_.kind = kind_.data();
+        }
+        if (!inputs.charged.empty()) {
+            backend_.upload(charged_, inputs.charged.data(), inputs.charged.size());
+            filter_.charged = charged_.data();
+        }
+        if (!inputs.excluded.empty()) {
             std::vector<int> start(1, 0), flat;
-            for (const auto& ids : excluded) {
+            for (const auto& ids : inputs.excluded) {
                 flat.insert(flat.end(), ids.begin(), ids.end());
                 start.push_back(static_cast<int>(flat.size()));
             }
@@ -172,7 +181,8 @@ private:
     int64_t builds_ = 0;
     int64_t updatedAt_ = -1;
     PairFilter filter_;
-    typename B::template Buffer<int> excludedStart_, excluded_;
+    typename B::template Buffer<int> excludedStart_, excluded_, kind_;
+    typename B::template Buffer<uint8_t> charged_;
     typename B::template Buffer<int> control_;
     typename B::template Buffer<int> list_, count_, order_, cellOf_, rankInCell_, cellCount_, cellStart_, chunkTotal_;
     typename B::template Buffer<Real4<R>> positions_, binned_;

@@ -62,7 +62,14 @@ TYPES = ["A", "B", "A", "B"]
 MODELS = [0, 0, 1, 1]
 BOX = 10.0
 # The conditions each neighbour list subclass offers (docs: "Neighbour lists").
-LIST_CONDITIONS = {"all": ["all"], "nonExcluded": ["nonExcluded"], "intra_inter": ["intra", "inter"]}
+LIST_CONDITIONS = {"all": ["all"], "nonExcluded": ["nonExcluded"], "intra_inter": ["intra", "inter"],
+                   "nonExclIntra_nonExclInter": ["intra", "inter"],
+                   "nonExclIntra_nonExclInter_nonExclCharged": ["intra", "inter", "charged"],
+                   "nonExclIntra_nonExclInter_nonExclInterCharged": ["intra", "inter", "charged"],
+                   "nonExcIntra_nonExcInter_nonExcInterCharged": ["intra", "inter", "charged"],
+                   "interDifferentType": ["inter"],
+                   "nonExclTypeGroup1Intra_nonExclTypeGroup2Intra_nonExclInter_nonExclNoGroup":
+                       ["typeGroup1Intra", "typeGroup2Intra", "inter", "noGroup"]}
 
 
 def base_document():

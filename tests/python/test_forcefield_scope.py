@@ -170,6 +170,86 @@ def test_bonds_act_only_when_all_their_particles_are_in_the_group(sim):
     assert sim.energy("bonds") == pytest.approx(expected, rel=1e-12)
 
 
+# Each of UAMMD-structured's conditional lists, condition by condition: which pairs of the cluster
+# (models 0 and 1, types A and B, some charged, some excluded) the condition's LJ term sums.
+CONDITION_MODELS = [0, 0, 1, 1, 1, 1]
+CONDITION_TYPES = ["A", "A", "B", "B", "C", "B"]
+CONDITION_CHARGES = [1.0, 0.0, -1.0, 0.5, 0.0, -0.5]
+CONDITION_EXCLUDED = {1: [3], 3: [1], 2: [4], 4: [2]}  # each within the cutoff
+TYPE_GROUP = {"A": 1, "B": 2}  # C is in neither
+
+
+def charged(i):
+    return CONDITION_CHARGES[i] != 0.0
+
+
+def same_model(i, j):
+    return CONDITION_MODELS[i] == CONDITION_MODELS[j]
+
+
+def group(i):
+    return TYPE_GROUP.get(CONDITION_TYPES[i], 0)
+
+
+CONDITIONAL_LISTS = {
+    "nonExclIntra_nonExclInter": {"intra": same_model, "inter": lambda i, j: not same_model(i, j)},
+    "nonExclIntra_nonExclInter_nonExclCharged": {
+        "intra": same_model, "inter": lambda i, j: not same_model(i, j),
+        "charged": lambda i, j: charged(i) and charged(j)},
+    "nonExclIntra_nonExclInter_nonExclInterCharged": {
+        "charged": lambda i, j: not same_model(i, j) and charged(i) and charged(j)},
+    "nonExcIntra_nonExcInter_nonExcInterCharged": {
+        "charged": lambda i, j: not same_model(i, j) and charged(i) and charged(j)},
+    "interDifferentType": {"inter": lambda i, j: not same_model(i, j) and CONDITION_TYPES[i] != CONDITION_TYPES[j]},
+    "nonExclTypeGroup1Intra_nonExclTypeGroup2Intra_nonExclInter_nonExclNoGroup": {
+        "typeGroup1Intra": lambda i, j: same_model(i, j) and group(i) == group(j) == 1,
+        "typeGroup2Intra": lambda i, j: same_model(i, j) and group(i) == group(j) == 2,
+        "inter": lambda i, j: group(i) and group(j) and (not same_model(i, j) or group(i) != group(j)),
+        "noGroup": lambda i, j: not group(i) or not group(j)},
+}
+
+
+def conditional_document(list_type, conditions, type_groups=None):
+    excludes = list_type != "interDifferentType"
+    nl = {"type": ["VerletConditionalListSet", list_type]}
+    if excludes:
+        nl.update(labels=["id", "id_list"], data=[[i, ids] for i, ids in CONDITION_EXCLUDED.items()])
+    if type_groups:
+        nl["parameters"] = type_groups
+    force_field = {"nl": nl}
+    every_pair = [(a, b, 1.0, 1.0) for a, b in itertools.combinations_with_replacement("ABC", 2)]
+    for condition in conditions:
+        force_field[condition] = lj_entry(condition, pairs=every_pair)
+    doc = document(CLUSTER, types=CONDITION_TYPES, model=CONDITION_MODELS, force_field=force_field)
+    doc["global"]["types"]["data"].append(["C", 1.0, 0.5, 0.0])
+    doc["state"]["labels"].append("charge")
+    for row, q in zip(doc["state"]["data"], CONDITION_CHARGES):
+        row.append(q)
+    return doc
+
+
+@pytest.mark.parametrize("list_type", sorted(CONDITIONAL_LISTS))
+def test_each_condition_of_a_conditional_list_sums_its_own_pairs(sim, list_type):
+    conditions = CONDITIONAL_LISTS[list_type]
+    groups = {"typeGroup1": ["A"], "typeGroup2": ["B"]} if "TypeGroup" in list_type else None
+    sim.load(conditional_document(list_type, conditions, groups))
+    excludes = list_type != "interDifferentType"
+    for condition, accept in conditions.items():
+        expected = pair_energy(CLUSTER, lambda i, j: bool(accept(i, j)) and
+                               not (excludes and j in CONDITION_EXCLUDED.get(i, [])))
+        assert sim.energy(condition) == pytest.approx(expected, rel=1e-12), condition
+        assert expected != 0.0, f"{condition} must hold some pair here"
+
+
+def test_a_type_group_list_names_a_missing_or_repeated_type_group(sim):
+    groups = {"typeGroup1": ["A"]}
+    list_type = "nonExclTypeGroup1Intra_nonExclTypeGroup2Intra_nonExclInter_nonExclNoGroup"
+    with pytest.raises(structmd.InputError, match=r"topology\.forceField\.nl\.parameters\.typeGroup2: missing"):
+        sim.load(conditional_document(list_type, ["inter"], groups))
+    with pytest.raises(structmd.InputError, match=r"typeGroup2\[0\]: a type can be in one type group only"):
+        sim.load(conditional_document(list_type, ["inter"], {"typeGroup1": ["A"], "typeGroup2": ["A"]}))
+
+
 def test_batches_never_interact_and_their_energies_are_read_separately(sim, options):
     # Two copies of the cluster in one box, shifted by a little: across batches they would overlap.
     shifted = [[x + 0.3, y + 0.2, z + 0.1] for x, y, z in CLUSTER]
