@@ -26,11 +26,13 @@ std::string header(int arity, const std::vector<std::array<int64_t, 4>>& ids) {
 
 }  // namespace
 
-ParticleListMeasure::ParticleListMeasure(int arity, std::string name, int64_t interval, int64_t start, int64_t end,
-                                         std::string outputPath, std::vector<std::array<int64_t, 4>> ids)
+ParticleListMeasure::ParticleListMeasure(int arity, Layout layout, std::string name, int64_t interval, int64_t start,
+                                         int64_t end, std::string outputPath, std::vector<std::array<int64_t, 4>> ids)
     : SimulationStep(name, interval, start, end),
       arity_(arity),
-      file_("simulationStep." + name, std::move(outputPath), header(arity, ids)),
+      layout_(layout),
+      file_("simulationStep." + name, std::move(outputPath),
+            layout == Layout::line ? header(arity, ids) : "# Id_i Id_j distance"),
       ids_(std::move(ids)) {}
 
 void ParticleListMeasure::run(Simulation& sim) {
@@ -40,7 +42,8 @@ void ParticleListMeasure::run(Simulation& sim) {
     const Box<double> box = Box<double>::make(lengths[0], lengths[1], lengths[2]);
     auto at = [&](int64_t id) { return Vec3<double>{xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]}; };
     std::FILE* out = file_.stream();
-    std::fprintf(out, "%lld %.17g", static_cast<long long>(sim.current_step()), sim.current_time());
+    const char* firing = layout_ == Layout::line ? "%lld %.17g" : "# step %lld time %.17g\n";
+    std::fprintf(out, firing, static_cast<long long>(sim.current_step()), sim.current_time());
     for (const auto& row : ids_) {
         // Each particle placed at the image nearest the one before it, so the chain is whole.
         Vec3<double> r[4];
@@ -55,9 +58,12 @@ void ParticleListMeasure::run(Simulation& sim) {
         } else {
             value = bonded_geometry::dihedral_of(r).phi;
         }
-        std::fprintf(out, " %.17g", value);
+        if (layout_ == Layout::line)
+            std::fprintf(out, " %.17g", value);
+        else
+            std::fprintf(out, "%lld %lld %.17g\n", static_cast<long long>(row[0]), static_cast<long long>(row[1]), value);
     }
-    std::fprintf(out, "\n");
+    if (layout_ == Layout::line) std::fprintf(out, "\n");
     file_.flush();
 }
 
@@ -82,18 +88,18 @@ std::vector<std::array<int64_t, 4>> read_particle_ids(const StepInput& in, const
 
 namespace {
 
-template <int Arity>
+template <int Arity, ParticleListMeasure::Layout L>
 std::unique_ptr<SimulationStep> make(const StepInput& in) {
     const std::vector<std::array<int64_t, 4>> ids =
         read_particle_ids(in, std::vector<std::string>(kLabels, kLabels + Arity));
-    return std::make_unique<ParticleListMeasure>(Arity, in.name, in.interval(), in.start(), in.end(),
+    return std::make_unique<ParticleListMeasure>(Arity, L, in.name, in.interval(), in.start(), in.end(),
                                                  in.parameters.text("outputFilePath"), ids);
 }
 
-template <int Arity>
+template <int Arity, ParticleListMeasure::Layout L = ParticleListMeasure::Layout::line>
 SimulationStepEntry entry(const char* subclass) {
     return {{"ParticlesListMeasure", subclass}, step_parameters({{"outputFilePath", StepValue::text, nullptr}}),
-            make<Arity>, std::vector<std::string>(kLabels, kLabels + Arity)};
+            make<Arity, L>, std::vector<std::string>(kLabels, kLabels + Arity)};
 }
 
 }  // namespace
@@ -101,5 +107,6 @@ SimulationStepEntry entry(const char* subclass) {
 SimulationStepEntry distances_measure_entry() { return entry<2>("DistancesMeasure"); }
 SimulationStepEntry angles_measure_entry() { return entry<3>("AnglesMeasure"); }
 SimulationStepEntry dihedrals_measure_entry() { return entry<4>("DihedralsMeasure"); }
+SimulationStepEntry contacts_measure_entry() { return entry<2, ParticleListMeasure::Layout::blocks>("ContactsMeasure"); }
 
 }  // namespace structmd

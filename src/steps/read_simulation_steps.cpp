@@ -8,6 +8,7 @@
 #include "steps/center_of_mass.hpp"
 #include "steps/force_between_sets_measure.hpp"
 #include "steps/gyration_radius.hpp"
+#include "steps/height_measure.hpp"
 #include "steps/hessian_measure.hpp"
 #include "steps/info_step.hpp"
 #include "steps/interactors_energy_measure.hpp"
@@ -15,6 +16,7 @@
 #include "steps/pairwise_force_measure.hpp"
 #include "steps/particle_list_measure.hpp"
 #include "steps/potential_measure.hpp"
+#include "steps/sort_step.hpp"
 #include "steps/stress_measure.hpp"
 #include "steps/thermodynamic_measure.hpp"
 #include "steps/write_step.hpp"
@@ -35,12 +37,15 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(distances_measure_entry());
         steps.add(angles_measure_entry());
         steps.add(dihedrals_measure_entry());
+        steps.add(contacts_measure_entry());
+        steps.add(height_measure_entry());
         steps.add(potential_measure_entry());
         steps.add(stress_measure_entry());
         steps.add(hessian_measure_entry());
         steps.add(pairwise_force_measure_entry());
         steps.add(force_between_sets_measure_entry());
         steps.add(write_step_entry());
+        steps.add(sort_step_entry());
         return steps;
     }();
     return registry;
@@ -183,7 +188,7 @@ std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registr
                               forceField,
                               log,
                               entry.node};
-        steps.push_back(step.make(input));
+        if (std::unique_ptr<SimulationStep> made = step.make(input)) steps.push_back(std::move(made));
     }
     return steps;
 }

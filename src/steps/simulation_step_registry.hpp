@@ -87,6 +87,7 @@ struct StepInput {
     std::vector<int64_t> member_ids() const;
 };
 
+// Null for an entry that leaves nothing to run (its work is done another way).
 using StepFactory = std::unique_ptr<SimulationStep> (*)(const StepInput&);
 
 struct SimulationStepEntry {

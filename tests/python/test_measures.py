@@ -307,6 +307,63 @@ def test_distances_angles_and_dihedrals_of_listed_particles_across_the_boundary(
     assert expected["distances"][2] < 8.0 and abs(expected["dihedrals"][0]) > 0.1
 
 
+def test_contacts_measure_writes_a_block_of_pair_distances_per_firing(sim, tmp_path):
+    """UAMMD-structured's layout: `# step N time T`, then `id_i id_j r` per row, by minimum image."""
+    chain = np.array([[4.0, 0.0, 0.0], [4.9, 0.6, 0.1], [-4.6, 0.2, 0.9], [1.0, 1.0, 1.2]])
+    pairs = [[0, 2], [1, 3], [2, 1]]
+    entry = measure("ParticlesListMeasure", "ContactsMeasure", interval=2, outputFilePath=str(tmp_path / "c.dat"))
+    entry.update(labels=["id_i", "id_j"], data=pairs)
+    sim.load(document(chain, steps=4, simulation_steps={"contacts": entry}))
+    sim.step(4)
+    lines = (tmp_path / "c.dat").read_text().splitlines()
+    assert lines[0] == "# Id_i Id_j distance"
+    firings = [k for k, line in enumerate(lines) if line.startswith("# step ")]
+    assert [int(lines[k].split()[2]) for k in firings] == [0, 2, 4]
+    first = np.array([[float(x) for x in line.split()] for line in lines[firings[0] + 1:firings[1]]])
+    np.testing.assert_array_equal(first[:, :2], pairs)
+    expected = [np.linalg.norm(minimum_image(chain[j] - chain[i])) for i, j in pairs]
+    np.testing.assert_allclose(first[:, 2], expected, rtol=1e-12)
+    assert expected[0] < 2.0  # across the boundary
+
+
+def test_height_averages_the_highest_particles_of_the_group_over_unwrapped_positions(sim, tmp_path):
+    positions = np.array([[0.0, 0.0, 4.8], [1.0, 0.0, 2.0], [2.0, 0.0, -3.0], [3.0, 0.0, 1.0], [0.0, 2.0, 4.5]])
+    velocities = [[0.0, 0.0, 1.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+    groups = {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+              "data": [["notLast", "Ids", [0, 1, 2, 3]]]}
+    steps = {"groups": groups,
+             "top2": measure("GeometricalMeasure", "Height", interval=10, particleNumberAverage=2,
+                             outputFilePath=str(tmp_path / "top2.dat"), group="notLast"),
+             "top": measure("GeometricalMeasure", "Height", interval=10, outputFilePath=str(tmp_path / "top.dat"))}
+    sim.load(document(positions, velocities=velocities, steps=50, time_step=0.01, simulation_steps=steps))
+    sim.step(50)  # particle 0 rises by 0.5 and crosses the top face (z = 5)
+    top2, top = read_rows(tmp_path / "top2.dat"), read_rows(tmp_path / "top.dat")
+    z0 = 4.8 + 0.01 * top2[:, 0]
+    np.testing.assert_allclose(top2[:, 2], (z0 + 2.0) / 2.0, rtol=1e-12)
+    np.testing.assert_allclose(top[:, 2], np.maximum(z0, 4.5), rtol=1e-12)
+    assert top2[-1, 2] > 3.6  # 5.3 unwrapped, not -4.7
+
+
+def test_height_of_more_particles_than_the_group_holds_names_the_parameter(sim, tmp_path):
+    steps = {"h": measure("GeometricalMeasure", "Height", particleNumberAverage=6, outputFilePath=str(tmp_path / "h"))}
+    with pytest.raises(structmd.InputError, match=r"simulationStep\.h\.parameters\.particleNumberAverage: "
+                                                  r"expected at most the 5 particles measured, got 6"):
+        sim.load(document(np.zeros((5, 3)) + np.arange(5)[:, None], simulation_steps=steps))
+
+
+def test_sort_step_loads_and_leaves_the_trajectory_alone(options):
+    positions = np.array([[0.0, 0.0, 0.0], [1.1, 0.0, 0.0], [0.0, 1.2, 0.0], [1.0, 1.0, 1.0]])
+    force_field = {"nl": NEIGHBOUR_LIST, "lj": lj_entry()}
+    runs = []
+    for steps in ({}, {"sort": measure("UtilsStep", "SortStep", interval=3)}):
+        with structmd.Simulation(options) as sim:
+            sim.load(document(positions, force_field=force_field, steps=20, time_step=0.002, simulation_steps=steps))
+            sim.step(20)
+            runs.append(sim.positions)
+    np.testing.assert_array_equal(runs[0], runs[1])
+    assert not np.array_equal(runs[0], positions)
+
+
 def test_potential_measure_splits_energy_and_force_by_entry_for_listed_particles(sim, tmp_path):
     """A Lennard-Jones liquid with a harmonic bond: per listed particle, each entry's energy and force
     (with its magnitude) against the LJ and harmonic formulas written here; torques are zero."""
