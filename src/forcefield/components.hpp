@@ -51,6 +51,7 @@
 #include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
 #include "forcefield/tabulated.hpp"
+#include "forcefield/wca_core_wells.hpp"
 #include "forcefield/wca_polyhedron.hpp"
 
 namespace structmd {
@@ -108,6 +109,13 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12"});
     v.template bond<RadialBond<Steric12>>({"Bond2", "Steric12Common_epsilon_sigma"}, {"epsilon", "sigma"});
     v.template bond<RadialBond<DebyeHuckel>>({"Bond2", "DebyeHuckel"});
+    v.template bond<RadialBond<LennardJonesKaranicolasBrooks>>({"Bond2", "LennardJonesKaranicolasBrooks"});
+    v.template bond<RadialBond<LennardJonesKaranicolasBrooks>>({"Bond2", "LennardJonesKaranicolasBrooksCommon_epsilon"},
+                                                               {"epsilon"});
+    v.template bond<RadialBond<LennardJonesGaussianBond>>({"Bond2", "LennardJonesGaussian"});
+    v.template bond<RadialBond<LennardJonesGaussianBond>>({"Bond2", "LennardJonesGaussianCommon_epsilon_D"},
+                                                          {"epsilon", "D"});
+    v.template bond<RadialBond<MorseWCABond>>({"Bond2", "MorseWCACommon_eps0"}, {"eps0"});
     v.template bond<RadialBond<MaxDistanceRestraint>>({"Bond2", "MaxDistanceRestraint"});
     v.template bond<HarmonicAnisotropicBond>({"Bond2", "HarmonicAnisotropic"});
     v.template configurable<TabulatedBond>({"Bond2", "Tabulated"});

@@ -4,6 +4,7 @@
 //   type 1: 4 [(s/r)^12 - (s/r)^6]     minimum at r = 2^(1/6) s
 //   type 2: (s/r)^12 - 2 (s/r)^6       minimum at r = s
 //   type 3: 5 (s/r)^12 - 6 (s/r)^10    minimum at r = s
+// (and Karanicolas-Brooks's 13 (s/r)^12 - 18 (s/r)^10 + 4 (s/r)^6, minimum -1 at r = s, a Bond2 only).
 // This file holds the shapes, the shared Params and evaluation, and LennardJonesTypeK: the NonBonded
 // form cut at r_c (the energy jumps there unless shifted, which subtracts U(r_c)) and the Bond2 form,
 // which has no cutoff. The WCA and general forms are in lennard_jones_wca.hpp and
@@ -52,6 +53,20 @@ struct LennardJonesShape3 {
         const R sr10 = sr4 * sr4 * sr2;
         const R sr12 = sr10 * sr2;
         return {R(60) * (sr10 - sr12), R(5) * sr12 - R(6) * sr10};
+    }
+};
+
+// Karanicolas and Brooks's native-contact form (a Bond2 of Go-like models): 13 (s/r)^12 - 18 (s/r)^10
+// + 4 (s/r)^6, minimum -1 at r = s with a small barrier beyond it.
+struct LennardJonesShapeKaranicolasBrooks {
+    static double minimum_distance(double sigma) { return sigma; }
+    template <class R>
+    static SMD_HD SMD_INLINE LennardJonesShapeTerm<R> at(R sr2) {
+        const R sr4 = sr2 * sr2;
+        const R sr6 = sr4 * sr2;
+        const R sr10 = sr6 * sr4;
+        const R sr12 = sr6 * sr6;
+        return {R(180) * sr10 - R(156) * sr12 - R(24) * sr6, R(13) * sr12 - R(18) * sr10 + R(4) * sr6};
     }
 };
 
@@ -114,5 +129,6 @@ struct LennardJones : EpsilonSigmaPair<LennardJones<Shape>> {
 using LennardJonesType1 = LennardJones<LennardJonesShape1>;
 using LennardJonesType2 = LennardJones<LennardJonesShape2>;
 using LennardJonesType3 = LennardJones<LennardJonesShape3>;
+using LennardJonesKaranicolasBrooks = LennardJones<LennardJonesShapeKaranicolasBrooks>;
 
 }  // namespace structmd

@@ -24,6 +24,7 @@
 #include "forcefield/morse.hpp"
 #include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
+#include "forcefield/wca_core_wells.hpp"
 
 using namespace structmd;
 
@@ -387,6 +388,47 @@ TEST(Gaussian, MatchesTheFormula) {
     EXPECT_EQ(at<GaussianBond>(0.0, p).dudr_over_r, 0.0);
 }
 
+TEST(LennardJonesKaranicolasBrooks, BondMatchesTheFormulaWithItsMinimumAtSigma) {
+    const double values[] = {kEps, kSigma};
+    const auto p = LennardJonesKaranicolasBrooks::make_bond_params<double>(
+        values_in_order(LennardJonesKaranicolasBrooks::bond_parameters(), values), Constants{});
+    const auto formula = [&](double r) {
+        const double x = kSigma / r;
+        return kEps * (13.0 * std::pow(x, 12) - 18.0 * std::pow(x, 10) + 4.0 * std::pow(x, 6));
+    };
+    expect_energy_and_derivative<LennardJonesKaranicolasBrooks>(p, formula, {0.85, 0.95, 1.05, 1.3, 1.8, 4.0});
+    EXPECT_NEAR(at<LennardJonesKaranicolasBrooks>(kSigma, p).energy, -kEps, 1e-13);
+    EXPECT_NEAR(at<LennardJonesKaranicolasBrooks>(kSigma, p).dudr_over_r, 0.0, 1e-12);
+}
+
+// The WCA core as the specification writes it: eps [(s/r)^12 - 2 (s/r)^6] + eps below s, else 0.
+double wca2(double eps, double s, double r) { return r < s ? lj2(eps, s, r) + eps : 0.0; }
+
+TEST(MorseWCA, MorseWellPlusACoreEndingAtR0) {
+    const double r0 = 1.2, depth = 2.0, width = 0.5, core = 3.0;
+    const double values[] = {r0, depth, width, core};
+    const auto p = MorseWCABond::make_bond_params<double>(values_in_order(MorseWCABond::bond_parameters(), values),
+                                                          Constants{});
+    const auto formula = [&](double r) {
+        const double x = 1.0 - std::exp(-(r - r0) / width);
+        return depth * (x * x - 1.0) + wca2(core, r0, r);
+    };
+    expect_energy_and_derivative<MorseWCABond>(p, formula, {0.8, 1.0, 1.15, 1.3, 1.7, 3.0});
+    EXPECT_NEAR(at<MorseWCABond>(r0, p).energy, -depth, 1e-13);
+}
+
+TEST(LennardJonesGaussian, CorePlusAGaussianWellOfTheSameDepth) {
+    const double variance = 0.2;
+    const double values[] = {kEps, kSigma, variance};
+    const auto p = LennardJonesGaussianBond::make_bond_params<double>(
+        values_in_order(LennardJonesGaussianBond::bond_parameters(), values), Constants{});
+    const auto formula = [&](double r) {
+        return wca2(kEps, kSigma, r) - kEps * std::exp(-(r - kSigma) * (r - kSigma) / (2.0 * variance));
+    };
+    expect_energy_and_derivative<LennardJonesGaussianBond>(p, formula, {0.9, 1.1, 1.25, 1.35, 1.6, 2.5, 3.5});
+    EXPECT_NEAR(at<LennardJonesGaussianBond>(kSigma, p).energy, -kEps, 1e-13);
+}
+
 TEST(MaxDistanceRestraint, FreeUpToTheLargestDistanceHarmonicBeyond) {
     const double K = 12.0, largest = 1.7;
     const double values[] = {K, largest};
@@ -450,6 +492,9 @@ TEST(SinglePrecision, MatchesDouble) {
     check_single_precision_bond<MorseBond>({1.5, 2.2, 0.4}, {0.9, 1.2, 1.7, 2.3});
     check_single_precision_bond<GaussianBond>({3.1, 2.0, 0.3}, {0.5, 1.2, 2.3, 3.0});
     check_single_precision_bond<MaxDistanceRestraint>({12.0, 1.7}, {1.9, 2.3, 3.0, 8.0});
+    check_single_precision_bond<LennardJonesKaranicolasBrooks>({kEps, kSigma}, {0.9, 1.05, 1.4, 3.0});
+    check_single_precision_bond<MorseWCABond>({1.2, 2.0, 0.5, 3.0}, {0.9, 1.1, 1.5, 2.5});
+    check_single_precision_bond<LennardJonesGaussianBond>({kEps, kSigma, 0.2}, {0.9, 1.1, 1.5, 2.5});
     expect_float_matches_double(
         [](auto tag) {
             return DebyeHuckel::make_params<decltype(tag)>(kDielectric, kDebyeLength, kDebyeCutoff, kKcalMolA);
