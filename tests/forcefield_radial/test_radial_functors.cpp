@@ -396,7 +396,7 @@ TEST(LennardJonesKaranicolasBrooks, BondMatchesTheFormulaWithItsMinimumAtSigma) 
         const double x = kSigma / r;
         return kEps * (13.0 * std::pow(x, 12) - 18.0 * std::pow(x, 10) + 4.0 * std::pow(x, 6));
     };
-    expect_energy_and_derivative<LennardJonesKaranicolasBrooks>(p, formula, {0.85, 0.95, 1.05, 1.3, 1.8, 4.0});
+    expect_energy_and_derivative<LennardJonesKaranicolasBrooks>(p, formula, {0.85, 0.95, 1.05, 1.45, 1.8, 4.0});
     EXPECT_NEAR(at<LennardJonesKaranicolasBrooks>(kSigma, p).energy, -kEps, 1e-13);
     EXPECT_NEAR(at<LennardJonesKaranicolasBrooks>(kSigma, p).dudr_over_r, 0.0, 1e-12);
 }
