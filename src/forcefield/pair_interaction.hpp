@@ -7,6 +7,7 @@
 
 #include "forcefield/hessian_kernels.hpp"
 #include "forcefield/interactor.hpp"
+#include "forcefield/lambda_coupling.hpp"
 #include "forcefield/pair_force_kernels.hpp"
 #include "forcefield/pair_kernel.hpp"
 #include "neighbour/verlet_list.hpp"
@@ -46,6 +47,18 @@ public:
                                                                  ntypes_, seed, blocks});
     }
 
+    bool couples_to_lambda() const override { return couples_to_lambda_v; }
+    void add_lambda_derivative(Particles<B, R>& particles, R* perParticle) override {
+        if constexpr (couples_to_lambda_v) {
+            ForceOutputs<R> out;
+            out.energy = perParticle;
+            backend_.for_each_lanes(particles.count,
+                                    PairKernel<PairLambdaDerivative<Potential>, R, PairR, false, true, false>{
+                                        particles.charge.data(), particles.radius.data(), this->group(),
+                                        list_->view(), table_.data(), ntypes_, out});
+        }
+    }
+
     void prepare(Particles<B, R>& p) override { list_->update(p.pos, p.count, p.box, p.version); }
 
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
@@ -60,6 +73,8 @@ public:
     }
 
 private:
+    static constexpr bool couples_to_lambda_v = structmd::couples_to_lambda<Potential>::value;
+
     const B& backend_;
     std::shared_ptr<VerletList<B, R>> list_;
     typename B::template Buffer<Params> table_;

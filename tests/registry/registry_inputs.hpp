@@ -122,6 +122,7 @@ inline std::vector<double> generic_numbers(const Parameter& p, size_t k, int row
         switch (p.must) {
             case Must::be_boolean: numbers.push_back(static_cast<double>((k + row + j) % 2)); break;
             case Must::be_integer:
+            case Must::be_positive_integer:
             case Must::be_at_least_one: numbers.push_back(static_cast<double>(1 + k + row + j)); break;
             default: numbers.push_back(1.0 + 0.1 * k + 0.03 * row + 0.01 * j); break;
         }
