@@ -381,7 +381,8 @@ public:
         backend_.activate();
         backend_.fill(p_.lambda, lambda);
         lambda_ = lambda;
-        cache_.invalidate();  // forces, energies and virials of the terms of lambda change at the same positions
+        // The forces, energies and virials of the terms of lambda change at the same positions.
+        if (forceField_.couples_to_lambda()) cache_.invalidate();
     }
     double lambda_derivative() override {
         if (!forceField_.couples_to_lambda()) return 0.0;

@@ -6,7 +6,8 @@ finite difference of the engine's energy between two inputs whose ensembles diff
 (Forces against -grad U, and the Hessian, run in test_component_gradients / test_hessian, whose CASES
 hold these terms at lambda = 0.6.) The schedules of LambdaActivation and LambdaCycle are checked step
 by step through the energy of a LambdaHarmonic bond with n = 1 between particles that cannot move
-(mass 0), whose energy is lambda times the spring's."""
+(mass 0), whose energy is lambda times the spring's. LennardJonesSoftCoreType1 is also checked against
+LAMMPS's lj/cut/soft (tests/reference/make_lammps_reference_soft_core.py)."""
 
 import copy
 import json
@@ -291,6 +292,29 @@ def test_lambda_survives_a_checkpoint(options, tmp_path):
         assert second.energy("term") == pytest.approx(harmonic_bonds(0.9), rel=1e-12)
         second.load_checkpoint(path)
         assert second.energy("term") == pytest.approx(saved, rel=1e-12)
+
+
+def test_a_step_call_undone_puts_back_its_lambda(options):
+    bond = TERMS["Bond2 LambdaHarmonic"][0]
+    steps = {"schedule": {"type": ["FlowControl", "LambdaActivation"],
+                          "parameters": {"intervalStep": 1, "startStep": 2, "lambdaValueStep": 100,
+                                         "lambdaValues": [0.45]}}}
+
+    def failing(positions, forces, step):
+        if step == 4:
+            raise ValueError("no convergence")
+
+    with structmd.Simulation(dict(options, precision="double")) as sim:
+        sim.load(document(bond, 0.9, steps, mass=0.0))
+        sim.step(1)
+        sim.set_force_callback(failing)
+        with pytest.raises(structmd.CallbackError):
+            sim.step(5)  # sets lambda 0.45 at step 2, fails at step 4
+        assert sim.step_number == 1
+        assert sim.energy("term") == pytest.approx(harmonic_bonds(0.9), rel=1e-12)
+        sim.set_force_callback(None)
+        sim.step(5)
+        assert sim.energy("term") == pytest.approx(harmonic_bonds(0.45), rel=1e-12)
 
 
 def test_terms_of_lambda_act_in_full_under_nvt(options):
