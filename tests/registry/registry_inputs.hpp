@@ -268,10 +268,12 @@ inline Json document(const Json& forceField, const Json& integrator = Json()) {
          {{"type", {"Types", "Basic"}},
           {"labels", {"name", "mass", "radius", "charge"}},
           {"data", Json::array({Json::array({"A", 1.0, 0.5, 1.0}), Json::array({"B", 2.0, 0.5, -0.5})})}}},
+        // lambda below 1, so that every parameter of a term of lambda (the soft core's alpha, the power
+        // n) acts on the result.
         {"ensemble",
-         {{"type", {"Ensemble", "NVT"}},
-          {"labels", {"box", "temperature"}},
-          {"data", Json::array({Json::array({Json::array({kBox, kBox, kBox}), 1.0})})}}}};
+         {{"type", {"Ensemble", "NVTlambda"}},
+          {"labels", {"box", "temperature", "lambda"}},
+          {"data", Json::array({Json::array({Json::array({kBox, kBox, kBox}), 1.0, 0.7})})}}}};
     doc["integrator"] = {{"stepper", stepper},
                          {"schedule",
                           {{"type", {"Schedule", "Integrator"}},
