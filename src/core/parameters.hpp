@@ -15,7 +15,7 @@
 namespace structmd {
 
 // What a parameter's numbers must be, beyond finite.
-enum class Must { be_finite, be_positive, be_non_negative, be_integer, be_at_least_one, be_boolean };
+enum class Must { be_finite, be_positive, be_non_negative, be_integer, be_positive_integer, be_at_least_one, be_boolean };
 
 struct Parameter {
     const char* name;

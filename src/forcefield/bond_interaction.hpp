@@ -9,6 +9,7 @@
 #include "forcefield/bond_potential.hpp"
 #include "forcefield/hessian_kernels.hpp"
 #include "forcefield/interactor.hpp"
+#include "forcefield/lambda_coupling.hpp"
 #include "forcefield/pair_force_kernels.hpp"
 
 namespace structmd {
@@ -73,6 +74,16 @@ public:
                                                seed, blocks});
     }
 
+    bool couples_to_lambda() const override { return couples_to_lambda_v; }
+    void add_lambda_derivative(Particles<B, R>& particles, R* perParticle) override {
+        if constexpr (couples_to_lambda_v) {
+            ForceOutputs<R> out;
+            out.energy = perParticle;
+            using Kernel = BondKernel<BondLambdaDerivative<Potential>, R, false, true, false>;
+            backend_.for_each(particles.count, index_.template kernel<Kernel>(particles, params_.data(), out));
+        }
+    }
+
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
             using Kernel = BondKernel<Potential, R, decltype(force)::value, decltype(energy)::value,
@@ -82,6 +93,8 @@ public:
     }
 
 private:
+    static constexpr bool couples_to_lambda_v = structmd::couples_to_lambda<Potential>::value;
+
     const B& backend_;
     BondIndex<B> index_;
     typename B::template Buffer<Params> params_;

@@ -40,6 +40,7 @@
 #include "forcefield/kim_hummer.hpp"
 #include "forcefield/kratky_porod.hpp"
 #include "forcefield/la_torre.hpp"
+#include "forcefield/lambda_harmonic.hpp"
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/lennard_jones_general.hpp"
 #include "forcefield/lennard_jones_wca.hpp"
@@ -47,6 +48,7 @@
 #include "forcefield/morse.hpp"
 #include "forcefield/plain_cylinder.hpp"
 #include "forcefield/plates.hpp"
+#include "forcefield/soft_core.hpp"
 #include "forcefield/spherical_shell.hpp"
 #include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
@@ -78,10 +80,15 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template pair<DLVOType3>({"NonBonded", "DLVOType3"});
     v.template pair<KimHummer>({"NonBonded", "KimHummer"});
     v.template configurable<TabulatedPair>({"NonBonded", "Tabulated"});
+    v.template pair<Steric6SoftCore>({"NonBonded", "Steric6SoftCore"});
+    v.template pair<Steric12SoftCore>({"NonBonded", "Steric12SoftCore"});
+    v.template pair<LennardJonesSoftCoreType1>({"NonBonded", "LennardJonesSoftCoreType1"});
+    v.template pair<LennardJonesSoftCoreType2>({"NonBonded", "LennardJonesSoftCoreType2"});
 
     v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});
     v.template bond<ConstantForceBond>({"Bond1", "ConstantForce"});
     v.template bond<FixedHarmonicAnisotropic>({"Bond1", "FixedHarmonicAnisotropic"});
+    v.template bond<LambdaFixedHarmonicAnisotropic>({"Bond1", "LambdaFixedHarmonicAnisotropic"}, {"n"});
 
     using Harmonic = RadialBond<HarmonicBond>;
     v.template bond<Harmonic>({"Bond2", "Harmonic"});
@@ -119,6 +126,13 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<RadialBond<MaxDistanceRestraint>>({"Bond2", "MaxDistanceRestraint"});
     v.template bond<HarmonicAnisotropicBond>({"Bond2", "HarmonicAnisotropic"});
     v.template configurable<TabulatedBond>({"Bond2", "Tabulated"});
+    v.template bond<RadialLambdaBond<LambdaHarmonicBond>>({"Bond2", "LambdaHarmonic"}, {"n"});
+    using SoftCoreBond1 = RadialLambdaBond<LennardJonesSoftCoreType1>;
+    v.template bond<SoftCoreBond1>({"Bond2", "LennardJonesSoftCoreType1"}, {"alpha", "n"});
+    v.template bond<SoftCoreBond1>({"Bond2", "LennardJonesSoftCoreType1Common_epsilon"}, {"epsilon", "alpha", "n"});
+    using SoftCoreBond2 = RadialLambdaBond<LennardJonesSoftCoreType2>;
+    v.template bond<SoftCoreBond2>({"Bond2", "LennardJonesSoftCoreType2"}, {"alpha", "n"});
+    v.template bond<SoftCoreBond2>({"Bond2", "LennardJonesSoftCoreType2Common_epsilon"}, {"epsilon", "alpha", "n"});
 
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngular"});
     v.template bond<HarmonicAngle>({"Bond3", "HarmonicAngularCommon_K"}, {"K"});

@@ -83,6 +83,20 @@ public:
         it.compute(p, out);
     }
 
+    bool couples_to_lambda() const {
+        for (const auto& it : interactors_)
+            if (it->couples_to_lambda()) return true;
+        return false;
+    }
+    // Adds the active terms' dU/dlambda to perParticle (by particle).
+    void add_lambda_derivative(Particles<B, R>& p, R* perParticle) {
+        for (auto& it : interactors_)
+            if (it->couples_to_lambda() && it->active(p.timeline.evaluating_step())) {
+                it->prepare(p);
+                it->add_lambda_derivative(p, perParticle);
+            }
+    }
+
     // The first term without second derivatives (empty when every term has them).
     std::string term_without_hessian() const {
         for (const auto& it : interactors_)

@@ -77,6 +77,11 @@ public:
         throw Error(STRUCTMD_ERR_INTERNAL, name() + ": a term without pair forces was asked for them");
     }
 
+    // Terms of the ensemble's lambda (lambda_coupling.hpp): whether this is one, and its dU/dlambda
+    // added to perParticle (by particle, split among the particles of each pair or bond as energies are).
+    virtual bool couples_to_lambda() const { return false; }
+    virtual void add_lambda_derivative(Particles<B, R>&, R*) {}
+
     // Keeps alive backend data that the term's parameters point into (a compiled expression, a
     // table's coefficients) for as long as the interactor lives.
     void own(std::shared_ptr<const void> data) { owned_.push_back(std::move(data)); }

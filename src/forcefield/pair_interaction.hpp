@@ -7,6 +7,7 @@
 
 #include "forcefield/hessian_kernels.hpp"
 #include "forcefield/interactor.hpp"
+#include "forcefield/lambda_coupling.hpp"
 #include "forcefield/pair_force_kernels.hpp"
 #include "forcefield/pair_kernel.hpp"
 #include "neighbour/verlet_list.hpp"
@@ -47,6 +48,18 @@ public:
                                                                  seed, blocks});
     }
 
+    bool couples_to_lambda() const override { return couples_to_lambda_v; }
+    void add_lambda_derivative(Particles<B, R>& particles, R* perParticle) override {
+        if constexpr (couples_to_lambda_v) {
+            ForceOutputs<R> out;
+            out.energy = perParticle;
+            backend_.for_each_lanes(particles.count,
+                                    PairKernel<PairLambdaDerivative<Potential>, R, PairR, false, true, false>{
+                                        particles.charge.data(), particles.radius.data(), this->group(),
+                                        list_->view(), table_of(table_), out});
+        }
+    }
+
     void prepare(Particles<B, R>& p) override { list_->update(p.pos, p.count, p.box, p.version); }
 
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
@@ -64,6 +77,7 @@ private:
     PairTable<P> table_of(const typename B::template Buffer<P>& table) const {
         return PairTable<P>{table.data(), ntypes_, batch_};
     }
+    static constexpr bool couples_to_lambda_v = structmd::couples_to_lambda<Potential>::value;
 
     const B& backend_;
     std::shared_ptr<VerletList<B, R>> list_;

@@ -34,13 +34,16 @@
 namespace structmd {
 
 // What potentials take from the system besides their parameters: the physical constants of the
-// input's units, the largest particle radius (the range of a potential of radii scales with it) and
-// the ensemble's temperature (a term given in units of k_B T scales with it).
+// input's units, the largest particle radius (the range of a potential of radii scales with it), the
+// ensemble's temperature (a term given in units of k_B T scales with it) and where the ensemble's
+// coupling parameter lambda lives on the backend (Particles::lambda): simulation steps change it
+// during a run, so a term of lambda keeps this pointer and reads the value at each evaluation.
 struct Constants {
     double boltzmann = 1.0;
     double electricConversion = 1.0;
     double largestRadius = 0.0;
     double temperature = 0.0;  // k_B T = boltzmann * temperature
+    const double* lambda = nullptr;  // set by the engine; null while the input is only read
 
     double kT() const { return boltzmann * temperature; }
 };

@@ -62,6 +62,9 @@ struct SystemDescription {
     std::vector<ParticleType> types;
     Vec3d box{0, 0, 0};
     double temperature = 0.0;  // in kelvin-like units: k_B T = units.boltzmann * temperature
+    // The coupling parameter of ["Ensemble","NVTlambda"]; empty under NVT, where the terms of lambda
+    // act in full (lambda = 1).
+    std::optional<double> lambda;
     int64_t currentStep = 0;
     double simulationTime = 0.0;
     std::optional<double> timeStep;

@@ -299,9 +299,14 @@ void read_types(const ComponentEntry& entry, std::vector<ParticleType>& types) {
     }
 }
 
+// ["Ensemble","NVT"], or ["Ensemble","NVTlambda"]: the same with the coupling parameter lambda of
+// the terms that depend on it (lambda_coupling.hpp), which simulation steps may change during a run.
 void read_ensemble(const ComponentEntry& entry, SystemDescription& description) {
-    require_subclass(entry, "NVT");
-    const Table table = read_table(entry.node, {"box", "temperature"});
+    if (entry.subclass != "NVT" && entry.subclass != "NVTlambda")
+        throw unknown_component(entry.node, {entry.cls, entry.subclass});
+    const bool withLambda = entry.subclass == "NVTlambda";
+    const Table table = read_table(entry.node, withLambda ? std::vector<std::string>{"box", "temperature", "lambda"}
+                                                          : std::vector<std::string>{"box", "temperature"});
     if (table.rows() != 1)
         throw input_error(entry.node.path() + ".data", "expected exactly one row, got " + std::to_string(table.rows()));
     const TrackedNode boxCell = table.cell(0, "box");
@@ -311,6 +316,13 @@ void read_ensemble(const ComponentEntry& entry, SystemDescription& description) 
             throw input_error(boxCell.at(axis).path(), "box length must be > 0 and <= 1e15, got " +
                                                            boxCell.at(axis).json().dump());
     description.temperature = read_at_least(table.cell(0, "temperature"), 0.0, "temperature");
+    if (withLambda) {
+        const TrackedNode lambdaCell = table.cell(0, "lambda");
+        const double lambda = lambdaCell.as<double>();
+        if (!(lambda >= 0.0 && lambda <= 1.0))
+            throw input_error(lambdaCell.path(), "lambda must be in [0, 1], got " + lambdaCell.json().dump());
+        description.lambda = lambda;
+    }
 }
 
 void read_fundamental(const ComponentEntry& entry, SystemDescription& description) {

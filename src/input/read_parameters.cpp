@@ -19,6 +19,9 @@ void check_rule(const TrackedNode& node, double value, Must must, const std::str
         case Must::be_integer:
             if (value != std::floor(value)) throw fail("an integer");
             break;
+        case Must::be_positive_integer:
+            if (!(value >= 1.0) || value != std::floor(value)) throw fail("an integer >= 1");
+            break;
         case Must::be_at_least_one:
             if (!(value >= 1.0)) throw fail("a " + what + " >= 1");
             break;

@@ -11,7 +11,7 @@
 
 namespace structmd {
 
-constexpr uint32_t kCheckpointFormatVersion = 1;
+constexpr uint32_t kCheckpointFormatVersion = 2;  // 2: the ensemble's lambda after the box
 
 // Throws Error(STRUCTMD_ERR_IO) naming the path and the reason.
 void write_checkpoint_file(const std::string& path, const std::vector<unsigned char>& payload);

@@ -93,9 +93,13 @@ public:
         }
         backend_.upload(p_.model, spec.modelId.data(), spec.modelId.size());
 
+        backend_.resize(p_.lambda, 1);
+        backend_.fill(p_.lambda, spec.lambda);
+        lambda_ = spec.lambda;
         context_.ntypes = spec.typeNames.size();
         context_.particles = p_.count;
         context_.constants = spec.constants;
+        context_.constants.lambda = p_.lambda.data();
         context_.batch = p_.batchIndex.empty() ? nullptr : p_.batchIndex.data();
         context_.model = p_.model.data();
         context_.log = &log_;
@@ -149,6 +153,7 @@ public:
                                             "schedule lists no integrator (energies and forces can still be read)");
         backend_.activate();
         rollback_.save(backend_, p_, activeStage_, integrators_);
+        lambdaAtCallStart_ = lambda_;
         backend_.begin_steps();
         try {
             for (int64_t k = 0; k < n; ++k) {
@@ -368,6 +373,26 @@ public:
         p_.box = Box<R>::make(lengths[0], lengths[1], lengths[2]);
         set_positions(xyz.data());
     }
+    double lambda() const override { return lambda_; }
+    void set_lambda(double lambda) override {
+        if (!(lambda >= 0.0 && lambda <= 1.0))
+            throw Error(STRUCTMD_ERR_ARGUMENT, "lambda: expected a value in [0, 1], got " + precise(lambda));
+        if (lambda == lambda_) return;
+        backend_.activate();
+        backend_.fill(p_.lambda, lambda);
+        lambda_ = lambda;
+        // The forces, energies and virials of the terms of lambda change at the same positions.
+        if (forceField_.couples_to_lambda()) cache_.invalidate();
+    }
+    double lambda_derivative() override {
+        if (!forceField_.couples_to_lambda()) return 0.0;
+        backend_.activate();
+        backend_.resize(lambdaDerivatives_, p_.count);
+        backend_.fill(lambdaDerivatives_, R(0));
+        forceField_.add_lambda_derivative(p_, lambdaDerivatives_.data());
+        return backend_.reduce(p_.count, SumEnergy<R>{lambdaDerivatives_.data()}, 0.0);
+    }
+
     void set_external_forces(const double* f) override {
         backend_.activate();
         if (f == nullptr) {
@@ -477,6 +502,7 @@ public:
         // context the force field is made with; a failure puts the old ones back.
         const Constants previousConstants = context_.constants;
         context_.constants = spec.constants;
+        context_.constants.lambda = p_.lambda.data();
         ForceField<B, R> forceField;
         std::vector<std::unique_ptr<Integrator<B, R>>> integrators;
         try {
@@ -506,6 +532,7 @@ public:
         s.time = current_time();
         s.activeStage = activeStage_;
         s.box = boxLengths_;
+        s.lambda = lambda_;
         s.pos = download(p_.pos);
         s.image = download(p_.image);
         s.vel = download(p_.vel);
@@ -530,6 +557,7 @@ public:
         else
             backend_.upload(p_.externalForce, s.externalForce.data(), s.externalForce.size());
         for (size_t k = 0; k < integrators_.size(); ++k) integrators_[k]->restore(s.integrators[k]);
+        set_lambda(s.lambda);
         activeStage_ = s.activeStage;
         set_clock(s.step, s.time);
         positions_changed();
@@ -612,6 +640,7 @@ private:
     void roll_back() {
         backend_.fill(p_.fault, kNoFault);
         activeStage_ = rollback_.restore(backend_, p_, integrators_);
+        set_lambda(lambdaAtCallStart_);
         set_clock(p_.timeline.step(), p_.timeline.time());
         positions_changed();
     }
@@ -782,6 +811,9 @@ private:
     ForceFieldContext context_;  // what the force field is made with, kept to make it again
     int64_t retiredListBuilds_ = 0;  // builds of the lists of force fields replaced by change_parameters
     double externalEnergy_ = 0.0;  // the host's field energy (structmd_set_external_energy)
+    double lambda_ = 1.0;          // the value in p_.lambda, as the host set it last
+    double lambdaAtCallStart_ = 1.0;  // what a roll back to the start of the step call puts back
+    typename B::template Buffer<R> lambdaDerivatives_;  // dU/dlambda by particle, made when asked
     CallbackTerm<B, R> callbacks_;  // the host's force callbacks
     // The ids of the last subset call on the backend, and on the host to compare the next with.
     typename B::template Buffer<int64_t> subsetIds_;

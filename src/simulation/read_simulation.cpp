@@ -32,6 +32,7 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     else if (const IntegratorSpec& first = spec.integrators[spec.schedule.front().integrator]; !first.overdamped)
         spec.velocityKT = first.temperature;
     spec.box = system.box;
+    spec.lambda = system.lambda.value_or(1.0);
     spec.currentStep = system.currentStep;
     spec.simulationTime = system.simulationTime;
     for (const input::ParticleType& type : system.types) spec.typeNames.push_back(type.name);

@@ -96,6 +96,14 @@ public:
     virtual void set_box(const double lengths[3]) = 0;
     virtual void set_external_forces(const double* f) = 0;  // nullptr clears (the energy too)
 
+    // The ensemble's coupling parameter lambda (["Ensemble","NVTlambda"]; 1 under NVT), which the
+    // terms of lambda read on the backend. set_lambda takes a value in [0, 1] (ERR_ARGUMENT
+    // otherwise) and costs one small kernel, no synchronisation: simulation steps call it between steps.
+    virtual double lambda() const = 0;
+    virtual void set_lambda(double lambda) = 0;
+    // dU/dlambda summed over the active terms of lambda (0 without any).
+    virtual double lambda_derivative() = 0;
+
     // Subsets by id: ids[0..m) are valid and distinct (the API layer checks), values are 3m doubles
     // in the order of ids. Only m entries move between the host and the backend. The setters
     // behave as the whole-array ones for those particles; set_external_forces_of makes a zero field

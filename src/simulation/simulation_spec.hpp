@@ -19,6 +19,7 @@ struct SimulationSpec {
     Constants constants;  // k_B, the electric conversion factor of the units, the largest particle radius
     double velocityKT = 0.0;  // k_B T of drawn velocities: the first scheduled integrator's temperature
     std::array<double, 3> box{0, 0, 0};
+    double lambda = 1.0;  // the ensemble's coupling parameter (1 under NVT)
     int64_t currentStep = 0;
     double simulationTime = 0.0;
 

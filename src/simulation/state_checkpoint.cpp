@@ -34,6 +34,7 @@ std::vector<unsigned char> encode_state(const DynamicState<R>& s) {
     out.put(s.time);
     out.put(s.activeStage);
     for (double length : s.box) out.put(length);
+    out.put(s.lambda);
     put_vector(out, s.pos);
     put_vector(out, s.image);
     put_vector(out, s.vel);
@@ -69,9 +70,10 @@ DynamicState<R> decode_state(const std::vector<unsigned char>& payload, const st
     s.time = in.get<double>();
     s.activeStage = in.get<int32_t>();
     for (double& length : s.box) length = in.get<double>();
+    s.lambda = in.get<double>();
     if (s.step < shape.firstStep || s.step > shape.finalStep || s.activeStage < -1 || s.activeStage >= shape.stages ||
-        !(s.box[0] > 0 && s.box[1] > 0 && s.box[2] > 0))
-        throw mismatch("its step, schedule stage or box is out of range");
+        !(s.box[0] > 0 && s.box[1] > 0 && s.box[2] > 0) || !(s.lambda >= 0.0 && s.lambda <= 1.0))
+        throw mismatch("its step, schedule stage, box or lambda is out of range");
     s.pos = get_vector<Real4<R>>(in, count);
     s.image = get_vector<Image>(in, count);
     s.vel = get_vector<Real4<R>>(in, count);

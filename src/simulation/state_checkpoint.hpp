@@ -18,6 +18,7 @@ struct DynamicState {
     double time = 0.0;
     int32_t activeStage = -1;
     std::array<double, 3> box{};
+    double lambda = 1.0;  // the ensemble's coupling parameter, which simulation steps change
     std::vector<Real4<R>> pos, vel;
     std::vector<Image> image;
     std::vector<Real4<R>> externalForce;  // empty when the host set none

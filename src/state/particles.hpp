@@ -34,6 +34,7 @@ struct Particles {
     Buffer<int> model;  // modelId by particle
     Buffer<unsigned long long> fault;  // one word, kNoFault when all is well
     Buffer<StepClock> clock;           // one entry: the step and time on the backend
+    Buffer<double> lambda;             // one entry: the ensemble's coupling parameter, in [0, 1]
     Timeline timeline;                 // the step and time, as the host knows them
     int64_t version = 0;               // changes whenever positions or the box change
     uint64_t seed = 0;                 // the system's seed, for counter-based noise

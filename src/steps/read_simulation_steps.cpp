@@ -12,12 +12,14 @@
 #include "steps/hessian_measure.hpp"
 #include "steps/info_step.hpp"
 #include "steps/interactors_energy_measure.hpp"
+#include "steps/lambda_schedule.hpp"
 #include "steps/mean_square_displacement.hpp"
 #include "steps/pairwise_force_measure.hpp"
 #include "steps/particle_list_measure.hpp"
 #include "steps/potential_measure.hpp"
 #include "steps/sort_step.hpp"
 #include "steps/stress_measure.hpp"
+#include "steps/thermodynamic_integration.hpp"
 #include "steps/thermodynamic_measure.hpp"
 #include "steps/write_step.hpp"
 
@@ -46,6 +48,9 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(force_between_sets_measure_entry());
         steps.add(write_step_entry());
         steps.add(sort_step_entry());
+        steps.add(thermodynamic_integration_entry());
+        steps.add(lambda_activation_entry());
+        steps.add(lambda_cycle_entry());
         return steps;
     }();
     return registry;
@@ -73,6 +78,7 @@ const char* kind_text(StepValue kind) {
         case StepValue::text: return "text";
         case StepValue::flag: return "flag";
         case StepValue::texts: return "list of texts";
+        case StepValue::numbers: return "list of numbers";
     }
     return "?";
 }
@@ -102,6 +108,16 @@ nlohmann::json read_value(const input::TrackedNode& node, const StepParameter& p
             nlohmann::json names = nlohmann::json::array();
             for (size_t k = 0; k < node.size(); ++k) names.push_back(node.at(k).as<std::string>());
             return names;
+        }
+        case StepValue::numbers: {
+            if (!node.is_array() || node.size() == 0) throw input_error(node.path(), "expected a non-empty list of numbers");
+            nlohmann::json numbers = nlohmann::json::array();
+            for (size_t k = 0; k < node.size(); ++k) {
+                const double value = node.at(k).as<double>();
+                input::check_rule(node.at(k), value, parameter.must, what_of(parameter));
+                numbers.push_back(value);
+            }
+            return numbers;
         }
     }
     throw Error(STRUCTMD_ERR_INTERNAL, node.path() + ": parameter of no known kind");
@@ -149,6 +165,9 @@ std::string StepParameters::text(const std::string& name) const {
 bool StepParameters::flag(const std::string& name) const { return value(name, StepValue::flag).get<bool>(); }
 std::vector<std::string> StepParameters::texts(const std::string& name) const {
     return value(name, StepValue::texts).get<std::vector<std::string>>();
+}
+std::vector<double> StepParameters::numbers(const std::string& name) const {
+    return value(name, StepValue::numbers).get<std::vector<double>>();
 }
 std::string StepParameters::path(const std::string& name) const { return entryPath_ + ".parameters." + name; }
 

@@ -23,7 +23,7 @@
 namespace structmd {
 
 // What a step parameter holds in JSON.
-enum class StepValue { integer, number, text, flag, texts };  // texts: a list of strings
+enum class StepValue { integer, number, text, flag, texts, numbers };  // texts, numbers: lists
 
 struct StepParameter {
     const char* name;
@@ -51,6 +51,7 @@ public:
     std::string text(const std::string& name) const;
     bool flag(const std::string& name) const;
     std::vector<std::string> texts(const std::string& name) const;
+    std::vector<double> numbers(const std::string& name) const;
     // <entry>.parameters.<name>, for the factory's own messages.
     std::string path(const std::string& name) const;
 

@@ -4,6 +4,7 @@ energy, in double precision, on a random non-degenerate configuration that strad
 boundary. The functor tests check the formulas; this checks the plumbing around them."""
 
 import math
+import zlib
 
 import numpy as np
 import pytest
@@ -86,6 +87,21 @@ def surface(subclass, parameters, table):
                      "labels": ["name", "epsilon", "sigma"], "data": table}}
 
 
+def soft_pair(subclass, shift=False):
+    entry = pair(subclass, shift=shift)
+    entry["term"]["parameters"].update({"alpha": 0.5, "n": 3})
+    return entry
+
+
+# The terms of lambda (test_lambda.py) run at this lambda (["Ensemble","NVTlambda"]).
+LAMBDA = 0.6
+
+
+def with_parameters(case, parameters):
+    case["term"]["parameters"] = parameters
+    return case
+
+
 def chain(ids, arity):
     return [ids[k:k + arity] for k in range(0, len(ids) - arity + 1)]
 
@@ -156,6 +172,20 @@ CASES = {
     "Bond4 Dihedral4": bonds("Bond4", "Dihedral4", 4, ["K", "phi0"],
                              lambda k: [[1.0, 0.5, 0.2, 0.1], [0.1, 0.2, 0.3, 0.4]]),
     "Bond4 IDP_Fourier": bonds("Bond4", "IDP_Fourier", 4, [], lambda k: []),
+    **{f"NonBonded {name}": soft_pair(name) for name in ["Steric6SoftCore", "Steric12SoftCore",
+                                                          "LennardJonesSoftCoreType1", "LennardJonesSoftCoreType2"]},
+    "NonBonded LennardJonesSoftCoreType2 shifted": soft_pair("LennardJonesSoftCoreType2", shift=True),
+    "Bond2 LambdaHarmonic": with_parameters(bonds("Bond2", "LambdaHarmonic", 2, ["K", "r0"], lambda k: [10.0 + k, 1.0]),
+                                            {"n": 3}),
+    "Bond1 LambdaFixedHarmonicAnisotropic": with_parameters(
+        bonds("Bond1", "LambdaFixedHarmonicAnisotropic", 1, ["K", "r0", "position"],
+              lambda k: [[3.0, 5.0, 2.0], [0.4, 0.1, 0.3], [3.3, 0.2 * k - 1.0, 0.5]]), {"n": 2}),
+    "Bond2 LennardJonesSoftCoreType1": with_parameters(
+        bonds("Bond2", "LennardJonesSoftCoreType1", 2, ["epsilon", "sigma"], lambda k: [0.5, 0.8]),
+        {"alpha": 0.4, "n": 2}),
+    "Bond2 LennardJonesSoftCoreType2Common_epsilon": with_parameters(
+        bonds("Bond2", "LennardJonesSoftCoreType2Common_epsilon", 2, ["sigma"], lambda k: [0.8 + 0.02 * k]),
+        {"epsilon": 0.7, "alpha": 0.4, "n": 1}),
     "External Plates": {"term": {"type": ["External", "Plates"],
                                  "parameters": {"platesSeparation": 6.0, "platesEpsilon": 0.5}}},
     "External SphericalShell": {"term": {"type": ["External", "SphericalShell"],
@@ -179,10 +209,15 @@ CASES = {
 
 def case_document(name):
     """The configuration of case `name` (its own seed) and its input, with charges where the term reads them."""
-    positions = configuration(seed=sorted(CASES).index(name))
+    # Seeded by the name alone, so that adding a case moves no other case's configuration.
+    positions = configuration(seed=zlib.crc32(name.encode()))
     charged = any(word in name for word in ("DebyeHuckel", "DLVO", "KimHummer"))
     charges = list(np.linspace(-1.0, 1.0, N)) if charged else None
-    return positions, document(positions, CASES[name], charges)
+    doc = document(positions, CASES[name], charges)
+    if "SoftCore" in name or "Lambda" in name:
+        doc["global"]["ensemble"] = {"type": ["Ensemble", "NVTlambda"], "labels": ["box", "temperature", "lambda"],
+                                     "data": [[[BOX, BOX, BOX], 300.0, LAMBDA]]}
+    return positions, doc
 
 
 @pytest.mark.parametrize("name", sorted(CASES))

@@ -22,13 +22,17 @@ std::vector<double> evaluate(const Scene& scene, const ForceFieldSpec& spec, con
     const input::SystemDescription& system = scene.system();
     const int64_t n = system.numParticles();
     const CpuBackend backend(1);
+    Particles<CpuBackend, double> p;
+    // The ensemble's lambda, which the terms of lambda read where the engine keeps it.
+    const double lambda = system.lambda.value_or(1.0);
+    backend.upload(p.lambda, &lambda, 1);
     ForceFieldContext context;
     context.ntypes = system.types.size();
     context.particles = n;
     context.constants = constants_of(system);
+    context.constants.lambda = p.lambda.data();
     ForceField<CpuBackend, double> forceField = make_interactors<CpuBackend, double>(backend, spec, context, factories);
 
-    Particles<CpuBackend, double> p;
     p.count = n;
     p.box = Box<double>::make(system.box[0], system.box[1], system.box[2]);
     std::vector<Real4<double>> pos;

@@ -122,6 +122,7 @@ inline std::vector<double> generic_numbers(const Parameter& p, size_t k, int row
         switch (p.must) {
             case Must::be_boolean: numbers.push_back(static_cast<double>((k + row + j) % 2)); break;
             case Must::be_integer:
+            case Must::be_positive_integer:
             case Must::be_at_least_one: numbers.push_back(static_cast<double>(1 + k + row + j)); break;
             default: numbers.push_back(1.0 + 0.1 * k + 0.03 * row + 0.01 * j); break;
         }
@@ -267,10 +268,12 @@ inline Json document(const Json& forceField, const Json& integrator = Json()) {
          {{"type", {"Types", "Basic"}},
           {"labels", {"name", "mass", "radius", "charge"}},
           {"data", Json::array({Json::array({"A", 1.0, 0.5, 1.0}), Json::array({"B", 2.0, 0.5, -0.5})})}}},
+        // lambda below 1, so that every parameter of a term of lambda (the soft core's alpha, the power
+        // n) acts on the result.
         {"ensemble",
-         {{"type", {"Ensemble", "NVT"}},
-          {"labels", {"box", "temperature"}},
-          {"data", Json::array({Json::array({Json::array({kBox, kBox, kBox}), 1.0})})}}}};
+         {{"type", {"Ensemble", "NVTlambda"}},
+          {"labels", {"box", "temperature", "lambda"}},
+          {"data", Json::array({Json::array({Json::array({kBox, kBox, kBox}), 1.0, 0.7})})}}}};
     doc["integrator"] = {{"stepper", stepper},
                          {"schedule",
                           {{"type", {"Schedule", "Integrator"}},

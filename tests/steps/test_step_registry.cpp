@@ -69,6 +69,7 @@ json sample_value(const StepParameter& parameter) {
         case StepValue::number: return 1.0;
         case StepValue::flag: return true;
         case StepValue::texts: return json::array();
+        case StepValue::numbers: return json::array({1.0});
         case StepValue::text: {
             const auto found = text.find(parameter.name);
             if (found == text.end()) {
