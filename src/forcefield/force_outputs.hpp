@@ -1,8 +1,7 @@
 #pragma once
 // Where an interaction term adds its contributions: per-particle forces, energies, virials and
 // torques (lab frame; only terms acting on orientations add to them), each a null pointer when not
-// wanted. Kept free of the standard library: kernels compiled at run time
-// include it (core/hd.hpp).
+// wanted. Kept free of the standard library: kernels compiled at run time include it (core/hd.hpp).
 #include "core/hd.hpp"
 #include "core/vec.hpp"
 
