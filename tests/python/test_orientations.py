@@ -252,6 +252,23 @@ def test_orientations_continue_from_a_checkpoint_as_without_it(options, tmp_path
         np.testing.assert_array_equal(sim.orientations, straight)
 
 
+def test_a_blow_up_puts_the_orientations_back_with_the_positions(options):
+    """A step call that fails (here a force so large that the first move is infinite) returns to the
+    state it started from, orientations included, though the rotation of that step came first."""
+    n = 4
+    force_field = {"spin": torque_entry([0.0, 0.0, 5.0]), "push": {"type": ["External", "ConstantForce"],
+                                                                 "parameters": {"constantForce": [1e308, 0.0, 0.0]}}}
+    doc = document(grid(n, 3.0), ["small"] * n, {"rigid": rigid_body(0.01, 1e-6)}, [("rigid", 10)],
+                   force_field=force_field, directions=random_quaternions(n, seed=10))
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+        before = sim.orientations
+        with pytest.raises(structmd.NumericalError):
+            sim.step(5)
+        assert sim.step_number == 0
+        np.testing.assert_array_equal(sim.orientations, before)
+
+
 def test_a_checkpoint_without_orientations_restores_the_identity(options, tmp_path):
     doc = document(grid(3), ["small"] * 3)
     path = str(tmp_path / "plain.chk")
