@@ -290,6 +290,32 @@ STRUCTMD_API structmd_status structmd_get_positions(structmd_sim* sim, double* x
 STRUCTMD_API structmd_status structmd_get_velocities(structmd_sim* sim, double* v, int64_t n);
 
 /**
+ * Orientations of the particles as unit quaternions, scalar part first (UAMMD-structured's
+ * "direction": the body frame's axes in the lab frame are the columns of R(q)). A simulation whose
+ * input gives no directions, and whose integrators turn no particle, has every particle at the
+ * identity [1, 0, 0, 0] (and keeps no orientation array until structmd_set_orientations).
+ *
+ * @param sim      the handle.
+ * @param[out] q   double[4n], [q0, q1, q2, q3] per particle (dimensionless).
+ * @param n        the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_get_orientations(structmd_sim* sim, double* q, int64_t n);
+
+/**
+ * The torque on each particle from the terms that act on orientations (["External","ConstantTorque"]),
+ * in the lab frame; zero where no such term acts. Evaluated with the forces, as structmd_get_forces:
+ * a simulation whose integrators turn no particle starts keeping torques at the first call, and from
+ * then on evaluates them with every force evaluation.
+ *
+ * @param sim      the handle.
+ * @param[out] t   double[3n], torques (energy).
+ * @param n        the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_get_torques(structmd_sim* sim, double* t, int64_t n);
+
+/**
  * The forces are evaluated first when stale (after a load, structmd_set_positions or
  * structmd_set_box); otherwise they are those the integrator computed at the current positions, so
  * reading them after a step costs only the copy.
@@ -423,6 +449,19 @@ STRUCTMD_API structmd_status structmd_set_positions(structmd_sim* sim, const dou
  *         wrong; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_set_velocities(structmd_sim* sim, const double* v, int64_t n);
+
+/**
+ * Replaces all orientations, and marks forces, energies and virial stale (terms may read
+ * orientations). A simulation without orientations keeps them from this call on.
+ *
+ * @param sim  the handle.
+ * @param q    double[4n], unit quaternions [q0, q1, q2, q3], scalar part first (dimensionless).
+ * @param n    the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if any value is not finite, any
+ *         quaternion's squared norm differs from 1 by more than 1e-6 (the message names the
+ *         particle), or n is wrong; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_set_orientations(structmd_sim* sim, const double* q, int64_t n);
 
 /**
  * Sets the box edge lengths, keeping fractional coordinates (particles are scaled with the box, as
@@ -729,9 +768,9 @@ STRUCTMD_API structmd_status structmd_get_view(structmd_sim* sim, const char* qu
 
 /**
  * Writes the dynamic state to a file: step, time, box, positions (with their periodic images),
- * velocities, external forces and the integrators' own state, in the engine's working precision.
- * The file is written beside the target and renamed over it once complete, so an interrupted write
- * never replaces a good checkpoint. The forces are not stored: they are recomputed from the
+ * velocities, orientations (when the simulation has them), external forces and the integrators' own
+ * state, in the engine's working precision. The file is written beside the target and renamed over
+ * it once complete, so an interrupted write never replaces a good checkpoint. The forces are not stored: they are recomputed from the
  * positions, so a restarted run continues the same trajectory (bit for bit on the CPU backend, to
  * rounding on CUDA).
  *

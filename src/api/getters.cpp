@@ -34,6 +34,20 @@ structmd_status structmd_get_velocities(structmd_sim* sim, double* v, int64_t n)
     });
 }
 
+structmd_status structmd_get_orientations(structmd_sim* sim, double* q, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, q, "q");
+        s.simulation->get_orientations(q);
+    });
+}
+
+structmd_status structmd_get_torques(structmd_sim* sim, double* t, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, t, "t");
+        s.simulation->get_torques(t);
+    });
+}
+
 structmd_status structmd_get_forces(structmd_sim* sim, double* f, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, f, "f");

@@ -9,12 +9,28 @@ using namespace structmd::api;
 
 namespace {
 
-void require_finite(const double* values, int64_t count, const char* name) {
+// components: values per particle (3 for vectors, 4 for quaternions).
+void require_finite(const double* values, int64_t count, const char* name, int components = 3) {
     for (int64_t k = 0; k < count; ++k)
         if (!std::isfinite(values[k]))
             throw Error(STRUCTMD_ERR_ARGUMENT, std::string(name) + "[" + std::to_string(k) +
                                                    "]: not a finite number (particle id " +
-                                                   std::to_string(k / 3) + ")");
+                                                   std::to_string(k / components) + ")");
+}
+
+// A host normalises in double precision: a norm off by more than rounding is a wrong quaternion.
+constexpr double kQuaternionNormTolerance = 1e-6;
+
+void require_unit_quaternions(const double* q, int64_t n) {
+    require_finite(q, 4 * n, "q", 4);
+    for (int64_t i = 0; i < n; ++i) {
+        const double* row = q + 4 * i;
+        const double norm2 = row[0] * row[0] + row[1] * row[1] + row[2] * row[2] + row[3] * row[3];
+        if (!(std::abs(norm2 - 1.0) <= kQuaternionNormTolerance))
+            throw Error(STRUCTMD_ERR_ARGUMENT, "q[" + std::to_string(4 * i) + ".." + std::to_string(4 * i + 3) +
+                                                   "]: the orientation of particle id " + std::to_string(i) +
+                                                   " is not a unit quaternion (norm^2 = " + std::to_string(norm2) + ")");
+    }
 }
 
 }  // namespace
@@ -34,6 +50,14 @@ structmd_status structmd_set_velocities(structmd_sim* sim, const double* v, int6
         require_count(loaded(s), n, v, "v");
         require_finite(v, 3 * n, "v");
         s.simulation->set_velocities(v);
+    });
+}
+
+structmd_status structmd_set_orientations(structmd_sim* sim, const double* q, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, q, "q");
+        require_unit_quaternions(q, n);
+        s.simulation->set_orientations(q);
     });
 }
 

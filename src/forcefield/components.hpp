@@ -24,6 +24,7 @@
 #include "forcefield/best_chen_hummer_angle.hpp"
 #include "forcefield/clashed.hpp"
 #include "forcefield/constant_force_bond.hpp"
+#include "forcefield/constant_torque.hpp"
 #include "forcefield/debye_huckel.hpp"
 #include "forcefield/dihedral.hpp"
 #include "forcefield/dlvo.hpp"
@@ -149,6 +150,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template configurable<TabulatedDihedral>({"Bond4", "Tabulated"});
 
     v.template external<ExternalConstantForce>({"External", "ConstantForce"});
+    v.template configurable<ConstantTorqueComponent>({"External", "ConstantTorque"});
     v.template external<Plates>({"External", "Plates"});
     v.template external<SphericalShell>({"External", "SphericalShell"});
 

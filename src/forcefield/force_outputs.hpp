@@ -1,7 +1,7 @@
 #pragma once
-// Where an interaction term adds its contributions: per-particle forces, energies and virials, each
-// a null pointer when not wanted. Kept free of the standard library: kernels compiled at run time
-// include it (core/hd.hpp).
+// Where an interaction term adds its contributions: per-particle forces, energies, virials and
+// torques (lab frame; only terms acting on orientations add to them), each a null pointer when not
+// wanted. Kept free of the standard library: kernels compiled at run time include it (core/hd.hpp).
 #include "core/hd.hpp"
 #include "core/vec.hpp"
 
@@ -12,6 +12,7 @@ struct ForceOutputs {
     Real4<R>* force = nullptr;
     R* energy = nullptr;
     Tensor3<R>* virial = nullptr;
+    Real4<R>* torque = nullptr;  // last: a term built against the earlier layout still reads the others
 };
 
 // Adds one particle's sums to the requested outputs; each particle is written by one thread only.

@@ -72,11 +72,13 @@ struct SystemDescription {
     // state + topology.structure, by particle id
     std::vector<Vec3d> positions;
     std::vector<Vec3d> velocities;  // empty when the state gives none
+    std::vector<std::array<double, 4>> orientations;  // the state's direction [q0, q1, q2, q3], normalised; empty when not given
     std::vector<int32_t> typeIndex;
     std::vector<double> mass, radius, charge;  // type values with the state's overrides applied
     std::vector<int32_t> modelId, batchId;
     std::vector<int32_t> resId, chainId;  // empty when the structure has no such column (PDB output reads them)
-    // The state's per-particle frictionConstant and translationalSelfDiffusion, by name, when given.
+    // The state's per-particle frictionConstant, translationalSelfDiffusion and rotationalSelfDiffusion,
+    // by name, when given.
     std::map<std::string, std::vector<double>> particleColumns;
 
     // components, in document order

@@ -383,22 +383,25 @@ struct StateTable {
 };
 
 // An orientation [q0, q1, q2, q3] (scalar first, as UAMMD-structured writes it): four numbers
-// of unit norm, to the few digits a generator may print.
-void check_quaternion(const TrackedNode& cell) {
+// of unit norm, to the few digits a generator may print; returned normalised to full precision.
+std::array<double, 4> read_quaternion(const TrackedNode& cell) {
     if (!cell.is_array() || cell.size() != 4) throw input_error(cell.path(), "expected a quaternion [q0, q1, q2, q3]");
+    std::array<double, 4> q{};
     double norm2 = 0.0;
     for (size_t k = 0; k < 4; ++k) {
-        const double q = cell.at(k).as<double>();
-        norm2 += q * q;
+        q[k] = cell.at(k).as<double>();
+        norm2 += q[k] * q[k];
     }
     if (!(std::abs(norm2 - 1.0) < 1e-4))
         throw input_error(cell.path(), "a direction quaternion must have unit norm, got norm^2 = " + std::to_string(norm2));
+    for (double& component : q) component /= std::sqrt(norm2);
+    return q;
 }
 
 StateTable read_state(const TrackedNode& state, SystemDescription& description) {
     Table table = read_table(state, {"id", "position"},
                              {"velocity", "mass", "radius", "charge", "direction", "polarizability", "innerRadius",
-                              "frictionConstant", "translationalSelfDiffusion"});
+                              "frictionConstant", "translationalSelfDiffusion", "rotationalSelfDiffusion"});
     const size_t count = table.rows();
     const auto particleCount = static_cast<int64_t>(count);
     std::vector<int64_t> idOfRow =
@@ -409,17 +412,17 @@ StateTable read_state(const TrackedNode& state, SystemDescription& description) 
     // coordinate read here is finite.
     description.positions.resize(count);
     if (table.has("velocity")) description.velocities.resize(count);
+    if (table.has("direction")) description.orientations.resize(count);
     for (size_t row = 0; row < count; ++row) {
         const auto id = static_cast<size_t>(idOfRow[row]);
         description.positions[id] = table.cell(row, "position").as<Vec3d>();
         if (table.has("velocity")) description.velocities[id] = table.cell(row, "velocity").as<Vec3d>();
-        // UAMMD-structured's orientation and induced-dipole data: checked, not kept, as no component
-        // of this version uses them.
-        if (table.has("direction")) check_quaternion(table.cell(row, "direction"));
+        if (table.has("direction")) description.orientations[id] = read_quaternion(table.cell(row, "direction"));
+        // UAMMD-structured's induced-dipole data: checked, not kept, as no component of this version uses it.
         if (table.has("polarizability")) table.cell(row, "polarizability").as<double>();
         if (table.has("innerRadius")) read_at_least(table.cell(row, "innerRadius"), 0.0, "innerRadius");
         // Per-particle values that integrators take when their own parameter is absent.
-        for (const char* column : {"frictionConstant", "translationalSelfDiffusion"}) {
+        for (const char* column : {"frictionConstant", "translationalSelfDiffusion", "rotationalSelfDiffusion"}) {
             if (!table.has(column)) continue;
             std::vector<double>& values = description.particleColumns[column];
             values.resize(count);

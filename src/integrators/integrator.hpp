@@ -60,6 +60,7 @@ struct IntegratorInputs {
     static constexpr bool minimiser = false;    // moves no time forward: needs no time step
     static constexpr bool needsRadius = false;  // its mobility uses each particle's radius
     static constexpr bool overdamped = false;   // moves positions only: the particles have no velocities
+    static constexpr bool rotates = false;      // moves orientations too (by the torques)
     // A parameter that may be left out when the state gives each particle's value in a column
     // (UAMMD-structured's particle data): its default 0 then means "from the column".
     static constexpr const char* fallbackParameter = nullptr;

@@ -19,6 +19,7 @@ struct IntegratorSpec {
     double temperature = 0.0;  // k_B T, in energy units
     int group = -1;            // index into ForceFieldSpec::groups; -1: every particle
     bool overdamped = false;   // IntegratorInputs::overdamped
+    bool rotates = false;      // IntegratorInputs::rotates: the engine keeps orientations and torques
     ParameterValues parameters;  // the integrator's own (IntegratorInputs::parameters())
 };
 
@@ -37,6 +38,7 @@ struct IntegratorComponent {
     bool overdamped = false;
     const char* fallbackParameter = nullptr;  // IntegratorInputs::fallbackParameter and fallbackColumn
     const char* fallbackColumn = nullptr;
+    bool rotates = false;
 };
 
 const Registry<IntegratorComponent>& integrator_registry();

@@ -5,6 +5,7 @@
 //   template <template <class B, class R> class Integrator, class Inputs> void integrator(ComponentKey key);
 #include "core/registry.hpp"
 #include "integrators/brownian.hpp"
+#include "integrators/brownian_rigid_body.hpp"
 #include "integrators/langevin_bbk.hpp"
 #include "integrators/langevin_gjf.hpp"
 #include "integrators/steepest_descent.hpp"
@@ -18,6 +19,7 @@ void visit_builtin_integrators(Visitor& v) {
     v.template integrator<LangevinBBK, LangevinBBKInputs>({"Langevin", "BBK"});
     v.template integrator<LangevinGJF, LangevinInputs>({"Langevin", "GJF"});
     v.template integrator<BrownianEulerMaruyama, BrownianInputs>({"Brownian", "EulerMaruyama"});
+    v.template integrator<BrownianEulerMaruyamaRigidBody, BrownianRigidBodyInputs>({"Brownian", "EulerMaruyamaRigidBody"});
     // The minimiser is also known by the reference's two spellings.
     v.template integrator<SteepestDescent, SteepestDescentInputs>({"SteepestDescent", "SteepestDescent"});
     v.template integrator<SteepestDescent, SteepestDescentInputs>({"Minimization", "SteepestDescent"});

@@ -16,7 +16,7 @@ struct ReaderEntries {
     template <template <class, class> class Integrator, class Inputs>
     void integrator(ComponentKey key) {
         registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate,
-                      Inputs::overdamped, Inputs::fallbackParameter, Inputs::fallbackColumn});
+                      Inputs::overdamped, Inputs::fallbackParameter, Inputs::fallbackColumn, Inputs::rotates});
     }
 };
 
@@ -44,6 +44,7 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
             registry.at({entry.cls, entry.subclass}, spec.path + ".type", "integrator");
         spec.key = component.key;
         spec.overdamped = component.overdamped;
+        spec.rotates = component.rotates;
         const input::TrackedNode params = input::parameters_of(entry.node);
 
         std::optional<double> dt = system.timeStep;
@@ -68,6 +69,11 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
             throw input_error(spec.path + ".parameters." + component.fallbackParameter,
                               std::string("missing: give it here, or each particle's in a state column '") +
                                   component.fallbackColumn + "'");
+        // A rotating integrator takes its rotational mobility from the same place as its translational one.
+        if (fromColumn && component.rotates && !system.particleColumns.count("rotationalSelfDiffusion"))
+            throw input_error(spec.path + ".parameters." + component.fallbackParameter,
+                              std::string("missing: give it here, or each particle's in state columns '") +
+                                  component.fallbackColumn + "' and 'rotationalSelfDiffusion'");
         if (fromColumn && component.overdamped && !(spec.temperature > 0.0))
             throw input_error(spec.path + ".parameters.temperature",
                               std::string("the mobility D / (k_B T) from the state's ") + component.fallbackColumn +

@@ -80,6 +80,19 @@ public:
         const std::vector<R> selfDiffusion(spec.selfDiffusion.begin(), spec.selfDiffusion.end());
         backend_.upload(p_.friction, friction.data(), friction.size());
         backend_.upload(p_.selfDiffusion, selfDiffusion.data(), selfDiffusion.size());
+        const std::vector<R> rotationalDiffusion(spec.rotationalSelfDiffusion.begin(), spec.rotationalSelfDiffusion.end());
+        backend_.upload(p_.rotationalSelfDiffusion, rotationalDiffusion.data(), rotationalDiffusion.size());
+        // Orientations and torques only where the input has them or an integrator turns particles.
+        const bool rotates = std::any_of(spec.integrators.begin(), spec.integrators.end(),
+                                         [](const IntegratorSpec& s) { return s.rotates; });
+        if (!spec.orientations.empty()) {
+            std::vector<double> q;
+            for (const auto& row : spec.orientations) q.insert(q.end(), row.begin(), row.end());
+            upload_orientations(q.data());
+        } else if (rotates) {
+            create_orientations();
+        }
+        if (rotates) backend_.resize(p_.torque, p_.count);
         if (std::any_of(batchId_.begin(), batchId_.end(), [](int b) { return b != 0; })) {
             backend_.upload(p_.batch, batchId_.data(), batchId_.size());
             std::vector<int> ids = batchId_;
@@ -208,6 +221,33 @@ public:
         for (int64_t k = 0; k < 3 * p_.count; ++k) xyz[k] += images[k] * boxLengths_[k % 3];
     }
     void get_radii(double* r) override { std::copy(radii_.begin(), radii_.end(), r); }
+    void get_orientations(double* q) override {
+        backend_.activate();
+        if (p_.dir.empty()) {
+            for (int64_t i = 0; i < p_.count; ++i) std::copy(kIdentity, kIdentity + 4, q + 4 * i);
+            return;
+        }
+        const Real4<R>* values = backend_.download(p_.dir, hostVectors_, p_.dir.size());
+        for (int64_t i = 0; i < p_.count; ++i) {
+            const double row[4] = {values[i].x, values[i].y, values[i].z, values[i].w};
+            std::copy(row, row + 4, q + 4 * i);
+        }
+    }
+    // Terms that read orientations see the new ones: what was computed from the old is stale.
+    void set_orientations(const double* q) override {
+        backend_.activate();
+        upload_orientations(q);
+        cache_.invalidate();
+    }
+    void get_torques(double* t) override {
+        backend_.activate();
+        if (p_.torque.empty()) {
+            backend_.resize(p_.torque, p_.count);
+            cache_.forces_changed();  // the forces at hand came without torques
+        }
+        compute(kForces);
+        download_vectors(p_.torque, t);
+    }
     const std::vector<std::string>& type_names() const override { return typeNames_; }
     // A failed getter leaves the caller's array alone: the forces are checked before they are handed over.
     void get_forces(double* f) override {
@@ -537,6 +577,7 @@ public:
         s.image = download(p_.image);
         s.vel = download(p_.vel);
         if (!p_.externalForce.empty()) s.externalForce = download(p_.externalForce);
+        if (!p_.dir.empty()) s.dir = download(p_.dir);
         for (const auto& integrator : integrators_) s.integrators.push_back(integrator->state());
         write_checkpoint_file(path, encode_state(s));
     }
@@ -556,6 +597,11 @@ public:
             p_.externalForce.release();
         else
             backend_.upload(p_.externalForce, s.externalForce.data(), s.externalForce.size());
+        // A state saved without orientations had every particle at the identity.
+        if (!s.dir.empty())
+            backend_.upload(p_.dir, s.dir.data(), s.dir.size());
+        else if (!p_.dir.empty())
+            backend_.fill(p_.dir, identity_quaternion());
         for (size_t k = 0; k < integrators_.size(); ++k) integrators_[k]->restore(s.integrators[k]);
         set_lambda(s.lambda);
         activeStage_ = s.activeStage;
@@ -695,6 +741,20 @@ private:
         const auto n = static_cast<size_t>(p_.count);
         pack_velocities_of<R>(v, nullptr, p_.count, masses_, hostVectors_.reserve(n));
         backend_.upload(p_.vel, hostVectors_, n);
+    }
+
+    static constexpr double kIdentity[4] = {1.0, 0.0, 0.0, 0.0};
+    static Real4<R> identity_quaternion() { return {R(1), R(0), R(0), R(0)}; }
+    void create_orientations() {
+        backend_.resize(p_.dir, p_.count);
+        backend_.fill(p_.dir, identity_quaternion());
+    }
+    // n quaternions [q0, q1, q2, q3] into the orientations, which are made if there were none.
+    void upload_orientations(const double* q) {
+        const auto n = static_cast<size_t>(p_.count);
+        Real4<R>* values = hostVectors_.reserve(n);
+        for (size_t i = 0; i < n; ++i) values[i] = {R(q[4 * i]), R(q[4 * i + 1]), R(q[4 * i + 2]), R(q[4 * i + 3])};
+        backend_.upload(p_.dir, hostVectors_, n);
     }
 
     // The m forces f (3m values) into the vector staging, as Real4 with w = 0.

@@ -123,10 +123,13 @@ struct CopyState {
     Real4<R>* toPos;
     Image* toImage;
     Real4<R>* toVel;
+    const Real4<R>* fromDir = nullptr;  // orientations, copied when both are given
+    Real4<R>* toDir = nullptr;
     SMD_HD void operator()(int64_t i) const {
         toPos[i] = fromPos[i];
         toImage[i] = fromImage[i];
         toVel[i] = fromVel[i];
+        if (fromDir && toDir) toDir[i] = fromDir[i];
     }
 };
 

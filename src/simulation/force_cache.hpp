@@ -24,6 +24,11 @@ public:
             backend.for_each(p.count, InitForces<R>{p.force.data(), p.externalForce.empty() ? nullptr
                                                                                            : p.externalForce.data()});
             out.force = p.force.data();
+            // Torques, where kept, go with the forces: the same pass makes both.
+            if (!p.torque.empty()) {
+                backend.fill(p.torque, Real4<R>{R(0), R(0), R(0), R(0)});
+                out.torque = p.torque.data();
+            }
         }
         if ((flags & kEnergy) && energy_ != p.version) {
             backend.resize(p.energy, p.count);

@@ -47,6 +47,9 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
         spec.friction = column->second;
     if (auto column = system.particleColumns.find("translationalSelfDiffusion"); column != system.particleColumns.end())
         spec.selfDiffusion = column->second;
+    if (auto column = system.particleColumns.find("rotationalSelfDiffusion"); column != system.particleColumns.end())
+        spec.rotationalSelfDiffusion = column->second;
+    spec.orientations = system.orientations;
     spec.batchId = system.batchId;
     spec.modelId = system.modelId;
     return spec;

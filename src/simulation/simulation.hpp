@@ -63,6 +63,13 @@ public:
     virtual void get_masses(double* m) = 0;
     virtual void get_types(int32_t* types) = 0;
     virtual void get_radii(double* r) = 0;
+    // Orientations as unit quaternions [q0, q1, q2, q3] (4n); [1, 0, 0, 0] for a simulation without
+    // any. Setting them (each checked to be of unit norm by the caller) keeps them from then on.
+    virtual void get_orientations(double* q) = 0;
+    virtual void set_orientations(const double* q) = 0;
+    // The torque on each particle (3n, lab frame) at the present state; kept, and evaluated with
+    // the forces, from the first call on.
+    virtual void get_torques(double* t) = 0;
     virtual const std::vector<std::string>& type_names() const = 0;
 
     // Energy terms: "potential", "kinetic", "total", "external", or a forceField entry name; an

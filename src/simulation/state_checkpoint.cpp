@@ -44,6 +44,11 @@ std::vector<unsigned char> encode_state(const DynamicState<R>& s) {
         out.put(static_cast<uint32_t>(state.size()));
         put_vector(out, state);
     }
+    // Last, and only when there are orientations: a checkpoint without them reads as before.
+    if (!s.dir.empty()) {
+        out.put(static_cast<uint8_t>(1));
+        put_vector(out, s.dir);
+    }
     return out.bytes();
 }
 
@@ -80,6 +85,7 @@ DynamicState<R> decode_state(const std::vector<unsigned char>& payload, const st
     if (in.get<uint8_t>()) s.externalForce = get_vector<Real4<R>>(in, count);
     s.integrators.resize(shape.integrators);
     for (auto& state : s.integrators) state = get_vector<double>(in, in.get<uint32_t>());
+    if (!in.at_end() && in.get<uint8_t>() == 1) s.dir = get_vector<Real4<R>>(in, count);
     if (!in.at_end()) throw mismatch("it has more data than this simulation's integrators hold");
     return s;
 }

@@ -22,6 +22,7 @@ struct DynamicState {
     std::vector<Real4<R>> pos, vel;
     std::vector<Image> image;
     std::vector<Real4<R>> externalForce;  // empty when the host set none
+    std::vector<Real4<R>> dir;            // orientations; empty when the simulation has none
     std::vector<std::vector<double>> integrators;
 };
 

@@ -48,6 +48,13 @@ struct Particles {
         view.stepOffset += ahead;
         return {fault.data(), view, maxMove2};
     }
+
+    // Orientations, last so that terms built against the earlier layout read the rest unchanged.
+    // dir: unit quaternions (x: the scalar part q0; y, z, w: q1, q2, q3, UAMMD-structured's order),
+    // empty unless the input gives directions, an integrator rotates or the host set them.
+    Buffer<Real4<R>> dir;
+    Buffer<Real4<R>> torque;            // lab frame, w unused; empty until an integrator or the host reads torques
+    Buffer<R> rotationalSelfDiffusion;  // the state's column; empty when not given
 };
 
 }  // namespace structmd

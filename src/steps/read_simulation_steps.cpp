@@ -9,6 +9,7 @@
 #include "steps/force_between_sets_measure.hpp"
 #include "steps/gyration_radius.hpp"
 #include "steps/height_measure.hpp"
+#include "steps/mean_angular_correlation.hpp"
 #include "steps/hessian_measure.hpp"
 #include "steps/info_step.hpp"
 #include "steps/interactors_energy_measure.hpp"
@@ -34,6 +35,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(interactors_energy_measure_entry());
         steps.add(mean_square_displacement_entry());
         steps.add(gyration_radius_entry());
+        steps.add(mean_angular_correlation_entry());
         steps.add(center_of_mass_position_entry());
         steps.add(mean_radius_entry());
         steps.add(distances_measure_entry());

@@ -1,5 +1,5 @@
-// The text trajectory formats (xyz, sp, spf, lammpstrj, pdb, and UAMMD-structured's coord, vel and
-// itpv) and the table of every format. Values are written with 8 significant digits (pdb: its fixed
+// The text trajectory formats (xyz, sp, spf, lammpstrj, pdb, and UAMMD-structured's coord, vel,
+// itpv and the orientation formats spo, svv and itpd) and the table of every format. Values are written with 8 significant digits (pdb: its fixed
 // columns).
 #include <algorithm>
 #include <cerrno>
@@ -9,6 +9,7 @@
 #include <map>
 #include <vector>
 
+#include "core/quaternion.hpp"
 #include "steps/chemical_elements.hpp"
 #include "steps/dcd_writer.hpp"
 #include "steps/trajectory_writer.hpp"
@@ -119,6 +120,86 @@ protected:
         for (size_t i = 0; i < frame.types.size(); ++i)
             std::fprintf(f, "%.8g %.8g %.8g %.8g %d %.8g %.8g %.8g\n", r[3 * i], r[3 * i + 1], r[3 * i + 2],
                          frame.radii[i], frame.types[i], F[3 * i], F[3 * i + 1], F[3 * i + 2]);
+    }
+};
+
+// The body frame's axes of particle k of a frame, in the lab frame.
+struct BodyAxes {
+    Vec3<double> x, y, z;
+};
+BodyAxes body_axes(const TrajectoryFrame& frame, size_t k) {
+    const double* q = &frame.orientations[4 * k];
+    const Real4<double> quaternion{q[0], q[1], q[2], q[3]};
+    return {body_x(quaternion), body_y(quaternion), body_z(quaternion)};
+}
+
+// UAMMD-structured's spo (superpunto with orientations): per particle the sp line "x y z radius type",
+// then three small spheres (radius / 5) on its surface along its body axes, "x+a y+a z+a radius/5 t"
+// with a the x, y, z body axis times the radius and t = 2, 3, 4 times the type.
+class SpoWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_orientations() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        write_sp_header(f, frame);
+        for (size_t i = 0; i < frame.types.size(); ++i) {
+            const Vec3<double> p{frame.positions[3 * i], frame.positions[3 * i + 1], frame.positions[3 * i + 2]};
+            const double a = frame.radii[i];
+            const int type = frame.types[i];
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, type);
+            const BodyAxes axes = body_axes(frame, i);
+            const Vec3<double> marked[3] = {axes.x, axes.y, axes.z};
+            for (int k = 0; k < 3; ++k) {
+                const Vec3<double> m = p + a * marked[k];
+                std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", m.x, m.y, m.z, 0.2 * a, (k + 2) * type);
+            }
+        }
+    }
+};
+
+// UAMMD-structured's svv (superpunto with arrows, for SVV3D): per particle the sp line
+// "x y z radius type", then its three body axes as arrows "x y z ax ay az color" of length twice the
+// radius, colored 1 (x), 5 (y) and 8 (z).
+class SvvWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_orientations() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        write_sp_header(f, frame);
+        static constexpr int kColors[3] = {1, 5, 8};
+        for (size_t i = 0; i < frame.types.size(); ++i) {
+            const Vec3<double> p{frame.positions[3 * i], frame.positions[3 * i + 1], frame.positions[3 * i + 2]};
+            const double a = frame.radii[i];
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, frame.types[i]);
+            const BodyAxes axes = body_axes(frame, i);
+            const Vec3<double> arrows[3] = {axes.x, axes.y, axes.z};
+            for (int k = 0; k < 3; ++k) {
+                const Vec3<double> v = (2.0 * a) * arrows[k];
+                std::fprintf(f, "%.8g %.8g %.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, v.x, v.y, v.z, kColors[k]);
+            }
+        }
+    }
+};
+
+// UAMMD-structured's itpd: N, an empty line, then "id type x y z q0 q1 q2 q3" per particle.
+class ItpdWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_orientations() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        const double* r = frame.positions.data();
+        const double* q = frame.orientations.data();
+        std::fprintf(f, "%zu\n\n", frame.ids.size());
+        for (size_t i = 0; i < frame.ids.size(); ++i)
+            std::fprintf(f, "%lld %d %.8g %.8g %.8g %.8g %.8g %.8g %.8g\n", static_cast<long long>(frame.ids[i]),
+                         frame.types[i], r[3 * i], r[3 * i + 1], r[3 * i + 2], q[4 * i], q[4 * i + 1], q[4 * i + 2],
+                         q[4 * i + 3]);
     }
 };
 
@@ -272,7 +353,8 @@ private:
 }  // namespace
 
 const std::vector<std::string>& trajectory_formats() {
-    static const std::vector<std::string> names{"xyz", "sp", "spf", "lammpstrj", "dcd", "pdb", "coord", "vel", "itpv"};
+    static const std::vector<std::string> names{"xyz", "sp", "spf", "lammpstrj", "dcd", "pdb", "coord", "vel", "itpv",
+                                                "spo", "svv", "itpd"};
     return names;
 }
 
@@ -283,6 +365,9 @@ std::unique_ptr<TrajectoryWriter> make_trajectory_writer(const std::string& form
     if (format == "coord") return std::make_unique<CoordWriter>(std::move(options));
     if (format == "vel") return std::make_unique<VelocityWriter>(std::move(options));
     if (format == "itpv") return std::make_unique<ItpvWriter>(std::move(options));
+    if (format == "spo") return std::make_unique<SpoWriter>(std::move(options));
+    if (format == "svv") return std::make_unique<SvvWriter>(std::move(options));
+    if (format == "itpd") return std::make_unique<ItpdWriter>(std::move(options));
     if (format == "lammpstrj") return std::make_unique<LammpsDumpWriter>(std::move(options));
     if (format == "dcd") return std::make_unique<DcdWriter>(std::move(options));
     if (format == "pdb") return std::make_unique<PdbWriter>(std::move(options));

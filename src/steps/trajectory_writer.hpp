@@ -24,6 +24,7 @@ struct TrajectoryFrame {
     std::vector<double> radii;           // n
     std::vector<double> velocities;      // 3n for writers that need_velocities(), else empty
     std::vector<double> forces;          // 3n for writers that need_forces(), else empty
+    std::vector<double> orientations;    // 4n quaternions [q0, q1, q2, q3] for writers that need_orientations()
     std::vector<std::string> typeNames;  // indexed by type
 };
 
@@ -51,6 +52,7 @@ public:
     // What a frame must carry besides positions, types and radii: fetched only for those formats.
     virtual bool needs_velocities() const { return false; }
     virtual bool needs_forces() const { return false; }
+    virtual bool needs_orientations() const { return false; }
 };
 
 // The names outputFormat accepts, which are also the file extensions.

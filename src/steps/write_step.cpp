@@ -26,8 +26,10 @@ void WriteStep::run(Simulation& sim) {
     sim.get_radii(radii_.data());
     velocities_.resize(writer_->needs_velocities() ? 3 * n : 0);
     forces_.resize(writer_->needs_forces() ? 3 * n : 0);
+    orientations_.resize(writer_->needs_orientations() ? 4 * n : 0);
     if (!velocities_.empty()) sim.get_velocities(velocities_.data());
     if (!forces_.empty()) sim.get_forces(forces_.data());
+    if (!orientations_.empty()) sim.get_orientations(orientations_.data());
 
     frame_.step = sim.current_step();
     frame_.time = sim.current_time();
@@ -40,6 +42,7 @@ void WriteStep::run(Simulation& sim) {
     frame_.radii.clear();
     frame_.velocities.clear();
     frame_.forces.clear();
+    frame_.orientations.clear();
     for (int64_t i = 0; i < n; ++i) {
         if (!members_.empty() && !members_[i]) continue;
         frame_.ids.push_back(i);
@@ -49,6 +52,8 @@ void WriteStep::run(Simulation& sim) {
         if (!velocities_.empty())
             frame_.velocities.insert(frame_.velocities.end(), &velocities_[3 * i], &velocities_[3 * i] + 3);
         if (!forces_.empty()) frame_.forces.insert(frame_.forces.end(), &forces_[3 * i], &forces_[3 * i] + 3);
+        if (!orientations_.empty())
+            frame_.orientations.insert(frame_.orientations.end(), &orientations_[4 * i], &orientations_[4 * i] + 4);
     }
     writer_->write(frame_);
 }

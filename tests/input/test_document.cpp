@@ -2,6 +2,8 @@
 // spec/input-format.md; every failure must be STRUCTMD_ERR_INPUT and name where it is.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <string>
 
 #include "core/error.hpp"
@@ -164,22 +166,27 @@ TEST(Document, StateOverridesAndVelocities) {
 }
 
 // UAMMD-structured's orientation and induced-dipole columns (17 of its 72 example inputs have
-// "direction"): accepted and checked.
+// "direction"): accepted and checked; the orientations kept, normalised, by particle id.
 TEST(Document, StateDirectionPolarizabilityAndInnerRadius) {
     json document = valid_document();
     document["state"] = {{"labels", {"id", "position", "direction", "polarizability", "innerRadius"}},
                          {"data",
                           {{0, {0, 0, 0}, {1, 0, 0, 0}, 0.5, 0.2},
-                           {1, {1, 1, 1}, {0.5, 0.5, 0.5, 0.5}, 0.0, 0.0},
-                           {2, {2, 2, 2}, {0.0, 0.0, 0.6, 0.8}, 1.5, 0.1}}}};
-    EXPECT_NO_THROW(parse_document(document.dump()));  // the state section is checked whole there
-    document["state"]["data"][2][2] = {0.0, 0.0, 0.6, 0.7};
-    expect_input_error(document, {"state.data[2][2]", "unit norm"});
-    document["state"]["data"][2][2] = {0.0, 0.6, 0.8};
-    expect_input_error(document, {"state.data[2][2]", "quaternion"});
-    document["state"]["data"][2][2] = {0.0, 0.0, 0.6, 0.8};
-    document["state"]["data"][1][4] = -0.1;
-    expect_input_error(document, {"state.data[1][4]", "innerRadius must be >= 0"});
+                           {2, {2, 2, 2}, {0.0, 0.0, 0.6, 0.80002}, 1.5, 0.1},
+                           {1, {1, 1, 1}, {0.5, 0.5, 0.5, 0.5}, 0.0, 0.0}}}};
+    const SystemDescription system = parse_document(document.dump()).system;
+    ASSERT_EQ(system.orientations.size(), 3u);
+    EXPECT_EQ(system.orientations[1], (std::array<double, 4>{0.5, 0.5, 0.5, 0.5}));
+    const double norm = std::sqrt(0.36 + 0.80002 * 0.80002);
+    EXPECT_NEAR(system.orientations[2][2], 0.6 / norm, 1e-15);
+    EXPECT_NEAR(system.orientations[2][3], 0.80002 / norm, 1e-15);
+    document["state"]["data"][1][2] = {0.0, 0.0, 0.6, 0.7};
+    expect_input_error(document, {"state.data[1][2]", "unit norm"});
+    document["state"]["data"][1][2] = {0.0, 0.6, 0.8};
+    expect_input_error(document, {"state.data[1][2]", "quaternion"});
+    document["state"]["data"][1][2] = {0.0, 0.0, 0.6, 0.8};
+    document["state"]["data"][2][4] = -0.1;
+    expect_input_error(document, {"state.data[2][4]", "innerRadius must be >= 0"});
 }
 
 TEST(Document, MalformedJsonGivesLineAndColumn) {

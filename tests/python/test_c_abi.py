@@ -213,6 +213,7 @@ def valid_arguments(sim, prototype, n, good_input_file):
         "lengths": lambda: ffi.new("double[]", [systems.BASE_BOX] * 3),
         "xyz": lambda: ffi.new("double[]", np.ravel(systems.BASE_POSITIONS).tolist()),
         "v": lambda: ffi.new("double[]", np.ravel(systems.BASE_VELOCITIES).tolist()),
+        "q": lambda: ffi.new("double[]", [1.0, 0.0, 0.0, 0.0] * max(1, n)),  # identity orientations
         "ids": lambda: ffi.new("int64_t[]", list(range(max(1, n)))),
         "energy": lambda: 0.5,
         "quantity": lambda: ffi.new("char[]", b"positions"),
@@ -779,6 +780,26 @@ def test_set_positions_wraps_into_the_box(loaded):
     wrapped = get_array(loaded, "structmd_get_positions")
     assert np.all(wrapped >= -box / 2) and np.all(wrapped < box / 2)
     np.testing.assert_allclose(minimum_image(wrapped - outside, box), 0.0, atol=1e-12)
+
+
+def test_orientations_round_trip_and_a_non_unit_quaternion_changes_nothing(loaded):
+    n = num_particles(loaded)
+    np.testing.assert_array_equal(get_array(loaded, "structmd_get_orientations", components=4),
+                                  [[1.0, 0.0, 0.0, 0.0]] * n)  # the input gives no directions
+    q = np.random.default_rng(11).normal(size=(n, 4))
+    q /= np.linalg.norm(q, axis=1)[:, None]
+    check(loaded, lib.structmd_set_orientations(loaded, ffi.new("double[]", q.ravel().tolist()), n))
+    np.testing.assert_allclose(get_array(loaded, "structmd_get_orientations", components=4), q, atol=1e-15)
+    bad = q.copy()
+    bad[n - 1] *= 1.001
+    expect(loaded, lib.structmd_set_orientations(loaded, ffi.new("double[]", bad.ravel().tolist()), n), ARGUMENT)
+    assert f"particle id {n - 1} is not a unit quaternion" in message(loaded)
+    np.testing.assert_allclose(get_array(loaded, "structmd_get_orientations", components=4), q, atol=1e-15)
+    # No term of this system acts on orientations: zero torques, and the forces are unchanged.
+    forces = get_array(loaded, "structmd_get_forces")
+    np.testing.assert_array_equal(get_array(loaded, "structmd_get_torques"), 0.0)
+    np.testing.assert_array_equal(get_array(loaded, "structmd_get_forces"), forces)
+    assert_usable(loaded)
 
 
 def test_set_positions_makes_forces_and_energies_current(new_handle):

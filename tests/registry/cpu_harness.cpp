@@ -46,6 +46,7 @@ std::vector<double> evaluate(const Scene& scene, const ForceFieldSpec& spec, con
     backend.upload(p.fault, &noFault, 1);
     backend.resize(p.force, n);
     backend.resize(p.energy, n);
+    backend.resize(p.torque, n);
     p.version = 1;
 
     std::vector<double> result;
@@ -56,14 +57,19 @@ std::vector<double> evaluate(const Scene& scene, const ForceFieldSpec& spec, con
         backend.upload(p.clock, &clock, 1);
         backend.fill(p.force, Real4<double>{0, 0, 0, 0});
         backend.fill(p.energy, 0.0);
+        backend.fill(p.torque, Real4<double>{0, 0, 0, 0});
         forceField.prepare(p);
-        forceField.compute_all(p, ForceOutputs<double>{p.force.data(), p.energy.data(), nullptr});
+        forceField.compute_all(p, ForceOutputs<double>{p.force.data(), p.energy.data(), nullptr, p.torque.data()});
         double energy = 0.0;
         for (int64_t i = 0; i < n; ++i) energy += p.energy.data()[i];
         result.push_back(energy);
         for (int64_t i = 0; i < n; ++i) {
             const Real4<double>& f = p.force.data()[i];
             result.insert(result.end(), {f.x, f.y, f.z});
+        }
+        for (int64_t i = 0; i < n; ++i) {
+            const Real4<double>& t = p.torque.data()[i];
+            result.insert(result.end(), {t.x, t.y, t.z});
         }
     }
     return result;

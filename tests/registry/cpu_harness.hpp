@@ -30,7 +30,8 @@ struct Scene {
 
 Scene read_scene(const std::string& text, const Registry<ForceFieldComponent>& registry = forcefield_registry());
 
-// For each time: the total potential energy of the force field, then the 3n force components, with
+// For each time: the total potential energy of the force field, the 3n force components and the 3n
+// torque components (terms acting on orientations), with
 // the particles where the input puts them (time matters to fields that move).
 std::vector<double> evaluate(const Scene& scene, const ForceFieldSpec& spec, const std::vector<double>& times,
                              const CpuFactories& factories = cpu_factories());

@@ -227,7 +227,7 @@ TEST_P(ParameterOrder, EveryParameterChangesTheResultOnItsOwn) {
             const std::vector<double> result = evaluate(scene_, other, kTimes);
             changed = changed || (finite(result) && !identical(result, base_));
         }
-        EXPECT_TRUE(changed) << "changing " << p.name << " alone changes no energy or force (finitely)";
+        EXPECT_TRUE(changed) << "changing " << p.name << " alone changes no energy, force or torque (finitely)";
     }
 }
 

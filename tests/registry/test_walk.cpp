@@ -79,13 +79,16 @@ TEST_P(ForceFieldWalk, LoadsFromItsSchemaWithFiniteEnergyAndForces) {
     const int64_t n = static_cast<int64_t>(chain_positions().size());
     std::vector<double> forces(3 * n, NAN);
     ASSERT_EQ(structmd_get_forces(sim.get(), forces.data(), n), STRUCTMD_OK) << sim.error();
+    std::vector<double> torques(3 * n, NAN);
+    ASSERT_EQ(structmd_get_torques(sim.get(), torques.data(), n), STRUCTMD_OK) << sim.error();
     double largest = 0.0;
-    for (double f : forces) {
-        EXPECT_TRUE(std::isfinite(f)) << "a force component is " << f;
-        largest = std::max(largest, std::fabs(f));
-    }
-    // Every component pushes some particle of this system: one that loads and does nothing is wrong.
-    EXPECT_GT(largest, 0.0) << "no force on any particle";
+    for (const std::vector<double>* values : {&forces, &torques})
+        for (double f : *values) {
+            EXPECT_TRUE(std::isfinite(f)) << "a force or torque component is " << f;
+            largest = std::max(largest, std::fabs(f));
+        }
+    // Every component pushes or turns some particle of this system: one that loads and does nothing is wrong.
+    EXPECT_GT(largest, 0.0) << "no force or torque on any particle";
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, ForceFieldWalk, ::testing::ValuesIn(forcefield_keys()),

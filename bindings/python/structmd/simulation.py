@@ -273,24 +273,26 @@ class Simulation:
             return list(buffer)
         return [tuple(buffer[components * i:components * (i + 1)]) for i in range(n)]
 
-    def _vectors_argument(self, values, name):
-        """(a C double[3n] the library can read, n), checking the shape against the particle count."""
+    def _vectors_argument(self, values, name, components=3):
+        """(a C double[components n] the library can read, n), checking the shape against the particle
+        count."""
         n = self.num_particles
+        k = components
         if _np is not None:
             array = _np.ascontiguousarray(values, dtype=_np.float64)
-            if array.shape not in ((n, 3), (3 * n,)):
+            if array.shape not in ((n, k), (k * n,)):
                 raise ArgumentError(STATUS["STRUCTMD_ERR_ARGUMENT"],
-                                    f"{name}: expected shape ({n}, 3) or ({3 * n},), got {array.shape}")
+                                    f"{name}: expected shape ({n}, {k}) or ({k * n},), got {array.shape}")
             return array, n
         rows = [tuple(row) for row in values]
         flat = [float(component) for row in rows for component in row]
-        if len(rows) != n or any(len(row) != 3 for row in rows):
+        if len(rows) != n or any(len(row) != k for row in rows):
             raise ArgumentError(STATUS["STRUCTMD_ERR_ARGUMENT"],
-                                f"{name}: expected {n} rows of 3 values")
-        return (c_double * (3 * n))(*flat), n
+                                f"{name}: expected {n} rows of {k} values")
+        return (c_double * (k * n))(*flat), n
 
-    def _set_vectors(self, function, values, name):
-        buffer, n = self._vectors_argument(values, name)
+    def _set_vectors(self, function, values, name, components=3):
+        buffer, n = self._vectors_argument(values, name, components)
         pointer = buffer.ctypes.data_as(POINTER(c_double)) if _np is not None else buffer
         self._call(function, pointer, n)
         return buffer
@@ -316,6 +318,21 @@ class Simulation:
     @velocities.setter
     def velocities(self, values):
         self._set_vectors(lib.structmd_set_velocities, values, "velocities")
+
+    @property
+    def orientations(self):
+        """Unit quaternions [q0, q1, q2, q3] (scalar first), shape (n, 4); the identity for a simulation
+        without orientations. Setting them checks each is of unit norm."""
+        return self._get_array(lib.structmd_get_orientations, c_double, "float64", 4)
+
+    @orientations.setter
+    def orientations(self, values):
+        self._set_vectors(lib.structmd_set_orientations, values, "orientations", 4)
+
+    @property
+    def torques(self):
+        """The torque on each particle (lab frame), shape (n, 3); kept with the forces from the first read on."""
+        return self._get_array(lib.structmd_get_torques, c_double, "float64", 3)
 
     @property
     def forces(self):
