@@ -27,6 +27,7 @@
 #include "forcefield/debye_huckel.hpp"
 #include "forcefield/dihedral.hpp"
 #include "forcefield/dlvo.hpp"
+#include "forcefield/electrostatics.hpp"
 #include "forcefield/expression_component.hpp"
 #include "forcefield/external_constant_force.hpp"
 #include "forcefield/fene_bond.hpp"
@@ -77,6 +78,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template pair<DLVOType3>({"NonBonded", "DLVOType3"});
     v.template pair<KimHummer>({"NonBonded", "KimHummer"});
     v.template configurable<TabulatedPair>({"NonBonded", "Tabulated"});
+    v.template configurable<Electrostatics>({"LongRange", "Electrostatics"});
 
     v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});
     v.template bond<ConstantForceBond>({"Bond1", "ConstantForce"});
