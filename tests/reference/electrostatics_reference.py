@@ -144,8 +144,14 @@ def document(positions, charges, box, parameters, units="None"):
 def chosen_split_and_grid(charges, box, width, tolerance, split=0.0):
     """The far width s, the pair term's cutoff (0: none) and the grid the engine chooses (the rules of
     docs/input-format.md, ["LongRange","Electrostatics"]), for printing."""
-    from scipy.optimize import brentq
-    x = brentq(lambda x: math.erfc(x) + 2 * x * math.exp(-x * x) / math.sqrt(math.pi) - tolerance, 0.0, 30.0)
+    lo, hi = 0.0, 30.0  # erfc(x) + 2x exp(-x^2) / sqrt(pi) = tolerance, by bisection
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if math.erfc(mid) + 2 * mid * math.exp(-mid * mid) / math.sqrt(math.pi) > tolerance:
+            lo = mid
+        else:
+            hi = mid
+    x = hi
     reach, half = 2 * x, 0.5 * min(box)
     if split > 0:
         s = math.sqrt(width ** 2 + 0.25 / split ** 2)
