@@ -60,9 +60,6 @@ public:
     }
 
     void compute(Particles<B, R>& p, const ForceOutputs<R>& out) override {
-        if (out.virial)
-            throw Error(STRUCTMD_ERR_UNSUPPORTED,
-                        this->name() + ": [\"LongRange\", \"Electrostatics\"] has no virial (pressure, stress)");
         if (near_) near_->compute(p, out);
         mesh_.compute(p, this->group(), out, this->name());
     }

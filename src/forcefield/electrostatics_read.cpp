@@ -53,6 +53,9 @@ int fft_friendly(int at_least) {
 // force error against the tolerance).
 constexpr double kMeshSpacing = 3.0;
 
+// The least widening of the Gaussians (s / w) the automatic split makes.
+constexpr double kWorthwhileSplit = 1.5;
+
 std::string describe(double value) {
     std::ostringstream s;
     s.precision(17);
@@ -84,8 +87,9 @@ ForceFieldComponent configure(ForceFieldComponent c, const ComponentEntry& entry
     const double reach = 2.0 * truncation_point(tolerance);  // the pair term's cutoff over s
 
     // s: UAMMD's split xi gives s = sqrt(w^2 + 1/(4 xi^2)); without one, half the mean distance
-    // between charges (a few tens of neighbours within the cutoff), no less than w and no more than
-    // the box allows.
+    // between charges (a few tens of neighbours within the cutoff) where that is more than 1.5 w and
+    // the box allows it, else w: a split that widens the Gaussians less saves too little of the mesh
+    // to pay for a neighbour list.
     double s = w;
     if (split > 0.0) {
         s = std::sqrt(w * w + 0.25 / (split * split));
@@ -95,7 +99,8 @@ ForceFieldComponent configure(ForceFieldComponent c, const ComponentEntry& entry
                                   describe(halfBox) + "): increase splitThreshold");
     } else {
         const double spacing = std::cbrt(volume / static_cast<double>(std::max<int64_t>(charged, 1)));
-        s = std::max(w, std::min(0.5 * spacing, 0.999 * halfBox / reach));
+        const double wider = std::min(0.5 * spacing, 0.999 * halfBox / reach);
+        s = wider > kWorthwhileSplit * w ? wider : w;
     }
     auto config = std::make_shared<ElectrostaticsConfig>();
     config->gaussianWidth = w;
@@ -115,6 +120,7 @@ ForceFieldComponent configure(ForceFieldComponent c, const ComponentEntry& entry
     mesh.farWidth = s;
     mesh.selfEnergy = mesh.prefactor / (2.0 * std::sqrt(M_PI) * s);
     mesh.backgroundEnergy = 2.0 * M_PI * mesh.prefactor * totalCharge * (s * s - w * w) / volume;
+    mesh.totalCharge = totalCharge;
     c.config = config;
     return c;
 }

@@ -36,6 +36,7 @@ struct PmePlan {
     double farWidth = 0.0;        // s: the width of the Gaussians the mesh carries
     double selfEnergy = 0.0;      // per q^2: the mesh's interaction of a charge with itself, removed
     double backgroundEnergy = 0.0;  // per q: a particle's share of the neutralising background
+    double totalCharge = 0.0;
 };
 
 // The B-spline weights of the grid points u0 - j (j < kPmeOrder) for a particle at grid coordinate
@@ -163,6 +164,59 @@ struct PmeGather {
     }
 };
 
+// The virial of one wave vector of the half spectrum (the convolution not yet applied): its energy
+// E_k = G(k) |Q(k)|^2 / 2, twice for the columns that stand for k and -k, times
+// delta_ab - 2 (s^2 + 1/k^2) k_a k_b, the derivative of the mesh energy under a strain of the box.
+template <class R>
+struct PmeWaveVirial {
+    const Complex<R>* spectrum;
+    const R* influence;
+    FftGrid grid;
+    Vec3<R> length;
+    R farWidth2;
+
+    SMD_HD Tensor3<R> operator()(int64_t at) const {
+        const int hx = grid.half_x();
+        const int x = static_cast<int>(at % hx);
+        const int y = static_cast<int>((at / hx) % grid.ny);
+        const int z = static_cast<int>(at / (int64_t(hx) * grid.ny));
+        const R twoPi = R(6.283185307179586);
+        const Vec3<R> k{twoPi * R(x) / length.x, twoPi * R(y <= grid.ny / 2 ? y : y - grid.ny) / length.y,
+                        twoPi * R(z <= grid.nz / 2 ? z : z - grid.nz) / length.z};
+        const R k2 = dot(k, k);
+        if (!(k2 > R(0))) return zero_tensor<R>();
+        const bool paired = x > 0 && 2 * x != grid.nx;  // -k is not stored: it counts through k
+        const R energy = (paired ? R(1) : R(0.5)) * influence[at] *
+                         (spectrum[at].re * spectrum[at].re + spectrum[at].im * spectrum[at].im);
+        Tensor3<R> w = (R(-2) * energy * (farWidth2 + R(1) / k2)) * outer(k, k);
+        w.xx += energy;
+        w.yy += energy;
+        w.zz += energy;
+        return w;
+    }
+};
+
+// Whether particle i takes part (charged, and in the group): counted to share the virial out.
+template <class R>
+struct PmeCharged {
+    const R* charge;
+    const uint8_t* group;
+    SMD_HD int64_t operator()(int64_t i) const { return charge[i] != R(0) && (!group || group[i]) ? 1 : 0; }
+};
+
+// Adds a share of the mesh's virial (a property of the box, not of one particle) to each charged
+// particle: the sum is exact, the split between particles a convention.
+template <class R>
+struct PmeShareVirial {
+    const R* charge;
+    const uint8_t* group;
+    Tensor3<R> share;
+    Tensor3<R>* virial;
+    SMD_HD void operator()(int64_t i) const {
+        if (charge[i] != R(0) && (!group || group[i])) virial[i] += share;
+    }
+};
+
 #if SMD_HOST_CODE
 // The influence function on the half spectrum: 4 pi k_e B(m) exp(-k^2 s^2) / (V k^2), B the
 // B-splines' interpolation factor, 0 at k = 0 (the neutralising background).
@@ -225,6 +279,7 @@ public:
         backend_.for_each(grid.nz, PmeSpreadPlane<R>{p.pos.data(), p.charge.data(), group, p.count, p.box, grid,
                                                      mesh_.data()});
         fft_.forward(mesh_.data(), spectrum_.data());
+        if (out.virial) add_virial(p, group, out.virial);
         backend_.for_each(grid.spectrum_points(), PmeConvolve<R>{spectrum_.data(), influence_.data()});
         fft_.inverse(spectrum_.data(), mesh_.data());
         dispatch_outputs(out, [&](auto force, auto energy, auto) {
@@ -236,6 +291,21 @@ public:
     }
 
 private:
+    void add_virial(Particles<B, R>& p, const uint8_t* group, Tensor3<R>* virial) {
+        const int64_t charged = backend_.reduce(p.count, PmeCharged<R>{p.charge.data(), group}, int64_t(0));
+        if (charged == 0) return;
+        Tensor3<R> total = backend_.reduce(
+            plan_.grid.spectrum_points(),
+            PmeWaveVirial<R>{spectrum_.data(), influence_.data(), plan_.grid, p.box.length,
+                             R(plan_.farWidth * plan_.farWidth)},
+            zero_tensor<R>());
+        const R background = R(-plan_.backgroundEnergy * plan_.totalCharge);  // E_bg, of 1/V: its virial is E_bg
+        total.xx += background;
+        total.yy += background;
+        total.zz += background;
+        backend_.for_each(p.count, PmeShareVirial<R>{p.charge.data(), group, (R(1) / R(charged)) * total, virial});
+    }
+
     const B& backend_;
     PmePlan plan_;
     typename B::template Fft3d<R> fft_;

@@ -57,6 +57,18 @@ def gaussian_spectral(positions, charges, box, width, k_e=1.0):
     return energy - k_e * np.sum(charges ** 2) / (2 * math.sqrt(math.pi) * width), forces
 
 
+def gaussian_spectral_virial(positions, charges, box, width, k_e=1.0):
+    """The virial tensor W_ab = -dU/d(strain_ab) of Gaussian charges of width > 0 (w fixed):
+    sum_k E_k [delta_ab - 2 (w^2 + 1/k^2) k_a k_b], E_k the energy of wave vector k."""
+    positions, charges, box = np.asarray(positions, float), np.asarray(charges, float), np.asarray(box, float)
+    k, k2 = _wave_vectors(box, math.sqrt(41.5) / width)
+    phase = positions @ k.T
+    s2 = (charges @ np.cos(phase)) ** 2 + (charges @ np.sin(phase)) ** 2
+    energy = 2 * math.pi * k_e / float(np.prod(box)) * s2 * np.exp(-k2 * width * width) / k2
+    weight = 2 * (width * width + 1 / k2) * energy
+    return np.sum(energy) * np.eye(3) - (k * weight[:, None]).T @ k
+
+
 def point_ewald(positions, charges, box, k_e=1.0):
     """Energy and forces of neutral point charges in the periodic box, by the Ewald sum."""
     positions, charges, box = np.asarray(positions, float), np.asarray(charges, float), np.asarray(box, float)
@@ -157,7 +169,8 @@ def chosen_split_and_grid(charges, box, width, tolerance, split=0.0):
         s = math.sqrt(width ** 2 + 0.25 / split ** 2)
     else:
         spacing = (float(np.prod(box)) / max(np.count_nonzero(charges), 1)) ** (1 / 3)
-        s = max(width, min(0.5 * spacing, 0.999 * half / reach))
+        wider = min(0.5 * spacing, 0.999 * half / reach)
+        s = wider if wider > 1.5 * width else width
     h = s * 3.0 * tolerance ** (1 / 6)
 
     def friendly(n):
