@@ -15,7 +15,6 @@
 #include <memory>
 #include <vector>
 
-#include "core/error.hpp"
 #include "forcefield/ewald_near_field.hpp"
 #include "forcefield/forcefield_spec.hpp"
 #include "forcefield/interactor_build.hpp"

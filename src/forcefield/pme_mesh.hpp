@@ -5,16 +5,12 @@
 // and its gradient read back through the same B-splines. Forces are the exact gradient of the mesh
 // energy (analytical differentiation of the B-splines), so energy and forces agree to rounding.
 //
-// Spreading runs over z-planes of the grid, each plane summing its particles in index order: no
+// The FFT is the backend's (B::Fft3d, core/fft_grid.hpp). Spreading runs over z-planes of the grid, each plane summing its particles in index order: no
 // atomics, so a run is reproducible bit for bit on the CPU whatever the thread count.
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "backends/cpu/cpu_fft.hpp"
-#if defined(__CUDACC__)
-#include "backends/cuda/cuda_fft.cuh"
-#endif
 #include "core/error.hpp"
 #include "core/fft_grid.hpp"
 #include "core/hd.hpp"

@@ -51,7 +51,7 @@ private:
 };
 
 template <class R>
-class CpuFft3d;  // backends/cpu/cpu_fft.hpp, included by the terms that transform
+class CpuFft3d;  // backends/cpu/cpu_fft.hpp, included where engines are instantiated (engines/)
 
 class CpuBackend {
 public:

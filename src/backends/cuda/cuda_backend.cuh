@@ -85,7 +85,7 @@ struct FillFunctor {
 };
 
 template <class R>
-class CudaFft3d;  // backends/cuda/cuda_fft.cuh, included by the terms that transform
+class CudaFft3d;  // backends/cuda/cuda_fft.cuh, included where engines are instantiated (engines/)
 
 class CudaBackend {
 public:
