@@ -53,6 +53,10 @@ int fft_friendly(int at_least) {
 // force error against the tolerance).
 constexpr double kMeshSpacing = 3.0;
 
+// The most grid points accepted (2^28: some GB of grid and spectrum), beyond which the input asks
+// for more accuracy than the memory of a machine holds.
+constexpr double kLargestMesh = 268435456.0;
+
 // The least widening of the Gaussians (s / w) the automatic split makes.
 constexpr double kWorthwhileSplit = 1.5;
 
@@ -108,13 +112,15 @@ ForceFieldComponent configure(ForceFieldComponent c, const ComponentEntry& entry
     PmePlan& mesh = config->mesh;
     const double spacing = s * kMeshSpacing * std::pow(tolerance, 1.0 / 6.0);
     int* sizes[3] = {&mesh.grid.nx, &mesh.grid.ny, &mesh.grid.nz};
+    double points[3];
+    for (int d = 0; d < 3; ++d) points[d] = std::max(std::ceil(box[d] / spacing), 2.0 * kPmeOrder);
+    if (!(points[0] * points[1] * points[2] <= kLargestMesh))
+        throw input_error(path + "tolerance", "the mesh would need " + describe(points[0]) + " x " + describe(points[1]) +
+                                                  " x " + describe(points[2]) + " points (at most 2^28): raise "
+                                                  "tolerance, gaussianWidth or splitThreshold");
     for (int d = 0; d < 3; ++d) {
         mesh.box[d] = box[d];
-        const double points = std::ceil(box[d] / spacing);
-        if (!(points < 4096.0))
-            throw input_error(path + "tolerance", "the mesh would need more than 4096 points along a box edge (" +
-                                                      describe(points) + "): raise tolerance or gaussianWidth");
-        *sizes[d] = fft_friendly(std::max(static_cast<int>(points), 2 * kPmeOrder));
+        *sizes[d] = fft_friendly(static_cast<int>(points[d]));
     }
     mesh.prefactor = system.units.electricConversion / v["dielectricConstant"];
     mesh.farWidth = s;

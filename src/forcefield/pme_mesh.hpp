@@ -35,6 +35,13 @@ struct PmePlan {
     double totalCharge = 0.0;
 };
 
+// floor(u) folded into [0, K): the grid point at or below grid coordinate u.
+template <class R>
+SMD_HD SMD_INLINE int spline_base(R u, int K) {
+    const int below = static_cast<int>(floor(u)) % K;
+    return below < 0 ? below + K : below;
+}
+
 // The B-spline weights of the grid points u0 - j (j < kPmeOrder) for a particle at grid coordinate
 // u, u0 = floor(u), and their derivatives along u: w[j] = M_p(t + j), t = u - u0.
 template <class R>
@@ -44,10 +51,8 @@ struct BSplineWeights {
     int base;  // u0, folded into [0, K)
 
     SMD_HD SMD_INLINE BSplineWeights(R u, int K) {
-        const R first = floor(u);
-        const R t = u - first;
-        int u0 = static_cast<int>(first) % K;
-        base = u0 < 0 ? u0 + K : u0;
+        const R t = u - floor(u);
+        base = spline_base(u, K);
         for (int j = 0; j < kPmeOrder; ++j) w[j] = R(0);
         w[0] = t;  // M_2(t), M_2(t + 1)
         w[1] = R(1) - t;
@@ -87,10 +92,11 @@ struct PmeSpreadPlane {
             const R q = charge[i];
             if (q == R(0) || (group && !group[i])) continue;
             const Real4<R> r = pos[i];
-            const BSplineWeights<R> wz(grid_coordinate(r.z, box.inverse.z, grid.nz), grid.nz);
-            int j = wz.base - z;
+            const R uz = grid_coordinate(r.z, box.inverse.z, grid.nz);
+            int j = spline_base(uz, grid.nz) - z;
             if (j < 0) j += grid.nz;
             if (j >= kPmeOrder) continue;
+            const BSplineWeights<R> wz(uz, grid.nz);
             const BSplineWeights<R> wx(grid_coordinate(r.x, box.inverse.x, grid.nx), grid.nx);
             const BSplineWeights<R> wy(grid_coordinate(r.y, box.inverse.y, grid.ny), grid.ny);
             const R qz = q * wz.w[j];
