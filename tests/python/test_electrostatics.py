@@ -164,7 +164,7 @@ def test_steps_conserve_energy(options):
 
 @pytest.mark.parametrize("key, value, message", [
     ("tolerance", 2.0, "parameters.tolerance: expected a number below 1"),
-    ("tolerance", 1e-12, "parameters.tolerance: the mesh would need"),
+    ("tolerance", 1e-14, "parameters.tolerance: the mesh would need"),
     ("gaussianWidth", -1.0, "parameters.gaussianWidth"),
     ("dielectricConstant", 0.0, "parameters.dielectricConstant"),
     ("splitThreshold", 0.05, "parameters.splitThreshold: the pair term's cutoff"),
