@@ -52,6 +52,17 @@ def test_point_charges_match_the_ewald_sum(options, tolerance):
     assert energy_error < tolerance, f"energy error {energy_error:.2e}"
 
 
+@pytest.mark.parametrize("precision", ["single", "mixed"])
+def test_single_and_mixed_precision_reach_a_loose_tolerance(options, precision):
+    positions, charges = ref.random_neutral_system(40, BOX, seed=5)
+    exact = ref.gaussian_spectral(positions, charges, BOX, 0.3)
+    with structmd.Simulation(dict(options, precision=precision)) as sim:
+        sim.load(ref.document(positions, charges, BOX, {"dielectricConstant": 1.0, "gaussianWidth": 0.3,
+                                                         "tolerance": 1e-4, "splitThreshold": 3.0}))
+        force_error, energy_error = ref.errors(np.asarray(sim.forces, float), sim.energy("elec"), exact)
+    assert force_error < 1e-4 and energy_error < 1e-4, f"force {force_error:.2e}, energy {energy_error:.2e}"
+
+
 def test_point_charges_match_openmm_pme(options):
     pytest.importorskip("openmm")
     positions, charges = ref.random_neutral_system(50, BOX, seed=7)
