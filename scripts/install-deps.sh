@@ -23,3 +23,20 @@ if ! python3 -c "import numpy, cffi, pytest, ase" >/dev/null 2>&1; then
   python3 -m pip install -q numpy cffi pytest ase 2>/dev/null \
     || python3 -m pip install -q --break-system-packages numpy cffi pytest ase
 fi
+
+# pocketfft (the CPU backend's FFT, header only) into .deps/include, the git-ignored folder the build
+# searches first, so that it travels with a copy of the working tree to machines without Debian's
+# package: from libpocketfft-dev where Debian has it, else from the upstream repository at a fixed commit.
+deps_include="$(cd "$(dirname "$0")/.." && pwd)/.deps/include"
+if [ ! -f "$deps_include/pocketfft_hdronly.h" ]; then
+  mkdir -p "$deps_include"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  if DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq libpocketfft-dev >/dev/null 2>&1 \
+      && [ -f /usr/include/pocketfft_hdronly.h ]; then
+    cp /usr/include/pocketfft_hdronly.h "$deps_include/"
+  else
+    curl -fsSL -o "$deps_include/pocketfft_hdronly.h" \
+      https://raw.githubusercontent.com/mreineck/pocketfft/33ae5dc94c9cdc7f1c78346504a85de87cadaa12/pocketfft_hdronly.h
+  fi
+fi

@@ -28,6 +28,7 @@
 #include "forcefield/debye_huckel.hpp"
 #include "forcefield/dihedral.hpp"
 #include "forcefield/dlvo.hpp"
+#include "forcefield/electrostatics.hpp"
 #include "forcefield/expression_component.hpp"
 #include "forcefield/external_constant_force.hpp"
 #include "forcefield/fene_bond.hpp"
@@ -85,6 +86,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template pair<Steric12SoftCore>({"NonBonded", "Steric12SoftCore"});
     v.template pair<LennardJonesSoftCoreType1>({"NonBonded", "LennardJonesSoftCoreType1"});
     v.template pair<LennardJonesSoftCoreType2>({"NonBonded", "LennardJonesSoftCoreType2"});
+    v.template configurable<Electrostatics>({"LongRange", "Electrostatics"});
 
     v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});
     v.template bond<ConstantForceBond>({"Bond1", "ConstantForce"});

@@ -1,5 +1,6 @@
 #include "cpu_harness.hpp"
 
+#include "backends/cpu/cpu_fft.hpp"
 #include "core/logger.hpp"
 #include "forcefield/make_interactors.hpp"
 #include "forcefield/read_forcefield.hpp"

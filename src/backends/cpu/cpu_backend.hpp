@@ -50,12 +50,17 @@ private:
     MemoryAccount* account_ = nullptr;
 };
 
+template <class R>
+class CpuFft3d;  // backends/cpu/cpu_fft.hpp, included where engines are instantiated (engines/)
+
 class CpuBackend {
 public:
     template <class T>
     using Buffer = HostBuffer<T>;
     template <class T>
     using Staging = HostStaging<T>;
+    template <class R>
+    using Fft3d = CpuFft3d<R>;
 
     static constexpr const char* name = "cpu";
     // Neighbour lists in index order: force sums independent of the build history, so a restart

@@ -84,12 +84,17 @@ struct FillFunctor {
     __device__ void operator()(int64_t i) const { data[i] = value; }
 };
 
+template <class R>
+class CudaFft3d;  // backends/cuda/cuda_fft.cuh, included where engines are instantiated (engines/)
+
 class CudaBackend {
 public:
     template <class T>
     using Buffer = DeviceBuffer<T>;
     template <class T>
     using Staging = PinnedStaging<T>;
+    template <class R>
+    using Fft3d = CudaFft3d<R>;
 
     static constexpr const char* name = "cuda";
     // Sorting every list in global memory at each build cut the LJ benchmark at a million particles

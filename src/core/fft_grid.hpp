@@ -1,0 +1,26 @@
+#pragma once
+// The layout of the 3D real-to-complex transforms every backend's Fft3d performs (backends/cpu/
+// cpu_fft.hpp on pocketfft, backends/cuda/cuda_fft.cuh on cuFFT): a real grid of nx * ny * nz points,
+// x fastest, and its half spectrum of (nx/2 + 1) * ny * nz complex numbers, x fastest. Neither
+// direction is normalised: inverse(forward(g)) = nx ny nz g. Long-range electrostatics uses it; the
+// hydrodynamics of spectral methods will too.
+#include "core/hd.hpp"
+
+namespace structmd {
+
+// Laid out as std::complex and cufft(Double)Complex, so a buffer of them is handed to either library.
+template <class R>
+struct Complex {
+    R re, im;
+};
+
+struct FftGrid {
+    int nx = 0, ny = 0, nz = 0;
+
+    SMD_HD SMD_INLINE int64_t points() const { return int64_t(nx) * ny * nz; }
+    SMD_HD SMD_INLINE int half_x() const { return nx / 2 + 1; }
+    SMD_HD SMD_INLINE int64_t spectrum_points() const { return int64_t(half_x()) * ny * nz; }
+    SMD_HD SMD_INLINE int64_t index(int x, int y, int z) const { return x + int64_t(nx) * (y + int64_t(ny) * z); }
+};
+
+}  // namespace structmd
