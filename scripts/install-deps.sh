@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev libdlpack-dev googletest
-          lammps python3 python3-pip
+          lammps python3 python3-pip curl
           doxygen  # the API reference rendered from include/structmd.h: test api_reference
           clang libclang-rt-dev libomp-dev)  # clang, libFuzzer and clang's OpenMP: scripts/fuzz.sh
 missing=()
@@ -26,8 +26,11 @@ fi
 
 # pocketfft (the CPU backend's FFT, header only) into .deps/include, the git-ignored folder the build
 # searches first, so that it travels with a copy of the working tree to machines without Debian's
-# package: from libpocketfft-dev where Debian has it, else from the upstream repository at a fixed commit.
+# package. Debian 12 has no libpocketfft-dev, and only Debian and PyPI are reachable from CI, so where
+# the package is missing the header comes from SciPy's source distribution on PyPI, which vendors it
+# (BSD licence), at a fixed version and checked against its SHA-256.
 deps_include="$(cd "$(dirname "$0")/.." && pwd)/.deps/include"
+pocketfft_sha256=50f4ddbe60432325f560c706b6f1c49f9e0949fc7f20ae6499f2299e37d9790c
 if [ ! -f "$deps_include/pocketfft_hdronly.h" ]; then
   mkdir -p "$deps_include"
   SUDO=""
@@ -36,7 +39,9 @@ if [ ! -f "$deps_include/pocketfft_hdronly.h" ]; then
       && [ -f /usr/include/pocketfft_hdronly.h ]; then
     cp /usr/include/pocketfft_hdronly.h "$deps_include/"
   else
-    curl -fsSL -o "$deps_include/pocketfft_hdronly.h" \
-      https://raw.githubusercontent.com/mreineck/pocketfft/33ae5dc94c9cdc7f1c78346504a85de87cadaa12/pocketfft_hdronly.h
+    sdist=$(curl -fsSL https://pypi.org/simple/scipy/ | grep -oE 'https://files.pythonhosted.org/[^"#]*/scipy-1\.14\.1\.tar\.gz' | head -1)
+    curl -fsSL "$sdist" | tar xzf - -O scipy-1.14.1/scipy/_lib/pocketfft/pocketfft_hdronly.h > "$deps_include/pocketfft_hdronly.h.part"
+    echo "$pocketfft_sha256  $deps_include/pocketfft_hdronly.h.part" | sha256sum -c --quiet
+    mv "$deps_include/pocketfft_hdronly.h.part" "$deps_include/pocketfft_hdronly.h"
   fi
 fi

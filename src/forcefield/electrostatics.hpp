@@ -46,7 +46,7 @@ public:
             const std::vector<EwaldNearField::Params<PairR>> table(size_t(ntypes) * ntypes, params);
             // Every pair of charges interacts: a list of its own, without exclusions.
             auto list = std::make_shared<VerletList<B, R>>(build.backend, c.nearCutoff, 1.1, PairCondition::all,
-                                                           std::vector<std::vector<int>>{}, build.context.batch,
+                                                           PairFilterInputs{}, build.context.batch,
                                                            build.context.batches, build.context.model);
             build.forceField.add_list(list);
             near_ = std::make_unique<PairInteraction<B, R, EwaldNearField, PairR>>(build.backend, std::move(scope),
