@@ -47,6 +47,7 @@
 #include "forcefield/morse.hpp"
 #include "forcefield/plain_cylinder.hpp"
 #include "forcefield/plates.hpp"
+#include "forcefield/set_interaction.hpp"
 #include "forcefield/spherical_shell.hpp"
 #include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
@@ -141,6 +142,16 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template external<ParabolaSurface>({"Surface", "ParabolaSurface"});
     v.template external<WCAPlainCylinder>({"Surface", "WCA_PlainCylinder"});
     v.template configurable<WCAPolyhedron>({"Surface", "WCA_Polyhedron"});
+
+    v.template configurable<SetComponent<ConstantForceBond>>({"Set1", "ConstantForceOverCenterOfMass"});
+    v.template configurable<SetComponent<FixedHarmonicAnisotropic>>({"Set1", "FixedHarmonicAnisotropicCenterOfMass"});
+    v.template configurable<SetComponent<FixedHarmonicIsotropicCommon>>(
+        {"Set1", "FixedHarmonicAnisotropicCommon_K_r0CenterOfMass"});
+    v.template configurable<SetComponent<ConstantTorqueOnSet>>({"Set1", "ConstantTorqueOverCenterOfMass"});
+    v.template configurable<SetComponent<RadialBond<ConstantForceRadial>>>(
+        {"Set2", "ConstantForceBetweenCentersOfMass"});
+    v.template configurable<SetComponent<RadialBond<HarmonicBond>>>({"Set2", "HarmonicBondBetweenCentersOfMass"});
+    v.template configurable<SetComponent<ConstantTorqueBetweenSets>>({"Set2", "ConstantTorqueBetweenCentersOfMass"});
 
     v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
     v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});
