@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "forcefield/afm_tip.hpp"
 #include "forcefield/best_chen_hummer_angle.hpp"
 #include "forcefield/clashed.hpp"
 #include "forcefield/constant_force_bond.hpp"
@@ -152,6 +153,8 @@ void visit_builtin_forcefield(Visitor& v) {
         {"Set2", "ConstantForceBetweenCentersOfMass"});
     v.template configurable<SetComponent<RadialBond<HarmonicBond>>>({"Set2", "HarmonicBondBetweenCentersOfMass"});
     v.template configurable<SetComponent<ConstantTorqueBetweenSets>>({"Set2", "ConstantTorqueBetweenCentersOfMass"});
+
+    v.template configurable<AfmComponent<SphericalTipPotential>>({"AFM", "SphericalTip"});
 
     v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
     v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "forcefield/component_registry.hpp"
 #include "forcefield/set_interaction.hpp"
+#include "forcefield/set_table_read.hpp"
 #include "input/read_parameters.hpp"
 
 namespace structmd {
@@ -19,13 +20,16 @@ namespace {
 
 const char* const kSetLabels[] = {"idSet_i", "idSet_j"};
 
-ForceFieldComponent configure(ForceFieldComponent c, const std::vector<Parameter>& schema, int sets,
-                              const ComponentEntry& entry, const SystemDescription& system) {
-    std::vector<std::string> columns(kSetLabels, kSetLabels + sets);
-    for (const Parameter& p : schema) columns.push_back(p.name);
-    const input::Table table = input::read_table(entry.node, columns);
+}  // namespace
+
+std::shared_ptr<SetConfig> read_set_table(const ComponentEntry& entry, const SystemDescription& system,
+                                          const std::vector<std::string>& setLabels,
+                                          const std::vector<Parameter>& schema) {
+    std::vector<std::string> required = setLabels, optional;
+    for (const Parameter& p : schema) (p.required() ? required : optional).push_back(p.name);
+    const input::Table table = input::read_table(entry.node, required, optional);
     auto config = std::make_shared<SetConfig>();
-    config->sets = sets;
+    config->sets = static_cast<int>(setLabels.size());
     config->schema = schema;
     config->start.push_back(0);
     const int64_t n = system.numParticles();
@@ -33,8 +37,8 @@ ForceFieldComponent configure(ForceFieldComponent c, const std::vector<Parameter
     // threads then never write one particle twice.
     std::map<int64_t, std::string> seen;
     for (size_t r = 0; r < table.rows(); ++r) {
-        for (int s = 0; s < sets; ++s) {
-            const TrackedNode list = table.cell(r, kSetLabels[s]);
+        for (const std::string& label : setLabels) {
+            const TrackedNode list = table.cell(r, label);
             if (!list.is_array() || list.size() == 0)
                 throw input_error(list.path(), "expected a non-empty list of particle ids");
             for (size_t k = 0; k < list.size(); ++k) {
@@ -52,13 +56,15 @@ ForceFieldComponent configure(ForceFieldComponent c, const std::vector<Parameter
             config->start.push_back(static_cast<int>(config->members.size()));
         }
         for (const Parameter& p : schema) {
-            const std::vector<double> numbers = input::read_parameter(table.cell(r, p.name), p);
+            const std::vector<double> numbers = table.has(p.name) ? input::read_parameter(table.cell(r, p.name), p)
+                                                                  : std::vector<double>(p.size, p.fallback);
             config->values.insert(config->values.end(), numbers.begin(), numbers.end());
         }
     }
-    c.config = config;
-    return c;
+    return config;
 }
+
+namespace {
 
 template <class Potential>
 ForceFieldComponent set_reader_entry(ComponentKey key) {
@@ -69,7 +75,10 @@ ForceFieldComponent set_reader_entry(ComponentKey key) {
     c.parameters = set_entry_parameters<Potential>::get();
     const std::vector<Parameter> schema = Potential::parameters();
     c.configure = [c, schema](const ComponentEntry& entry, const SystemDescription& system) {
-        return configure(c, schema, Potential::arity, entry, system);
+        ForceFieldComponent configured = c;
+        configured.config = read_set_table(
+            entry, system, std::vector<std::string>(kSetLabels, kSetLabels + Potential::arity), schema);
+        return configured;
     };
     return c;
 }
