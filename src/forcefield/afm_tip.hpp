@@ -86,6 +86,22 @@ struct AfmParams {
     }
 };
 
+// The values of row `row` of an AFM entry (also read by ["ExperimentMeasures","AFMMeasure"]).
+template <class Tip, class R>
+AfmParams<Tip, R> afm_row_params(const AfmConfig& config, size_t row) {
+    ParameterValues v;
+    v.assign(config.schema, config.values.data() + row * static_cast<size_t>(width_of(config.schema)));
+    const std::array<double, 3> chip = v.vec3("startChipPosition");
+    const double backward = v["indentationBackwardStep"];
+    return {Tip::template make_params<R>(v),
+            {R(v["Kxy"]), R(v["Kxy"]), R(v["K"])},
+            {R(chip[0]), R(chip[1]), R(chip[2])},
+            R(v["tipVelocity"]),
+            R(config.timeStep),
+            static_cast<int64_t>(v["indentationStartStep"]),
+            backward > 0.0 ? static_cast<int64_t>(backward) : INT64_MAX};
+}
+
 template <class Tip, class R, bool WantForce, bool WantEnergy, bool WantVirial>
 struct AfmKernel {
     const Real4<R>* pos;
@@ -169,7 +185,6 @@ struct AfmComponent {
     static std::unique_ptr<Interactor<B, R>> make_interactor(const InteractorBuild<B, R>& build,
                                                              const InteractionSpec& s) {
         const auto& config = static_cast<const AfmConfig&>(*s.config);
-        const size_t width = static_cast<size_t>(width_of(config.schema));
         const size_t rows = (config.start.size() - 1) / 2;
         const std::vector<uint8_t>* inGroup = s.group >= 0 ? &build.spec.groups[s.group].members : nullptr;
         std::vector<int> members, start{0};
@@ -182,17 +197,7 @@ struct AfmComponent {
             members.insert(members.end(), first, last);
             start.push_back(start.back() + 1);
             start.push_back(static_cast<int>(members.size()));
-            ParameterValues v;
-            v.assign(config.schema, config.values.data() + row * width);
-            const std::array<double, 3> chip = v.vec3("startChipPosition");
-            const double backward = v["indentationBackwardStep"];
-            params.push_back({Tip::template make_params<R>(v),
-                              {R(v["Kxy"]), R(v["Kxy"]), R(v["K"])},
-                              {R(chip[0]), R(chip[1]), R(chip[2])},
-                              R(v["tipVelocity"]),
-                              R(config.timeStep),
-                              static_cast<int64_t>(v["indentationStartStep"]),
-                              backward > 0.0 ? static_cast<int64_t>(backward) : INT64_MAX});
+            params.push_back(afm_row_params<Tip, R>(config, row));
         }
         return std::make_unique<AfmInteraction<B, R, Tip>>(build.backend, build.scope(s), members, start, params);
     }

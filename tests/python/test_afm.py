@@ -126,3 +126,43 @@ def test_bad_rows_are_input_errors(options, change, path, message):
     with structmd.Simulation(options) as sim:
         with pytest.raises(structmd.InputError, match=path + ".*" + message):
             sim.load(doc)
+
+
+@pytest.mark.parametrize("verbose", [False, True])
+def test_afm_measure_writes_indentation_and_cantilever_force(options, tmp_path, verbose):
+    positions = configuration(seed=3)
+    doc = document(positions, -1.0, velocity=-3.0, start=2, backward=6, steps=20)
+    doc["simulationStep"] = {"afm": {"type": ["ExperimentMeasures", "AFMMeasure"],
+                                     "parameters": {"intervalStep": 4, "outputFilePath": str(tmp_path / "afm.dat"),
+                                                    "verbose": verbose}}}
+    frames = []
+    with structmd.Simulation(dict(options, precision="double")) as sim:
+        sim.load(doc)
+        for _ in range(3):  # the measure fires at steps 0, 4 and 8, before each step's move
+            frames.append((sim.step_number, sim.positions, sim.forces))
+            sim.step(4)
+    lines = (tmp_path / "afm.dat").read_text().splitlines()
+    expected_header = (["#step", "time", "chip_0", "tip_0", "deflection_0", "tipForce_0", "sampleForce_0", "F_0"]
+                       if verbose else ["#step", "time", "X_0", "F_0"])
+    assert lines[0].split() == expected_header
+    for line, (step, frame, forces) in zip(lines[1:], frames):
+        values = [float(x) for x in line.split()]
+        assert int(values[0]) == step
+        chip = chip_at(step, (5.8, 0.0, 3.0), -3.0, 2, 6)[2]
+        F = 2.0 * (frame[0, 2] - chip)
+        if verbose:
+            np.testing.assert_allclose(values[2:], [chip, frame[0, 2], frame[0, 2] - chip, forces[0, 2],
+                                                    forces[1:8, 2].sum(), F], rtol=1e-9, atol=1e-12)
+        else:
+            np.testing.assert_allclose(values[2:], [frame[0, 2] - TIP_RADIUS, F], rtol=1e-12)
+    assert len(lines) == 4
+
+
+def test_afm_measure_needs_an_afm_entry(options, tmp_path):
+    doc = document(configuration(seed=0), -1.0)
+    doc["topology"]["forceField"] = {}
+    doc["simulationStep"] = {"afm": {"type": ["ExperimentMeasures", "AFMMeasure"],
+                                     "parameters": {"intervalStep": 1, "outputFilePath": str(tmp_path / "a.dat")}}}
+    with structmd.Simulation(options) as sim:
+        with pytest.raises(structmd.InputError, match=r"simulationStep\.afm\.type.*AFM"):
+            sim.load(doc)
