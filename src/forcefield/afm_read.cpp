@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "forcefield/afm_read.hpp"
 #include "forcefield/afm_tip.hpp"
 #include "forcefield/component_registry.hpp"
 #include "forcefield/set_table_read.hpp"
@@ -32,6 +33,8 @@ double time_step_of(const SystemDescription& system, const std::string& path) {
                             "timeStep or the first scheduled integrator's)");
 }
 
+}  // namespace
+
 std::vector<Parameter> afm_schema(std::vector<Parameter> tip) {
     tip.push_back(number("K", "energy/length^2"));
     tip.push_back(number("Kxy", "energy/length^2"));
@@ -41,8 +44,6 @@ std::vector<Parameter> afm_schema(std::vector<Parameter> tip) {
     tip.push_back(with_default(number("indentationBackwardStep", "steps", Must::be_non_negative), 0.0));
     return tip;
 }
-
-}  // namespace
 
 template <class Tip>
 ForceFieldComponent AfmComponent<Tip>::reader_entry(ComponentKey key) {
