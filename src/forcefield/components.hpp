@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "forcefield/afm_tip.hpp"
 #include "forcefield/best_chen_hummer_angle.hpp"
 #include "forcefield/clashed.hpp"
 #include "forcefield/constant_force_bond.hpp"
@@ -51,6 +52,7 @@
 #include "forcefield/plain_cylinder.hpp"
 #include "forcefield/plates.hpp"
 #include "forcefield/soft_core.hpp"
+#include "forcefield/set_interaction.hpp"
 #include "forcefield/spherical_shell.hpp"
 #include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
@@ -167,6 +169,18 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template external<ParabolaSurface>({"Surface", "ParabolaSurface"});
     v.template external<WCAPlainCylinder>({"Surface", "WCA_PlainCylinder"});
     v.template configurable<WCAPolyhedron>({"Surface", "WCA_Polyhedron"});
+
+    v.template configurable<SetComponent<ConstantForceBond>>({"Set1", "ConstantForceOverCenterOfMass"});
+    v.template configurable<SetComponent<FixedHarmonicAnisotropic>>({"Set1", "FixedHarmonicAnisotropicCenterOfMass"});
+    v.template configurable<SetComponent<FixedHarmonicIsotropicCommon>>(
+        {"Set1", "FixedHarmonicAnisotropicCommon_K_r0CenterOfMass"});
+    v.template configurable<SetComponent<ConstantTorqueOnSet>>({"Set1", "ConstantTorqueOverCenterOfMass"});
+    v.template configurable<SetComponent<RadialBond<ConstantForceRadial>>>(
+        {"Set2", "ConstantForceBetweenCentersOfMass"});
+    v.template configurable<SetComponent<RadialBond<HarmonicBond>>>({"Set2", "HarmonicBondBetweenCentersOfMass"});
+    v.template configurable<SetComponent<ConstantTorqueBetweenSets>>({"Set2", "ConstantTorqueBetweenCentersOfMass"});
+
+    v.template configurable<AfmComponent<SphericalTipPotential>>({"AFM", "SphericalTip"});
 
     v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
     v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});

@@ -125,12 +125,13 @@ public:
             throw Error(STRUCTMD_ERR_UNSUPPORTED,
                         "simulationStep." + (*pairForceStep)->name() + ".parameters.mode: \"Pairwise_force\" splits the "
                         "forces of every term between pairs, and forceField entry '" + term +
-                        "' (an expression, a table or a plugin) cannot; \"Total_force\" works with every term");
+                        "' (an expression, a table, a plugin, a Set or an AFM term) cannot; \"Total_force\" works with every term");
         if (const std::string term = forceField_.term_without_hessian(); context_.hessian && !term.empty())
             throw Error(STRUCTMD_ERR_UNSUPPORTED,
                         "simulationStep." + (*hessianStep)->name() + ".parameters.mode: \"Analytical\" needs the second "
                         "derivatives of every term, and forceField entry '" + term +
-                        "' (an expression, a table or a plugin) has none; \"Numerical\" differentiates its forces instead");
+                        "' (an expression, a table, a plugin, a torque on a set or an AFM tip) has none; \"Numerical\" "
+                        "differentiates its forces instead");
         integrators_ = make_integrators(spec.integrators, forceField_);
         const double skin = forceField_.smallest_skin();
         p_.maxMove2 = std::isfinite(skin) ? skin * skin : 1e300;

@@ -112,6 +112,28 @@ def bonds(cls, subclass, arity, labels, values):
     return {"term": {"type": [cls, subclass], "labels": id_labels + labels, "data": rows}}
 
 
+# Terms on centres of mass (Set1, Set2): sets of mixed masses (types A and B) that straddle the boundary.
+SETS1 = [[0, 1, 2, 3], [4, 5, 6], [7, 8, 9, 10, 11]]
+SETS2 = [[[0, 1, 2], [3, 4, 5]], [[6, 7], [8, 9, 10, 11]]]
+SET_CASES = [
+    ("Set1 FixedHarmonicAnisotropicCenterOfMass", [[s] for s in SETS1], ["idSet_i", "K", "r0", "position"],
+     lambda k: [[3.0, 5.0, 2.0], [0.4, 0.1, 0.3], [3.3, 0.4 * k - 1.0, 0.5]], None),
+    ("Set1 FixedHarmonicAnisotropicCommon_K_r0CenterOfMass", [[s] for s in SETS1], ["idSet_i", "position"],
+     lambda k: [[3.3, 0.4 * k - 1.0, 0.5]], {"K": 4.0, "r0": 0.3}),
+    ("Set2 HarmonicBondBetweenCentersOfMass", SETS2, ["idSet_i", "idSet_j", "K", "r0"],
+     lambda k: [10.0 + k, 0.8], None),
+    ("Set2 ConstantForceBetweenCentersOfMass", SETS2, ["idSet_i", "idSet_j", "force"], lambda k: [1.5 - 2.0 * k], None),
+]
+
+
+def sets(name, rows, labels, values, parameters):
+    term = {"type": name.split(" "), "labels": labels,
+            "data": [list(row) + list(values(k)) for k, row in enumerate(rows)]}
+    if parameters:
+        term["parameters"] = parameters
+    return {"term": term}
+
+
 CASES = {
     **{name: pair(name) for name in ["LennardJonesType1", "LennardJonesType2", "LennardJonesType3", "WCAType1",
                                      "WCAType2", "WCAType3", "Steric6", "Steric12"]},
@@ -204,13 +226,22 @@ CASES = {
     "Surface WCA_PlainCylinder": surface("WCA_PlainCylinder", {"plainPosition": -2.0, "cylinderRadius": 3.0},
                                          [["A", 1.0, 0.9], ["B", 0.7, 1.0]]),
     "Surface WCA_Polyhedron": surface("WCA_Polyhedron", CUBE, [["A", 1.0, 1.5], ["B", 0.7, 1.4]]),
+    **{case[0]: sets(*case) for case in SET_CASES},
 }
+
+
+def seed_of(name):
+    """Each case's own seed: its place among the cases, the Set cases (added later) counted apart so
+    that the configurations of the others stay as they were."""
+    others = sorted(n for n in CASES if not n.startswith("Set"))
+    return others.index(name) if name in others else 100 + sorted(set(CASES) - set(others)).index(name)
 
 
 def case_document(name):
     """The configuration of case `name` (its own seed) and its input, with charges where the term reads them."""
     # Seeded by the name alone, so that adding a case moves no other case's configuration.
     positions = configuration(seed=zlib.crc32(name.encode()))
+    positions = configuration(seed=seed_of(name))
     charged = any(word in name for word in ("DebyeHuckel", "DLVO", "KimHummer"))
     charges = list(np.linspace(-1.0, 1.0, N)) if charged else None
     doc = document(positions, CASES[name], charges)

@@ -194,6 +194,10 @@ def test_force_field_example_loads_and_computes(sim, key):
     assert np.all(np.isfinite(np.asarray(sim.positions)))
 
 
+# Steps that measure what one force-field component does, and that component.
+MEASURED_COMPONENT = {("ExperimentMeasures", "AFMMeasure"): ("AFM", "SphericalTip")}
+
+
 def full_document_with(key):
     """The base document with the example put in its section, replacing the entry of its class (an
     integrator replaces every integrator and becomes the whole schedule)."""
@@ -209,6 +213,9 @@ def full_document_with(key):
     for other in [n for n, e in entries.items() if same(e["type"])]:
         del entries[other]
     entries[name] = copy.deepcopy(entry)
+    if key in MEASURED_COMPONENT:  # a measure of one component's experiment needs that component
+        needed_name, needed, _ = COMPONENTS[MEASURED_COMPONENT[key]]
+        doc["topology"]["forceField"][needed_name] = copy.deepcopy(needed)
     if section == "integrator" and key[0] != "Schedule":
         doc["integrator"]["schedule"]["data"] = [[1, name, 10]]
     return doc

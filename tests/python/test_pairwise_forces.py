@@ -55,7 +55,8 @@ def engine(options):
     OPTIONS = options
 
 
-@pytest.mark.parametrize("name", sorted(CASES))
+# Terms on centres of mass (Set1, Set2) act between sets, not pairs: they have no pair split.
+@pytest.mark.parametrize("name", sorted(name for name in CASES if not name.startswith("Set")))
 def test_pair_forces_are_central_opposite_and_sum_to_each_particles_force(tmp_path, name):
     positions, forces, pairs, total = run(name, tmp_path)
     np.testing.assert_array_equal(total[:, 0], np.arange(N))

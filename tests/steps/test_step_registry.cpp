@@ -8,9 +8,12 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 
 #include "core/error.hpp"
+#include "forcefield/afm_read.hpp"
+#include "forcefield/afm_tip.hpp"
 #include "input/description.hpp"
 #include "steps/read_simulation_steps.hpp"
 #include "steps/simulation_step_registry.hpp"
@@ -49,9 +52,21 @@ json base_document() {
             {"data", {{1, "vv", 100}}}}}}}};
 }
 
+// Groups, and an AFM entry (tip 1, sample 0 and 2) for the step that measures one.
 ForceFieldSpec with_groups() {
     ForceFieldSpec forceField;
     forceField.groups = {{"pair", {0, 1, 1, 0}}};
+    ExternalSpec afm;
+    afm.key = {"AFM", "SphericalTip"};
+    auto config = std::make_shared<AfmConfig>();
+    config->sets = 2;
+    config->members = {1, 0, 2};
+    config->start = {0, 1, 3};
+    config->schema = afm_schema(SphericalTipPotential::parameters());
+    config->values = {-1.0, 1.0, 1.0, 10.0, -0.5, 0.0, 0.0, 3.0, 0.0, 0.0};
+    config->timeStep = 0.001;
+    afm.config = config;
+    forceField.externals.push_back(afm);
     return forceField;
 }
 const ForceFieldSpec kForceField = with_groups();
@@ -90,14 +105,17 @@ json document_with(const ComponentKey& key, const json& parameters) {
 }
 
 // As above, with a one-row table for a step that reads one: particle ids 0, 1, ... in its id columns,
-// a set's name and its list of ids where it names sets.
+// a set's name and its list of ids where it names sets, two disjoint lists for two sets.
 json step_document_with(const SimulationStepEntry& step, const json& parameters) {
     json document = document_with(step.key, parameters);
     if (!step.tableLabels.empty()) {
         json row = json::array();
         for (size_t k = 0; k < step.tableLabels.size(); ++k) {
             const std::string& label = step.tableLabels[k];
-            row.push_back(label == "name" ? json("set") : label == "id_list" ? json::array({0, 1}) : json(k));
+            row.push_back(label == "name"                             ? json("set")
+                          : label == "id_list" || label == "idSet_i" ? json::array({0, 1})
+                          : label == "idSet_j"                       ? json::array({2, 3})
+                                                                     : json(k));
         }
         document["simulationStep"][kEntry]["labels"] = step.tableLabels;
         document["simulationStep"][kEntry]["data"] = json::array({row});
