@@ -230,18 +230,10 @@ CASES = {
 }
 
 
-def seed_of(name):
-    """Each case's own seed: its place among the cases, the Set cases (added later) counted apart so
-    that the configurations of the others stay as they were."""
-    others = sorted(n for n in CASES if not n.startswith("Set"))
-    return others.index(name) if name in others else 100 + sorted(set(CASES) - set(others)).index(name)
-
-
 def case_document(name):
     """The configuration of case `name` (its own seed) and its input, with charges where the term reads them."""
     # Seeded by the name alone, so that adding a case moves no other case's configuration.
     positions = configuration(seed=zlib.crc32(name.encode()))
-    positions = configuration(seed=seed_of(name))
     charged = any(word in name for word in ("DebyeHuckel", "DLVO", "KimHummer"))
     charges = list(np.linspace(-1.0, 1.0, N)) if charged else None
     doc = document(positions, CASES[name], charges)
