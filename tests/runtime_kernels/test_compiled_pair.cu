@@ -78,13 +78,13 @@ Outputs evaluate(bool compiled, bool inGraph) {
             builtin.push_back(LennardJonesType1::make_pair_params<PairR>(epsilon, sigma, 2.5 * sigma, true));
         }
     auto list = std::make_shared<VerletList<CudaBackend, R>>(backend, 2.5 * 1.2, 1.1, PairCondition::all,
-                                                              std::vector<std::vector<int>>{}, nullptr, 1, nullptr);
+                                                              PairFilterInputs{}, nullptr, 1, nullptr);
     std::unique_ptr<Interactor<CudaBackend, R>> term;
     if (compiled) {
         std::vector<PairR> table;
         for (const auto& q : builtin) table.insert(table.end(), {q.cutoff2, q.epsilon, q.sigma2, q.offset});
         term = std::make_unique<CompiledPairInteraction<CudaBackend, R, PairR>>(
-            backend, InteractorScope{"lj"}, list, RuntimeSource{kLennardJonesSource}, table, kTypes);
+            backend, InteractorScope{"lj"}, list, RuntimeSource{kLennardJonesSource}, table, kTypes, nullptr);
     } else {
         term = std::make_unique<PairInteraction<CudaBackend, R, LennardJonesType1, PairR>>(
             backend, InteractorScope{"lj"}, list, builtin, kTypes);
