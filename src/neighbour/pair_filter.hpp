@@ -4,7 +4,6 @@
 // groups of types. Applied when the list is built and on the cell-scan fallback, never per force
 // evaluation. (Pairs in different batches never meet: each batch has cells of its own,
 // cell_grid.hpp.)
-#include <stdint.h>
 
 #include "core/hd.hpp"
 
