@@ -27,6 +27,16 @@ struct Parameter {
     bool required() const { return std::isnan(fallback); }
 };
 
+// A parameter whose value is a name: those structmd computes, and those the reference defines but
+// structmd does not (refused with the reason; any other name is an input error).
+struct TextOption {
+    const char* name;
+    const char* fallback;  // the value when absent
+    std::vector<std::string> supported;
+    std::vector<std::string> unsupported;
+    const char* why_unsupported = "";
+};
+
 inline constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
 
 // A required number, a required vector of three, and a parameter with a default.

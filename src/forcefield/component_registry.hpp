@@ -23,6 +23,7 @@ struct ForceFieldComponent {
     int arity = 0;                           // bonds: particles per bond
     std::vector<Parameter> parameters;       // pairs: per type pair; bonds: per bond; externals: the entry's
     std::vector<Parameter> entryParameters;  // pairs: given once in the entry's "parameters"
+    std::vector<TextOption> textOptions;     // pairs: named choices in the entry's "parameters"
     // Externals of per-type parameters (the Surface family): the columns of the entry's table, one
     // row per type named by "name", and columns that table may also have but nobody reads; both empty
     // for an external that takes "parameters" only.

@@ -7,8 +7,9 @@
 //   eps = 0:  zeroEnergy (s/r)^12                          (excluded volume only)
 // for r < r_np = cutOffNPFactor x s, and the electrostatics f q_i q_j exp(-r/l_D) / (eps_r r) for
 // r < r_dh = cutOffDHFactor x l_D acts between every pair of the list, listed in the table or not.
-// shift subtracts each term's value at its own cutoff. Only SASA model A (every weight 1) is
-// computed: structmd reads no per-particle SASA.
+// shift subtracts each term's value at its own cutoff. Only SASA model A (every weight 1, the
+// default) is computed: models B-F weigh each particle by its solvent accessible surface area, which
+// structmd's state does not hold; naming one is refused.
 #include <algorithm>
 #include <cmath>
 
@@ -34,6 +35,11 @@ struct KimHummer {
     };
 
     static std::vector<Parameter> pair_parameters() { return EpsilonSigmaPair<KimHummer>::pair_parameters(); }
+    static std::vector<TextOption> text_options() {
+        return {{"sasaModel", "A", {"A"}, {"B", "C", "D", "E", "F"},
+                 "SASA models B-F weigh each particle by its solvent accessible surface area, which structmd's "
+                 "state does not hold; \"A\" (no weighting) is computed"}};
+    }
     static std::vector<Parameter> entry_parameters() {
         std::vector<Parameter> parameters = contact_and_screening_parameters();
         parameters.push_back(with_default(number("zeroEnergy", "energy", Must::be_non_negative), 0.01));

@@ -69,6 +69,13 @@ struct has_cutoff_key : std::false_type {};
 template <class Potential>
 struct has_cutoff_key<Potential, std::void_t<decltype(Potential::cutoff_key)>> : std::true_type {};
 
+// Potentials with named choices among their entry parameters declare `static std::vector<TextOption>
+// text_options()`.
+template <class Potential, class = void>
+struct has_text_options : std::false_type {};
+template <class Potential>
+struct has_text_options<Potential, std::void_t<decltype(Potential::text_options())>> : std::true_type {};
+
 template <class Potential, class = void>
 struct acts_on_unlisted_pairs : std::false_type {};
 template <class Potential>

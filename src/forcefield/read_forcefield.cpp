@@ -107,6 +107,20 @@ void read_common(const ForceFieldComponent& component, const ComponentEntry& ent
         throw input_error(parameter_path(entry, "endStep"), "endStep is before startStep");
     spec.group = group_index(ff.groups, parameter_or<std::string>(entry, "group", "All"), parameter_path(entry, "group"));
     spec.config = component.config;
+    for (const TextOption& option : component.textOptions) {
+        const std::string value = parameter_or<std::string>(entry, option.name, option.fallback);
+        const auto in = [&](const std::vector<std::string>& names) {
+            return std::find(names.begin(), names.end(), value) != names.end();
+        };
+        if (in(option.supported)) continue;
+        const std::string path = parameter_path(entry, option.name);
+        if (in(option.unsupported))
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ": \"" + value + "\" is not supported: " + option.why_unsupported);
+        std::string names;
+        for (const auto* list : {&option.supported, &option.unsupported})
+            for (const std::string& n : *list) names += (names.empty() ? "" : ", ") + n;
+        throw input_error(path, "expected one of " + names + ", got \"" + value + "\"");
+    }
 }
 
 // ---- groups -----------------------------------------------------------------------------------

@@ -22,6 +22,7 @@ struct ReaderEntries {
     void pair(ComponentKey key) {
         ForceFieldComponent c = component(std::move(key), InteractionKind::pair, Potential::pair_parameters());
         c.entryParameters = Potential::entry_parameters();
+        if constexpr (has_text_options<Potential>::value) c.textOptions = Potential::text_options();
         c.units = required_units_of<Potential>();
         c.actingCutoff = [](const ParameterValues& v, const Constants& constants, double cutOffFactor, bool shift) {
             return std::sqrt(static_cast<double>(

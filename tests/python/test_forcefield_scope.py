@@ -334,6 +334,26 @@ def test_a_batched_pair_table_names_the_row_of_a_missing_batch_or_a_repeated_pai
         sim.load(doc)
 
 
+def kim_hummer_document(**parameters):
+    entry = {"type": ["NonBonded", "KimHummer"],
+             "parameters": {"cutOffNPFactor": 2.0, "cutOffDHFactor": 2.0, "dielectricConstant": 80.0,
+                            "debyeLength": 1.0, "condition": "all", **parameters},
+             "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [["A", "A", -0.5, 1.0]]}
+    return document(CLUSTER, force_field={"nl": {"type": ["VerletConditionalListSet", "all"]}, "kh": entry})
+
+
+def test_kim_hummer_takes_sasa_model_a_and_refuses_the_models_that_need_surface_areas(sim):
+    sim.load(kim_hummer_document())
+    default = sim.energy("kh")
+    sim.load(kim_hummer_document(sasaModel="A"))
+    assert default != 0.0 and sim.energy("kh") == default
+    with pytest.raises(structmd.UnsupportedError, match=r"topology\.forceField\.kh\.parameters\.sasaModel: "
+                                                        r"\"C\" is not supported: SASA models B-F"):
+        sim.load(kim_hummer_document(sasaModel="C"))
+    with pytest.raises(structmd.InputError, match=r"parameters\.sasaModel: expected one of A, B, C, D, E, F, got \"Z\""):
+        sim.load(kim_hummer_document(sasaModel="Z"))
+
+
 def surface_lj2(z, plane, epsilon, sigma):
     """SurfaceLennardJonesType2 of a particle at height z."""
     x = sigma / abs(z - plane)
