@@ -96,6 +96,7 @@ struct SimulationStepEntry {
     std::vector<StepParameter> parameters;  // every parameter the step reads, in the order read
     StepFactory make;
     std::vector<std::string> tableLabels = {};  // the required labels of the id table it reads, if any
+    bool schedulesNothing = false;  // its factory makes no step: the engine does its work otherwise
 };
 
 // The parameters every step reads (intervalStep, startStep, endStep, group) followed by its own.

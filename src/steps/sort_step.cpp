@@ -11,6 +11,6 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
 
 }  // namespace
 
-SimulationStepEntry sort_step_entry() { return {{"UtilsStep", "SortStep"}, step_parameters({}), make}; }
+SimulationStepEntry sort_step_entry() { return {{"UtilsStep", "SortStep"}, step_parameters({}), make, {}, true}; }
 
 }  // namespace structmd

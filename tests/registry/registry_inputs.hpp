@@ -109,6 +109,9 @@ inline const std::vector<Override>& overrides() {
         // zeroEnergy acts only in the rows whose epsilon is 0 (the excluded-volume form); generic
         // epsilons are all about 1.
         {{"NonBonded", "KimHummer"}, "epsilon", {0.0}},
+        // The WCA core of MorseWCA acts only closer than r0: generic r0 (about 1) leaves the chain's
+        // bonds outside it, where eps0 changes nothing.
+        {{"Bond2", "MorseWCACommon_eps0"}, "r0", {2.0}},
     };
     return table;
 }
