@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "input/tracked_node.hpp"
+#include "steps/particle_list_measure.hpp"
 
 namespace structmd {
 
@@ -72,16 +73,7 @@ namespace {
 
 std::vector<int64_t> ids_of(const input::TrackedNode& list, int64_t n) {
     if (!list.is_array() || list.size() == 0) throw input_error(list.path(), "expected a non-empty list of particle ids");
-    std::vector<int64_t> ids;
-    for (size_t k = 0; k < list.size(); ++k) {
-        const input::TrackedNode cell = list.at(k);
-        const int64_t id = cell.as<int64_t>();
-        if (id < 0 || id >= n)
-            throw input_error(cell.path(), "particle id " + std::to_string(id) + " does not exist (ids are 0.." +
-                                               std::to_string(n - 1) + ")");
-        ids.push_back(id);
-    }
-    return ids;
+    return read_id_list(list, n);
 }
 
 std::unique_ptr<SimulationStep> make(const StepInput& in) {

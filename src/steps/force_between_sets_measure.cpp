@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "input/read_parameters.hpp"
 #include "input/tracked_node.hpp"
+#include "steps/particle_list_measure.hpp"
 
 namespace structmd {
 
@@ -52,15 +53,7 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
         for (const ForceBetweenSetsMeasure::Set& other : sets)
             if (other.name == set.name) throw input_error(nameCell.path(), "a second set named '" + set.name + "'");
         const input::TrackedNode list = table.cell(r, "id_list");
-        if (!list.is_array()) throw input_error(list.path(), "expected a list of particle ids");
-        for (size_t k = 0; k < list.size(); ++k) {
-            const input::TrackedNode cell = list.at(k);
-            const int64_t id = cell.as<int64_t>();
-            if (id < 0 || id >= n)
-                throw input_error(cell.path(), "particle id " + std::to_string(id) + " does not exist (ids are 0.." +
-                                                   std::to_string(n - 1) + ")");
-            set.ids.push_back(id);
-        }
+        set.ids = read_id_list(list, n);
         sets.push_back(std::move(set));
     }
     return std::make_unique<ForceBetweenSetsMeasure>(in.name, in.interval(), in.start(), in.end(),

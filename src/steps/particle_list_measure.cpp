@@ -86,6 +86,20 @@ std::vector<std::array<int64_t, 4>> read_particle_ids(const StepInput& in, const
     return ids;
 }
 
+std::vector<int64_t> read_id_list(const input::TrackedNode& list, int64_t n) {
+    if (!list.is_array()) throw input_error(list.path(), "expected a list of particle ids");
+    std::vector<int64_t> ids;
+    for (size_t k = 0; k < list.size(); ++k) {
+        const input::TrackedNode cell = list.at(k);
+        const int64_t id = cell.as<int64_t>();
+        if (id < 0 || id >= n)
+            throw input_error(cell.path(), "particle id " + std::to_string(id) + " does not exist (ids are 0.." +
+                                               std::to_string(n - 1) + ")");
+        ids.push_back(id);
+    }
+    return ids;
+}
+
 namespace {
 
 template <int Arity, ParticleListMeasure::Layout L>

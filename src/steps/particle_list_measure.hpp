@@ -38,6 +38,9 @@ private:
 // name a particle; ERR_UNSUPPORTED unless the step's group is "All" (the table names the particles).
 std::vector<std::array<int64_t, 4>> read_particle_ids(const StepInput& in, const std::vector<std::string>& labels);
 
+// A table cell holding a list of particle ids (a set), each checked to name one of the n particles.
+std::vector<int64_t> read_id_list(const input::TrackedNode& list, int64_t n);
+
 SimulationStepEntry distances_measure_entry();
 SimulationStepEntry angles_measure_entry();
 SimulationStepEntry dihedrals_measure_entry();
