@@ -8,6 +8,13 @@
 
 namespace structmd {
 
+// How many lanes a backend with lanes (the GPU) gives each item. kNeighbourSum: the items' threads
+// fill at most half the device, so each lane walks several neighbours with their loads in flight
+// (the pair kernels: 8 lanes per particle at 10,976 particles ran 9% faster than the 32 that fill
+// the device; docs/benchmarks.md). kFillDevice: lanes until the items' threads fill the device
+// (the list build, whose ~500 candidate tests per particle are arithmetic, and the scans of cells).
+enum class LaneSizing { kNeighbourSum, kFillDevice };
+
 struct Lanes {
     int lane = 0;        // this thread's rank within the item's lanes
     int count = 1;       // lanes per item: a power of two, at most 32

@@ -119,15 +119,16 @@ private:
         backend_.for_each(n, BinParticles<R>{pos.data(), grid_, batch_, box_, control_.data(), cellCount_.data(),
                                              cellOf_.data(), rankInCell_.data()});
         backend_.for_each_lanes(chunks_, SumCellChunks{control_.data(), cellCount_.data(), chunkTotal_.data(),
-                                                       chunkCells_, cells});
+                                                       chunkCells_, cells}, LaneSizing::kFillDevice);
         backend_.for_each_lanes(chunks_, StartCells{control_.data(), cellCount_.data(), chunkTotal_.data(),
-                                              cellStart_.data(), chunkCells_, cells});
+                                              cellStart_.data(), chunkCells_, cells}, LaneSizing::kFillDevice);
         backend_.for_each(n, PlaceParticles{control_.data(), cellOf_.data(), rankInCell_.data(), cellStart_.data(),
                                             order_.data()});
         backend_.for_each(cells, SortCells<R>{pos.data(), control_.data(), cellStart_.data(), order_.data(),
                                               positions_.data(), binned_.data()});
         backend_.for_each_lanes(n, BuildLists<R>{view(), R(listRadius_ * listRadius_), control_.data(),
-                                                 B::ordered_neighbour_lists});
+                                                 B::ordered_neighbour_lists},
+                                LaneSizing::kFillDevice);
         backend_.write(control_, kRebuild, 0);
     }
 

@@ -106,7 +106,7 @@ public:
 
     // f(i, lanes) for i < n, one lane per item: a CPU thread works through a neighbour loop alone.
     template <class F>
-    void for_each_lanes(int64_t n, const F& f) const {
+    void for_each_lanes(int64_t n, const F& f, LaneSizing = LaneSizing::kNeighbourSum) const {
         for_each(n, [&](int64_t i) { f(i, Lanes{}); });
     }
 

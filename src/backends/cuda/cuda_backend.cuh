@@ -167,23 +167,26 @@ public:
         graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_kernel<F>), grid, false, n, f));
     }
 
-    // f(i, lanes) for i < n. Items get as many lanes (up to a warp) as it takes to keep the whole
-    // device busy: a system of 10,000 particles then runs 32 threads per particle, one of millions
-    // a thread each.
+    // f(i, lanes) for i < n, with lanes (up to a warp) sized by `sizing` (core/lanes.hpp): a list
+    // build over 10,000 particles runs 32 threads per particle, their pair kernel 8, and either runs
+    // one thread per particle at a million.
     // Lanes of one particle read its entries side by side; single threads of consecutive particles
-    // read entry k of each side by side.
-    bool lists_by_rows(int64_t n) const { return lanes_for(n) > 1; }
+    // read entry k of each side by side. The pair kernels read the lists, so their lanes decide.
+    bool lists_by_rows(int64_t n) const { return lanes_for(n, LaneSizing::kNeighbourSum) > 1; }
 
-    int lanes_for(int64_t n) const {
+    int lanes_for(int64_t n, LaneSizing sizing) const {
         int lanes = 1;
-        while (lanes < 32 && n * lanes < residentThreads_) lanes *= 2;
+        if (sizing == LaneSizing::kFillDevice)
+            while (lanes < 32 && n * lanes < residentThreads_) lanes *= 2;
+        else
+            while (lanes < 32 && 2 * n * lanes <= residentThreads_ / 2) lanes *= 2;
         return lanes;
     }
 
     template <class F>
-    void for_each_lanes(int64_t n, const F& f) const {
+    void for_each_lanes(int64_t n, const F& f, LaneSizing sizing = LaneSizing::kNeighbourSum) const {
         if (n <= 0) return;
-        const Grid grid = grid_for(n, lanes_for(n));
+        const Grid grid = grid_for(n, lanes_for(n, sizing));
         if (!graphs_.recording()) {
             for_each_lanes_kernel<<<grid.blocks, kThreads, 0, stream_>>>(n, grid.lanes, f);
             cuda_check(cudaGetLastError(), "launching a kernel");
@@ -219,7 +222,7 @@ public:
         return std::make_shared<const RuntimeKernels>(device_, source, kernels);
     }
 
-    // for_each(n, f) and for_each_lanes(n, f) through `kernel`, a for_each_kernel or
+    // for_each(n, f) and for_each_lanes(n, f) (sized for a neighbour sum) through `kernel`, a for_each_kernel or
     // for_each_lanes_kernel compiled at run time whose functor has the layout of F.
     template <class F>
     void for_each_compiled(const void* kernel, int64_t n, const F& f) const {
@@ -227,7 +230,7 @@ public:
     }
     template <class F>
     void for_each_lanes_compiled(const void* kernel, int64_t n, const F& f) const {
-        if (n > 0) launch(recorded(kernel, grid_for(n, lanes_for(n)), true, n, f));
+        if (n > 0) launch(recorded(kernel, grid_for(n, lanes_for(n, LaneSizing::kNeighbourSum)), true, n, f));
     }
 
     template <class T, class F>
