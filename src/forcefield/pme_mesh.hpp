@@ -5,17 +5,23 @@
 // and its gradient read back through the same B-splines. Forces are the exact gradient of the mesh
 // energy (analytical differentiation of the B-splines), so energy and forces agree to rounding.
 //
-// The FFT is the backend's (B::Fft3d, core/fft_grid.hpp). Spreading runs over z-planes of the grid, each plane summing its particles in index order: no
-// atomics, so a run is reproducible bit for bit on the CPU whatever the thread count.
+// The FFT is the backend's (B::Fft3d, core/fft_grid.hpp). Spreading gives each grid line along x
+// to one thread, which sums the charges whose splines reach it from the particles binned by the
+// line of their spline base, each bin in particle order: no atomics on the mesh, so a run is
+// reproducible bit for bit whatever the thread count, and each charge is read by the 36 lines it
+// reaches, not by every thread.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "core/atomic.hpp"
 #include "core/error.hpp"
 #include "core/fft_grid.hpp"
 #include "core/hd.hpp"
 #include "core/vec.hpp"
 #include "forcefield/interactor.hpp"
+#include "neighbour/verlet_list_kernels.hpp"
 #include "state/particles.hpp"
 
 namespace structmd {
@@ -73,37 +79,85 @@ SMD_HD SMD_INLINE R grid_coordinate(R x, R inverseLength, int K) {
 
 SMD_HD SMD_INLINE int fold_index(int i, int K) { return i < 0 ? i + K : i; }
 
-// One z-plane of the charge grid: cleared, then every particle whose spline reaches it adds to it.
+// Bins each charged particle of the group by the grid line (y, z) of its spline base; the rank a
+// particle gets in its bin depends on thread timing, so the bins are sorted afterwards.
 template <class R>
-struct PmeSpreadPlane {
+struct PmeBinCharges {
     const Real4<R>* pos;
     const R* charge;
     const uint8_t* group;
-    int64_t count;
+    Box<R> box;
+    FftGrid grid;
+    int* lineCount;
+    int* lineOf;  // -1 for a particle that spreads nothing
+    int* rankInLine;
+
+    SMD_HD void operator()(int64_t i) const {
+        if (charge[i] == R(0) || (group && !group[i])) {
+            lineOf[i] = -1;
+            return;
+        }
+        const Real4<R> r = pos[i];
+        const int y = spline_base(grid_coordinate(r.y, box.inverse.y, grid.ny), grid.ny);
+        const int z = spline_base(grid_coordinate(r.z, box.inverse.z, grid.nz), grid.nz);
+        const int line = z * grid.ny + y;
+        lineOf[i] = line;
+        rankInLine[i] = atomic_add(lineCount + line, 1);
+    }
+};
+
+struct PmePlaceCharges {
+    const int* lineOf;
+    const int* rankInLine;
+    const int* lineStart;
+    int* order;
+    SMD_HD void operator()(int64_t i) const {
+        if (lineOf[i] >= 0) order[lineStart[lineOf[i]] + rankInLine[i]] = static_cast<int>(i);
+    }
+};
+
+struct PmeSortBin {
+    const int* lineStart;
+    int* order;
+    SMD_HD void operator()(int64_t line) const {
+        const int first = lineStart[line], members = lineStart[line + 1] - first;
+        if (members <= 32)
+            insertion_sort(order + first, members);
+        else
+            heap_sort(order + first, members);
+    }
+};
+
+// One grid line along x, cleared and then summed: a charge whose spline base lies on line
+// (y + b, z + c) adds q w_y[b] w_z[c] w_x[a] at x = base_x - a. Bins are read in (c, b) order and
+// each in particle order, so the sum does not depend on thread timing.
+template <class R>
+struct PmeSpreadLine {
+    const Real4<R>* pos;
+    const R* charge;
+    const int* order;
+    const int* lineStart;
     Box<R> box;
     FftGrid grid;
     R* mesh;
 
-    SMD_HD void operator()(int64_t plane) const {
-        const int z = static_cast<int>(plane);
-        R* row = mesh + int64_t(grid.nx) * grid.ny * z;
-        for (int64_t k = 0; k < int64_t(grid.nx) * grid.ny; ++k) row[k] = R(0);
-        for (int64_t i = 0; i < count; ++i) {
-            const R q = charge[i];
-            if (q == R(0) || (group && !group[i])) continue;
-            const Real4<R> r = pos[i];
-            const R uz = grid_coordinate(r.z, box.inverse.z, grid.nz);
-            int j = spline_base(uz, grid.nz) - z;
-            if (j < 0) j += grid.nz;
-            if (j >= kPmeOrder) continue;
-            const BSplineWeights<R> wz(uz, grid.nz);
-            const BSplineWeights<R> wx(grid_coordinate(r.x, box.inverse.x, grid.nx), grid.nx);
-            const BSplineWeights<R> wy(grid_coordinate(r.y, box.inverse.y, grid.ny), grid.ny);
-            const R qz = q * wz.w[j];
+    SMD_HD void operator()(int64_t line) const {
+        const int y = static_cast<int>(line % grid.ny), z = static_cast<int>(line / grid.ny);
+        R* row = mesh + grid.index(0, y, z);
+        for (int x = 0; x < grid.nx; ++x) row[x] = R(0);
+        for (int c = 0; c < kPmeOrder; ++c) {
+            const int binZ = (z + c) % grid.nz;
             for (int b = 0; b < kPmeOrder; ++b) {
-                R* line = row + int64_t(grid.nx) * fold_index(wy.base - b, grid.ny);
-                const R qyz = qz * wy.w[b];
-                for (int a = 0; a < kPmeOrder; ++a) line[fold_index(wx.base - a, grid.nx)] += qyz * wx.w[a];
+                const int bin = binZ * grid.ny + (y + b) % grid.ny;
+                for (int s = lineStart[bin]; s < lineStart[bin + 1]; ++s) {
+                    const int i = order[s];
+                    const Real4<R> r = pos[i];
+                    const BSplineWeights<R> wx(grid_coordinate(r.x, box.inverse.x, grid.nx), grid.nx);
+                    const BSplineWeights<R> wy(grid_coordinate(r.y, box.inverse.y, grid.ny), grid.ny);
+                    const BSplineWeights<R> wz(grid_coordinate(r.z, box.inverse.z, grid.nz), grid.nz);
+                    const R qyz = charge[i] * wy.w[b] * wz.w[c];
+                    for (int a = 0; a < kPmeOrder; ++a) row[fold_index(wx.base - a, grid.nx)] += qyz * wx.w[a];
+                }
             }
         }
     }
@@ -269,6 +323,17 @@ public:
         backend_.upload(influence_, values.data(), values.size());
         backend_.resize(mesh_, static_cast<size_t>(plan.grid.points()));
         backend_.resize(spectrum_, static_cast<size_t>(plan.grid.spectrum_points()));
+        const int lines = plan.grid.ny * plan.grid.nz;
+        backend_.resize(lineCount_, lines);
+        backend_.fill(lineCount_, 0);
+        backend_.resize(lineStart_, lines + 1);
+        // As the list sizes its scan: about as many chunks as lines per chunk, in whole warps.
+        chunkLines_ = 32 * static_cast<int>(std::ceil(std::sqrt(static_cast<double>(lines)) / 32));
+        chunks_ = (lines + chunkLines_ - 1) / chunkLines_;
+        backend_.resize(chunkTotal_, chunks_);
+        backend_.resize(scanControl_, kControlSlots);
+        backend_.fill(scanControl_, 0);
+        backend_.write(scanControl_, kRebuild, 1);
     }
 
     void compute(Particles<B, R>& p, const uint8_t* group, const ForceOutputs<R>& out, const std::string& name) {
@@ -278,8 +343,7 @@ public:
                             name + ": the box changed since the input was read; the mesh of [\"LongRange\", "
                                    "\"Electrostatics\"] is made for the box it was read with");
         const FftGrid grid = plan_.grid;
-        backend_.for_each(grid.nz, PmeSpreadPlane<R>{p.pos.data(), p.charge.data(), group, p.count, p.box, grid,
-                                                     mesh_.data()});
+        spread(p, group);
         fft_.forward(mesh_.data(), spectrum_.data());
         if (out.virial) add_virial(p, group, out.virial);
         backend_.for_each(grid.spectrum_points(), PmeConvolve<R>{spectrum_.data(), influence_.data()});
@@ -293,6 +357,32 @@ public:
     }
 
 private:
+    // The charges onto mesh_: binned by grid line with the list build's counting sort (its scan of
+    // bin counts, verlet_list_kernels.hpp, run with its flag held raised), then one thread a line.
+    void spread(Particles<B, R>& p, const uint8_t* group) {
+        const FftGrid grid = plan_.grid;
+        const int lines = grid.ny * grid.nz;
+        if (particles_ != p.count) {
+            particles_ = p.count;
+            backend_.resize(lineOf_, p.count);
+            backend_.resize(rankInLine_, p.count);
+            backend_.resize(order_, p.count);
+        }
+        backend_.for_each(p.count, PmeBinCharges<R>{p.pos.data(), p.charge.data(), group, p.box, grid,
+                                                    lineCount_.data(), lineOf_.data(), rankInLine_.data()});
+        backend_.for_each_lanes(chunks_, SumCellChunks{scanControl_.data(), lineCount_.data(), chunkTotal_.data(),
+                                                       chunkLines_, lines},
+                                LaneSizing::kFillDevice);
+        backend_.for_each_lanes(chunks_, StartCells{scanControl_.data(), lineCount_.data(), chunkTotal_.data(),
+                                                    lineStart_.data(), chunkLines_, lines},
+                                LaneSizing::kFillDevice);
+        backend_.for_each(p.count, PmePlaceCharges{lineOf_.data(), rankInLine_.data(), lineStart_.data(),
+                                                   order_.data()});
+        backend_.for_each(lines, PmeSortBin{lineStart_.data(), order_.data()});
+        backend_.for_each(lines, PmeSpreadLine<R>{p.pos.data(), p.charge.data(), order_.data(), lineStart_.data(),
+                                                  p.box, grid, mesh_.data()});
+    }
+
     void add_virial(Particles<B, R>& p, const uint8_t* group, Tensor3<R>* virial) {
         const int64_t charged = backend_.reduce(p.count, PmeCharged<R>{p.charge.data(), group}, int64_t(0));
         if (charged == 0) return;
@@ -314,6 +404,10 @@ private:
     typename B::template Buffer<R> influence_;
     typename B::template Buffer<R> mesh_;  // the charges, then the potentials
     typename B::template Buffer<Complex<R>> spectrum_;
+    // The charges binned by grid line (spread()).
+    int64_t particles_ = -1;
+    int chunkLines_ = 1, chunks_ = 0;
+    typename B::template Buffer<int> lineCount_, lineStart_, lineOf_, rankInLine_, order_, chunkTotal_, scanControl_;
 };
 #endif
 
