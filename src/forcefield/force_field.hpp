@@ -10,6 +10,7 @@
 
 #include "forcefield/interactor.hpp"
 #include "neighbour/verlet_list.hpp"
+#include "state/drift_bookkeeping.hpp"
 
 namespace structmd {
 
@@ -50,6 +51,16 @@ public:
     void prepare(Particles<B, R>& p) {
         for (auto& it : interactors_)
             if (it->active(p.timeline.evaluating_step())) it->prepare(p);
+    }
+    // The first list's share of a drift's bookkeeping (state/drift_bookkeeping.hpp): its position
+    // copy and displacement check; the other lists, if any, keep their own.
+    void mirror_in_drift(DriftBookkeeping<R>& drift) {
+        if (lists_.empty()) return;
+        drift.slotOf = lists_.front()->slot_of();
+        drift.mirror = lists_.front()->mirror();
+    }
+    void drift_mirrored(int64_t version) {
+        if (!lists_.empty()) lists_.front()->mirrored(version);
     }
     void invalidate_lists() {
         for (auto& list : lists_) list->invalidate();

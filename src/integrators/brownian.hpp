@@ -77,7 +77,7 @@ public:
         backend_.for_each(p.count, EulerMaruyamaStep<R>{p.pos.data(), p.image.data(), p.force.data(), p.radius.data(),
                                                         selfDiffusion, s.group, p.box, R(s.timeStep), R(viscosity_), R(s.kT),
                                                         p.seed, p.now(), p.fault_slot(1)});
-        forces.positions_moved(s.timeStep);
+        forces.positions_moved(s.timeStep, false);
     }
 
 private:

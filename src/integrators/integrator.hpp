@@ -19,8 +19,9 @@ public:
     // The potential energy at the present positions (a reduction: the host waits for it).
     virtual double potential_energy() = 0;
     // Tells the engine the integrator moved the particles to the next step's positions, `elapsed`
-    // time later (terms active at that step and fields at that time then apply).
-    virtual void positions_moved(double elapsed) = 0;
+    // time later (terms active at that step and fields at that time then apply). driftBookkept: the
+    // kernel that moved them applied Particles::drift, as update_forces left it, to every particle.
+    virtual void positions_moved(double elapsed, bool driftBookkept) = 0;
 };
 
 // The particle moved by d, wrapped into the box (its image counts the crossings); the type in w

@@ -39,6 +39,8 @@ struct HalfKickBack {
     }
 };
 
+// Also does the engine's bookkeeping for the evaluation at the new positions (state/
+// drift_bookkeeping.hpp), for every particle, moved or not.
 template <class R>
 struct BbkStep {
     Real4<R>* pos;
@@ -52,8 +54,12 @@ struct BbkStep {
     uint64_t seed;
     ClockView now;
     FaultSlot fault;
+    DriftBookkeeping<R> bookkeeping;
     SMD_HD void operator()(int64_t i) const {
-        if ((group && !group[i]) || held_fixed(vel[i])) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) {
+            bookkeeping(i, pos[i]);
+            return;
+        }
         Real4<R> v = vel[i];
         const Real4<R> f = force[i];
         const R m = v.w;
@@ -70,6 +76,7 @@ struct BbkStep {
         const Real4<R> p = displaced(pos[i], move, box, image[i]);
         pos[i] = p;
         fault.check(i, p, v, f);
+        bookkeeping(i, p);
     }
 };
 
@@ -98,11 +105,12 @@ public:
         const R* frictionOf = friction_ > 0.0 ? nullptr : p.friction.data();
         backend_.for_each(p.count, BbkStep<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
                                               frictionOf, p.box, R(s.timeStep), R(friction_), R(s.kT), p.seed, p.now(),
-                                              p.fault_slot(1)});
-        // A reduction, so the host waits: only on the steps that ask for it.
-        if (stopTransRotSteps_ > 0 && (p.timeline.step() + 1) % stopTransRotSteps_ == 0)
-            remove_rigid_motion(backend_, p, s.group, R(s.timeStep));
-        forces.positions_moved(s.timeStep);
+                                              p.fault_slot(1), p.drift});
+        // A reduction, so the host waits: only on the steps that ask for it. It moves the
+        // particles again, so the engine does its bookkeeping itself then.
+        const bool removal = stopTransRotSteps_ > 0 && (p.timeline.step() + 1) % stopTransRotSteps_ == 0;
+        if (removal) remove_rigid_motion(backend_, p, s.group, R(s.timeStep));
+        forces.positions_moved(s.timeStep, !removal);
     }
 
 private:

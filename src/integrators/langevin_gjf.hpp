@@ -87,7 +87,7 @@ public:
         const R* frictionOf = friction_ > 0.0 ? nullptr : p.friction.data();
         backend_.for_each(p.count, GjfDrift<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
                                                frictionOf, p.box, dt, R(friction_), R(s.kT), p.seed, p.now(), p.fault_slot(1)});
-        forces.positions_moved(s.timeStep);
+        forces.positions_moved(s.timeStep, false);
         forces.update_forces();
         backend_.for_each(p.count, GjfKick<R>{p.pos.data(), p.vel.data(), p.force.data(), s.group, dt, p.fault_slot()});
     }

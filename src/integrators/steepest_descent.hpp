@@ -109,14 +109,14 @@ public:
         backend_.for_each(p.count, DescentMove<R>{p.pos.data(), p.image.data(), savedPos_.data(), savedImage_.data(),
                                                   p.force.data(), this->scope().group, p.box, R(h_ / largest),
                                                   p.fault_slot(1)});
-        forces.positions_moved(0.0);
+        forces.positions_moved(0.0, false);
         const double after = forces.potential_energy();
         if (after < before) {
             h_ *= 1.001;
             return;
         }
         backend_.for_each(p.count, UndoMove<R>{p.pos.data(), p.image.data(), savedPos_.data(), savedImage_.data()});
-        forces.positions_moved(0.0);
+        forces.positions_moved(0.0, false);
         h_ *= 0.999;
     }
 

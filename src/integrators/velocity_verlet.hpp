@@ -6,23 +6,30 @@ namespace structmd {
 
 struct VelocityVerletInputs : IntegratorInputs {};
 
+// Also does the engine's bookkeeping for the evaluation at the new positions, for every particle,
+// moved or not.
 template <class R>
 struct VerletKickDrift {
     const uint8_t* group;
     Real4<R>* pos;
     Image* image;
     Real4<R>* vel;
-    const Real4<R>* force;
+    Real4<R>* force;
     Box<R> box;
     R dt;
     FaultSlot fault;
+    DriftBookkeeping<R> bookkeeping;
     SMD_HD void operator()(int64_t i) const {
-        if ((group && !group[i]) || held_fixed(vel[i])) return;
-        const Real4<R> v = half_kick(vel[i], force[i], dt);
-        vel[i] = v;
-        const Vec3<R> move = dt * xyz(v);
-        fault.check_move(i, move);
-        pos[i] = displaced(pos[i], move, box, image[i]);
+        Real4<R> p = pos[i];
+        if (!(group && !group[i]) && !held_fixed(vel[i])) {
+            const Real4<R> v = half_kick(vel[i], force[i], dt);
+            vel[i] = v;
+            const Vec3<R> move = dt * xyz(v);
+            fault.check_move(i, move);
+            p = displaced(p, move, box, image[i]);
+            pos[i] = p;
+        }
+        bookkeeping(i, p);
     }
 };
 
@@ -54,8 +61,9 @@ public:
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const R dt = R(this->time_step());
         forces.update_forces();
-        backend_.for_each(p.count, VerletKickDrift<R>{this->scope().group, p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), p.box, dt, p.fault_slot(1)});
-        forces.positions_moved(this->time_step());
+        backend_.for_each(p.count, VerletKickDrift<R>{this->scope().group, p.pos.data(), p.image.data(), p.vel.data(),
+                                                      p.force.data(), p.box, dt, p.fault_slot(1), p.drift});
+        forces.positions_moved(this->time_step(), true);
         forces.update_forces();
         backend_.for_each(p.count, VerletKick<R>{this->scope().group, p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});
     }

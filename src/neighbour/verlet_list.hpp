@@ -57,13 +57,10 @@ public:
         if (needsLayout_ || n != particles_ || !same_box(box)) layout(n, box);
         // The flag is down between updates (the build lowers it), so a step without a build sets
         // nothing here and launches nothing of the build.
-        if (forceRebuild_) {
+        if (forceRebuild_)
             backend_.write(control_, kRebuild, 1);
-        } else {
-            const R halfSkin = R(0.5 * (listRadius_ - cutoff_));
-            backend_.for_each(n, RefreshPositions<R>{pos.data(), order_.data(), binned_.data(), positions_.data(),
-                                                     box_, halfSkin * halfSkin, control_.data()});
-        }
+        else if (mirroredAt_ != version)
+            backend_.for_each(n, RefreshPositions<R>{pos.data(), order_.data(), mirror()});
         forceRebuild_ = false;
         backend_.only_if(control_.data() + kRebuild, [&] { build(pos, n); });
     }
@@ -84,6 +81,16 @@ public:
     }
 
     void invalidate() { forceRebuild_ = true; }
+
+    // What a drift kernel needs to keep this list's positions and displacement check
+    // (state/drift_bookkeeping.hpp): null slots until the list is laid out for the particles.
+    const int* slot_of() const { return particles_ > 0 && !needsLayout_ ? slotOf_.data() : nullptr; }
+    SlotMirror<R> mirror() {
+        const R halfSkin = R(0.5 * (listRadius_ - cutoff_));
+        return SlotMirror<R>{positions_.data(), binned_.data(), box_, halfSkin * halfSkin, control_.data()};
+    }
+    // A drift kernel mirrored the positions of `version` (every particle's).
+    void mirrored(int64_t version) { mirroredAt_ = version; }
     int64_t builds() const { return builds_; }
 
     NeighbourView<R> view() {
@@ -125,7 +132,7 @@ private:
         backend_.for_each(n, PlaceParticles{control_.data(), cellOf_.data(), rankInCell_.data(), cellStart_.data(),
                                             order_.data()});
         backend_.for_each(cells, SortCells<R>{pos.data(), control_.data(), cellStart_.data(), order_.data(),
-                                              positions_.data(), binned_.data()});
+                                              slotOf_.data(), positions_.data(), binned_.data()});
         backend_.for_each_lanes(n, BuildLists<R>{view(), R(listRadius_ * listRadius_), control_.data(),
                                                  B::ordered_neighbour_lists},
                                 LaneSizing::kFillDevice);
@@ -153,6 +160,7 @@ private:
         backend_.resize(list_, static_cast<size_t>(capacity_) * n);
         backend_.resize(count_, n);
         backend_.resize(order_, n);
+        backend_.resize(slotOf_, n);
         backend_.resize(positions_, n);
         backend_.resize(binned_, n);
         backend_.resize(cellOf_, n);
@@ -181,11 +189,12 @@ private:
     bool forceRebuild_ = true;
     int64_t builds_ = 0;
     int64_t updatedAt_ = -1;
+    int64_t mirroredAt_ = -1;  // the positions version a drift kernel mirrored
     PairFilter filter_;
     typename B::template Buffer<int> excludedStart_, excluded_, kind_;
     typename B::template Buffer<uint8_t> charged_;
     typename B::template Buffer<int> control_;
-    typename B::template Buffer<int> list_, count_, order_, cellOf_, rankInCell_, cellCount_, cellStart_, chunkTotal_;
+    typename B::template Buffer<int> list_, count_, order_, slotOf_, cellOf_, rankInCell_, cellCount_, cellStart_, chunkTotal_;
     typename B::template Buffer<Real4<R>> positions_, binned_;
 };
 

@@ -12,34 +12,26 @@
 #include "core/atomic.hpp"
 #include "core/vec.hpp"
 #include "neighbour/neighbour_view.hpp"
+#include "neighbour/slot_mirror.hpp"
 
 namespace structmd {
 
 // Slots of the list's small control buffer.
 enum ListControl : int {
-    kRebuild = 0,        // 1 from the step that needs a build until the build ends
+    kRebuild = kListRebuildFlag,  // 1 from the step that needs a build until the build ends
     kBuilds = 1,         // number of builds since load
     kMaxNeighbours = 2,  // the longest list seen at a build
     kControlSlots = 3
 };
 
-// Every step: copies this step's positions into slot order and raises the rebuild flag when some
-// particle has moved more than half the skin since it was binned.
+// Every step whose drift did not mirror the positions (state/drift_bookkeeping.hpp): copies them
+// into slot order with the displacement check.
 template <class R>
 struct RefreshPositions {
     const Real4<R>* pos;
     const int* order;
-    const Real4<R>* binned;
-    Real4<R>* positions;
-    Box<R> box;
-    R halfSkin2;
-    int* control;
-    SMD_HD void operator()(int64_t k) const {
-        const Real4<R> p = pos[order[k]];
-        positions[k] = p;
-        const Vec3<R> d = box.minimum_image(xyz(p) - xyz(binned[k]));
-        if (dot(d, d) > halfSkin2) atomic_max(control + kRebuild, 1);
-    }
+    SlotMirror<R> mirror;
+    SMD_HD void operator()(int64_t k) const { mirror.record(k, pos[order[k]]); }
 };
 
 template <class R>
@@ -165,13 +157,14 @@ SMD_HD SMD_INLINE void heap_sort(int* a, int n) {
 
 // Each cell's range sorted by particle, so the slots, the lists and the order of force sums are
 // the same on every run and every thread count; then the positions copied into slot order, as
-// this step's and as the reference for the displacement check.
+// this step's and as the reference for the displacement check, and each particle's slot noted.
 template <class R>
 struct SortCells {
     const Real4<R>* pos;
     const int* control;
     const int* cellStart;
     int* order;
+    int* slotOf;
     Real4<R>* positions;
     Real4<R>* binned;
     SMD_HD void operator()(int64_t c) const {
@@ -185,6 +178,7 @@ struct SortCells {
             const Real4<R> p = pos[order[s]];
             positions[s] = p;
             binned[s] = p;
+            slotOf[order[s]] = s;
         }
     }
 };

@@ -661,11 +661,29 @@ private:
     }
 
     // ForceSource
-    void update_forces() override { cache_.evaluate(kForces, backend_, p_, forceField_, callbacks_, evaluations_); }
+    void update_forces() override {
+        cache_.evaluate(kForces, backend_, p_, forceField_, callbacks_, evaluations_);
+        arm_drift();
+    }
     double potential_energy() override { return potential_energy(-1); }
-    void positions_moved(double elapsed) override {
+    void positions_moved(double elapsed, bool driftBookkept) override {
         ++p_.version;
         p_.timeline.positions_moved(elapsed);
+        if (!driftBookkept) return;
+        if (p_.drift.force) cache_.forces_cleared(p_.version);
+        if (p_.drift.slotOf) forceField_.drift_mirrored(p_.version);
+    }
+
+    // What the next drift kernel can take over (state/drift_bookkeeping.hpp): clearing the forces,
+    // unless torques are kept (they are cleared with them), and the first list's position copy.
+    void arm_drift() {
+        DriftBookkeeping<R> drift;
+        if (p_.torque.empty()) {
+            drift.force = p_.force.data();
+            drift.external = p_.externalForce.empty() ? nullptr : p_.externalForce.data();
+        }
+        forceField_.mirror_in_drift(drift);
+        p_.drift = drift;
     }
 
     // Reports a fault recorded on the backend during the last steps and returns to the state the

@@ -21,8 +21,10 @@ public:
                   CallbackTerm<B, R>& callbacks, Counters& counters) {
         ForceOutputs<R> out;
         if ((flags & kForces) && forces_ != p.version) {
-            backend.for_each(p.count, InitForces<R>{p.force.data(), p.externalForce.empty() ? nullptr
-                                                                                           : p.externalForce.data()});
+            if (cleared_ != p.version)
+                backend.for_each(p.count, InitForces<R>{p.force.data(), p.externalForce.empty() ? nullptr
+                                                                                               : p.externalForce.data()});
+            cleared_ = kStale;  // a second try at these positions starts from zero again
             out.force = p.force.data();
             // Torques, where kept, go with the forces: the same pass makes both.
             if (!p.torque.empty()) {
@@ -56,9 +58,12 @@ public:
     void virial_overwritten() { virial_ = kStale; }
     // Whether the forces are those of these positions.
     bool forces_current(int64_t version) const { return forces_ == version; }
+    // The drift kernel that made the positions of `version` cleared the forces on its way
+    // (state/drift_bookkeeping.hpp): their evaluation there starts without clearing them.
+    void forces_cleared(int64_t version) { cleared_ = version; }
     // The external forces changed: forces must be computed again at the same positions.
-    void forces_changed() { forces_ = kStale; }
-    void invalidate() { forces_ = energy_ = virial_ = kStale; }
+    void forces_changed() { forces_ = cleared_ = kStale; }
+    void invalidate() { forces_ = energy_ = virial_ = cleared_ = kStale; }
 
     static void count(const ForceOutputs<R>& out, Counters& counters) {
         counters.forceEvaluations += out.force != nullptr;
@@ -71,6 +76,7 @@ private:
     int64_t forces_ = kStale;
     int64_t energy_ = kStale;
     int64_t virial_ = kStale;
+    int64_t cleared_ = kStale;  // the version whose forces a drift kernel cleared
 };
 
 }  // namespace structmd

@@ -6,6 +6,7 @@
 
 #include "core/box.hpp"
 #include "core/vec.hpp"
+#include "state/drift_bookkeeping.hpp"
 #include "state/fault.hpp"
 #include "state/timeline.hpp"
 
@@ -37,6 +38,7 @@ struct Particles {
     Buffer<double> lambda;             // one entry: the ensemble's coupling parameter, in [0, 1]
     Timeline timeline;                 // the step and time, as the host knows them
     int64_t version = 0;               // changes whenever positions or the box change
+    DriftBookkeeping<R> drift;         // what the next drift kernel may do for the engine
     uint64_t seed = 0;                 // the system's seed, for counter-based noise
 
     ClockView now() const { return timeline.view(clock.data()); }

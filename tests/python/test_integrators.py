@@ -572,6 +572,48 @@ def test_inertial_integrators_hold_a_particle_of_mass_zero_fixed_while_its_force
     np.testing.assert_allclose(temperature, 2.0 * kinetic / (3.0 * len(free)), rtol=1e-8)
 
 
+# ---- the drift's bookkeeping ---------------------------------------------------------------------
+
+BOOKKEEPING_CASES = {
+    "VelocityVerlet": verlet(0.005),
+    "BBK": langevin("BBK", 0.005, 1.0),
+}
+
+
+@pytest.mark.parametrize("kind", BOOKKEEPING_CASES)
+def test_the_forces_after_each_call_are_those_of_a_fresh_evaluation_of_its_positions(options, kind):
+    """The drift kernels of these integrators clear the forces and keep the neighbour list's copy of
+    the positions for the evaluation that follows (state/drift_bookkeeping.hpp). Half the particles
+    are outside the integrator's group, the host changes the external forces between calls and the
+    lists are rebuilt on the way: after every call the forces must equal those of a new handle loaded
+    at the same positions with the same external forces. A force not cleared, an external force
+    counted twice or stale, or a particle the list still sees where it was would break the equality."""
+    positions, box = perturbed_lattice(7, 1.2, 0.1, seed=4)
+    n = len(positions)
+    force_field = lennard_jones()
+    force_field["groups"] = {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                             "data": [["mobile", "Ids", list(range(0, n, 2))]]}
+    entry = dict(BOOKKEEPING_CASES[kind])
+    entry["parameters"] = dict(entry["parameters"], group="mobile")
+    doc = document(positions, half_light_half_heavy(n), {"integrate": entry}, [("integrate", 1000)],
+                   force_field=force_field, box=box, velocities=np.random.default_rng(3).normal(size=(n, 3)))
+    rng = np.random.default_rng(5)
+    with structmd.Simulation(options) as sim, structmd.Simulation(options) as fresh:
+        sim.load(doc)
+        fresh.load(doc)
+        start = sim.positions
+        for call in range(6):
+            external = rng.normal(scale=0.5, size=(n, 3)) if call % 3 != 2 else None
+            sim.external_forces = external
+            sim.step(40)
+            fresh.positions = sim.positions
+            fresh.external_forces = external
+            np.testing.assert_allclose(sim.forces, fresh.forces, rtol=0, atol=1e-9 * np.max(np.abs(fresh.forces)))
+        moved = np.linalg.norm(minimum_image(sim.positions - start, box), axis=1)
+        assert np.max(moved) > 0.25, "some particle must move past half the skin, so the lists are rebuilt"
+        assert sim.counters["neighbour_list_builds"] > 1
+
+
 # ---- reproducibility -----------------------------------------------------------------------------
 
 REPRODUCIBLE = {

@@ -1,0 +1,29 @@
+#pragma once
+// A neighbour list's copy of this step's positions in its slot order (neighbour_view.hpp), and the
+// check that decides its rebuild: a particle that moved more than half the skin since it was binned
+// raises the flag. Written for every slot each step, by the list itself (RefreshPositions) or by
+// the integrator's drift kernel on its way (state/drift_bookkeeping.hpp).
+#include "core/atomic.hpp"
+#include "core/box.hpp"
+
+namespace structmd {
+
+// Slot of the list's control buffer that holds the rebuild flag (verlet_list_kernels.hpp).
+constexpr int kListRebuildFlag = 0;
+
+template <class R>
+struct SlotMirror {
+    Real4<R>* positions = nullptr;     // this step's, by slot
+    const Real4<R>* binned = nullptr;  // the last build's, by slot
+    Box<R> box{};
+    R halfSkin2 = R(0);
+    int* control = nullptr;
+
+    SMD_HD SMD_INLINE void record(int64_t slot, const Real4<R>& p) const {
+        positions[slot] = p;
+        const Vec3<R> d = box.minimum_image(xyz(p) - xyz(binned[slot]));
+        if (dot(d, d) > halfSkin2) atomic_max(control + kListRebuildFlag, 1);
+    }
+};
+
+}  // namespace structmd
