@@ -217,8 +217,11 @@ STRUCTMD_API structmd_status structmd_load_plugin(const char* path);
  * schedule says, firing each simulationStep at its interval. Past the end of the schedule the
  * integrator of its last stage (the last row with steps > 0) goes on, so a coupling driver decides
  * the length of the run as it goes; the final state of the schedule is still given to the
- * measures as when the schedule ends there. Needs a load. Returns when the steps are finished on
- * the device, so wall-clock time around the call is the time of the steps.
+ * measures as when the schedule ends there. A flow-control step of the input (AFMMaxForce, an
+ * escape time with stopSimulation) may end the call early, at the step whose state met its
+ * condition: the call returns STRUCTMD_OK there and structmd_get_info's "stopped_by" names the step.
+ * Needs a load. Returns when the steps are finished on the device, so wall-clock time around the
+ * call is the time of the steps.
  *
  * @param sim     the handle.
  * @param nsteps  number of steps, >= 0; 0 does nothing.
@@ -233,7 +236,8 @@ STRUCTMD_API structmd_status structmd_load_plugin(const char* path);
 STRUCTMD_API structmd_status structmd_step(structmd_sim* sim, int64_t nsteps);
 
 /**
- * Advances until the schedule ends; at its end or past it, does nothing. Needs a load.
+ * Advances until the schedule ends, or until a flow-control step ends the call (as structmd_step);
+ * at the schedule's end or past it, does nothing. Needs a load.
  *
  * @param sim  the handle.
  * @return as structmd_step.
@@ -804,7 +808,8 @@ STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const c
  * load: {"version": as structmd_version, "backend": "cpu" | "cuda" (the one chosen, also under
  * "auto"), "precision": "single" | "mixed" | "double", "device": the GPU's name or "host CPU",
  * "threads": CPU threads of the CPU backend (0 on CUDA), "loaded": bool, "particles": n (0 before
- * a load), "final_step": step at which the schedule ends (-1 before a load)}. Keys may be added in
+ * a load), "final_step": step at which the schedule ends (-1 before a load), "stopped_by": the
+ * simulationStep entry that ended the last step call early, or null}. Keys may be added in
  * later versions.
  *
  * @param sim          the handle.

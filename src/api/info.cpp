@@ -20,9 +20,12 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
         if (s.simulation) {
             info["particles"] = s.simulation->particle_count();
             info["final_step"] = s.simulation->final_step();
+            const std::string& stoppedBy = s.simulation->stopped_by();
+            info["stopped_by"] = stoppedBy.empty() ? nlohmann::json(nullptr) : nlohmann::json(stoppedBy);
         } else {
             info["particles"] = 0;
             info["final_step"] = -1;
+            info["stopped_by"] = nullptr;
         }
         const std::string text = info.dump();
         if (needed) *needed = text.size() + 1;

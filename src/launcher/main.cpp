@@ -77,6 +77,13 @@ EngineInfo read_info(const structmd_sim* sim) {
     return out;
 }
 
+// The simulationStep entry that ended the last step call early, or empty.
+std::string stopped_by(const structmd_sim* sim) {
+    const auto info = nlohmann::json::parse(structmd::host::info(sim));
+    const auto it = info.find("stopped_by");
+    return it != info.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
 int64_t current_step(const structmd_sim* sim) {
     int64_t step = 0;
     check(structmd_get_step(sim, &step), sim, "structmd_get_step");
@@ -207,7 +214,8 @@ private:
 };
 
 // Steps from first_step to final_step in chunks of about half a second (shorter where a thermo row
-// is due), with progress and thermo rows between chunks. A failing step ends the run there.
+// is due), with progress and thermo rows between chunks. A failing step ends the run there, and so
+// does a flow-control step of the input that asks to stop.
 void run_steps(structmd_sim* sim, const RunOptions& options, int64_t first_step, int64_t final_step) {
     std::optional<ProgressLine> progress;
     if (!options.quiet)
@@ -225,7 +233,15 @@ void run_steps(structmd_sim* sim, const RunOptions& options, int64_t first_step,
         planner.record(chunk, seconds_since(chunk_start));
         step = current_step(sim);
         if (options.thermo > 0 && (step % options.thermo == 0 || step >= final_step)) thermo.print(sim, step);
-        if (progress) progress->update(step, seconds_since(start), step >= final_step);
+        const std::string stopper = stopped_by(sim);
+        if (progress) progress->update(step, seconds_since(start), step >= final_step || !stopper.empty());
+        if (!stopper.empty()) {
+            progress.reset();  // ends its line first
+            if (!options.quiet)
+                std::fprintf(stderr, "structmd run: stopped at step %lld by simulationStep.%s\n",
+                             static_cast<long long>(step), stopper.c_str());
+            return;
+        }
     }
 }
 

@@ -168,11 +168,13 @@ public:
         backend_.activate();
         rollback_.save(backend_, p_, activeStage_, integrators_);
         lambdaAtCallStart_ = lambda_;
+        stoppedBy_.clear();
         backend_.begin_steps();
         try {
             for (int64_t k = 0; k < n; ++k) {
                 backend_.begin_step();
                 fire_steps(current_step() == last);  // the schedule's final state, passed through
+                if (!stoppedBy_.empty()) break;
                 const int stage = schedule_.stage_after(current_step());
                 Integrator<B, R>& integrator = *integrators_[schedule_.integrator_of(stage)];
                 if (stage != activeStage_) {
@@ -197,6 +199,11 @@ public:
         if (current_step() == last) fire_steps(true);
         forceField_.adapt();
     }
+
+    void request_stop(const std::string& by) override {
+        if (stoppedBy_.empty()) stoppedBy_ = by;
+    }
+    const std::string& stopped_by() const override { return stoppedBy_; }
 
     void compute(unsigned flags) override {
         backend_.activate();
@@ -891,6 +898,7 @@ private:
     int64_t retiredListBuilds_ = 0;  // builds of the lists of force fields replaced by change_parameters
     double externalEnergy_ = 0.0;  // the host's field energy (structmd_set_external_energy)
     double lambda_ = 1.0;          // the value in p_.lambda, as the host set it last
+    std::string stoppedBy_;  // the flow-control step that ended the last step call early
     double lambdaAtCallStart_ = 1.0;  // what a roll back to the start of the step call puts back
     typename B::template Buffer<R> lambdaDerivatives_;  // dU/dlambda by particle, made when asked
     CallbackTerm<B, R> callbacks_;  // the host's force callbacks

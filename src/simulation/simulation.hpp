@@ -48,9 +48,14 @@ public:
     virtual std::array<double, 3> box() const = 0;
     virtual double volume() const = 0;
 
-    // Advances n steps along the schedule, firing the simulation steps; throws ERR_STATE when the
-    // schedule ends first (then no step is taken).
+    // Advances n steps along the schedule, firing the simulation steps (past its end, its last
+    // integrator goes on); fewer when a flow-control step asks to stop.
     virtual void advance(int64_t n) = 0;
+    // Asked by a flow-control step (AFMMaxForce, an escape time with stopSimulation): the step call
+    // in progress ends once the simulation steps of the present step number have fired. `by` names it.
+    virtual void request_stop(const std::string& by) = 0;
+    // The step that ended the last step call early; empty when it ran all its steps.
+    virtual const std::string& stopped_by() const = 0;
     virtual void compute(unsigned flags) = 0;
 
     virtual void get_positions(double* xyz) = 0;  // wrapped into the box

@@ -55,15 +55,12 @@ void AfmMeasure::run(Simulation& sim) {
     file_.flush();
 }
 
-namespace {
-
-std::unique_ptr<SimulationStep> make(const StepInput& in) {
-    // The experiment's tips are those of the first AFM entry, as UAMMD-structured takes them.
+std::vector<AfmMeasure::Tip> read_afm_tips(const StepInput& in) {
     const AfmConfig* config = nullptr;
     for (const ExternalSpec& external : in.forceField.externals)
         if (external.key.cls == "AFM" && (config = dynamic_cast<const AfmConfig*>(external.config.get()))) break;
     if (!config)
-        throw input_error(in.path + ".type", "measures an AFM experiment: the input has no [\"AFM\",\"SphericalTip\"] entry");
+        throw input_error(in.path + ".type", "reads an AFM experiment: the input has no [\"AFM\",\"SphericalTip\"] entry");
     std::vector<AfmMeasure::Tip> tips;
     const size_t rows = (config->start.size() - 1) / 2;
     for (size_t row = 0; row < rows; ++row) {
@@ -75,9 +72,15 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
         tips.push_back(std::move(tip));
     }
     if (tips.empty()) throw input_error(in.parameters.path("group"), "the group holds no AFM tip");
+    return tips;
+}
+
+namespace {
+
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
     return std::make_unique<AfmMeasure>(in.name, in.interval(), in.start(), in.end(),
                                         in.parameters.text("outputFilePath"), in.parameters.flag("verbose"),
-                                        std::move(tips));
+                                        read_afm_tips(in));
 }
 
 }  // namespace

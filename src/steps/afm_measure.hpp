@@ -36,6 +36,10 @@ private:
     std::vector<Tip> tips_;
 };
 
+// The tips of the input's first AFM entry that are in the step's group, as UAMMD-structured takes
+// them; an input error at the entry's path when it has no AFM entry or the group holds no tip.
+std::vector<AfmMeasure::Tip> read_afm_tips(const StepInput& in);
+
 SimulationStepEntry afm_measure_entry();
 
 }  // namespace structmd

@@ -5,9 +5,11 @@
 
 #include "core/error.hpp"
 #include "input/read_parameters.hpp"
+#include "steps/afm_max_force.hpp"
 #include "steps/afm_measure.hpp"
 #include "steps/center_of_mass.hpp"
 #include "steps/distance_between_centers_of_mass.hpp"
+#include "steps/escape_time.hpp"
 #include "steps/force_between_sets_measure.hpp"
 #include "steps/gyration_radius.hpp"
 #include "steps/height_measure.hpp"
@@ -52,6 +54,9 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(force_between_sets_measure_entry());
         steps.add(distance_between_centers_of_mass_entry());
         steps.add(afm_measure_entry());
+        steps.add(afm_max_force_entry());
+        steps.add(escape_sphere_time_entry());
+        steps.add(escape_polygon_time_entry());
         steps.add(write_step_entry());
         steps.add(sort_step_entry());
         steps.add(thermodynamic_integration_entry());

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The launcher as a batch job sees it (standard error not a terminal): periodic progress lines,
---steps (past the schedule's end too), --thermo rows, and a blow-up that stops the run at once with
-the engine's message, a hint and the status as exit code, instead of running on and printing NaN.
+--steps (past the schedule's end too), --thermo rows, a blow-up that stops the run at once with
+the engine's message, a hint and the status as exit code, instead of running on and printing NaN,
+and a flow-control step of the input that ends the run early.
 
 usage: check_launcher.py LAUNCHER"""
 import json
@@ -101,6 +102,19 @@ with tempfile.TemporaryDirectory() as work:
     expect("nan" not in blow.stdout.lower(), "NaN printed before stopping")
     last = thermo_rows(blow.stdout)[-1][0] if thermo_rows(blow.stdout) else 0
     expect(last < 2000, "the run went on to the schedule's end")
+
+    # A flow-control step ends the run early: an escape measure first firing at step 20 finds the top
+    # layer outside its half-space and stops the call there; the launcher ends the run and says so.
+    stopped_doc = lattice_input(5, 1.12, 0.002, 200)
+    stopped_doc["simulationStep"] = {"escape": {
+        "type": ["GeometricalMeasure", "EscapePolygonTime"],
+        "parameters": {"intervalStep": 10, "startStep": 20, "outputFilePath": "escape.dat",
+                       "stopSimulation": "true", "particlesToEscape": 1},
+        "labels": ["normalVector", "independentVector"], "data": [[[0.0, 0.0, -1.0], [0.0, 0.0, 1.5]]]}}
+    stopped = run(launcher, work, "stopped", stopped_doc, "--progress", "0.01")
+    expect(stopped.returncode == 0, f"stopped run exited {stopped.returncode}")
+    expect("stopped at step 20 by simulationStep.escape" in stopped.stderr, "no line saying where the run stopped")
+    expect(any(line.split() == ["steps", "20"] for line in stopped.stdout.splitlines()), "summary does not say 20 steps")
 
 if problems:
     sys.exit("\n".join(problems))

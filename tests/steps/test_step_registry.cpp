@@ -105,7 +105,8 @@ json document_with(const ComponentKey& key, const json& parameters) {
 }
 
 // As above, with a one-row table for a step that reads one: particle ids 0, 1, ... in its id columns,
-// a set's name and its list of ids where it names sets, two disjoint lists for two sets.
+// a set's name and its list of ids where it names sets, two disjoint lists for two sets, vectors
+// where a region is given by centres, normals and points.
 json step_document_with(const SimulationStepEntry& step, const json& parameters) {
     json document = document_with(step.key, parameters);
     if (!step.tableLabels.empty()) {
@@ -115,6 +116,8 @@ json step_document_with(const SimulationStepEntry& step, const json& parameters)
             row.push_back(label == "name"                             ? json("set")
                           : label == "id_list" || label == "idSet_i" ? json::array({0, 1})
                           : label == "idSet_j"                       ? json::array({2, 3})
+                          : label == "center" || label == "independentVector" ? json::array({0.0, 0.0, 0.0})
+                          : label == "normalVector"                  ? json::array({0.0, 0.0, 1.0})
                                                                      : json(k));
         }
         document["simulationStep"][kEntry]["labels"] = step.tableLabels;
