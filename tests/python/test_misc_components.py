@@ -6,7 +6,9 @@ tau = -dU/dtheta), and the tabulated fields ["External","ExternalTabulated"] and
 minus the gradient of the interpolated energy, the interpolation against Peskin's three-point kernel
 written here)."""
 
+import json
 import math
+import os
 
 import numpy as np
 import pytest
@@ -367,6 +369,25 @@ def test_polarization_field_is_scaled_by_eps_times_each_polarizability(options):
         forces = sim.forces
         numerical = numerical_forces(sim, x, "pol")
         assert np.max(np.abs(forces - numerical)) / np.max(np.abs(numerical)) < 1e-6
+
+
+@pytest.mark.parametrize("name, polarizability_column", [("External-ExternalTabulated.json", None),
+                                                          ("External-PolarizationTabulated.json", 2)])
+def test_uammd_structured_inputs_give_the_energies_their_analysis_expects(options, name, polarizability_column):
+    """UAMMD-structured's own generators tabulate x y z (its tests' analysis.py expects each particle's
+    energy to be x y z scale, times its polarizability for the polarization field, within 1e-4)."""
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference", "uammd_inputs", name)
+    with open(path) as f:
+        doc = json.load(f)
+    scale = doc["topology"]["forceField"]["ExTab"]["parameters"]["scale"]
+    rows = doc["state"]["data"]
+    x = np.array([row[1] for row in rows])
+    factor = np.array([row[polarizability_column] for row in rows]) if polarizability_column else 1.0
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+        sim.compute(forces=True, energy=True)
+        np.testing.assert_allclose(sim.particle_energies, x[:, 0] * x[:, 1] * x[:, 2] * scale * factor,
+                                   rtol=0, atol=1e-10)
 
 
 @pytest.mark.parametrize("change, path, message", [
