@@ -64,6 +64,7 @@
 #include "forcefield/tabulated_field.hpp"
 #include "forcefield/wca_core_wells.hpp"
 #include "forcefield/wca_polyhedron.hpp"
+#include "forcefield/zhang.hpp"
 
 namespace structmd {
 
@@ -82,6 +83,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template pair<Steric12>({"NonBonded", "Steric12"});
     v.template configurable<StericInnerComponent<6>>({"NonBonded", "StericInner6"});
     v.template configurable<StericInnerComponent<12>>({"NonBonded", "StericInner12"});
+    v.template configurable<ZhangComponent>({"NonBonded", "Zhang"});
     v.template pair<DebyeHuckel>({"NonBonded", "DebyeHuckel"});
     v.template pair<SplitLennardJones>({"NonBonded", "SplitLennardJones"});
     v.template pair<LaTorre>({"NonBonded", "LaTorre"});

@@ -111,7 +111,8 @@ DIRECTIONS = [[1.0, 0.0, 0.0, 0.0], [0.8, 0.6, 0.0, 0.0], [0.6, 0.0, 0.8, 0.0], 
 STATE_COLUMN_OF = {("Bond2", "RAP"): ("direction", DIRECTIONS), ("Bond2", "HarmonicRAP"): ("direction", DIRECTIONS),
                    ("External", "PolarizationTabulated"): ("polarizability", [1.0, 0.5, 2.0, 1.5]),
                    ("NonBonded", "StericInner6"): ("innerRadius", [0.4, 0.3, 0.5, 0.35]),
-                   ("NonBonded", "StericInner12"): ("innerRadius", [0.4, 0.3, 0.5, 0.35])}
+                   ("NonBonded", "StericInner12"): ("innerRadius", [0.4, 0.3, 0.5, 0.35]),
+                   ("NonBonded", "Zhang"): ("direction", DIRECTIONS)}
 
 
 def with_force_field_example(key):

@@ -573,3 +573,90 @@ def test_absorbed_ties_the_particles_starting_below_the_threshold_to_where_they_
         np.testing.assert_array_equal(forces[~absorbed], 0.0)
         numerical = numerical_forces(sim, moved, "absorbed")
         assert np.max(np.abs(forces - numerical)) / np.max(np.abs(numerical)) < 1e-6
+
+
+# ---- ["NonBonded","Zhang"] -----------------------------------------------------------------------
+
+ZHANG_RADIUS = 0.5
+
+
+def zhang_entry(epsilon=1.2, mu=3.0, chi=2.0, theta=0.3, axis=None):
+    parameters = {"condition": "all"}
+    if axis is not None:
+        parameters["axis"] = axis
+    return {"nl": {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": 1.1}},
+            "zhang": {"type": ["NonBonded", "Zhang"], "parameters": parameters,
+                      "labels": ["name_i", "name_j", "radius", "epsilon", "mu", "chi", "theta"],
+                      "data": [["A", "A", ZHANG_RADIUS, epsilon, mu, chi, theta]]}}
+
+
+def zhang_energy(x, q, epsilon, mu, chi, theta, axis=(0.0, 0.0, 1.0)):
+    """Yuan et al. (2010) as UAMMD-structured writes it, r = r_j - r_i."""
+    rb, rc = 2 ** (7 / 6) * ZHANG_RADIUS, 5.2 * ZHANG_RADIUS
+    n = [rotation_matrix(qi) @ np.asarray(axis) for qi in q]
+    s = math.sin(theta)
+    total = 0.0
+    for i in range(len(x)):
+        for j in range(i + 1, len(x)):
+            r = minimum_image(x[j] - x[i])
+            d = np.linalg.norm(r)
+            if d >= rc:
+                continue
+            u = r / d
+            a = np.cross(n[i], u) @ np.cross(n[j], u) - s * (n[j] - n[i]) @ u - s * s
+            phi = 1 + mu * (a - 1)
+            if d < rb:
+                total += epsilon * ((rb / d) ** 4 - 2 * (rb / d) ** 2) + (1 - phi) * epsilon
+            else:
+                total += -epsilon * math.cos(math.pi / 2 * (d - rb) / (rc - rb)) ** (2 * chi) * phi
+    return total
+
+
+def zhang_configuration(rng, count=12):
+    """A patch of membrane across the x face: neighbours both inside r_b (1.12) and beyond it."""
+    positions = []
+    while len(positions) < count:
+        p = np.array([BOX / 2 + rng.uniform(-1.8, 1.8), rng.uniform(-1.8, 1.8), rng.uniform(-0.4, 0.4)])
+        p = minimum_image(p)
+        if all(np.linalg.norm(minimum_image(p - other)) > 0.8 for other in positions):
+            positions.append(p)
+    return np.array(positions)
+
+
+def test_zhang_energy_forces_and_torques(options):
+    rng = np.random.default_rng(40)
+    x = zhang_configuration(rng)
+    q = random_quaternions(len(x), rng)
+    axis = np.array([0.3, -0.4, 0.0])
+    axis[2] = math.sqrt(1 - axis @ axis)
+    with structmd.Simulation(options) as sim:
+        sim.load(document(x, zhang_entry(axis=list(axis)), directions=q))
+        expected = zhang_energy(x, q, 1.2, 3.0, 2.0, 0.3, axis)
+        assert sim.energy("zhang") == pytest.approx(expected, rel=1e-12)
+        forces, torques = sim.forces, sim.torques
+        numerical = numerical_forces(sim, x, "zhang")
+        assert np.max(np.abs(forces - numerical)) / np.max(np.abs(numerical)) < 1e-6
+        numerical = numerical_torques(sim, q, "zhang")
+        assert np.max(np.abs(numerical)) > 0.1
+        assert np.max(np.abs(torques - numerical)) / np.max(np.abs(numerical)) < 1e-6
+
+
+def test_zhang_pairs_reach_both_branches(options):
+    """Two parallel directors along z, side by side along x, theta = 0: a = 1 and phi = 1, so the
+    energy is the Lennard-Jones-like well inside r_b and -eps cos^(2 chi) beyond."""
+    rb, rc = 2 ** (7 / 6) * ZHANG_RADIUS, 5.2 * ZHANG_RADIUS
+    for d, expected in [(1.0, 1.5 * ((rb / 1.0) ** 4 - 2 * (rb / 1.0) ** 2)),
+                        (2.0, -1.5 * math.cos(math.pi / 2 * (2.0 - rb) / (rc - rb)) ** 4)]:
+        with structmd.Simulation(options) as sim:
+            sim.load(document([[0.0, 0.0, 0.0], [d, 0.0, 0.0]], zhang_entry(epsilon=1.5, theta=0.0),
+                              directions=[[1.0, 0.0, 0.0, 0.0]] * 2))
+            assert sim.energy("zhang") == pytest.approx(expected, rel=1e-12)
+
+
+def test_zhang_needs_directions_and_a_unit_axis(options):
+    with structmd.Simulation(options) as sim:
+        with pytest.raises(structmd.InputError, match=r"forceField\.zhang\.type: .*direction"):
+            sim.load(document([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], zhang_entry()))
+        with pytest.raises(structmd.InputError, match=r"forceField\.zhang\.parameters\.axis: .*unit"):
+            sim.load(document([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], zhang_entry(axis=[0.0, 0.0, 2.0]),
+                              directions=[[1.0, 0.0, 0.0, 0.0]] * 2))
