@@ -660,3 +660,70 @@ def test_zhang_needs_directions_and_a_unit_axis(options):
         with pytest.raises(structmd.InputError, match=r"forceField\.zhang\.parameters\.axis: .*unit"):
             sim.load(document([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], zhang_entry(axis=[0.0, 0.0, 2.0]),
                               directions=[[1.0, 0.0, 0.0, 0.0]] * 2))
+
+
+# ---- second derivatives --------------------------------------------------------------------------
+
+def analytical_hessian(sim_options, doc, path, n):
+    """The Analytical HessianMeasure's first firing, as a 3n x 3n matrix, and the positions it was at."""
+    doc["integrator"] = {
+        "vv": {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 0.001}},
+        "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                     "data": [[1, "vv", 1]]}}
+    doc["simulationStep"] = {"h": {"type": ["MechanicalMeasure", "HessianMeasure"],
+                                   "parameters": {"intervalStep": 1, "outputFilePath": str(path),
+                                                  "mode": "Analytical", "outputPrecision": 14}}}
+    hessian = np.zeros((3 * n, 3 * n))
+    with structmd.Simulation(sim_options) as sim:
+        sim.load(doc)
+        sim.step(1)
+    for line in path.read_text().splitlines()[2:]:
+        if line.startswith("#"):
+            break
+        values = line.split()
+        i, j = int(values[0]), int(values[1])
+        hessian[3 * i:3 * i + 3, 3 * j:3 * j + 3] = np.array([float(v) for v in values[2:]]).reshape(3, 3)
+    return hessian
+
+
+def force_differences(sim_options, doc, x, h=1e-5):
+    n = len(x)
+    hessian = np.zeros((3 * n, 3 * n))
+    with structmd.Simulation(sim_options) as sim:
+        sim.load(doc)
+        for i in range(n):
+            for a in range(3):
+                moved = x.copy()
+                moved[i, a] += h
+                sim.positions = moved
+                forward = sim.forces.reshape(-1)
+                moved[i, a] -= 2 * h
+                sim.positions = moved
+                hessian[3 * i + a] = -(forward - sim.forces.reshape(-1)) / (2 * h)
+    return hessian
+
+
+def test_steric_inner_and_absorbed_have_exact_second_derivatives(options, tmp_path):
+    rng = np.random.default_rng(50)
+    x = inner_configuration(rng, count=8)
+    a = rng.uniform(0.25, 0.45, len(x))
+    force_field = dict(steric_inner_entry(12, 0.8, 2.0),
+                       absorbed={"type": ["Surface", "Absorbed"], "parameters": {"K": 3.0, "heightThreshold": 0.0}})
+    doc = document(x, force_field, extra_columns={"innerRadius": a})
+    reference = force_differences(options, json.loads(json.dumps(doc)), x)
+    analytical = analytical_hessian(options, doc, tmp_path / "h.dat", len(x))
+    scale = np.max(np.abs(reference))
+    assert scale > 0.0
+    assert np.max(np.abs(analytical - reference)) < 1e-6 * scale
+
+
+@pytest.mark.parametrize("entry", ["rap", "field", "zhang"])
+def test_terms_without_second_derivatives_are_refused_by_name_in_the_analytical_mode(options, tmp_path, entry):
+    rng = np.random.default_rng(51)
+    x = chain_positions(rng)
+    q = random_quaternions(N_CHAIN, rng)
+    force_field = {"rap": {"rap": rap_entry(np.full(N_CHAIN - 1, 5.0), random_quaternions(N_CHAIN - 1, rng))},
+                   "field": {"field": field_entry(periodic_field, (4, 4, 4))},
+                   "zhang": zhang_entry()}[entry]
+    with pytest.raises(structmd.StructmdError, match=f"'{'zhang' if entry == 'zhang' else entry}'"):
+        analytical_hessian(options, document(x, force_field, directions=q), tmp_path / "h.dat", len(x))
