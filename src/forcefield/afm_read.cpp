@@ -1,9 +1,11 @@
-// Reading ["AFM","SphericalTip"] (afm_tip.hpp): its table (idSet_i: the tip, one particle; idSet_j:
+// Reading ["AFM","SphericalTip"] (afm_tip.hpp) and ["AFM","SphericallyBluntedConicTip"] (afm_conic_tip.hpp): its table (idSet_i: the tip, one particle; idSet_j:
 // the sample; the tip's and the chip's values per row) and the time step that moves the chip.
 #include <string>
+#include <type_traits>
 
 #include "core/error.hpp"
 #include "forcefield/afm_read.hpp"
+#include "forcefield/afm_conic_tip.hpp"
 #include "forcefield/afm_tip.hpp"
 #include "forcefield/component_registry.hpp"
 #include "forcefield/set_table_read.hpp"
@@ -32,6 +34,14 @@ double time_step_of(const SystemDescription& system, const std::string& path) {
     throw input_error(path, "the chip moves by the time step, and the input gives none (global.fundamental's "
                             "timeStep or the first scheduled integrator's)");
 }
+
+// A tip whose values have rules beyond their parameters' declares `static std::string check(const
+// ParameterValues&)`, the message for a row that breaks them (empty: none).
+template <class Tip, class = void>
+struct has_row_check : std::false_type {};
+template <class Tip>
+struct has_row_check<Tip, std::void_t<decltype(Tip::check(std::declval<const ParameterValues&>()))>>
+    : std::true_type {};
 
 }  // namespace
 
@@ -69,6 +79,8 @@ ForceFieldComponent AfmComponent<Tip>::reader_entry(ComponentKey key) {
                 throw input_error(rowPath, "indentationStartStep and indentationBackwardStep must be whole steps");
             if (backward > 0.0 && backward < start)
                 throw input_error(rowPath, "indentationBackwardStep is before indentationStartStep");
+            if constexpr (has_row_check<Tip>::value)
+                if (const std::string problem = Tip::check(v); !problem.empty()) throw input_error(rowPath, problem);
         }
         config->timeStep = time_step_of(system, entry.node.path());
         ForceFieldComponent configured = c;
@@ -79,5 +91,6 @@ ForceFieldComponent AfmComponent<Tip>::reader_entry(ComponentKey key) {
 }
 
 template ForceFieldComponent AfmComponent<SphericalTipPotential>::reader_entry(ComponentKey);
+template ForceFieldComponent AfmComponent<SphericallyBluntedConicTipPotential>::reader_entry(ComponentKey);
 
 }  // namespace structmd

@@ -21,6 +21,8 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "forcefield/absorbed.hpp"
+#include "forcefield/afm_conic_tip.hpp"
 #include "forcefield/afm_tip.hpp"
 #include "forcefield/best_chen_hummer_angle.hpp"
 #include "forcefield/clashed.hpp"
@@ -51,14 +53,18 @@
 #include "forcefield/morse.hpp"
 #include "forcefield/plain_cylinder.hpp"
 #include "forcefield/plates.hpp"
+#include "forcefield/rotational_alignment.hpp"
 #include "forcefield/soft_core.hpp"
 #include "forcefield/set_interaction.hpp"
 #include "forcefield/spherical_shell.hpp"
 #include "forcefield/split_lennard_jones.hpp"
 #include "forcefield/steric.hpp"
+#include "forcefield/steric_inner.hpp"
 #include "forcefield/tabulated.hpp"
+#include "forcefield/tabulated_field.hpp"
 #include "forcefield/wca_core_wells.hpp"
 #include "forcefield/wca_polyhedron.hpp"
+#include "forcefield/zhang.hpp"
 
 namespace structmd {
 
@@ -75,6 +81,9 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template pair<GeneralLennardJonesType3>({"NonBonded", "GeneralLennardJonesType3"});
     v.template pair<Steric6>({"NonBonded", "Steric6"});
     v.template pair<Steric12>({"NonBonded", "Steric12"});
+    v.template configurable<StericInnerComponent<6>>({"NonBonded", "StericInner6"});
+    v.template configurable<StericInnerComponent<12>>({"NonBonded", "StericInner12"});
+    v.template configurable<ZhangComponent>({"NonBonded", "Zhang"});
     v.template pair<DebyeHuckel>({"NonBonded", "DebyeHuckel"});
     v.template pair<SplitLennardJones>({"NonBonded", "SplitLennardJones"});
     v.template pair<LaTorre>({"NonBonded", "LaTorre"});
@@ -131,6 +140,8 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<RadialBond<MaxDistanceRestraint>>({"Bond2", "MaxDistanceRestraint"});
     v.template bond<HarmonicAnisotropicBond>({"Bond2", "HarmonicAnisotropic"});
     v.template configurable<TabulatedBond>({"Bond2", "Tabulated"});
+    v.template configurable<OrientedBondComponent<RAPPotential>>({"Bond2", "RAP"});
+    v.template configurable<OrientedBondComponent<HarmonicRAPPotential>>({"Bond2", "HarmonicRAP"});
     v.template bond<RadialLambdaBond<LambdaHarmonicBond>>({"Bond2", "LambdaHarmonic"}, {"n"});
     using SoftCoreBond1 = RadialLambdaBond<LennardJonesSoftCoreType1>;
     v.template bond<SoftCoreBond1>({"Bond2", "LennardJonesSoftCoreType1"}, {"alpha", "n"});
@@ -157,6 +168,8 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template configurable<ConstantTorqueComponent>({"External", "ConstantTorque"});
     v.template external<Plates>({"External", "Plates"});
     v.template external<SphericalShell>({"External", "SphericalShell"});
+    v.template configurable<TabulatedFieldComponent<false>>({"External", "ExternalTabulated"});
+    v.template configurable<TabulatedFieldComponent<true>>({"External", "PolarizationTabulated"});
 
     v.template external<SurfaceLennardJonesType1>({"Surface", "SurfaceLennardJonesType1"});
     v.template external<SurfaceLennardJonesType2>({"Surface", "SurfaceLennardJonesType2"});
@@ -169,6 +182,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template external<ParabolaSurface>({"Surface", "ParabolaSurface"});
     v.template external<WCAPlainCylinder>({"Surface", "WCA_PlainCylinder"});
     v.template configurable<WCAPolyhedron>({"Surface", "WCA_Polyhedron"});
+    v.template configurable<AbsorbedComponent>({"Surface", "Absorbed"});
 
     v.template configurable<SetComponent<ConstantForceBond>>({"Set1", "ConstantForceOverCenterOfMass"});
     v.template configurable<SetComponent<FixedHarmonicAnisotropic>>({"Set1", "FixedHarmonicAnisotropicCenterOfMass"});
@@ -181,6 +195,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template configurable<SetComponent<ConstantTorqueBetweenSets>>({"Set2", "ConstantTorqueBetweenCentersOfMass"});
 
     v.template configurable<AfmComponent<SphericalTipPotential>>({"AFM", "SphericalTip"});
+    v.template configurable<AfmComponent<SphericallyBluntedConicTipPotential>>({"AFM", "SphericallyBluntedConicTip"});
 
     v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
     v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});

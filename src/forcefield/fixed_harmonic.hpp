@@ -1,9 +1,9 @@
 #pragma once
 // A particle tied to a fixed point p by a harmonic spring: U = 1/2 K (d - r0)^2, d = |d_vec| with
 // d_vec the minimum image of p - r[0]; the force K (d - r0) d_vec / d pulls the particle towards
-// distance r0 from p. At d = 0 the spring has no direction and the force is taken as zero: with
-// r0 = 0 that is the minimum of U (the force K d_vec is smooth through it); with r0 != 0 every
-// direction is equally valid and U = 1/2 K r0^2 is finite.
+// distance r0 from p. With r0 = 0 the force is K d_vec, smooth through d = 0 (the minimum of U). With
+// r0 != 0 the spring has no direction at d = 0 and the force there is taken as zero: every direction is
+// equally valid and U = 1/2 K r0^2 is finite.
 #include "forcefield/bond_potential.hpp"
 
 namespace structmd {
@@ -33,7 +33,8 @@ struct FixedHarmonic {
         const Vec3<R> to_point = box.wrap(p.point - r[0]);
         const R d = sqrt(dot(to_point, to_point));
         const R stretch = d - p.r0;
-        const R scale = d > R(0) ? p.K * stretch / d : R(0);
+        // r0 = 0: F = K d_vec, with no division, so that its derivative (the Hessian K I) holds at d = 0 too.
+        const R scale = p.r0 == R(0) ? p.K : d > R(0) ? p.K * stretch / d : R(0);
         force[0] = scale * to_point;
         return R(0.5) * p.K * stretch * stretch;
     }

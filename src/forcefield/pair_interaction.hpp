@@ -20,9 +20,17 @@ public:
     using Params = typename Potential::template Params<PairR>;
 
     // batch: the particles' batches when the table has one ntypes x ntypes block per batch, else null.
+    // radius: the radii a potential of radii reads (backend memory, by particle) when they are not
+    // the particles' own (StericInner's innerRadius column); null: the particles' radii.
     PairInteraction(const B& backend, InteractorScope scope, std::shared_ptr<VerletList<B, R>> list,
-                    const std::vector<Params>& table, int ntypes, const int* batch = nullptr)
-        : Interactor<B, R>(std::move(scope)), backend_(backend), list_(std::move(list)), ntypes_(ntypes), batch_(batch) {
+                    const std::vector<Params>& table, int ntypes, const int* batch = nullptr,
+                    const R* radius = nullptr)
+        : Interactor<B, R>(std::move(scope)),
+          backend_(backend),
+          list_(std::move(list)),
+          ntypes_(ntypes),
+          batch_(batch),
+          radius_(radius) {
         backend_.upload(table_, table.data(), table.size());
     }
 
@@ -31,7 +39,7 @@ public:
     bool has_pair_forces() const override { return true; }
     void add_pair_forces(Particles<B, R>& particles, int seed, Real4<R>* out) override {
         backend_.for_each(particles.count, PairForceOnSeedKernel<Potential, R, PairR>{
-                                               particles.charge.data(), particles.radius.data(), this->group(),
+                                               particles.charge.data(), radii(particles), this->group(),
                                                list_->view(), table_of(table_), seed, out});
     }
 
@@ -43,7 +51,7 @@ public:
     bool has_hessian() const override { return hessian_; }
     void add_hessian(Particles<B, R>& particles, int seed, Tensor3<R>* blocks) override {
         backend_.for_each(particles.count,
-                          PairHessianKernel<Potential, R, PairR>{particles.charge.data(), particles.radius.data(),
+                          PairHessianKernel<Potential, R, PairR>{particles.charge.data(), radii(particles),
                                                                  this->group(), list_->view(), table_of(dualTable_),
                                                                  seed, blocks});
     }
@@ -55,7 +63,7 @@ public:
             out.energy = perParticle;
             backend_.for_each_lanes(particles.count,
                                     PairKernel<PairLambdaDerivative<Potential>, R, PairR, false, true, false>{
-                                        particles.charge.data(), particles.radius.data(), this->group(),
+                                        particles.charge.data(), radii(particles), this->group(),
                                         list_->view(), table_of(table_), out});
         }
     }
@@ -67,12 +75,13 @@ public:
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
             backend_.for_each_lanes(particles.count,
                               PairKernel<Potential, R, PairR, decltype(force)::value, decltype(energy)::value,
-                                         decltype(virial)::value>{particles.charge.data(), particles.radius.data(),
+                                         decltype(virial)::value>{particles.charge.data(), radii(particles),
                                                                   this->group(), view, table_of(table_), out});
         });
     }
 
 private:
+    const R* radii(const Particles<B, R>& particles) const { return radius_ ? radius_ : particles.radius.data(); }
     template <class P>
     PairTable<P> table_of(const typename B::template Buffer<P>& table) const {
         return PairTable<P>{table.data(), ntypes_, batch_};
@@ -86,6 +95,7 @@ private:
     bool hessian_ = false;
     int ntypes_;
     const int* batch_;
+    const R* radius_;
 };
 
 }  // namespace structmd

@@ -77,8 +77,8 @@ struct SystemDescription {
     std::vector<double> mass, radius, charge;  // type values with the state's overrides applied
     std::vector<int32_t> modelId, batchId;
     std::vector<int32_t> resId, chainId;  // empty when the structure has no such column (PDB output reads them)
-    // The state's per-particle frictionConstant, translationalSelfDiffusion and rotationalSelfDiffusion,
-    // by name, when given.
+    // The state's per-particle frictionConstant, translationalSelfDiffusion, rotationalSelfDiffusion,
+    // polarizability and innerRadius, by name, when given.
     std::map<std::string, std::vector<double>> particleColumns;
 
     // components, in document order

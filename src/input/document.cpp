@@ -418,9 +418,18 @@ StateTable read_state(const TrackedNode& state, SystemDescription& description) 
         description.positions[id] = table.cell(row, "position").as<Vec3d>();
         if (table.has("velocity")) description.velocities[id] = table.cell(row, "velocity").as<Vec3d>();
         if (table.has("direction")) description.orientations[id] = read_quaternion(table.cell(row, "direction"));
-        // UAMMD-structured's induced-dipole data: checked, not kept, as no component of this version uses it.
-        if (table.has("polarizability")) table.cell(row, "polarizability").as<double>();
-        if (table.has("innerRadius")) read_at_least(table.cell(row, "innerRadius"), 0.0, "innerRadius");
+        // UAMMD-structured's induced-dipole data, read by ["External","PolarizationTabulated"].
+        if (table.has("polarizability")) {
+            std::vector<double>& values = description.particleColumns["polarizability"];
+            values.resize(count);
+            values[id] = table.cell(row, "polarizability").as<double>();
+        }
+        // The size of each particle in ["NonBonded","StericInner6"/"StericInner12"].
+        if (table.has("innerRadius")) {
+            std::vector<double>& values = description.particleColumns["innerRadius"];
+            values.resize(count);
+            values[id] = read_at_least(table.cell(row, "innerRadius"), 0.0, "innerRadius");
+        }
         // Per-particle values that integrators take when their own parameter is absent.
         for (const char* column : {"frictionConstant", "translationalSelfDiffusion", "rotationalSelfDiffusion"}) {
             if (!table.has(column)) continue;

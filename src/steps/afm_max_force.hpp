@@ -3,7 +3,7 @@
 // the step's group has pressed on its cantilever with a force K (z_tip - z_chip) >= maxForce at some
 // firing, each tip's crossing remembered, as UAMMD-structured stops an indentation experiment at
 // a set force. It stops one call, the one where the last tip gets there; later calls step on. The
-// tips are those of the input's first ["AFM","SphericalTip"] entry.
+// tips are those of the input's first AFM entry (read_afm_tips).
 #include <cstdint>
 #include <string>
 #include <vector>

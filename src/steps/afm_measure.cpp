@@ -60,12 +60,13 @@ std::vector<AfmMeasure::Tip> read_afm_tips(const StepInput& in) {
     for (const ExternalSpec& external : in.forceField.externals)
         if (external.key.cls == "AFM" && (config = dynamic_cast<const AfmConfig*>(external.config.get()))) break;
     if (!config)
-        throw input_error(in.path + ".type", "reads an AFM experiment: the input has no [\"AFM\",\"SphericalTip\"] entry");
+        throw input_error(in.path + ".type", "reads an AFM experiment: the input has no [\"AFM\", ...] entry");
     std::vector<AfmMeasure::Tip> tips;
     const size_t rows = (config->start.size() - 1) / 2;
     for (size_t row = 0; row < rows; ++row) {
         const int64_t id = config->members[config->start[2 * row]];
         if (!in.members.empty() && !in.members[id]) continue;
+        // Only the chip and its spring are read; every tip's schema has SphericalTip's epsilon and sigma.
         AfmMeasure::Tip tip{id, in.system.radius[id], afm_row_params<SphericalTipPotential, double>(*config, row), {}};
         tip.sample.assign(config->members.begin() + config->start[2 * row + 1],
                           config->members.begin() + config->start[2 * row + 2]);

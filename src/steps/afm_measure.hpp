@@ -1,6 +1,7 @@
 #pragma once
 // ["ExperimentMeasures","AFMMeasure"]: what an AFM experiment records, for each row of the input's
-// ["AFM","SphericalTip"] entry whose tip is in the step's group: the indentation X = z_tip - R_tip and
+// first AFM entry (["AFM","SphericalTip"] or ["AFM","SphericallyBluntedConicTip"]: their chips and
+// springs are alike) whose tip is in the step's group: the indentation X = z_tip - R_tip and
 // the cantilever force F = K (z_tip - z_chip) (K the spring along z, the chip where the term puts it at
 // this step). One line `step time X_0 F_0 X_1 F_1 ...` per firing; with verbose, per row
 // `chip_z tip_z deflection tipForce_z sampleForce_z F` instead (deflection = z_tip - z_chip; the forces

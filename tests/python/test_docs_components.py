@@ -106,6 +106,14 @@ def lennard_jones(condition, neighbour_list):
 # Components defined in one unit system only (their docs say so), and that system.
 UNITS_OF = {("Bond3", "BestChenHummerAngular"): "KcalMol_A"}
 
+# Components that read a state column the base document lacks (their docs say so), and its values.
+DIRECTIONS = [[1.0, 0.0, 0.0, 0.0], [0.8, 0.6, 0.0, 0.0], [0.6, 0.0, 0.8, 0.0], [0.0, 0.0, 0.6, 0.8]]
+STATE_COLUMN_OF = {("Bond2", "RAP"): ("direction", DIRECTIONS), ("Bond2", "HarmonicRAP"): ("direction", DIRECTIONS),
+                   ("External", "PolarizationTabulated"): ("polarizability", [1.0, 0.5, 2.0, 1.5]),
+                   ("NonBonded", "StericInner6"): ("innerRadius", [0.4, 0.3, 0.5, 0.35]),
+                   ("NonBonded", "StericInner12"): ("innerRadius", [0.4, 0.3, 0.5, 0.35]),
+                   ("NonBonded", "Zhang"): ("direction", DIRECTIONS)}
+
 
 def with_force_field_example(key):
     """The base document with the example added; lists and groups get entries that use them."""
@@ -113,6 +121,11 @@ def with_force_field_example(key):
     doc = base_document()
     if key in UNITS_OF:
         doc["global"]["units"] = {"type": ["Units", UNITS_OF[key]]}
+    if key in STATE_COLUMN_OF:
+        label, values = STATE_COLUMN_OF[key]
+        doc["state"]["labels"].append(label)
+        for row, value in zip(doc["state"]["data"], values):
+            row.append(value)
     force_field = doc["topology"]["forceField"]
     cls, subclass = key
     if cls == "VerletConditionalListSet":
