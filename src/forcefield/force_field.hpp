@@ -52,15 +52,21 @@ public:
         for (auto& it : interactors_)
             if (it->active(p.timeline.evaluating_step())) it->prepare(p);
     }
-    // The first list's share of a drift's bookkeeping (state/drift_bookkeeping.hpp): its position
-    // copy and displacement check; the other lists, if any, keep their own.
-    void mirror_in_drift(DriftBookkeeping<R>& drift) {
-        if (lists_.empty()) return;
-        drift.slotOf = lists_.front()->slot_of();
-        drift.mirror = lists_.front()->mirror();
+    // The share of a drift's bookkeeping (state/drift_bookkeeping.hpp) of the first list over the
+    // particles' positions: its position copy and displacement check. The other lists, if any, keep
+    // their own.
+    void mirror_in_drift(DriftBookkeeping<R>& drift, const Particles<B, R>& p) {
+        mirrored_ = nullptr;
+        for (const auto& list : lists_)
+            if (const int* slots = list->slot_of(p.pos.data(), p.count)) {
+                drift.slotOf = slots;
+                drift.mirror = list->mirror();
+                mirrored_ = list.get();
+                return;
+            }
     }
     void drift_mirrored(int64_t version) {
-        if (!lists_.empty()) lists_.front()->mirrored(version);
+        if (mirrored_) mirrored_->mirrored(version);
     }
     void invalidate_lists() {
         for (auto& list : lists_) list->invalidate();
@@ -139,6 +145,7 @@ public:
 
 private:
     std::vector<std::shared_ptr<VerletList<B, R>>> lists_;
+    VerletList<B, R>* mirrored_ = nullptr;  // the list the last armed drift keeps (mirror_in_drift)
     std::vector<std::unique_ptr<Interactor<B, R>>> interactors_;
     // deque: buffers never move once made; shared with a force field made again from this one.
     std::shared_ptr<std::deque<typename B::template Buffer<uint8_t>>> groups_ =

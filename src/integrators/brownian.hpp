@@ -32,8 +32,12 @@ struct EulerMaruyamaStep {
     uint64_t seed;
     ClockView now;
     FaultSlot fault;
+    DriftBookkeeping<R> bookkeeping;  // for every particle, moved or not (state/drift_bookkeeping.hpp)
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
+        if (group && !group[i]) {
+            bookkeeping(i, pos[i]);
+            return;
+        }
         const Real4<R> f = force[i];
         const R mobility = selfDiffusion ? selfDiffusion[i] / kT
                                          : R(1) / (R(6 * 3.14159265358979323846) * viscosity * radius[i]);
@@ -44,6 +48,7 @@ struct EulerMaruyamaStep {
         const Real4<R> p = displaced(pos[i], move, box, image[i]);
         pos[i] = p;
         fault.check(i, p, f);
+        bookkeeping(i, p);
     }
 };
 
@@ -76,8 +81,8 @@ public:
         const R* selfDiffusion = viscosity_ > 0.0 ? nullptr : p.selfDiffusion.data();
         backend_.for_each(p.count, EulerMaruyamaStep<R>{p.pos.data(), p.image.data(), p.force.data(), p.radius.data(),
                                                         selfDiffusion, s.group, p.box, R(s.timeStep), R(viscosity_), R(s.kT),
-                                                        p.seed, p.now(), p.fault_slot(1)});
-        forces.positions_moved(s.timeStep, false);
+                                                        p.seed, p.now(), p.fault_slot(1), p.drift});
+        forces.positions_moved(s.timeStep, true);
     }
 
 private:

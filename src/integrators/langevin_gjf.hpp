@@ -24,8 +24,12 @@ struct GjfDrift {
     uint64_t seed;
     ClockView now;
     FaultSlot fault;
+    DriftBookkeeping<R> bookkeeping;  // for every particle, moved or not (state/drift_bookkeeping.hpp)
     SMD_HD void operator()(int64_t i) const {
-        if ((group && !group[i]) || held_fixed(vel[i])) return;
+        if ((group && !group[i]) || held_fixed(vel[i])) {
+            bookkeeping(i, pos[i]);
+            return;
+        }
         Real4<R> v = vel[i];
         const Real4<R> f = force[i];
         const R m = v.w;
@@ -38,7 +42,9 @@ struct GjfDrift {
         const R c = b * dt / (R(2) * m);
         const Vec3<R> move = (b * dt) * xyz(v) + c * (dt * xyz(f) + beta);
         fault.check_move(i, move);
-        pos[i] = displaced(pos[i], move, box, image[i]);
+        const Real4<R> p = displaced(pos[i], move, box, image[i]);
+        pos[i] = p;
+        bookkeeping(i, p);
         // The part of v(n+1) known before F(n+1); GjfKick adds dt/(2m) F(n+1).
         const R h = dt / (R(2) * m);
         v.x = a * v.x + h * a * f.x + (b / m) * beta.x;
@@ -86,8 +92,9 @@ public:
         forces.update_forces();
         const R* frictionOf = friction_ > 0.0 ? nullptr : p.friction.data();
         backend_.for_each(p.count, GjfDrift<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
-                                               frictionOf, p.box, dt, R(friction_), R(s.kT), p.seed, p.now(), p.fault_slot(1)});
-        forces.positions_moved(s.timeStep, false);
+                                               frictionOf, p.box, dt, R(friction_), R(s.kT), p.seed, p.now(), p.fault_slot(1),
+                                               p.drift});
+        forces.positions_moved(s.timeStep, true);
         forces.update_forces();
         backend_.for_each(p.count, GjfKick<R>{p.pos.data(), p.vel.data(), p.force.data(), s.group, dt, p.fault_slot()});
     }

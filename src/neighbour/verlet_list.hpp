@@ -54,6 +54,7 @@ public:
     void update(const typename B::template Buffer<Real4<R>>& pos, int64_t n, const Box<R>& box, int64_t version) {
         if (version == updatedAt_ && !forceRebuild_ && !needsLayout_) return;
         updatedAt_ = version;
+        source_ = pos.data();
         if (needsLayout_ || n != particles_ || !same_box(box)) layout(n, box);
         // The flag is down between updates (the build lowers it), so a step without a build sets
         // nothing here and launches nothing of the build.
@@ -82,9 +83,12 @@ public:
 
     void invalidate() { forceRebuild_ = true; }
 
-    // What a drift kernel needs to keep this list's positions and displacement check
-    // (state/drift_bookkeeping.hpp): null slots until the list is laid out for the particles.
-    const int* slot_of() const { return particles_ > 0 && !needsLayout_ ? slotOf_.data() : nullptr; }
+    // What a drift kernel moving the n positions in `pos` needs to keep this list's copy and
+    // displacement check (state/drift_bookkeeping.hpp): null slots unless the list is laid out for
+    // exactly those positions (not, say, for sites placed from them).
+    const int* slot_of(const Real4<R>* pos, int64_t n) const {
+        return particles_ == n && n > 0 && source_ == pos && !needsLayout_ ? slotOf_.data() : nullptr;
+    }
     SlotMirror<R> mirror() {
         const R halfSkin = R(0.5 * (listRadius_ - cutoff_));
         return SlotMirror<R>{positions_.data(), binned_.data(), box_, halfSkin * halfSkin, control_.data()};
@@ -190,6 +194,7 @@ private:
     int64_t builds_ = 0;
     int64_t updatedAt_ = -1;
     int64_t mirroredAt_ = -1;  // the positions version a drift kernel mirrored
+    const Real4<R>* source_ = nullptr;  // the positions the list was last brought up to date with
     PairFilter filter_;
     typename B::template Buffer<int> excludedStart_, excluded_, kind_;
     typename B::template Buffer<uint8_t> charged_;

@@ -689,7 +689,7 @@ private:
             drift.force = p_.force.data();
             drift.external = p_.externalForce.empty() ? nullptr : p_.externalForce.data();
         }
-        forceField_.mirror_in_drift(drift);
+        forceField_.mirror_in_drift(drift, p_);
         p_.drift = drift;
     }
 

@@ -577,6 +577,8 @@ def test_inertial_integrators_hold_a_particle_of_mass_zero_fixed_while_its_force
 BOOKKEEPING_CASES = {
     "VelocityVerlet": verlet(0.005),
     "BBK": langevin("BBK", 0.005, 1.0),
+    "GJF": langevin("GJF", 0.005, 1.0),
+    "EulerMaruyama": brownian(0.002, 0.5),
 }
 
 
