@@ -170,6 +170,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template external<SphericalShell>({"External", "SphericalShell"});
     v.template configurable<TabulatedFieldComponent<false>>({"External", "ExternalTabulated"});
     v.template configurable<TabulatedFieldComponent<true>>({"External", "PolarizationTabulated"});
+    v.template configurable<HelixBoundariesComponent>({"External", "HelixBoundaries"});
 
     v.template external<SurfaceLennardJonesType1>({"Surface", "SurfaceLennardJonesType1"});
     v.template external<SurfaceLennardJonesType2>({"Surface", "SurfaceLennardJonesType2"});

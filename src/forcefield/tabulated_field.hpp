@@ -13,6 +13,8 @@
 // generator makes it). The polarization field multiplies U and F of particle i by
 // eps alpha_i, eps = dielectricConstant / (4 pi f) (f: the units' electric conversion factor) and
 // alpha_i the state's polarizability. The grid follows the box: h = L / n at each evaluation.
+// ["External","HelixBoundaries"] (helix_boundaries_read.cpp) is such a field made at load, times
+// lambda^2 of the ensemble.
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -34,6 +36,7 @@ struct TabulatedFieldConfig : ComponentConfig {
     int n[3] = {0, 0, 0};
     std::vector<double> energy;
     std::vector<double> factor;
+    bool lambdaSquared = false;  // the field is scaled by the ensemble's lambda^2
 };
 
 // Peskin's three-point kernel phi(s) and its derivative, s in cells.
@@ -56,7 +59,9 @@ SMD_HD SMD_INLINE void peskin_three_point(R s, R& phi, R& dphi) {
     }
 }
 
-template <class R, bool WantForce, bool WantEnergy>
+// With lambda given, U and F are scaled by lambda^2; with LambdaDerivative, dU/dlambda = 2 lambda U
+// goes to the energy output instead (no force).
+template <class R, bool WantForce, bool WantEnergy, bool LambdaDerivative = false>
 struct TabulatedFieldKernel {
     const Real4<R>* pos;
     const uint8_t* group;
@@ -65,6 +70,7 @@ struct TabulatedFieldKernel {
     int nx, ny, nz;
     Box<R> box;
     ForceOutputs<R> out;
+    const double* lambda;  // on the backend; null: no coupling
 
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
@@ -99,7 +105,9 @@ struct TabulatedFieldKernel {
                     gradient.y += w[0][m] * dw[1][j] * w[2][k] * value;
                     gradient.z += w[0][m] * w[1][j] * dw[2][k] * value;
                 }
-        const R scale = factor ? factor[i] : R(1);
+        R scale = factor ? factor[i] : R(1);
+        if (lambda && LambdaDerivative) scale *= R(2) * R(*lambda);
+        else if (lambda) scale *= R(*lambda) * R(*lambda);
         add_to_outputs<WantForce, WantEnergy, false>(out, i, -scale * gradient, scale * e, zero_tensor<R>());
     }
 };
@@ -107,8 +115,13 @@ struct TabulatedFieldKernel {
 template <class B, class R>
 class TabulatedFieldInteraction : public Interactor<B, R> {
 public:
-    TabulatedFieldInteraction(const B& backend, InteractorScope scope, const TabulatedFieldConfig& config)
-        : Interactor<B, R>(std::move(scope)), backend_(backend), n_{config.n[0], config.n[1], config.n[2]} {
+    // lambda: the ensemble's, on the backend; read when the config asks for lambda^2.
+    TabulatedFieldInteraction(const B& backend, InteractorScope scope, const TabulatedFieldConfig& config,
+                              const double* lambda)
+        : Interactor<B, R>(std::move(scope)),
+          backend_(backend),
+          n_{config.n[0], config.n[1], config.n[2]},
+          lambda_(config.lambdaSquared ? lambda : nullptr) {
         const std::vector<R> energy(config.energy.begin(), config.energy.end());
         backend_.upload(energy_, energy.data(), energy.size());
         const std::vector<R> factor(config.factor.begin(), config.factor.end());
@@ -127,13 +140,25 @@ public:
                               TabulatedFieldKernel<R, decltype(force)::value, decltype(energy)::value>{
                                   particles.pos.data(), this->group(), energy_.data(),
                                   factor_.empty() ? nullptr : factor_.data(), n_[0], n_[1], n_[2], particles.box,
-                                  own});
+                                  own, lambda_});
         });
+    }
+
+    bool couples_to_lambda() const override { return lambda_ != nullptr; }
+    void add_lambda_derivative(Particles<B, R>& particles, R* perParticle) override {
+        if (!lambda_) return;
+        ForceOutputs<R> out;
+        out.energy = perParticle;
+        backend_.for_each(particles.count, TabulatedFieldKernel<R, false, true, true>{
+                                               particles.pos.data(), this->group(), energy_.data(),
+                                               factor_.empty() ? nullptr : factor_.data(), n_[0], n_[1], n_[2],
+                                               particles.box, out, lambda_});
     }
 
 private:
     const B& backend_;
     int n_[3];
+    const double* lambda_;
     typename B::template Buffer<R> energy_;
     typename B::template Buffer<R> factor_;
 };
@@ -147,7 +172,21 @@ struct TabulatedFieldComponent {
     static std::unique_ptr<Interactor<B, R>> make_interactor(const InteractorBuild<B, R>& build,
                                                              const InteractionSpec& s) {
         return std::make_unique<TabulatedFieldInteraction<B, R>>(build.backend, build.scope(s),
-                                                                 static_cast<const TabulatedFieldConfig&>(*s.config));
+                                                                 static_cast<const TabulatedFieldConfig&>(*s.config),
+                                                                 build.context.constants.lambda);
+    }
+};
+
+// ["External","HelixBoundaries"]: a tube of radius helixInnerRadius around a helix along z, outside
+// of which U = K (d - helixInnerRadius)^2 / 2 (d: the distance to the helix), tabulated at load on
+// the grid of a tabulated field and scaled by lambda^2 (helix_boundaries_read.cpp).
+struct HelixBoundariesComponent {
+    static ForceFieldComponent reader_entry(ComponentKey key);  // helix_boundaries_read.cpp
+
+    template <class B, class R, class PairR>
+    static std::unique_ptr<Interactor<B, R>> make_interactor(const InteractorBuild<B, R>& build,
+                                                             const InteractionSpec& s) {
+        return TabulatedFieldComponent<false>::make_interactor<B, R, PairR>(build, s);
     }
 };
 
