@@ -9,7 +9,8 @@
 // r < r_dh = cutOffDHFactor x l_D acts between every pair of the list, listed in the table or not.
 // shift subtracts each term's value at its own cutoff. Only SASA model A (every weight 1, the
 // default) is computed: models B-F weigh each particle by its solvent accessible surface area, which
-// structmd's state does not hold; naming one is refused.
+// no input can give (UAMMD-structured has no state label for it and stops without it); naming one
+// is refused.
 #include <algorithm>
 #include <cmath>
 
