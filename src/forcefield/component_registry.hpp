@@ -33,6 +33,8 @@ struct ForceFieldComponent {
     // The one unit system the component is defined in (its constants are numbers in those units, as
     // "KcalMol_A"); empty: any. An input in other units is refused, naming the entry's type.
     std::string units;
+    // Reads the particles' magnetic moments: the state must give their magnetization.
+    bool needsMagnetization = false;
     // Pairs: the largest distance at which the term acts with these values (shared and one row's).
     std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
     bool readsCutOffFactor = true;  // pairs: the entry gives "cutOffFactor" (else its own cut-off parameter)

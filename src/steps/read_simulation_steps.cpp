@@ -15,6 +15,7 @@
 #include "steps/hessian_measure.hpp"
 #include "steps/info_step.hpp"
 #include "steps/interactors_energy_measure.hpp"
+#include "steps/magnetization_measure.hpp"
 #include "steps/lambda_schedule.hpp"
 #include "steps/mean_square_displacement.hpp"
 #include "steps/pairwise_force_measure.hpp"
@@ -52,6 +53,8 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(force_between_sets_measure_entry());
         steps.add(distance_between_centers_of_mass_entry());
         steps.add(afm_measure_entry());
+        steps.add(total_magnetization_entry());
+        steps.add(mean_magnetization_entry());
         steps.add(write_step_entry());
         steps.add(sort_step_entry());
         steps.add(thermodynamic_integration_entry());
