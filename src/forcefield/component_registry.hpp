@@ -38,6 +38,7 @@ struct ForceFieldComponent {
     // Pairs: the largest distance at which the term acts with these values (shared and one row's).
     std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
     bool readsCutOffFactor = true;  // pairs: the entry gives "cutOffFactor" (else its own cut-off parameter)
+    bool takesShift = true;  // pairs: false for a term without a shifted form, which refuses "shift": true
     // Pairs that read no cutOffFactor: the member of the entry that sets the range, for the error of a
     // cutoff too long for the box ("parameters.gamma", "data"; empty: "parameters.cutOff").
     std::string cutoffKey;

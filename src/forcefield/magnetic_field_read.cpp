@@ -29,6 +29,7 @@ ForceFieldComponent DipolarMagnetic::reader_entry(ComponentKey key) {
     c.entryParameters = {number("permeability", "field length^3/moment", Must::be_positive),
                          number("cutOff", "length", Must::be_positive)};
     c.readsCutOffFactor = false;
+    c.takesShift = false;
     c.actingCutoff = [](const ParameterValues& v, const Constants&, double, bool) { return v["cutOff"]; };
     return c;
 }

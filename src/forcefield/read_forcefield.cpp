@@ -304,6 +304,9 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
     const ParameterValues values = input::read_parameters(entry.node, own);
     if (component.readsCutOffFactor) pair.cutOffFactor = values["cutOffFactor"];
     pair.shift = parameter_or<bool>(entry, "shift", false);
+    if (pair.shift && !component.takesShift)
+        throw input_error(parameter_path(entry, "shift"),
+                          component.key.text() + " has no shifted form: leave \"shift\" out, or false");
     for (const Parameter& p : component.entryParameters) pair.shared.set(p.name, values.vector(p.name));
     const Constants constants = constants_of(system);
     pair.everyTypePair = component.parameters.empty();

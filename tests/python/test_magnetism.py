@@ -272,6 +272,15 @@ def test_dipolar_terms_match_lammps_lj_cut_dipole_cut(options):
         np.testing.assert_allclose(sim.torques, torques, rtol=1e-10, atol=1e-11 * np.max(np.abs(torques)))
 
 
+def test_dipoles_have_no_shifted_form(options):
+    entry = dipolar(1.0, 3.0)
+    entry["parameters"]["shift"] = True
+    with structmd.Simulation(options) as sim:
+        with pytest.raises(structmd.InputError, match=r"topology\.forceField\.dipoles\.parameters\.shift: .*no shifted form"):
+            sim.load(document([[0, 0, 0], [1.5, 0, 0]], ["A", "A"], magnetizations=[[0, 0, 1, 1.0]] * 2,
+                              force_field={"nl": NEIGHBOUR_LIST, "dipoles": entry}))
+
+
 def test_dipolar_forces_and_torques_are_the_energys_derivatives(options):
     rng = np.random.default_rng(4)
     positions, q, m = dipole_system(rng, n=6)
