@@ -320,6 +320,18 @@ STRUCTMD_API structmd_status structmd_get_orientations(structmd_sim* sim, double
 STRUCTMD_API structmd_status structmd_get_torques(structmd_sim* sim, double* t, int64_t n);
 
 /**
+ * The magnetic moment of each particle in the lab frame: the magnitude of the state's magnetization
+ * times its body-frame direction turned by the particle's orientation (mu = M R(q) m). Zero for a
+ * simulation whose state gives no magnetization.
+ *
+ * @param sim      the handle.
+ * @param[out] m   double[3n], moments (energy/field).
+ * @param n        the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_get_magnetic_moments(structmd_sim* sim, double* m, int64_t n);
+
+/**
  * The forces are evaluated first when stale (after a load, structmd_set_positions or
  * structmd_set_box); otherwise they are those the integrator computed at the current positions, so
  * reading them after a step costs only the copy.

@@ -53,7 +53,8 @@ module structmd
             structmd_set_velocities_of, structmd_set_external_forces_of, structmd_set_parameter, &
             structmd_get_parameter, structmd_set_force_callback, structmd_set_device_force_callback, &
             structmd_set_callback_error, structmd_get_view, structmd_force_callback, &
-            structmd_get_orientations, structmd_set_orientations, structmd_get_torques
+            structmd_get_orientations, structmd_set_orientations, structmd_get_torques, &
+            structmd_get_magnetic_moments
 
   public :: structmd_version_f, structmd_last_error_f, structmd_create_f, structmd_load_file_f, &
             structmd_load_string_f, structmd_get_energy_f, structmd_get_ids_f, &
@@ -195,6 +196,14 @@ module structmd
       import :: c_ptr, c_int32_t, c_int64_t, c_double
       type(c_ptr), value :: sim
       real(c_double), intent(inout) :: t(*)
+      integer(c_int64_t), value :: n
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_get_magnetic_moments(sim, m, n) bind(C, name="structmd_get_magnetic_moments") result(status)
+      import :: c_ptr, c_int32_t, c_int64_t, c_double
+      type(c_ptr), value :: sim
+      real(c_double), intent(inout) :: m(*)
       integer(c_int64_t), value :: n
       integer(c_int32_t) :: status
     end function

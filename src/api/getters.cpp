@@ -41,6 +41,13 @@ structmd_status structmd_get_orientations(structmd_sim* sim, double* q, int64_t 
     });
 }
 
+structmd_status structmd_get_magnetic_moments(structmd_sim* sim, double* m, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_count(loaded(s), n, m, "m");
+        s.simulation->get_magnetic_moments(m);
+    });
+}
+
 structmd_status structmd_get_torques(structmd_sim* sim, double* t, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, t, "t");

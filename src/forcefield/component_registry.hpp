@@ -33,9 +33,12 @@ struct ForceFieldComponent {
     // The one unit system the component is defined in (its constants are numbers in those units, as
     // "KcalMol_A"); empty: any. An input in other units is refused, naming the entry's type.
     std::string units;
+    // Reads the particles' magnetic moments: the state must give their magnetization.
+    bool needsMagnetization = false;
     // Pairs: the largest distance at which the term acts with these values (shared and one row's).
     std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
     bool readsCutOffFactor = true;  // pairs: the entry gives "cutOffFactor" (else its own cut-off parameter)
+    bool takesShift = true;  // pairs: false for a term without a shifted form, which refuses "shift": true
     // Pairs that read no cutOffFactor: the member of the entry that sets the range, for the error of a
     // cutoff too long for the box ("parameters.gamma", "data"; empty: "parameters.cutOff").
     std::string cutoffKey;

@@ -30,6 +30,7 @@
 #include "forcefield/constant_torque.hpp"
 #include "forcefield/debye_huckel.hpp"
 #include "forcefield/dihedral.hpp"
+#include "forcefield/dipolar_magnetic.hpp"
 #include "forcefield/dlvo.hpp"
 #include "forcefield/electrostatics.hpp"
 #include "forcefield/expression_component.hpp"
@@ -45,6 +46,7 @@
 #include "forcefield/kim_hummer.hpp"
 #include "forcefield/kratky_porod.hpp"
 #include "forcefield/la_torre.hpp"
+#include "forcefield/magnetic_field.hpp"
 #include "forcefield/lambda_harmonic.hpp"
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/lennard_jones_general.hpp"
@@ -98,6 +100,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template pair<LennardJonesSoftCoreType1>({"NonBonded", "LennardJonesSoftCoreType1"});
     v.template pair<LennardJonesSoftCoreType2>({"NonBonded", "LennardJonesSoftCoreType2"});
     v.template configurable<Electrostatics>({"LongRange", "Electrostatics"});
+    v.template configurable<DipolarMagnetic>({"NonBonded", "DipolarMagnetic"});
 
     v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});
     v.template bond<ConstantForceBond>({"Bond1", "ConstantForce"});
@@ -166,6 +169,8 @@ void visit_builtin_forcefield(Visitor& v) {
 
     v.template external<ExternalConstantForce>({"External", "ConstantForce"});
     v.template configurable<ConstantTorqueComponent>({"External", "ConstantTorque"});
+    v.template configurable<ConstantMagneticField>({"External", "ConstantMagneticField"});
+    v.template configurable<ACMagneticField>({"External", "ACMagneticField"});
     v.template external<Plates>({"External", "Plates"});
     v.template external<SphericalShell>({"External", "SphericalShell"});
     v.template configurable<TabulatedFieldComponent<false>>({"External", "ExternalTabulated"});

@@ -93,6 +93,14 @@ public:
                 it->compute(p, out);
             }
     }
+    // Adds the magnetic field of the active terms that make one (out.magneticField), and nothing else.
+    void compute_magnetic_field(Particles<B, R>& p, const ForceOutputs<R>& out) {
+        for (auto& it : interactors_)
+            if (it->makes_magnetic_field() && it->active(p.timeline.evaluating_step())) {
+                it->prepare(p);
+                it->compute(p, out);
+            }
+    }
     void compute_one(int index, Particles<B, R>& p, const ForceOutputs<R>& out) {
         Interactor<B, R>& it = *interactors_[index];
         if (!it.active(p.timeline.evaluating_step())) return;

@@ -12,7 +12,10 @@ struct ForceOutputs {
     Real4<R>* force = nullptr;
     R* energy = nullptr;
     Tensor3<R>* virial = nullptr;
-    Real4<R>* torque = nullptr;  // last: a term built against the earlier layout still reads the others
+    Real4<R>* torque = nullptr;  // after the others: a term built against the earlier layout still reads them
+    // The magnetic field B at each particle (lab frame) from the terms that make one (["External",
+    // "ConstantMagneticField"], dipoles), asked for alone by the magnetic integrators.
+    Real4<R>* magneticField = nullptr;
 };
 
 // Adds one particle's sums to the requested outputs; each particle is written by one thread only.

@@ -82,6 +82,10 @@ public:
     virtual bool couples_to_lambda() const { return false; }
     virtual void add_lambda_derivative(Particles<B, R>&, R*) {}
 
+    // Terms that add the magnetic field they make to ForceOutputs::magneticField (magnetic fields,
+    // dipoles), which the magnetic integrators ask for on its own.
+    virtual bool makes_magnetic_field() const { return false; }
+
     // Keeps alive backend data that the term's parameters point into (a compiled expression, a
     // table's coefficients) for as long as the interactor lives.
     void own(std::shared_ptr<const void> data) { owned_.push_back(std::move(data)); }

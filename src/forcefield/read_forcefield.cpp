@@ -107,20 +107,9 @@ void read_common(const ForceFieldComponent& component, const ComponentEntry& ent
         throw input_error(parameter_path(entry, "endStep"), "endStep is before startStep");
     spec.group = group_index(ff.groups, parameter_or<std::string>(entry, "group", "All"), parameter_path(entry, "group"));
     spec.config = component.config;
-    for (const TextOption& option : component.textOptions) {
-        const std::string value = parameter_or<std::string>(entry, option.name, option.fallback);
-        const auto in = [&](const std::vector<std::string>& names) {
-            return std::find(names.begin(), names.end(), value) != names.end();
-        };
-        if (in(option.supported)) continue;
-        const std::string path = parameter_path(entry, option.name);
-        if (in(option.unsupported))
-            throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ": \"" + value + "\" is not supported: " + option.why_unsupported);
-        std::string names;
-        for (const auto* list : {&option.supported, &option.unsupported})
-            for (const std::string& n : *list) names += (names.empty() ? "" : ", ") + n;
-        throw input_error(path, "expected one of " + names + ", got \"" + value + "\"");
-    }
+    for (const TextOption& option : component.textOptions)
+        input::choose_text_option(option, parameter_or<std::string>(entry, option.name, option.fallback),
+                                  parameter_path(entry, option.name));
 }
 
 // ---- groups -----------------------------------------------------------------------------------
@@ -315,6 +304,9 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
     const ParameterValues values = input::read_parameters(entry.node, own);
     if (component.readsCutOffFactor) pair.cutOffFactor = values["cutOffFactor"];
     pair.shift = parameter_or<bool>(entry, "shift", false);
+    if (pair.shift && !component.takesShift)
+        throw input_error(parameter_path(entry, "shift"),
+                          component.key.text() + " has no shifted form: leave \"shift\" out, or false");
     for (const Parameter& p : component.entryParameters) pair.shared.set(p.name, values.vector(p.name));
     const Constants constants = constants_of(system);
     pair.everyTypePair = component.parameters.empty();
@@ -518,6 +510,9 @@ ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& lo
                               component.key.text() + " is defined in " + component.units +
                                   " units only (its constants are numbers in them); the input's units (global.units) are " +
                                   system.units.name);
+        if (component.needsMagnetization && system.magnetizations.empty())
+            throw input_error(entry.node.path() + ".type",
+                              component.key.text() + " acts on magnetic moments: the state needs a 'magnetization' column");
         switch (component.kind) {
             case InteractionKind::pair: read_pair(component, entry, system, ff); break;
             case InteractionKind::bond: read_bonds(component, entry, system, ff); break;

@@ -73,6 +73,9 @@ struct SystemDescription {
     std::vector<Vec3d> positions;
     std::vector<Vec3d> velocities;  // empty when the state gives none
     std::vector<std::array<double, 4>> orientations;  // the state's direction [q0, q1, q2, q3], normalised; empty when not given
+    // The state's magnetization [mx, my, mz, M]: unit direction in the body frame and magnitude; empty when not given.
+    std::vector<std::array<double, 4>> magnetizations;
+    std::vector<double> anisotropy;  // the state's anisotropy constant K (energy/volume); empty when not given
     std::vector<int32_t> typeIndex;
     std::vector<double> mass, radius, charge;  // type values with the state's overrides applied
     std::vector<int32_t> modelId, batchId;

@@ -398,10 +398,27 @@ std::array<double, 4> read_quaternion(const TrackedNode& cell) {
     return q;
 }
 
+// A magnetic moment as UAMMD-structured writes it, [mx, my, mz, M]: a direction in the particle's body
+// frame and the moment's magnitude M >= 0; the direction is returned normalised (any direction of a
+// moment of magnitude 0 reads as the body's z axis).
+std::array<double, 4> read_magnetization(const TrackedNode& cell) {
+    if (!cell.is_array() || cell.size() != 4)
+        throw input_error(cell.path(), "expected a magnetization [mx, my, mz, M] (body-frame direction, magnitude)");
+    std::array<double, 4> m{};
+    for (size_t k = 0; k < 4; ++k) m[k] = cell.at(k).as<double>();
+    if (!(m[3] >= 0.0)) throw input_error(cell.path() + "[3]", "the moment's magnitude must be >= 0");
+    const double norm = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    if (m[3] == 0.0 && !(norm > 0.0)) return {0.0, 0.0, 1.0, 0.0};
+    if (!(norm > 0.0)) throw input_error(cell.path(), "the moment's direction [mx, my, mz] must not be zero");
+    for (size_t k = 0; k < 3; ++k) m[k] /= norm;
+    return m;
+}
+
 StateTable read_state(const TrackedNode& state, SystemDescription& description) {
     Table table = read_table(state, {"id", "position"},
                              {"velocity", "mass", "radius", "charge", "direction", "polarizability", "innerRadius",
-                              "frictionConstant", "translationalSelfDiffusion", "rotationalSelfDiffusion"});
+                              "frictionConstant", "translationalSelfDiffusion", "rotationalSelfDiffusion",
+                              "magnetization", "anisotropy"});
     const size_t count = table.rows();
     const auto particleCount = static_cast<int64_t>(count);
     std::vector<int64_t> idOfRow =
@@ -413,11 +430,16 @@ StateTable read_state(const TrackedNode& state, SystemDescription& description) 
     description.positions.resize(count);
     if (table.has("velocity")) description.velocities.resize(count);
     if (table.has("direction")) description.orientations.resize(count);
+    if (table.has("magnetization")) description.magnetizations.resize(count);
+    if (table.has("anisotropy")) description.anisotropy.resize(count);
     for (size_t row = 0; row < count; ++row) {
         const auto id = static_cast<size_t>(idOfRow[row]);
         description.positions[id] = table.cell(row, "position").as<Vec3d>();
         if (table.has("velocity")) description.velocities[id] = table.cell(row, "velocity").as<Vec3d>();
         if (table.has("direction")) description.orientations[id] = read_quaternion(table.cell(row, "direction"));
+        if (table.has("magnetization"))
+            description.magnetizations[id] = read_magnetization(table.cell(row, "magnetization"));
+        if (table.has("anisotropy")) description.anisotropy[id] = table.cell(row, "anisotropy").as<double>();
         // UAMMD-structured's induced-dipole data, read by ["External","PolarizationTabulated"].
         if (table.has("polarizability")) {
             std::vector<double>& values = description.particleColumns["polarizability"];

@@ -1,6 +1,9 @@
 #include "input/read_parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "core/error.hpp"
 
 namespace structmd::input {
 
@@ -68,6 +71,21 @@ ParameterValues read_parameters(const TrackedNode& entry, const std::vector<Para
             values.set(p.name, std::vector<double>(p.size, p.fallback));
     }
     return values;
+}
+
+std::string text_option_names(const TextOption& option) {
+    std::string names;
+    for (const auto* list : {&option.supported, &option.unsupported})
+        for (const std::string& n : *list) names += (names.empty() ? "" : ", ") + n;
+    return names;
+}
+
+size_t choose_text_option(const TextOption& option, const std::string& value, const std::string& path) {
+    for (size_t k = 0; k < option.supported.size(); ++k)
+        if (option.supported[k] == value) return k;
+    if (std::find(option.unsupported.begin(), option.unsupported.end(), value) != option.unsupported.end())
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ": \"" + value + "\" is not supported: " + option.why_unsupported);
+    throw input_error(path, "expected one of " + text_option_names(option) + ", got \"" + value + "\"");
 }
 
 }  // namespace structmd::input

@@ -24,4 +24,10 @@ TrackedNode parameters_of(const TrackedNode& entry);
 // and an absent required one is an error naming <entry>.parameters.<name>.
 ParameterValues read_parameters(const TrackedNode& entry, const std::vector<Parameter>& schema);
 
+// The index among option.supported of a named choice's value, given at `path`: ERR_UNSUPPORTED for a
+// name the reference defines and structmd does not, an input error for any other.
+size_t choose_text_option(const TextOption& option, const std::string& value, const std::string& path);
+// Every name of the option, supported first: "none, LLG_Euler, LLG_Heun".
+std::string text_option_names(const TextOption& option);
+
 }  // namespace structmd::input

@@ -22,6 +22,11 @@ public:
     // time later (terms active at that step and fields at that time then apply). driftBookkept: the
     // kernel that moved them applied Particles::drift, as update_forces left it, to every particle.
     virtual void positions_moved(double elapsed, bool driftBookkept) = 0;
+    // Makes Particles::magneticField the field at each particle for the present positions,
+    // orientations and moments (the magnetic integrators; never cached).
+    virtual void update_magnetic_field() = 0;
+    // Tells the engine an integrator turned the magnetic moments: what was computed from them is stale.
+    virtual void magnetization_changed() = 0;
 };
 
 // The particle moved by d, wrapped into the box (its image counts the crossings); the type in w
@@ -58,10 +63,14 @@ SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {
 // declares a struct derived from this one beside its class.
 struct IntegratorInputs {
     static std::vector<Parameter> parameters() { return {}; }
+    // Parameters whose value is a name; the chosen one's index in `supported` is stored among the
+    // parameters under the option's name. A null fallback makes the option required.
+    static std::vector<TextOption> text_options() { return {}; }
     static constexpr bool minimiser = false;    // moves no time forward: needs no time step
     static constexpr bool needsRadius = false;  // its mobility uses each particle's radius
     static constexpr bool overdamped = false;   // moves positions only: the particles have no velocities
     static constexpr bool rotates = false;      // moves orientations too (by the torques)
+    static constexpr bool magnetic = false;     // turns the magnetic moments: the state must give them
     // A parameter that may be left out when the state gives each particle's value in a column
     // (UAMMD-structured's particle data): its default 0 then means "from the column".
     static constexpr const char* fallbackParameter = nullptr;

@@ -39,6 +39,8 @@ struct IntegratorComponent {
     const char* fallbackParameter = nullptr;  // IntegratorInputs::fallbackParameter and fallbackColumn
     const char* fallbackColumn = nullptr;
     bool rotates = false;
+    std::vector<TextOption> textOptions;
+    bool magnetic = false;
 };
 
 const Registry<IntegratorComponent>& integrator_registry();

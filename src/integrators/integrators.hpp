@@ -8,6 +8,7 @@
 #include "integrators/brownian_rigid_body.hpp"
 #include "integrators/langevin_bbk.hpp"
 #include "integrators/langevin_gjf.hpp"
+#include "integrators/magnetic.hpp"
 #include "integrators/steepest_descent.hpp"
 #include "integrators/velocity_verlet.hpp"
 
@@ -20,6 +21,8 @@ void visit_builtin_integrators(Visitor& v) {
     v.template integrator<LangevinGJF, LangevinInputs>({"Langevin", "GJF"});
     v.template integrator<BrownianEulerMaruyama, BrownianInputs>({"Brownian", "EulerMaruyama"});
     v.template integrator<BrownianEulerMaruyamaRigidBody, BrownianRigidBodyInputs>({"Brownian", "EulerMaruyamaRigidBody"});
+    v.template integrator<MagneticFixed, MagneticFixedInputs>({"Magnetic", "Fixed"});
+    v.template integrator<MagneticBrownian, MagneticBrownianInputs>({"Magnetic", "Brownian"});
     // The minimiser is also known by the reference's two spellings.
     v.template integrator<SteepestDescent, SteepestDescentInputs>({"SteepestDescent", "SteepestDescent"});
     v.template integrator<SteepestDescent, SteepestDescentInputs>({"Minimization", "SteepestDescent"});

@@ -1,6 +1,7 @@
 #include "integrators/read_integrators.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "core/error.hpp"
 #include "input/read_parameters.hpp"
@@ -16,9 +17,20 @@ struct ReaderEntries {
     template <template <class, class> class Integrator, class Inputs>
     void integrator(ComponentKey key) {
         registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate,
-                      Inputs::overdamped, Inputs::fallbackParameter, Inputs::fallbackColumn, Inputs::rotates});
+                      Inputs::overdamped, Inputs::fallbackParameter, Inputs::fallbackColumn, Inputs::rotates,
+                      Inputs::text_options(), Inputs::magnetic});
     }
 };
+
+// A named choice of the entry (required where it has no fallback), as the index of its value among
+// the supported names.
+double read_text_option(const input::TrackedNode& params, const TextOption& option, const std::string& entryPath) {
+    const std::string path = entryPath + ".parameters." + option.name;
+    const auto given = params.valid() ? params.find(option.name) : std::nullopt;
+    if (!given && !option.fallback)
+        throw input_error(path, "missing: give one of " + input::text_option_names(option));
+    return static_cast<double>(input::choose_text_option(option, given ? given->as<std::string>() : option.fallback, path));
+}
 
 }  // namespace
 
@@ -40,6 +52,12 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         IntegratorSpec spec;
         spec.name = entry.name;
         spec.path = entry.node.path();
+        // UAMMD-structured's magnetic particles in a fluid: their moments turn as those of
+        // ["Magnetic","Brownian"] do, but they move through the force coupling method's hydrodynamics.
+        if (entry.cls == "Magnetic" && entry.subclass == "ForceCouplingMethod")
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ".type: [\"Magnetic\",\"ForceCouplingMethod\"] needs "
+                                                  "hydrodynamics (the force coupling method), which structmd does not have; "
+                                                  "[\"Magnetic\",\"Brownian\"] moves the same particles without a fluid");
         const IntegratorComponent& component =
             registry.at({entry.cls, entry.subclass}, spec.path + ".type", "integrator");
         spec.key = component.key;
@@ -62,7 +80,12 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         spec.group = group_index(groups, params.valid() ? params.get_or<std::string>("group", "All") : "All",
                                  spec.path + ".parameters.group");
         spec.parameters = input::read_parameters(entry.node, component.parameters);
+        for (const TextOption& option : component.textOptions)
+            spec.parameters.set(option.name, {read_text_option(params, option, spec.path)});
         component.validate(spec.parameters, spec.path);
+        if (component.magnetic && system.magnetizations.empty())
+            throw input_error(spec.path + ".type", entry.cls + " " + entry.subclass +
+                                                       " turns magnetic moments: the state needs a 'magnetization' column");
 
         const bool fromColumn = component.fallbackParameter && spec.parameters[component.fallbackParameter] == 0.0;
         if (fromColumn && !system.particleColumns.count(component.fallbackColumn))

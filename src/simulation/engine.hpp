@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/logger.hpp"
 #include "forcefield/component_set.hpp"
+#include "forcefield/magnetic_moment.hpp"
 #include "forcefield/make_interactors.hpp"
 #include "integrators/make_integrator.hpp"
 #include "simulation/callback_term.hpp"
@@ -93,6 +94,13 @@ public:
             create_orientations();
         }
         if (rotates) backend_.resize(p_.torque, p_.count);
+        if (!spec.magnetizations.empty()) {
+            std::vector<Real4<R>> m;
+            for (const auto& row : spec.magnetizations) m.push_back({R(row[0]), R(row[1]), R(row[2]), R(row[3])});
+            backend_.upload(p_.magnetization, m.data(), m.size());
+        }
+        const std::vector<R> anisotropy(spec.anisotropy.begin(), spec.anisotropy.end());
+        backend_.upload(p_.anisotropy, anisotropy.data(), anisotropy.size());
         if (std::any_of(batchId_.begin(), batchId_.end(), [](int b) { return b != 0; })) {
             backend_.upload(p_.batch, batchId_.data(), batchId_.size());
             std::vector<int> ids = batchId_;
@@ -247,6 +255,22 @@ public:
         upload_orientations(q);
         cache_.invalidate();
     }
+    void get_magnetic_moments(double* m) override {
+        backend_.activate();
+        if (p_.magnetization.empty()) {
+            std::fill(m, m + 3 * p_.count, 0.0);
+            return;
+        }
+        const std::vector<Real4<R>> moments = download(p_.magnetization);
+        const std::vector<Real4<R>> dir = p_.dir.empty() ? std::vector<Real4<R>>() : download(p_.dir);
+        for (int64_t i = 0; i < p_.count; ++i) {
+            const Vec3<R> mu = magnetic_moment(moments.data(), dir.empty() ? nullptr : dir.data(), i);
+            m[3 * i] = mu.x;
+            m[3 * i + 1] = mu.y;
+            m[3 * i + 2] = mu.z;
+        }
+    }
+    bool has_magnetization() const override { return !p_.magnetization.empty(); }
     void get_torques(double* t) override {
         backend_.activate();
         if (p_.torque.empty()) {
@@ -586,6 +610,7 @@ public:
         s.vel = download(p_.vel);
         if (!p_.externalForce.empty()) s.externalForce = download(p_.externalForce);
         if (!p_.dir.empty()) s.dir = download(p_.dir);
+        if (!p_.magnetization.empty()) s.magnetization = download(p_.magnetization);
         for (const auto& integrator : integrators_) s.integrators.push_back(integrator->state());
         write_checkpoint_file(path, encode_state(s));
     }
@@ -610,6 +635,8 @@ public:
             backend_.upload(p_.dir, s.dir.data(), s.dir.size());
         else if (!p_.dir.empty())
             backend_.fill(p_.dir, identity_quaternion());
+        if (!s.magnetization.empty() && !p_.magnetization.empty())
+            backend_.upload(p_.magnetization, s.magnetization.data(), s.magnetization.size());
         for (size_t k = 0; k < integrators_.size(); ++k) integrators_[k]->restore(s.integrators[k]);
         set_lambda(s.lambda);
         activeStage_ = s.activeStage;
@@ -692,6 +719,16 @@ private:
         forceField_.mirror_in_drift(drift, p_);
         p_.drift = drift;
     }
+    // Never cached: the field changes with the moments, which the magnetic integrators turn between
+    // force evaluations. Only the terms that make a field are evaluated.
+    void update_magnetic_field() override {
+        backend_.resize(p_.magneticField, p_.count);
+        backend_.fill(p_.magneticField, Real4<R>{R(0), R(0), R(0), R(0)});
+        ForceOutputs<R> out;
+        out.magneticField = p_.magneticField.data();
+        forceField_.compute_magnetic_field(p_, out);
+    }
+    void magnetization_changed() override { cache_.invalidate(); }
 
     // Reports a fault recorded on the backend during the last steps and returns to the state the
     // call started from. faultStaged: a kernel queued last copies the fault word into faultWord_.

@@ -125,11 +125,14 @@ struct CopyState {
     Real4<R>* toVel;
     const Real4<R>* fromDir = nullptr;  // orientations, copied when both are given
     Real4<R>* toDir = nullptr;
+    const Real4<R>* fromMagnetization = nullptr;  // magnetic moments, copied when both are given
+    Real4<R>* toMagnetization = nullptr;
     SMD_HD void operator()(int64_t i) const {
         toPos[i] = fromPos[i];
         toImage[i] = fromImage[i];
         toVel[i] = fromVel[i];
         if (fromDir && toDir) toDir[i] = fromDir[i];
+        if (fromMagnetization && toMagnetization) toMagnetization[i] = fromMagnetization[i];
     }
 };
 

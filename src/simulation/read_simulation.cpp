@@ -50,6 +50,8 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
     if (auto column = system.particleColumns.find("rotationalSelfDiffusion"); column != system.particleColumns.end())
         spec.rotationalSelfDiffusion = column->second;
     spec.orientations = system.orientations;
+    spec.magnetizations = system.magnetizations;
+    spec.anisotropy = system.anisotropy;
     spec.batchId = system.batchId;
     spec.modelId = system.modelId;
     return spec;

@@ -75,6 +75,10 @@ public:
     // The torque on each particle (3n, lab frame) at the present state; kept, and evaluated with
     // the forces, from the first call on.
     virtual void get_torques(double* t) = 0;
+    // Each particle's magnetic moment in the lab frame (3n): its magnitude times its body-frame
+    // direction turned by the orientation; zero for a simulation without magnetization.
+    virtual void get_magnetic_moments(double* m) = 0;
+    virtual bool has_magnetization() const = 0;
     virtual const std::vector<std::string>& type_names() const = 0;
 
     // Energy terms: "potential", "kinetic", "total", "external", or a forceField entry name; an

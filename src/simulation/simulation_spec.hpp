@@ -31,6 +31,8 @@ struct SimulationSpec {
     std::vector<double> friction, selfDiffusion;  // the state's frictionConstant, translationalSelfDiffusion (or empty)
     std::vector<double> rotationalSelfDiffusion;  // the state's column (or empty)
     std::vector<std::array<double, 4>> orientations;  // unit quaternions [q0, q1, q2, q3]; empty: none given
+    std::vector<std::array<double, 4>> magnetizations;  // [mx, my, mz, M], body frame; empty: none given
+    std::vector<double> anisotropy;                      // empty: none given
     std::vector<int32_t> batchId, modelId;
 
     ForceFieldSpec forceField;

@@ -22,6 +22,10 @@ std::vector<T> get_vector(ByteReader& in, size_t count) {
     return values;
 }
 
+// The optional per-particle arrays after the integrators' state, in this order.
+constexpr uint8_t kOrientationsTag = 1;
+constexpr uint8_t kMagnetizationTag = 2;
+
 }  // namespace
 
 template <class R>
@@ -44,10 +48,14 @@ std::vector<unsigned char> encode_state(const DynamicState<R>& s) {
         out.put(static_cast<uint32_t>(state.size()));
         put_vector(out, state);
     }
-    // Last, and only when there are orientations: a checkpoint without them reads as before.
+    // Last, each tagged and only when there are any: a checkpoint without them reads as before.
     if (!s.dir.empty()) {
-        out.put(static_cast<uint8_t>(1));
+        out.put(kOrientationsTag);
         put_vector(out, s.dir);
+    }
+    if (!s.magnetization.empty()) {
+        out.put(kMagnetizationTag);
+        put_vector(out, s.magnetization);
     }
     return out.bytes();
 }
@@ -85,8 +93,15 @@ DynamicState<R> decode_state(const std::vector<unsigned char>& payload, const st
     if (in.get<uint8_t>()) s.externalForce = get_vector<Real4<R>>(in, count);
     s.integrators.resize(shape.integrators);
     for (auto& state : s.integrators) state = get_vector<double>(in, in.get<uint32_t>());
-    if (!in.at_end() && in.get<uint8_t>() == 1) s.dir = get_vector<Real4<R>>(in, count);
-    if (!in.at_end()) throw mismatch("it has more data than this simulation's integrators hold");
+    while (!in.at_end()) {
+        const uint8_t tag = in.get<uint8_t>();
+        if (tag == kOrientationsTag && s.dir.empty() && s.magnetization.empty())
+            s.dir = get_vector<Real4<R>>(in, count);
+        else if (tag == kMagnetizationTag && s.magnetization.empty())
+            s.magnetization = get_vector<Real4<R>>(in, count);
+        else
+            throw mismatch("it has more data than this simulation's integrators hold");
+    }
     return s;
 }
 

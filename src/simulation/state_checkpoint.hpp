@@ -23,6 +23,7 @@ struct DynamicState {
     std::vector<Image> image;
     std::vector<Real4<R>> externalForce;  // empty when the host set none
     std::vector<Real4<R>> dir;            // orientations; empty when the simulation has none
+    std::vector<Real4<R>> magnetization;  // magnetic moments; empty when the simulation has none
     std::vector<std::vector<double>> integrators;
 };
 

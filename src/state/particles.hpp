@@ -57,6 +57,13 @@ struct Particles {
     Buffer<Real4<R>> dir;
     Buffer<Real4<R>> torque;            // lab frame, w unused; empty until an integrator or the host reads torques
     Buffer<R> rotationalSelfDiffusion;  // the state's column; empty when not given
+
+    // Magnetic moments, after the orientations for the same reason; each empty unless the input gives
+    // the state's magnetization. xyz: the moment's unit direction in the body frame (UAMMD-structured's
+    // layout: the moment turns with the particle), w: its magnitude M.
+    Buffer<Real4<R>> magnetization;
+    Buffer<R> anisotropy;            // the state's anisotropy constant K by particle; empty: 0 for all
+    Buffer<Real4<R>> magneticField;  // lab frame, w unused; sized when a magnetic integrator asks for fields
 };
 
 }  // namespace structmd

@@ -17,6 +17,7 @@
 #include "steps/hessian_measure.hpp"
 #include "steps/info_step.hpp"
 #include "steps/interactors_energy_measure.hpp"
+#include "steps/magnetization_measure.hpp"
 #include "steps/lambda_schedule.hpp"
 #include "steps/mean_square_displacement.hpp"
 #include "steps/pairwise_force_measure.hpp"
@@ -57,6 +58,8 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(afm_max_force_entry());
         steps.add(escape_sphere_time_entry());
         steps.add(escape_polygon_time_entry());
+        steps.add(total_magnetization_entry());
+        steps.add(mean_magnetization_entry());
         steps.add(write_step_entry());
         steps.add(sort_step_entry());
         steps.add(thermodynamic_integration_entry());

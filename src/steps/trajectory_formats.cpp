@@ -1,5 +1,6 @@
 // The text trajectory formats (xyz, sp, spf, lammpstrj, pdb, and UAMMD-structured's coord, vel,
-// itpv and the orientation formats spo, svv and itpd) and the table of every format. Values are written with 8 significant digits (pdb: its fixed
+// itpv, the orientation formats spo, svv and itpd and the magnetic ones magnet, xyzm, spm, svvm and
+// svvma) and the table of every format. Values are written with 8 significant digits (pdb: its fixed
 // columns).
 #include <algorithm>
 #include <cerrno>
@@ -350,11 +351,126 @@ private:
     }
 };
 
+
+// The magnetic formats. The moment of particle k of a frame (lab frame), and its unit direction (zero
+// for a moment of magnitude 0).
+Vec3<double> moment_of(const TrajectoryFrame& frame, size_t k) {
+    return {frame.moments[3 * k], frame.moments[3 * k + 1], frame.moments[3 * k + 2]};
+}
+Vec3<double> moment_direction(const TrajectoryFrame& frame, size_t k) {
+    const Vec3<double> mu = moment_of(frame, k);
+    const double norm = std::sqrt(dot(mu, mu));
+    return norm > 0.0 ? (1.0 / norm) * mu : Vec3<double>{0.0, 0.0, 0.0};
+}
+Vec3<double> position_of(const TrajectoryFrame& frame, size_t k) {
+    return {frame.positions[3 * k], frame.positions[3 * k + 1], frame.positions[3 * k + 2]};
+}
+
+// UAMMD-structured's magnet: "mx my mz" per particle, the frames one after the other with no header.
+class MagnetWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_moments() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        for (size_t i = 0; i < frame.ids.size(); ++i) {
+            const Vec3<double> mu = moment_of(frame, i);
+            std::fprintf(f, "%.8g %.8g %.8g\n", mu.x, mu.y, mu.z);
+        }
+    }
+};
+
+// UAMMD-structured's xyzm: "x y z mx my mz" per particle, the frames one after the other with no header.
+class XyzmWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_moments() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        for (size_t i = 0; i < frame.ids.size(); ++i) {
+            const Vec3<double> p = position_of(frame, i), mu = moment_of(frame, i);
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %.8g %.8g\n", p.x, p.y, p.z, mu.x, mu.y, mu.z);
+        }
+    }
+};
+
+// UAMMD-structured's spm (superpunto with moments): per particle the sp line "x y z radius type",
+// then a small sphere (radius / 5) on its surface along its moment, "x+a*u y+a*u z+a*u radius/5 type+1".
+class SpmWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_moments() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        write_sp_header(f, frame);
+        for (size_t i = 0; i < frame.types.size(); ++i) {
+            const Vec3<double> p = position_of(frame, i);
+            const double a = frame.radii[i];
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, frame.types[i]);
+            const Vec3<double> m = p + a * moment_direction(frame, i);
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", m.x, m.y, m.z, 0.2 * a, frame.types[i] + 1);
+        }
+    }
+};
+
+// UAMMD-structured's svvm (for SVV3D): "# SPHERE OPACITY 0.6" once at the top of the file, then per
+// frame the sp header and per particle the sp line and an arrow "x y z vx vy vz color" through the
+// particle along its moment, from p - 0.9 a u, of length 1.8 a, colored 7 for type 1 and 1 otherwise.
+class SvvmWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_moments() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        if (frames() == 0) std::fprintf(f, "# SPHERE OPACITY 0.6\n");
+        write_sp_header(f, frame);
+        for (size_t i = 0; i < frame.types.size(); ++i) {
+            const Vec3<double> p = position_of(frame, i), u = moment_direction(frame, i);
+            const double a = frame.radii[i];
+            const int type = frame.types[i];
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, type);
+            const Vec3<double> tail = p - (0.9 * a) * u, arrow = (1.8 * a) * u;
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %.8g %.8g %d\n", tail.x, tail.y, tail.z, arrow.x, arrow.y, arrow.z,
+                         type != 1 ? 1 : 7);
+        }
+    }
+    // Appending to a file that has frames already: the opacity line is there.
+    void count_existing_frames() override { set_frames(1); }
+};
+
+// UAMMD-structured's svvma: per frame the sp header, per particle the sp line, an arrow of length 2a
+// along the moment colored 1, and the anisotropy (easy) axis, the body's z axis, as two arrows of
+// length 2a either way colored 39.
+class SvvmaWriter final : public TextTrajectoryWriter {
+public:
+    using TextTrajectoryWriter::TextTrajectoryWriter;
+    bool needs_moments() const override { return true; }
+    bool needs_orientations() const override { return true; }
+
+protected:
+    void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
+        write_sp_header(f, frame);
+        for (size_t i = 0; i < frame.types.size(); ++i) {
+            const Vec3<double> p = position_of(frame, i);
+            const double a = frame.radii[i];
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, frame.types[i]);
+            const Vec3<double> m = (2.0 * a) * moment_direction(frame, i), z = (2.0 * a) * body_axes(frame, i).z;
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %.8g %.8g 1\n", p.x, p.y, p.z, m.x, m.y, m.z);
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %.8g %.8g 39\n", p.x, p.y, p.z, z.x, z.y, z.z);
+            std::fprintf(f, "%.8g %.8g %.8g %.8g %.8g %.8g 39\n", p.x, p.y, p.z, -z.x, -z.y, -z.z);
+        }
+    }
+};
+
 }  // namespace
 
 const std::vector<std::string>& trajectory_formats() {
     static const std::vector<std::string> names{"xyz", "sp", "spf", "lammpstrj", "dcd", "pdb", "coord", "vel", "itpv",
-                                                "spo", "svv", "itpd"};
+                                                "spo", "svv", "itpd", "magnet", "xyzm", "spm", "svvm", "svvma"};
     return names;
 }
 
@@ -371,6 +487,11 @@ std::unique_ptr<TrajectoryWriter> make_trajectory_writer(const std::string& form
     if (format == "lammpstrj") return std::make_unique<LammpsDumpWriter>(std::move(options));
     if (format == "dcd") return std::make_unique<DcdWriter>(std::move(options));
     if (format == "pdb") return std::make_unique<PdbWriter>(std::move(options));
+    if (format == "magnet") return std::make_unique<MagnetWriter>(std::move(options));
+    if (format == "xyzm") return std::make_unique<XyzmWriter>(std::move(options));
+    if (format == "spm") return std::make_unique<SpmWriter>(std::move(options));
+    if (format == "svvm") return std::make_unique<SvvmWriter>(std::move(options));
+    if (format == "svvma") return std::make_unique<SvvmaWriter>(std::move(options));
     return nullptr;
 }
 

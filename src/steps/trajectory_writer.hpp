@@ -25,6 +25,7 @@ struct TrajectoryFrame {
     std::vector<double> velocities;      // 3n for writers that need_velocities(), else empty
     std::vector<double> forces;          // 3n for writers that need_forces(), else empty
     std::vector<double> orientations;    // 4n quaternions [q0, q1, q2, q3] for writers that need_orientations()
+    std::vector<double> moments;         // 3n magnetic moments (lab frame) for writers that need_moments()
     std::vector<std::string> typeNames;  // indexed by type
 };
 
@@ -53,6 +54,7 @@ public:
     virtual bool needs_velocities() const { return false; }
     virtual bool needs_forces() const { return false; }
     virtual bool needs_orientations() const { return false; }
+    virtual bool needs_moments() const { return false; }
 };
 
 // The names outputFormat accepts, which are also the file extensions.

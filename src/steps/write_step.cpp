@@ -27,9 +27,11 @@ void WriteStep::run(Simulation& sim) {
     velocities_.resize(writer_->needs_velocities() ? 3 * n : 0);
     forces_.resize(writer_->needs_forces() ? 3 * n : 0);
     orientations_.resize(writer_->needs_orientations() ? 4 * n : 0);
+    moments_.resize(writer_->needs_moments() ? 3 * n : 0);
     if (!velocities_.empty()) sim.get_velocities(velocities_.data());
     if (!forces_.empty()) sim.get_forces(forces_.data());
     if (!orientations_.empty()) sim.get_orientations(orientations_.data());
+    if (!moments_.empty()) sim.get_magnetic_moments(moments_.data());
 
     frame_.step = sim.current_step();
     frame_.time = sim.current_time();
@@ -43,6 +45,7 @@ void WriteStep::run(Simulation& sim) {
     frame_.velocities.clear();
     frame_.forces.clear();
     frame_.orientations.clear();
+    frame_.moments.clear();
     for (int64_t i = 0; i < n; ++i) {
         if (!members_.empty() && !members_[i]) continue;
         frame_.ids.push_back(i);
@@ -54,6 +57,7 @@ void WriteStep::run(Simulation& sim) {
         if (!forces_.empty()) frame_.forces.insert(frame_.forces.end(), &forces_[3 * i], &forces_[3 * i] + 3);
         if (!orientations_.empty())
             frame_.orientations.insert(frame_.orientations.end(), &orientations_[4 * i], &orientations_[4 * i] + 4);
+        if (!moments_.empty()) frame_.moments.insert(frame_.moments.end(), &moments_[3 * i], &moments_[3 * i] + 3);
     }
     writer_->write(frame_);
 }
@@ -113,6 +117,9 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
     if (!writer)
         throw input_error(in.parameters.path("outputFormat"),
                           "unknown output format '" + format + "'; known: " + known_formats());
+    if (writer->needs_moments() && in.system.magnetizations.empty())
+        throw input_error(in.parameters.path("outputFormat"),
+                          "format '" + format + "' writes magnetic moments: the state needs a 'magnetization' column");
     return std::make_unique<WriteStep>(in.name, in.interval(), in.start(), in.end(), in.parameters.flag("pbc"),
                                        in.members, std::move(writer));
 }

@@ -29,7 +29,7 @@ private:
     std::vector<double> positions_;  // every particle's, before the selection
     std::vector<int32_t> types_;
     std::vector<double> radii_;
-    std::vector<double> velocities_, forces_, orientations_;  // only for formats that write them
+    std::vector<double> velocities_, forces_, orientations_, moments_;  // only for formats that write them
     TrajectoryFrame frame_;
 };
 

@@ -56,10 +56,11 @@ DOCUMENT_COMPONENTS = sorted(k for k, v in COMPONENTS.items() if v[2] != FORCE_F
 
 # The system every example is written for (docs/input-format.md, "Examples on this page"): ids 0..3
 # in a bent, non-planar chain (every angle and dihedral is defined), types A and B with charges,
-# models 0 and 1, all well inside a 10-wide box and within 2 of the origin.
+# models 0 and 1, magnetic moments, all well inside a 10-wide box and within 2 of the origin.
 POSITIONS = [[0.0, 0.0, 0.0], [1.1, 0.0, 0.0], [1.5, 1.0, 0.0], [2.6, 1.1, 0.5]]
 TYPES = ["A", "B", "A", "B"]
 MODELS = [0, 0, 1, 1]
+MAGNETIZATIONS = [[1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.2], [0.0, 0.0, 1.0, 0.8], [0.6, 0.0, 0.8, 1.1]]
 BOX = 10.0
 # The conditions each neighbour list subclass offers (docs: "Neighbour lists").
 LIST_CONDITIONS = {"all": ["all"], "nonExcluded": ["nonExcluded"], "intra_inter": ["intra", "inter"],
@@ -86,8 +87,8 @@ def base_document():
             "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
                          "data": [[1, "vv", 10]]},
         },
-        "state": {"labels": ["id", "position", "velocity"],
-                  "data": [[i, p, [0.0, 0.0, 0.0]] for i, p in enumerate(POSITIONS)]},
+        "state": {"labels": ["id", "position", "velocity", "magnetization"],
+                  "data": [[i, p, [0.0, 0.0, 0.0], MAGNETIZATIONS[i]] for i, p in enumerate(POSITIONS)]},
         "topology": {
             "structure": {"labels": ["id", "type", "modelId"],
                           "data": [[i, TYPES[i], MODELS[i]] for i in range(len(POSITIONS))]},

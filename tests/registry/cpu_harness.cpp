@@ -43,6 +43,10 @@ std::vector<double> evaluate(const Scene& scene, const ForceFieldSpec& spec, con
     backend.upload(p.pos, pos.data(), pos.size());
     backend.upload(p.radius, system.radius.data(), system.radius.size());
     backend.upload(p.charge, system.charge.data(), system.charge.size());
+    // The magnetic moments, which the magnetic terms read (the minimal inputs give every particle one).
+    std::vector<Real4<double>> moments;
+    for (const auto& m : system.magnetizations) moments.push_back({m[0], m[1], m[2], m[3]});
+    backend.upload(p.magnetization, moments.data(), moments.size());
     const unsigned long long noFault = kNoFault;
     backend.upload(p.fault, &noFault, 1);
     backend.resize(p.force, n);

@@ -38,6 +38,15 @@ inline const std::vector<std::string>& chain_types() {
     return types;
 }
 
+// The particles' magnetic moments [mx, my, mz, M] (body-frame direction, magnitude), for the magnetic
+// terms: each along another direction and of another magnitude, so that every pair of them and any
+// field make torques.
+inline const std::vector<Json>& chain_magnetizations() {
+    static const std::vector<Json> moments = {Json::array({1.0, 0.0, 0.0, 1.0}), Json::array({0.0, 1.0, 0.0, 1.2}),
+                                              Json::array({0.0, 0.0, 1.0, 0.8}), Json::array({0.6, 0.0, 0.8, 1.1})};
+    return moments;
+}
+
 // The types, one row each of a table of types.
 inline const std::vector<std::string>& type_names() {
     static const std::vector<std::string> names = {"A", "B"};
@@ -249,11 +258,13 @@ inline Json integrator_entry(const IntegratorComponent& c) {
     parameters["timeStep"] = 0.001;
     for (size_t k = 0; k < c.parameters.size(); ++k)
         parameters[c.parameters[k].name] = json_of(c.parameters[k], numbers_for(c.key, c.parameters[k], k, 0));
+    // A named choice takes its last supported name (the magnetic integrators: the full Heun scheme).
+    for (const TextOption& option : c.textOptions) parameters[option.name] = option.supported.back();
     return Json{{"type", Json::array({c.key.cls, c.key.subclass})}, {"parameters", parameters}};
 }
 
 // The whole document: the chain, its types (distinct charges, for terms of charges; radius 0.5, for
-// integrators of mobilities), one integrator and the given force field.
+// integrators of mobilities), its magnetic moments, one integrator and the given force field.
 inline Json document(const Json& forceField, const Json& integrator = Json()) {
     const Json stepper =
         integrator.is_null() ? Json{{"type", {"Verlet", "VelocityVerlet"}}, {"parameters", {{"timeStep", 0.001}}}}
@@ -261,7 +272,8 @@ inline Json document(const Json& forceField, const Json& integrator = Json()) {
     Json state = Json::array(), structure = Json::array();
     for (size_t i = 0; i < chain_positions().size(); ++i) {
         const auto& r = chain_positions()[i];
-        state.push_back(Json::array({i, Json::array({r[0], r[1], r[2]}), Json::array({0.0, 0.0, 0.0})}));
+        state.push_back(Json::array({i, Json::array({r[0], r[1], r[2]}), Json::array({0.0, 0.0, 0.0}),
+                                     chain_magnetizations()[i]}));
         structure.push_back(Json::array({i, chain_types()[i]}));
     }
     Json doc;
@@ -282,7 +294,7 @@ inline Json document(const Json& forceField, const Json& integrator = Json()) {
                           {{"type", {"Schedule", "Integrator"}},
                            {"labels", {"order", "integrator", "steps"}},
                            {"data", Json::array({Json::array({1, "stepper", 10})})}}}};
-    doc["state"] = {{"labels", {"id", "position", "velocity"}}, {"data", state}};
+    doc["state"] = {{"labels", {"id", "position", "velocity", "magnetization"}}, {"data", state}};
     doc["topology"] = {{"structure", {{"labels", {"id", "type"}}, {"data", structure}}}, {"forceField", forceField}};
     return doc;
 }

@@ -267,9 +267,18 @@ TEST(IntegratorRoundTrip, EveryParameterReadsBackByName) {
         ASSERT_NO_THROW(specs = read_integrators(parsed.system, {}, schedule));
         ASSERT_EQ(specs.size(), 1u);
         EXPECT_EQ(specs[0].key, c.key);
-        EXPECT_EQ(specs[0].parameters.all().size(), c.parameters.size()) << "values beyond the schema";
+        EXPECT_EQ(specs[0].parameters.all().size(), c.parameters.size() + c.textOptions.size())
+            << "values beyond the schema";
         for (const Parameter& p : c.parameters)
             EXPECT_EQ(specs[0].parameters.vector(p.name), numbers_of(entry.at("parameters").at(p.name))) << p.name;
+        // A named choice reads back as the index of the given name among the supported ones.
+        for (const TextOption& option : c.textOptions) {
+            const auto given = std::find(option.supported.begin(), option.supported.end(),
+                                         entry.at("parameters").at(option.name).get<std::string>());
+            ASSERT_NE(given, option.supported.end()) << option.name;
+            EXPECT_EQ(specs[0].parameters[option.name], static_cast<double>(given - option.supported.begin()))
+                << option.name;
+        }
     }
 }
 

@@ -27,7 +27,8 @@ const std::string kEntry = "s";  // the one simulationStep entry of each documen
 const std::string kEntryPath = "simulationStep." + kEntry;
 const std::string kParametersPath = kEntryPath + ".parameters";
 
-// Four Lennard-Jones particles in a 10-wide box; the group "pair" holds particles 1 and 2.
+// Four Lennard-Jones particles in a 10-wide box, with magnetic moments (for the magnetization
+// measures and formats); the group "pair" holds particles 1 and 2.
 json base_document() {
     return {
         {"system", {{"info", {{"type", {"Simulation", "Information"}}, {"parameters", {{"name", "steps"}}}}}}},
@@ -41,8 +42,12 @@ json base_document() {
             {"labels", {"box", "temperature"}},
             {"data", {{{10.0, 10.0, 10.0}, 1.0}}}}}}},
         {"state",
-         {{"labels", {"id", "position"}},
-          {"data", {{0, {0.0, 0.0, 0.0}}, {1, {1.1, 0.0, 0.0}}, {2, {0.0, 1.1, 0.0}}, {3, {0.0, 0.0, 1.1}}}}}},
+         {{"labels", {"id", "position", "magnetization"}},
+          {"data",
+           {{0, {0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 1.0}},
+            {1, {1.1, 0.0, 0.0}, {0.0, 1.0, 0.0, 1.5}},
+            {2, {0.0, 1.1, 0.0}, {0.0, 0.0, 1.0, 0.5}},
+            {3, {0.0, 0.0, 1.1}, {0.6, 0.0, 0.8, 2.0}}}}}},
         {"topology", {{"structure", {{"labels", {"id", "type"}}, {"data", {{0, "A"}, {1, "A"}, {2, "A"}, {3, "A"}}}}}}},
         {"integrator",
          {{"vv", {{"type", {"Verlet", "VelocityVerlet"}}, {"parameters", {{"timeStep", 0.001}}}}},

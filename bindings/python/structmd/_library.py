@@ -47,6 +47,7 @@ SIGNATURES = {
     "structmd_get_velocities": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
     "structmd_get_orientations": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
     "structmd_get_torques": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
+    "structmd_get_magnetic_moments": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
     "structmd_set_orientations": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
     "structmd_get_forces": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
     "structmd_get_particle_energies": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),

@@ -335,6 +335,11 @@ class Simulation:
         return self._get_array(lib.structmd_get_torques, c_double, "float64", 3)
 
     @property
+    def magnetic_moments(self):
+        """The magnetic moment of each particle (lab frame), shape (n, 3); zeros without a magnetization."""
+        return self._get_array(lib.structmd_get_magnetic_moments, c_double, "float64", 3)
+
+    @property
     def forces(self):
         """The total force on each particle, external forces included."""
         return self._get_array(lib.structmd_get_forces, c_double, "float64", 3)
