@@ -48,6 +48,7 @@
 #include "forcefield/lennard_jones_general.hpp"
 #include "forcefield/lennard_jones_wca.hpp"
 #include "forcefield/max_distance_restraint.hpp"
+#include "forcefield/patchy_particles.hpp"
 #include "forcefield/morse.hpp"
 #include "forcefield/plain_cylinder.hpp"
 #include "forcefield/plates.hpp"
@@ -181,6 +182,9 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template configurable<SetComponent<ConstantTorqueBetweenSets>>({"Set2", "ConstantTorqueBetweenCentersOfMass"});
 
     v.template configurable<AfmComponent<SphericalTipPotential>>({"AFM", "SphericalTip"});
+
+    v.template configurable<PatchyParticlesComponent>({"PatchyParticles", "PatchyParticles"});
+    v.template configurable<PatchyParticlesComponent>({"PatchyParticles", "DynamicallyBondedPatchyParticles"});
 
     v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
     v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});

@@ -238,6 +238,8 @@ public:
     void set_orientations(const double* q) override {
         backend_.activate();
         upload_orientations(q);
+        // Orientations place what terms attach to particles (patches): a new configuration.
+        ++p_.version;
         cache_.invalidate();
     }
     void get_torques(double* t) override {

@@ -24,6 +24,7 @@
 #include "steps/stress_measure.hpp"
 #include "steps/thermodynamic_integration.hpp"
 #include "steps/thermodynamic_measure.hpp"
+#include "steps/write_patchy_particles_step.hpp"
 #include "steps/write_step.hpp"
 
 namespace structmd {
@@ -53,6 +54,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(distance_between_centers_of_mass_entry());
         steps.add(afm_measure_entry());
         steps.add(write_step_entry());
+        steps.add(write_patchy_particles_step_entry());
         steps.add(sort_step_entry());
         steps.add(thermodynamic_integration_entry());
         steps.add(lambda_activation_entry());
