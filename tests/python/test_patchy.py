@@ -401,3 +401,28 @@ def test_write_patchy_particles_reads_back(options, tmp_path):
         # Types: the particles' (A = 0), a gap, then the patches' S = 2, E = 3; radii of the patch types.
         assert list(frame[:, 4]) == [0, 0, 0] + [2 if t == "S" else 3 for _, t, _ in PATCHES]
         assert list(frame[3:, 3]) == [0.1 if t == "S" else 0.2 for _, t, _ in PATCHES]
+
+
+def test_potential_measure_writes_the_patches_torques(options, tmp_path):
+    entry, _ = cosrap_case()
+    directions = random_quaternions(3, 4)
+    path = str(tmp_path / "pot.dat")
+    steps = {"pot": {"type": ["ParticlesListMeasure", "PotentialMeasure"],
+                     "parameters": {"intervalStep": 1, "outputFilePath": path},
+                     "labels": ["id"], "data": [[0], [1], [2]]}}
+    doc = document(POSITIONS, directions, entry, steps)
+    doc["integrator"] = {"still": {"type": ["None", "None"]},
+                         "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                                      "data": [[1, "still", 1]]}}
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+        sim.step(1)
+        forces = np.array(sim.forces)
+        torques = np.array(sim.torques)
+        energies = np.array(sim.particle_energies)
+    rows = [line.split() for line in open(path) if not line.startswith("#")][:3]
+    values = np.array([[float(v) for v in row[1:]] for row in rows])
+    assert np.abs(torques).max() > 0.1
+    assert values[:, 0] == pytest.approx(energies, rel=1e-12)
+    assert values[:, 1:4] == pytest.approx(forces, rel=1e-12)
+    assert values[:, 5:8] == pytest.approx(torques, rel=1e-12)
