@@ -293,6 +293,11 @@ ForceFieldComponent configure(ForceFieldComponent c, const ComponentEntry& entry
         if (system.batchId[i] != system.batchId[0])
             throw Error(STRUCTMD_ERR_UNSUPPORTED, entry.node.path() + ": patchy particles in several batches (batchId) "
                                                                       "are not supported");
+    // UAMMD-structured has patches on every particle only; so do patches here.
+    const TrackedNode params = input::parameters_of(entry.node);
+    if (params.valid() && params.has("group") && params.get<std::string>("group") != "All")
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, entry.node.path() + ".parameters.group: patchy particles act on every "
+                                                                  "particle (\"All\"), not on a group");
     const TrackedNode global = entry.node.at("patchesGlobal");
     read_types(global, *config);
     read_fundamental(global, *config);
