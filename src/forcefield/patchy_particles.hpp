@@ -274,7 +274,7 @@ public:
             if (config.condition == PairCondition::interDifferentType) inputs.kind = config.type;
             list_ = std::make_shared<VerletList<B, R>>(backend, config.cutoff, config.verletFactor, config.condition,
                                                       inputs, nullptr, 1, parent_.data());
-            build.forceField.add_list(list_);
+            build.forceField.add_site_list(list_);
         }
         if (dynamic_) {
             backend.resize(bond_, patches_);
