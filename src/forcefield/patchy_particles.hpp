@@ -122,7 +122,6 @@ template <class R, bool WantForce, bool WantEnergy, bool WantVirial>
 struct PatchKernel {
     bool hasPairs;
     NeighbourView<R> neighbours;
-    const Real4<R>* sites;  // by patch (without pair terms, where the list has none)
     const Real4<R>* dir;
     const int* parent;
     const int* type;
@@ -308,11 +307,10 @@ public:
             constexpr bool F = decltype(force)::value, E = decltype(energy)::value, V = decltype(virial)::value;
             NeighbourView<R> view;
             if (hasPairs_) view = list_->view();
-            backend_.for_each(patches_, PatchKernel<R, F, E, V>{hasPairs_, view, sites_.data(),
-                                                                p.dir.empty() ? nullptr : p.dir.data(), parent_.data(),
-                                                                type_.data(), lever_.data(), height_.data(), terms,
-                                                                dynamic_, bonds(), force_.data(), torque_.data(),
-                                                                energy_.data(), virial_.data()});
+            backend_.for_each(patches_, PatchKernel<R, F, E, V>{hasPairs_, view, p.dir.empty() ? nullptr : p.dir.data(),
+                                                                parent_.data(), type_.data(), lever_.data(),
+                                                                height_.data(), terms, dynamic_, bonds(), force_.data(),
+                                                                torque_.data(), energy_.data(), virial_.data()});
             backend_.for_each(p.count, GatherPatches<R, F, E, V>{start_.data(), members_.data(), force_.data(),
                                                                  torque_.data(), energy_.data(), virial_.data(), out});
         });
