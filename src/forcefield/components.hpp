@@ -52,6 +52,7 @@
 #include "forcefield/lennard_jones_general.hpp"
 #include "forcefield/lennard_jones_wca.hpp"
 #include "forcefield/max_distance_restraint.hpp"
+#include "forcefield/patchy_particles.hpp"
 #include "forcefield/morse.hpp"
 #include "forcefield/plain_cylinder.hpp"
 #include "forcefield/plates.hpp"
@@ -202,6 +203,9 @@ void visit_builtin_forcefield(Visitor& v) {
 
     v.template configurable<AfmComponent<SphericalTipPotential>>({"AFM", "SphericalTip"});
     v.template configurable<AfmComponent<SphericallyBluntedConicTipPotential>>({"AFM", "SphericallyBluntedConicTip"});
+
+    v.template configurable<PatchyParticlesComponent>({"PatchyParticles", "PatchyParticles"});
+    v.template configurable<PatchyParticlesComponent>({"PatchyParticles", "DynamicallyBondedPatchyParticles"});
 
     v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
     v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});

@@ -28,6 +28,10 @@ public:
     // groups, and so the group pointers integrators hold stay valid).
     void share_groups(const ForceField& other) { groups_ = other.groups_; }
     void add_list(std::shared_ptr<VerletList<B, R>> list) { lists_.push_back(std::move(list)); }
+    // A list over sites that terms place themselves (patches): kept up to date and grown as the
+    // particles' lists are, but its skin does not limit a step's moves (its sites also turn with their
+    // particles, and its own refresh test sees every move).
+    void add_site_list(std::shared_ptr<VerletList<B, R>> list) { siteLists_.push_back(std::move(list)); }
 
     int find(const std::string& name) const {
         for (size_t k = 0; k < interactors_.size(); ++k)
@@ -69,15 +73,18 @@ public:
         if (mirrored_) mirrored_->mirrored(version);
     }
     void invalidate_lists() {
-        for (auto& list : lists_) list->invalidate();
+        for (auto* lists : {&lists_, &siteLists_})
+            for (auto& list : *lists) list->invalidate();
     }
     void adapt() {
-        for (auto& list : lists_) list->adapt();
+        for (auto* lists : {&lists_, &siteLists_})
+            for (auto& list : *lists) list->adapt();
     }
     // Builds of every list, as of the last adapt().
     int64_t builds() const {
         int64_t total = 0;
-        for (const auto& list : lists_) total += list->builds();
+        for (const auto* lists : {&lists_, &siteLists_})
+            for (const auto& list : *lists) total += list->builds();
         return total;
     }
     // Adds the terms active at the particles' step; an inactive term costs nothing.
@@ -153,6 +160,7 @@ public:
 
 private:
     std::vector<std::shared_ptr<VerletList<B, R>>> lists_;
+    std::vector<std::shared_ptr<VerletList<B, R>>> siteLists_;
     VerletList<B, R>* mirrored_ = nullptr;  // the list the last armed drift keeps (mirror_in_drift)
     std::vector<std::unique_ptr<Interactor<B, R>>> interactors_;
     // deque: buffers never move once made; shared with a force field made again from this one.

@@ -9,6 +9,7 @@
 #include "integrators/langevin_bbk.hpp"
 #include "integrators/langevin_gjf.hpp"
 #include "integrators/magnetic.hpp"
+#include "integrators/no_motion.hpp"
 #include "integrators/steepest_descent.hpp"
 #include "integrators/velocity_verlet.hpp"
 
@@ -27,6 +28,7 @@ void visit_builtin_integrators(Visitor& v) {
     v.template integrator<SteepestDescent, SteepestDescentInputs>({"SteepestDescent", "SteepestDescent"});
     v.template integrator<SteepestDescent, SteepestDescentInputs>({"Minimization", "SteepestDescent"});
     v.template integrator<SteepestDescent, SteepestDescentInputs>({"Mininimization", "SteepestDescent"});
+    v.template integrator<NoMotion, NoMotionInputs>({"None", "None"});
 }
 
 }  // namespace structmd

@@ -253,6 +253,8 @@ public:
     void set_orientations(const double* q) override {
         backend_.activate();
         upload_orientations(q);
+        // Orientations place what terms attach to particles (patches): a new configuration.
+        ++p_.version;
         cache_.invalidate();
     }
     void get_magnetic_moments(double* m) override {
@@ -325,7 +327,8 @@ public:
         return sum_energy(r.batch);
     }
     std::vector<std::string> energy_terms() const override { return forceField_.names(); }
-    void term_energies_and_forces(const std::string& term, double* energies, double* forces) override {
+    void term_energies_and_forces(const std::string& term, double* energies, double* forces,
+                                  double* torques) override {
         const int index = forceField_.find(term);
         if (index < 0) throw Error(STRUCTMD_ERR_ARGUMENT, "no forceField entry named '" + term + "'");
         backend_.activate();
@@ -333,14 +336,18 @@ public:
         backend_.fill(probedEnergies_, R(0));
         backend_.resize(probedForces_, p_.count);
         backend_.fill(probedForces_, Real4<R>{R(0), R(0), R(0), R(0)});
+        backend_.resize(probedTorques_, p_.count);
+        backend_.fill(probedTorques_, Real4<R>{R(0), R(0), R(0), R(0)});
         ForceOutputs<R> out;
         out.energy = probedEnergies_.data();
         out.force = probedForces_.data();
+        out.torque = probedTorques_.data();
         forceField_.compute_one(index, p_, out);
         ForceCache<B, R>::count(out, evaluations_);
         const std::vector<R> values = download(probedEnergies_);
         std::copy(values.begin(), values.end(), energies);
         download_vectors(probedForces_, forces);
+        download_vectors(probedTorques_, torques);
     }
 
     std::array<double, 9> virial() override {
@@ -943,6 +950,7 @@ private:
     typename B::template Buffer<int64_t> subsetIds_;
     typename B::template Buffer<Tensor3<R>> hessian_;        // a Hessian column, made when asked
     typename B::template Buffer<Real4<R>> probedForces_;     // forces at displaced positions, of one term or between pairs, made when asked
+    typename B::template Buffer<Real4<R>> probedTorques_;    // one term's torques, made when asked
     typename B::template Buffer<R> probedEnergies_;          // one term's energies, made when asked
     bool pairForces_ = false;                                // a step reads pair_forces_on
     std::vector<int64_t> uploadedIds_;

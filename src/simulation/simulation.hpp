@@ -85,10 +85,12 @@ public:
     // unknown term throws ERR_ARGUMENT.
     virtual double energy(const std::string& term) = 0;
     virtual std::vector<std::string> energy_terms() const = 0;  // the forceField entry names
-    // One forceField entry's energy on each particle (split as get_particle_energies splits it) and
-    // its force on each (3n), in id order; zero while the entry is inactive. ERR_ARGUMENT for a name
-    // that is not an entry.
-    virtual void term_energies_and_forces(const std::string& term, double* energies, double* forces) = 0;
+    // One forceField entry's energy on each particle (split as get_particle_energies splits it), its
+    // force on each (3n) and its torque on each (3n, lab frame; zero for terms that do not act on
+    // orientations), in id order; zero while the entry is inactive. ERR_ARGUMENT for a name that is
+    // not an entry.
+    virtual void term_energies_and_forces(const std::string& term, double* energies, double* forces,
+                                          double* torques) = 0;
     virtual std::array<double, 9> virial() = 0;
     // Per-particle virial of the non-bonded pair terms, 1/2 sum_j (-r_ij) (x) F_ij, row-major (9n).
     virtual void get_pair_virials(double* w) = 0;

@@ -24,15 +24,19 @@ void PotentialMeasure::run(Simulation& sim) {
     const int64_t n = sim.particle_count();
     std::vector<std::vector<double>> energies(terms.size(), std::vector<double>(n));
     std::vector<std::vector<double>> forces(terms.size(), std::vector<double>(3 * n));
-    for (size_t t = 0; t < terms.size(); ++t) sim.term_energies_and_forces(terms[t], energies[t].data(), forces[t].data());
+    std::vector<std::vector<double>> torques(terms.size(), std::vector<double>(3 * n));
+    for (size_t t = 0; t < terms.size(); ++t)
+        sim.term_energies_and_forces(terms[t], energies[t].data(), forces[t].data(), torques[t].data());
     std::FILE* out = file_->stream();
     std::fprintf(out, "# %lld\n", static_cast<long long>(sim.current_step()));
     for (int64_t id : ids_) {
         std::fprintf(out, "%lld", static_cast<long long>(id));
         for (size_t t = 0; t < terms.size(); ++t) {
             const double* f = &forces[t][3 * id];
-            std::fprintf(out, " %.17g %.17g %.17g %.17g %.17g 0 0 0 0", energies[t][id], f[0], f[1], f[2],
-                         std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
+            const double* tau = &torques[t][3 * id];
+            std::fprintf(out, " %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g", energies[t][id], f[0], f[1],
+                         f[2], std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]), tau[0], tau[1], tau[2],
+                         std::sqrt(tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2]));
         }
         std::fprintf(out, "\n");
     }

@@ -1,7 +1,7 @@
 #pragma once
 // ["ParticlesListMeasure","PotentialMeasure"]: for each listed particle, each forceField entry's
 // energy on it and force on it (components and magnitude), with its torque (components and
-// magnitude, zero: no structmd term acts on orientations). Header `# id` then per entry
+// magnitude, lab frame; zero for terms that do not act on orientations). Header `# id` then per entry
 // `<name>Energy <name>ForceX <name>ForceY <name>ForceZ <name>ForceMod <name>TorqueX <name>TorqueY
 // <name>TorqueZ <name>TorqueMod`; each firing a line `# S` (the step) and one row per listed particle.
 #include <cstdint>

@@ -27,6 +27,7 @@
 #include "steps/stress_measure.hpp"
 #include "steps/thermodynamic_integration.hpp"
 #include "steps/thermodynamic_measure.hpp"
+#include "steps/write_patchy_particles_step.hpp"
 #include "steps/write_step.hpp"
 
 namespace structmd {
@@ -61,6 +62,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(total_magnetization_entry());
         steps.add(mean_magnetization_entry());
         steps.add(write_step_entry());
+        steps.add(write_patchy_particles_step_entry());
         steps.add(sort_step_entry());
         steps.add(thermodynamic_integration_entry());
         steps.add(lambda_activation_entry());

@@ -104,6 +104,14 @@ std::string known_formats() {
 }
 
 std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    std::unique_ptr<TrajectoryWriter> writer = trajectory_writer_of(in);
+    return std::make_unique<WriteStep>(in.name, in.interval(), in.start(), in.end(), in.parameters.flag("pbc"),
+                                       in.members, std::move(writer));
+}
+
+}  // namespace
+
+std::unique_ptr<TrajectoryWriter> trajectory_writer_of(const StepInput& in) {
     const std::string format = in.parameters.text("outputFormat");
     TrajectoryOptions options;
     options.path = in.parameters.text("outputFilePath") + "." + format;
@@ -120,23 +128,20 @@ std::unique_ptr<SimulationStep> make(const StepInput& in) {
     if (writer->needs_moments() && in.system.magnetizations.empty())
         throw input_error(in.parameters.path("outputFormat"),
                           "format '" + format + "' writes magnetic moments: the state needs a 'magnetization' column");
-    return std::make_unique<WriteStep>(in.name, in.interval(), in.start(), in.end(), in.parameters.flag("pbc"),
-                                       in.members, std::move(writer));
+    return writer;
 }
 
-}  // namespace
-
-SimulationStepEntry write_step_entry() {
-    return {{"WriteStep", "WriteStep"},
-            step_parameters({{"outputFilePath", StepValue::text, nullptr, Must::be_finite, "",
-                              "the file written is <outputFilePath>.<outputFormat>"},
-                             {"outputFormat", StepValue::text, nullptr, Must::be_finite, "",
-                              "a trajectory format (trajectory_formats()), which is also the extension"},
-                             {"pbc", StepValue::flag, true, Must::be_finite, "",
-                              "true: positions wrapped into the box; false: unwrapped"},
-                             {"append", StepValue::flag, false, Must::be_finite, "",
-                              "extend an existing file instead of replacing it"}}),
-            make};
+std::vector<StepParameter> write_step_parameters() {
+    return step_parameters({{"outputFilePath", StepValue::text, nullptr, Must::be_finite, "",
+                             "the file written is <outputFilePath>.<outputFormat>"},
+                            {"outputFormat", StepValue::text, nullptr, Must::be_finite, "",
+                             "a trajectory format (trajectory_formats()), which is also the extension"},
+                            {"pbc", StepValue::flag, true, Must::be_finite, "",
+                             "true: positions wrapped into the box; false: unwrapped"},
+                            {"append", StepValue::flag, false, Must::be_finite, "",
+                             "extend an existing file instead of replacing it"}});
 }
+
+SimulationStepEntry write_step_entry() { return {{"WriteStep", "WriteStep"}, write_step_parameters(), make}; }
 
 }  // namespace structmd

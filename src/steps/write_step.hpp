@@ -33,6 +33,12 @@ private:
     TrajectoryFrame frame_;
 };
 
+// The writer an entry of ["WriteStep", ...] asks for (outputFilePath, outputFormat, append); an
+// unknown format is an input error naming parameters.outputFormat, with the known formats.
+std::unique_ptr<TrajectoryWriter> trajectory_writer_of(const StepInput& in);
+// The parameters of such an entry: the shared ones, outputFilePath, outputFormat, pbc and append.
+std::vector<StepParameter> write_step_parameters();
+
 // The registry's entry: outputFilePath, outputFormat (an unknown one is an input error naming
 // parameters.outputFormat, with the known formats), pbc and append beside the shared parameters.
 SimulationStepEntry write_step_entry();

@@ -42,11 +42,12 @@ def turns_moments_only(document):
 
 
 def may_stand_still(document, masses):
-    """True where no particle need move: every integrator is a minimiser (which may have converged), or
+    """True where no particle need move: every integrator is a minimiser (which may have converged) or
+    ["None","None"] (which moves nothing: its inputs measure a configuration as given), or
     every particle has mass 0 and every integrator is inertial (which holds massless particles fixed;
     UAMMD-structured's Hessian tests are such inputs), or every integrator turns magnetic moments only."""
     classes = scheduled_classes(document)
-    if classes and all(c == "Minimization" for c in classes):
+    if classes and all(c in ("Minimization", "None") for c in classes):
         return True
     if turns_moments_only(document):
         return True

@@ -1,0 +1,110 @@
+#include "steps/write_patchy_particles_step.hpp"
+
+#include <algorithm>
+
+#include "core/error.hpp"
+#include "steps/write_step.hpp"
+
+namespace structmd {
+
+WritePatchyParticlesStep::WritePatchyParticlesStep(std::string name, int64_t interval, int64_t start, int64_t end,
+                                                   bool wrapped, std::vector<uint8_t> members,
+                                                   std::unique_ptr<TrajectoryWriter> writer,
+                                                   std::vector<std::shared_ptr<const PatchyConfig>> patchy,
+                                                   std::vector<int> firstType, std::vector<std::string> typeNames)
+    : SimulationStep(std::move(name), interval, start, end),
+      wrapped_(wrapped),
+      members_(std::move(members)),
+      writer_(std::move(writer)),
+      patchy_(std::move(patchy)),
+      firstType_(std::move(firstType)),
+      typeNames_(std::move(typeNames)) {}
+
+void WritePatchyParticlesStep::run(Simulation& sim) {
+    const int64_t n = sim.particle_count();
+    positions_.resize(3 * n);
+    types_.resize(n);
+    radii_.resize(n);
+    orientations_.resize(4 * n);
+    if (wrapped_)
+        sim.get_positions(positions_.data());
+    else
+        sim.get_unwrapped_positions(positions_.data());
+    sim.get_types(types_.data());
+    sim.get_radii(radii_.data());
+    sim.get_orientations(orientations_.data());
+
+    frame_.step = sim.current_step();
+    frame_.time = sim.current_time();
+    frame_.box = sim.box();
+    frame_.wrapped = wrapped_;
+    frame_.typeNames = typeNames_;
+    frame_.ids.clear();
+    frame_.positions.clear();
+    frame_.types.clear();
+    frame_.radii.clear();
+    const auto written = [&](int64_t i) { return members_.empty() || members_[i]; };
+    for (int64_t i = 0; i < n; ++i) {
+        if (!written(i)) continue;
+        frame_.ids.push_back(i);
+        frame_.positions.insert(frame_.positions.end(), &positions_[3 * i], &positions_[3 * i] + 3);
+        frame_.types.push_back(types_[i]);
+        frame_.radii.push_back(radii_[i]);
+    }
+    int64_t id = n;
+    for (size_t e = 0; e < patchy_.size(); ++e) {
+        const PatchyConfig& config = *patchy_[e];
+        for (size_t a = 0; a < config.parent.size(); ++a, ++id) {
+            const int p = config.parent[a];
+            if (!written(p)) continue;
+            const double* q = &orientations_[4 * p];
+            const Real4<double> dir{q[0], q[1], q[2], q[3]};
+            const Vec3<double> x =
+                Vec3<double>{positions_[3 * p], positions_[3 * p + 1], positions_[3 * p + 2]} +
+                patch_math::apply(patch_math::frame_of(dir), config.offset[a]);
+            frame_.ids.push_back(id);
+            frame_.positions.insert(frame_.positions.end(), {x.x, x.y, x.z});
+            frame_.types.push_back(firstType_[e] + config.type[a]);
+            frame_.radii.push_back(config.typeRadius[config.type[a]]);
+        }
+    }
+    writer_->write(frame_);
+}
+
+namespace {
+
+std::unique_ptr<SimulationStep> make(const StepInput& in) {
+    std::unique_ptr<TrajectoryWriter> writer = trajectory_writer_of(in);
+    if (writer->needs_velocities() || writer->needs_forces() || writer->needs_orientations() || writer->needs_moments())
+        throw input_error(in.parameters.path("outputFormat"),
+                          "patches have positions, types and radii only: choose a format that writes no velocities, "
+                          "forces, orientations or magnetic moments (as sp, xyz, coord, lammpstrj, dcd)");
+    // UAMMD-structured takes its patchy entries in the order of their names.
+    std::vector<const ExternalSpec*> entries;
+    for (const ExternalSpec& external : in.forceField.externals)
+        if (external.key.cls == "PatchyParticles") entries.push_back(&external);
+    std::sort(entries.begin(), entries.end(), [](const ExternalSpec* a, const ExternalSpec* b) { return a->name < b->name; });
+    if (entries.empty()) in.log.warning(in.path + ": no [\"PatchyParticles\", ...] entry: only the particles are written");
+    std::vector<std::string> typeNames;
+    for (const auto& type : in.system.types) typeNames.push_back(type.name);
+    std::vector<std::shared_ptr<const PatchyConfig>> patchy;
+    std::vector<int> firstType;
+    for (const ExternalSpec* entry : entries) {
+        auto config = std::static_pointer_cast<const PatchyConfig>(entry->config);
+        typeNames.push_back("");
+        firstType.push_back(static_cast<int>(typeNames.size()));
+        typeNames.insert(typeNames.end(), config->typeNames.begin(), config->typeNames.end());
+        patchy.push_back(std::move(config));
+    }
+    return std::make_unique<WritePatchyParticlesStep>(in.name, in.interval(), in.start(), in.end(),
+                                                      in.parameters.flag("pbc"), in.members, std::move(writer),
+                                                      std::move(patchy), std::move(firstType), std::move(typeNames));
+}
+
+}  // namespace
+
+SimulationStepEntry write_patchy_particles_step_entry() {
+    return {{"WriteStep", "WritePatchyParticlesStep"}, write_step_parameters(), make};
+}
+
+}  // namespace structmd
