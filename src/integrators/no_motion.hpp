@@ -16,7 +16,7 @@ public:
     NoMotion(const B&, const IntegratorScope& scope, const ParameterValues&) : Integrator<B, R>(scope) {}
 
     // The positions stay; the step and time move on (terms active at the next step then apply).
-    void step(Particles<B, R>&, ForceSource& forces) override { forces.positions_moved(this->time_advance()); }
+    void step(Particles<B, R>&, ForceSource& forces) override { forces.positions_moved(this->time_advance(), false); }
 };
 
 }  // namespace structmd
