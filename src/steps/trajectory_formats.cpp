@@ -93,6 +93,15 @@ void write_sp_header(std::FILE* f, const TrajectoryFrame& frame) {
     std::fprintf(f, "#Lx=%.8g;Ly=%.8g;Lz=%.8g;\n", 0.5 * L[0], 0.5 * L[1], 0.5 * L[2]);
 }
 
+Vec3<double> position_of(const TrajectoryFrame& frame, size_t k) {
+    return {frame.positions[3 * k], frame.positions[3 * k + 1], frame.positions[3 * k + 2]};
+}
+
+// One sphere of the superpunto family: "x y z radius type".
+void write_sphere(std::FILE* f, const Vec3<double>& p, double radius, int type) {
+    std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, radius, type);
+}
+
 // The superpunto format: a header with the half box lengths, then "x y z radius type" per particle.
 class SpWriter final : public TextTrajectoryWriter {
 public:
@@ -102,8 +111,7 @@ protected:
     void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
         write_sp_header(f, frame);
         for (size_t i = 0; i < frame.types.size(); ++i)
-            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", frame.positions[3 * i], frame.positions[3 * i + 1],
-                         frame.positions[3 * i + 2], frame.radii[i], frame.types[i]);
+            write_sphere(f, position_of(frame, i), frame.radii[i], frame.types[i]);
     }
 };
 
@@ -146,15 +154,15 @@ protected:
     void write_frame(std::FILE* f, const TrajectoryFrame& frame) override {
         write_sp_header(f, frame);
         for (size_t i = 0; i < frame.types.size(); ++i) {
-            const Vec3<double> p{frame.positions[3 * i], frame.positions[3 * i + 1], frame.positions[3 * i + 2]};
+            const Vec3<double> p = position_of(frame, i);
             const double a = frame.radii[i];
             const int type = frame.types[i];
-            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, type);
+            write_sphere(f, p, a, type);
             const BodyAxes axes = body_axes(frame, i);
             const Vec3<double> marked[3] = {axes.x, axes.y, axes.z};
             for (int k = 0; k < 3; ++k) {
                 const Vec3<double> m = p + a * marked[k];
-                std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", m.x, m.y, m.z, 0.2 * a, (k + 2) * type);
+                write_sphere(f, m, 0.2 * a, (k + 2) * type);
             }
         }
     }
@@ -173,9 +181,9 @@ protected:
         write_sp_header(f, frame);
         static constexpr int kColors[3] = {1, 5, 8};
         for (size_t i = 0; i < frame.types.size(); ++i) {
-            const Vec3<double> p{frame.positions[3 * i], frame.positions[3 * i + 1], frame.positions[3 * i + 2]};
+            const Vec3<double> p = position_of(frame, i);
             const double a = frame.radii[i];
-            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, frame.types[i]);
+            write_sphere(f, p, a, frame.types[i]);
             const BodyAxes axes = body_axes(frame, i);
             const Vec3<double> arrows[3] = {axes.x, axes.y, axes.z};
             for (int k = 0; k < 3; ++k) {
@@ -362,9 +370,6 @@ Vec3<double> moment_direction(const TrajectoryFrame& frame, size_t k) {
     const double norm = std::sqrt(dot(mu, mu));
     return norm > 0.0 ? (1.0 / norm) * mu : Vec3<double>{0.0, 0.0, 0.0};
 }
-Vec3<double> position_of(const TrajectoryFrame& frame, size_t k) {
-    return {frame.positions[3 * k], frame.positions[3 * k + 1], frame.positions[3 * k + 2]};
-}
 
 // UAMMD-structured's magnet: "mx my mz" per particle, the frames one after the other with no header.
 class MagnetWriter final : public TextTrajectoryWriter {
@@ -409,9 +414,9 @@ protected:
         for (size_t i = 0; i < frame.types.size(); ++i) {
             const Vec3<double> p = position_of(frame, i);
             const double a = frame.radii[i];
-            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, frame.types[i]);
+            write_sphere(f, p, a, frame.types[i]);
             const Vec3<double> m = p + a * moment_direction(frame, i);
-            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", m.x, m.y, m.z, 0.2 * a, frame.types[i] + 1);
+            write_sphere(f, m, 0.2 * a, frame.types[i] + 1);
         }
     }
 };
@@ -432,7 +437,7 @@ protected:
             const Vec3<double> p = position_of(frame, i), u = moment_direction(frame, i);
             const double a = frame.radii[i];
             const int type = frame.types[i];
-            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, type);
+            write_sphere(f, p, a, type);
             const Vec3<double> tail = p - (0.9 * a) * u, arrow = (1.8 * a) * u;
             std::fprintf(f, "%.8g %.8g %.8g %.8g %.8g %.8g %d\n", tail.x, tail.y, tail.z, arrow.x, arrow.y, arrow.z,
                          type != 1 ? 1 : 7);
@@ -457,7 +462,7 @@ protected:
         for (size_t i = 0; i < frame.types.size(); ++i) {
             const Vec3<double> p = position_of(frame, i);
             const double a = frame.radii[i];
-            std::fprintf(f, "%.8g %.8g %.8g %.8g %d\n", p.x, p.y, p.z, a, frame.types[i]);
+            write_sphere(f, p, a, frame.types[i]);
             const Vec3<double> m = (2.0 * a) * moment_direction(frame, i), z = (2.0 * a) * body_axes(frame, i).z;
             std::fprintf(f, "%.8g %.8g %.8g %.8g %.8g %.8g 1\n", p.x, p.y, p.z, m.x, m.y, m.z);
             std::fprintf(f, "%.8g %.8g %.8g %.8g %.8g %.8g 39\n", p.x, p.y, p.z, z.x, z.y, z.z);
