@@ -12,7 +12,7 @@
 #include "core/atomic.hpp"
 #include "core/vec.hpp"
 #include "neighbour/neighbour_view.hpp"
-#include "neighbour/slot_mirror.hpp"
+#include "state/slot_mirror.hpp"
 
 namespace structmd {
 

@@ -1,13 +1,13 @@
 #pragma once
 // Work of the force evaluation that follows a drift, done by the drift kernel on its way through
 // the particles: clearing the forces (to the host's external ones) and the first neighbour list's
-// position copy and displacement check (neighbour/slot_mirror.hpp). Each is a pass over the
+// position copy and displacement check (state/slot_mirror.hpp). Each is a pass over the
 // particles and a dependent kernel less per step; in a small system the step is that chain of
 // kernels. The engine fills it after each force update (null members: nothing to take over), and an
 // integrator whose drift applies it to every particle, moved or not, reports so with
 // positions_moved (integrators/integrator.hpp).
 #include "core/vec.hpp"
-#include "neighbour/slot_mirror.hpp"
+#include "state/slot_mirror.hpp"
 
 namespace structmd {
 

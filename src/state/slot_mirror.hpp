@@ -1,8 +1,10 @@
 #pragma once
-// A neighbour list's copy of this step's positions in its slot order (neighbour_view.hpp), and the
-// check that decides its rebuild: a particle that moved more than half the skin since it was binned
-// raises the flag. Written for every slot each step, by the list itself (RefreshPositions) or by
-// the integrator's drift kernel on its way (state/drift_bookkeeping.hpp).
+// A neighbour list's copy of this step's positions in its slot order (neighbour/neighbour_view.hpp),
+// and the check that decides its rebuild: a particle that moved more than half the skin since it was
+// binned raises the flag. Written for every slot each step, by the list itself (RefreshPositions) or
+// by the integrator's drift kernel on its way (state/drift_bookkeeping.hpp); it lives with the state
+// so that the particles' drift bookkeeping can name it without the state layer reaching up to the
+// neighbour lists.
 #include "core/atomic.hpp"
 #include "core/box.hpp"
 
