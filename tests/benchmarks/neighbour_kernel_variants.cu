@@ -33,6 +33,10 @@
 #include <string>
 #include <vector>
 
+#include "backends/cuda/launch_kernels.cuh"
+#include "forcefield/lennard_jones.hpp"
+#include "forcefield/pair_kernel.hpp"
+
 namespace {
 
 void check(cudaError_t status, const char* what) {
@@ -290,36 +294,27 @@ __global__ void full_forces_engine_like(int n, const float4* pos, float length, 
     }
 }
 
-__global__ void half_forces_float(int n, const float4* pos, float length, const int* list, const int* count,
-                                  float4* force) {
-    const int i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= n) return;
-    const float4 p = pos[i];
-    float3 f = {0, 0, 0};
-    const int m = count[i];
-#pragma unroll 4
-    for (int k = 0; k < m; ++k) {
-        const int j = list[static_cast<int64_t>(k) * n + i];
-        const float4 q = pos[j];
-        const float3 d = lj_force(minimum_image(make_float3(p.x - q.x, p.y - q.y, p.z - q.z), length));
-        f.x += d.x;
-        f.y += d.y;
-        f.z += d.z;
-        atomicAdd(&force[j].x, -d.x);
-        atomicAdd(&force[j].y, -d.y);
-        atomicAdd(&force[j].z, -d.z);
-    }
-    atomicAdd(&force[i].x, f.x);
-    atomicAdd(&force[i].y, f.y);
-    atomicAdd(&force[i].z, f.z);
-}
-
 __device__ unsigned long long fixed(float v) {
     return static_cast<unsigned long long>(__double2ll_rn(static_cast<double>(v) * kFixedScale));
 }
 
-__global__ void half_forces_fixed(int n, const float4* pos, float length, const int* list, const int* count,
-                                  unsigned long long* fixedForce) {
+// Adds v to particle j's force: float atomics on force, or fixed-point ones on fixedForce.
+template <bool Fixed>
+__device__ void add_force(int64_t j, float3 v, float4* force, unsigned long long* fixedForce) {
+    if (Fixed) {
+        atomicAdd(fixedForce + 3 * j, fixed(v.x));
+        atomicAdd(fixedForce + 3 * j + 1, fixed(v.y));
+        atomicAdd(fixedForce + 3 * j + 2, fixed(v.z));
+    } else {
+        atomicAdd(&force[j].x, v.x);
+        atomicAdd(&force[j].y, v.y);
+        atomicAdd(&force[j].z, v.z);
+    }
+}
+
+template <bool Fixed>
+__global__ void half_forces(int n, const float4* pos, float length, const int* list, const int* count, float4* force,
+                            unsigned long long* fixedForce) {
     const int i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= n) return;
     const float4 p = pos[i];
@@ -333,13 +328,9 @@ __global__ void half_forces_fixed(int n, const float4* pos, float length, const 
         f.x += d.x;
         f.y += d.y;
         f.z += d.z;
-        atomicAdd(fixedForce + 3 * static_cast<int64_t>(j), fixed(-d.x));
-        atomicAdd(fixedForce + 3 * static_cast<int64_t>(j) + 1, fixed(-d.y));
-        atomicAdd(fixedForce + 3 * static_cast<int64_t>(j) + 2, fixed(-d.z));
+        add_force<Fixed>(j, make_float3(-d.x, -d.y, -d.z), force, fixedForce);
     }
-    atomicAdd(fixedForce + 3 * static_cast<int64_t>(i), fixed(f.x));
-    atomicAdd(fixedForce + 3 * static_cast<int64_t>(i) + 1, fixed(f.y));
-    atomicAdd(fixedForce + 3 * static_cast<int64_t>(i) + 2, fixed(f.z));
+    add_force<Fixed>(i, f, force, fixedForce);
 }
 
 // Back to float4 and the accumulators cleared for the next evaluation, in one pass.
@@ -511,10 +502,10 @@ void run(int cellsPerEdge, bool morton) {
     auto evaluate_full = [&] { full_forces<<<blocks, 128>>>(n, pos, liquid.length, full.list, full.count, force); };
     auto evaluate_half_float = [&] {
         cudaMemsetAsync(force, 0, sizeof(float4) * n);
-        half_forces_float<<<blocks, 128>>>(n, pos, liquid.length, half.list, half.count, force);
+        half_forces<false><<<blocks, 128>>>(n, pos, liquid.length, half.list, half.count, force, fixedForce);
     };
     auto evaluate_half_fixed = [&] {
-        half_forces_fixed<<<blocks, 128>>>(n, pos, liquid.length, half.list, half.count, fixedForce);
+        half_forces<true><<<blocks, 128>>>(n, pos, liquid.length, half.list, half.count, force, fixedForce);
         fixed_to_float<<<blocks, 128>>>(n, fixedForce, force);
     };
     full_forces<<<blocks, 128>>>(n, pos, liquid.length, full.list, full.count, reference);
@@ -541,7 +532,31 @@ void run(int cellsPerEdge, bool morton) {
             kernel<<<blocks, 128>>>(n, pos, liquid.length, full.list, full.count, table, order, out);
         };
     };
+    // The engine's own pair kernel (forcefield/pair_kernel.hpp) through its own launch for one lane
+    // per particle, over the same list: what the study's variants are compared with.
+    using structmd::LennardJonesType1;
+    using EnginePair = structmd::PairKernel<LennardJonesType1, float, float, true, false, false>;
+    const structmd::LennardJonesParams<float> ljParams =
+        LennardJonesType1::make_pair_params<float>(1.0, 1.0, 2.5, false);
+    structmd::LennardJonesParams<float>* ljTable = device_copy(std::vector<structmd::LennardJonesParams<float>>{ljParams});
+    EnginePair engine{};
+    engine.neighbours.positions = reinterpret_cast<const structmd::Real4<float>*>(pos);
+    engine.neighbours.binned = engine.neighbours.positions;
+    engine.neighbours.order = order;
+    engine.neighbours.list = full.list;
+    engine.neighbours.count = full.count;
+    engine.neighbours.capacity = full.capacity;
+    engine.neighbours.particleStride = 1;
+    engine.neighbours.entryStride = n;
+    engine.neighbours.box = structmd::Box<float>::make(liquid.length, liquid.length, liquid.length);
+    engine.table = {ljTable, 1, nullptr};
+    engine.out.force = reinterpret_cast<structmd::Real4<float>*>(scattered);
+    auto evaluate_engine = [&] {
+        cudaMemsetAsync(scattered, 0, sizeof(float4) * n);
+        structmd::for_each_lone_lane_kernel<<<blocks, 128>>>(int64_t(n), 1, engine);
+    };
     const Variant variants[] = {{"full", full.meanNeighbours, evaluate_full},
+                                {"engine", full.meanNeighbours, evaluate_engine},
                                 {"full-table", full.meanNeighbours, engine_like(full_forces_engine_like<true, false>, force)},
                                 {"full-scatter", full.meanNeighbours, engine_like(full_forces_engine_like<false, true>, scattered)},
                                 {"full-both", full.meanNeighbours, engine_like(full_forces_engine_like<true, true>, scattered)},
@@ -550,7 +565,7 @@ void run(int cellsPerEdge, bool morton) {
     for (const Variant& v : variants) {
         v.evaluate();
         check(cudaDeviceSynchronize(), v.name);
-        if (std::string(v.name) == "full-scatter" || std::string(v.name) == "full-both") {
+        if (std::string(v.name) == "full-scatter" || std::string(v.name) == "full-both" || std::string(v.name) == "engine") {
             std::vector<float4> bySlot(n), byParticle(n);
             check(cudaMemcpy(byParticle.data(), scattered, sizeof(float4) * n, cudaMemcpyDeviceToHost), "copy");
             for (int k = 0; k < n; ++k) bySlot[k] = byParticle[shuffled[k]];
@@ -562,6 +577,7 @@ void run(int cellsPerEdge, bool morton) {
                     n / (us * 1e-6), error);
     }
     cudaFree(order);
+    cudaFree(ljTable);
     cudaFree(table);
     cudaFree(scattered);
     time_builds(n, pos, liquid.length, cells, rank, start, full, morton);

@@ -187,12 +187,13 @@ public:
     void for_each_lanes(int64_t n, const F& f, LaneSizing sizing = LaneSizing::kNeighbourSum) const {
         if (n <= 0) return;
         const Grid grid = grid_for(n, lanes_for(n, sizing));
+        auto* kernel = grid.lanes == 1 ? &for_each_lone_lane_kernel<F> : &for_each_lanes_kernel<F>;
         if (!graphs_.recording()) {
-            for_each_lanes_kernel<<<grid.blocks, kThreads, 0, stream_>>>(n, grid.lanes, f);
+            kernel<<<grid.blocks, kThreads, 0, stream_>>>(n, grid.lanes, f);
             cuda_check(cudaGetLastError(), "launching a kernel");
             return;
         }
-        graphs_.record(recorded(reinterpret_cast<const void*>(&for_each_lanes_kernel<F>), grid, true, n, f));
+        graphs_.record(recorded(reinterpret_cast<const void*>(kernel), grid, true, n, f));
     }
 
     // Runs the launches of body only while the flag in device memory is set when they are reached.
@@ -362,7 +363,7 @@ private:
         if (graphs_.recording()) graphs_.flush(stream_);
     }
 
-    // 128 threads a block: what for_each_lanes_kernel's launch bounds assume.
+    // 128 threads a block: what the launch bounds of the lanes kernels assume.
     static constexpr unsigned kThreads = 128;
     struct Grid {
         unsigned blocks;
