@@ -324,6 +324,24 @@ def test_a_trapped_particle_samples_boltzmann(options):
     assert error < 0.1 * kT  # a noise amplitude off by sqrt(2) would miss by 10 errors
 
 
+def test_a_box_changed_by_the_host_is_refused_by_name(options):
+    with structmd.Simulation(options) as sim:
+        sim.load(document([[0.0, 0.0, 0.0]], 8.0, fcm(), steps=10))
+        sim.step(1)
+        sim.box = [9.0, 9.0, 9.0]
+        with pytest.raises(structmd.UnsupportedError, match=r"bd: the box changed.*ForceCouplingMethod"):
+            sim.step(1)
+
+
+@pytest.mark.parametrize("subclass", ["PositivelySplitEwald", "FluctuatingImmersedBoundary"])
+def test_the_other_triply_periodic_methods_are_refused_by_name(options, subclass):
+    entry = fcm(cls="BDHITriplePeriodic", psi=0.5)
+    entry["type"] = ["BDHITriplePeriodic", subclass]
+    with structmd.Simulation(options) as sim:
+        with pytest.raises(structmd.UnsupportedError, match=r"integrator\.bd\.type: .*" + subclass + ".*not implemented"):
+            sim.load(document([[0.0, 0.0, 0.0]], 8.0, entry))
+
+
 @pytest.mark.parametrize("parameters, path, message", [
     ({"viscosity": 0.0}, "integrator.bd.parameters.viscosity", "positive"),
     ({"viscosity": -1.0}, "integrator.bd.parameters.viscosity", "positive"),
