@@ -268,7 +268,6 @@ inline FcmPlan make_fcm_plan(const double box[3], double radius, double toleranc
     const double spacing = plan.sigma / upsampling;
     const double reach = plan.sigma * std::sqrt(2.0 * std::log(1.0 / tolerance));
     int sizes[3];
-    double finest = spacing;
     for (int d = 0; d < 3; ++d) {
         plan.box[d] = box[d];
         if (!std::isfinite(box[d]) || !(box[d] > 0.0))
@@ -276,13 +275,12 @@ inline FcmPlan make_fcm_plan(const double box[3], double radius, double toleranc
                                                          "and z, but the box is not periodic along " +
                                                          std::string(1, "xyz"[d]));
         sizes[d] = fft_friendly_size(static_cast<int>(std::ceil(box[d] / spacing)));
-        finest = std::min(finest, box[d] / sizes[d]);
     }
     plan.grid = FftGrid{sizes[0], sizes[1], sizes[2]};
-    // The same support along every axis, enough for the coarsest one.
-    double coarsest = 0.0;
-    for (int d = 0; d < 3; ++d) coarsest = std::max(coarsest, box[d] / sizes[d]);
-    plan.support = static_cast<int>(std::ceil(2.0 * reach / coarsest)) + 1;
+    // The same support along every axis: enough points to span 2 reach on the finest one.
+    double finest = spacing;
+    for (int d = 0; d < 3; ++d) finest = std::min(finest, box[d] / sizes[d]);
+    plan.support = static_cast<int>(std::ceil(2.0 * reach / finest)) + 1;
     for (int d = 0; d < 3; ++d)
         if (plan.support >= sizes[d])
             throw input_error(path + ".parameters.hydrodynamicRadius",
