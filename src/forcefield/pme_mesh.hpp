@@ -7,9 +7,8 @@
 //
 // The FFT is the backend's (B::Fft3d, core/fft_grid.hpp). Spreading gives each grid line along x
 // to one thread, which sums the charges whose splines reach it from the particles binned by the
-// line of their spline base, each bin in particle order: no atomics on the mesh, so a run is
-// reproducible bit for bit whatever the thread count, and each charge is read by the 36 lines it
-// reaches, not by every thread.
+// line of their spline base (neighbour/line_bins.hpp): no atomics on the mesh, and each charge is
+// read by the 36 lines it reaches, not by every thread.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -21,7 +20,7 @@
 #include "core/hd.hpp"
 #include "core/vec.hpp"
 #include "forcefield/interactor.hpp"
-#include "neighbour/verlet_list_kernels.hpp"
+#include "neighbour/line_bins.hpp"
 #include "state/particles.hpp"
 
 namespace structmd {
@@ -79,52 +78,22 @@ SMD_HD SMD_INLINE R grid_coordinate(R x, R inverseLength, int K) {
 
 SMD_HD SMD_INLINE int fold_index(int i, int K) { return i < 0 ? i + K : i; }
 
-// Bins each charged particle of the group by the grid line (y, z) of its spline base; the rank a
-// particle gets in its bin depends on thread timing, so the bins are sorted afterwards.
+// The grid line (y, z) of a charged group member's spline base (-1 for a particle that spreads
+// nothing), by which LineBins sorts the particles.
 template <class R>
-struct PmeBinCharges {
+struct PmeChargeLine {
     const Real4<R>* pos;
     const R* charge;
     const uint8_t* group;
     Box<R> box;
     FftGrid grid;
-    int* lineCount;
-    int* lineOf;  // -1 for a particle that spreads nothing
-    int* rankInLine;
 
-    SMD_HD void operator()(int64_t i) const {
-        if (charge[i] == R(0) || (group && !group[i])) {
-            lineOf[i] = -1;
-            return;
-        }
+    SMD_HD int operator()(int64_t i) const {
+        if (charge[i] == R(0) || (group && !group[i])) return -1;
         const Real4<R> r = pos[i];
         const int y = spline_base(grid_coordinate(r.y, box.inverse.y, grid.ny), grid.ny);
         const int z = spline_base(grid_coordinate(r.z, box.inverse.z, grid.nz), grid.nz);
-        const int line = z * grid.ny + y;
-        lineOf[i] = line;
-        rankInLine[i] = atomic_add(lineCount + line, 1);
-    }
-};
-
-struct PmePlaceCharges {
-    const int* lineOf;
-    const int* rankInLine;
-    const int* lineStart;
-    int* order;
-    SMD_HD void operator()(int64_t i) const {
-        if (lineOf[i] >= 0) order[lineStart[lineOf[i]] + rankInLine[i]] = static_cast<int>(i);
-    }
-};
-
-struct PmeSortBin {
-    const int* lineStart;
-    int* order;
-    SMD_HD void operator()(int64_t line) const {
-        const int first = lineStart[line], members = lineStart[line + 1] - first;
-        if (members <= 32)
-            insertion_sort(order + first, members);
-        else
-            heap_sort(order + first, members);
+        return z * grid.ny + y;
     }
 };
 
@@ -317,23 +286,13 @@ inline std::vector<double> pme_influence(const PmePlan& plan) {
 template <class B, class R>
 class PmeMesh {
 public:
-    PmeMesh(const B& backend, const PmePlan& plan) : backend_(backend), plan_(plan), fft_(backend, plan.grid) {
+    PmeMesh(const B& backend, const PmePlan& plan)
+        : backend_(backend), plan_(plan), fft_(backend, plan.grid), bins_(backend, plan.grid.ny * plan.grid.nz) {
         const std::vector<double> influence = pme_influence(plan);
         const std::vector<R> values(influence.begin(), influence.end());
         backend_.upload(influence_, values.data(), values.size());
         backend_.resize(mesh_, static_cast<size_t>(plan.grid.points()));
         backend_.resize(spectrum_, static_cast<size_t>(plan.grid.spectrum_points()));
-        const int lines = plan.grid.ny * plan.grid.nz;
-        backend_.resize(lineCount_, lines);
-        backend_.fill(lineCount_, 0);
-        backend_.resize(lineStart_, lines + 1);
-        // As the list sizes its scan: about as many chunks as lines per chunk, in whole warps.
-        chunkLines_ = 32 * static_cast<int>(std::ceil(std::sqrt(static_cast<double>(lines)) / 32));
-        chunks_ = (lines + chunkLines_ - 1) / chunkLines_;
-        backend_.resize(chunkTotal_, chunks_);
-        backend_.resize(scanControl_, kControlSlots);
-        backend_.fill(scanControl_, 0);
-        backend_.write(scanControl_, kRebuild, 1);
     }
 
     void compute(Particles<B, R>& p, const uint8_t* group, const ForceOutputs<R>& out, const std::string& name) {
@@ -357,30 +316,12 @@ public:
     }
 
 private:
-    // The charges onto mesh_: binned by grid line with the list build's counting sort (its scan of
-    // bin counts, verlet_list_kernels.hpp, run with its flag held raised), then one thread a line.
+    // The charges onto mesh_: binned by grid line, then one thread a line.
     void spread(Particles<B, R>& p, const uint8_t* group) {
         const FftGrid grid = plan_.grid;
-        const int lines = grid.ny * grid.nz;
-        if (particles_ != p.count) {
-            particles_ = p.count;
-            backend_.resize(lineOf_, p.count);
-            backend_.resize(rankInLine_, p.count);
-            backend_.resize(order_, p.count);
-        }
-        backend_.for_each(p.count, PmeBinCharges<R>{p.pos.data(), p.charge.data(), group, p.box, grid,
-                                                    lineCount_.data(), lineOf_.data(), rankInLine_.data()});
-        backend_.for_each_lanes(chunks_, SumCellChunks{scanControl_.data(), lineCount_.data(), chunkTotal_.data(),
-                                                       chunkLines_, lines},
-                                LaneSizing::kFillDevice);
-        backend_.for_each_lanes(chunks_, StartCells{scanControl_.data(), lineCount_.data(), chunkTotal_.data(),
-                                                    lineStart_.data(), chunkLines_, lines},
-                                LaneSizing::kFillDevice);
-        backend_.for_each(p.count, PmePlaceCharges{lineOf_.data(), rankInLine_.data(), lineStart_.data(),
-                                                   order_.data()});
-        backend_.for_each(lines, PmeSortBin{lineStart_.data(), order_.data()});
-        backend_.for_each(lines, PmeSpreadLine<R>{p.pos.data(), p.charge.data(), order_.data(), lineStart_.data(),
-                                                  p.box, grid, mesh_.data()});
+        bins_.sort(p.count, PmeChargeLine<R>{p.pos.data(), p.charge.data(), group, p.box, grid});
+        backend_.for_each(grid.ny * grid.nz, PmeSpreadLine<R>{p.pos.data(), p.charge.data(), bins_.order(),
+                                                              bins_.line_start(), p.box, grid, mesh_.data()});
     }
 
     void add_virial(Particles<B, R>& p, const uint8_t* group, Tensor3<R>* virial) {
@@ -404,10 +345,7 @@ private:
     typename B::template Buffer<R> influence_;
     typename B::template Buffer<R> mesh_;  // the charges, then the potentials
     typename B::template Buffer<Complex<R>> spectrum_;
-    // The charges binned by grid line (spread()).
-    int64_t particles_ = -1;
-    int chunkLines_ = 1, chunks_ = 0;
-    typename B::template Buffer<int> lineCount_, lineStart_, lineOf_, rankInLine_, order_, chunkTotal_, scanControl_;
+    LineBins<B> bins_;  // the charges by grid line (spread())
 };
 #endif
 

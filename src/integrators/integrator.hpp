@@ -87,6 +87,7 @@ struct IntegratorScope {
     const uint8_t* group = nullptr;   // backend bytes by particle; null: every particle
     std::string name;
     const Logger* log = nullptr;      // null: it reports nothing
+    std::string path;                 // its entry's JSON path, for input it can check only when it starts
 };
 
 template <class B, class R>

@@ -45,7 +45,7 @@ std::unique_ptr<Integrator<B, R>> make_integrator(const B& backend, const Integr
                                                   const Logger* log = nullptr) {
     const IntegratorFactory<B, R>* factory = factories.find(spec.key);
     if (!factory) throw Error(STRUCTMD_ERR_INTERNAL, spec.path + ": " + spec.key.text() + " has no implementation");
-    return factory->make(backend, IntegratorScope{spec.timeStep, spec.temperature, group, spec.name, log},
+    return factory->make(backend, IntegratorScope{spec.timeStep, spec.temperature, group, spec.name, log, spec.path},
                          spec.parameters);
 }
 

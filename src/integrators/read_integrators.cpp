@@ -53,11 +53,19 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         spec.name = entry.name;
         spec.path = entry.node.path();
         // UAMMD-structured's magnetic particles in a fluid: their moments turn as those of
-        // ["Magnetic","Brownian"] do, but they move through the force coupling method's hydrodynamics.
+        // ["Magnetic","Brownian"] do, but they move and turn through the force coupling method's fluid.
         if (entry.cls == "Magnetic" && entry.subclass == "ForceCouplingMethod")
             throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ".type: [\"Magnetic\",\"ForceCouplingMethod\"] needs "
-                                                  "hydrodynamics (the force coupling method), which structmd does not have; "
+                                                  "rotational hydrodynamics (torques coupled through the fluid by the force coupling method), "
+                                                  "which structmd does not have; "
                                                   "[\"Magnetic\",\"Brownian\"] moves the same particles without a fluid");
+        // UAMMD-structured's other triply periodic hydrodynamics: the force coupling method gives the
+        // same mobility (periodic RPY beyond overlap) to its tolerance.
+        if ((entry.cls == "BDHITriplyPeriodic" || entry.cls == "BDHITriplePeriodic") &&
+            (entry.subclass == "PositivelySplitEwald" || entry.subclass == "FluctuatingImmersedBoundary"))
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ".type: [\"" + entry.cls + "\",\"" + entry.subclass +
+                                                      "\"] is not implemented; [\"BDHITriplyPeriodic\",\"ForceCouplingMethod\"] "
+                                                      "moves the same particles through the same periodic Stokes flow");
         const IntegratorComponent& component =
             registry.at({entry.cls, entry.subclass}, spec.path + ".type", "integrator");
         spec.key = component.key;

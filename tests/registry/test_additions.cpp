@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "backends/cpu/cpu_fft.hpp"  // the integrators' factories include the spectral ones, which hold an FFT
 #include "core/error.hpp"
 #include "cpu_harness.hpp"
 #include "forcefield/harmonic_bond.hpp"

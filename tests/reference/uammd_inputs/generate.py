@@ -34,11 +34,12 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
 
-# Generators not run, and why. Hydrodynamic integrators are out of scope for structmd for now.
+# Generators not run, and why.
 SKIPPED = {
-    "Examples/PSE/PSE.py": "hydrodynamics (BDHI PSE integrator): out of scope",
+    "Examples/PSE/PSE.py": "the positively split Ewald integrator (BDHI PSE) is not implemented "
+                           "(the force coupling method is)",
     "Tests/Magnetism/ForceCouplingMethod/scripts/generateMagneticIntegratorsTest.py":
-        "hydrodynamics (ForceCouplingMethod): out of scope",
+        "rotational hydrodynamics (Magnetic ForceCouplingMethod): not implemented",
     "Tests/VQCM/ImpedanceDumble/scripts/generateTestOneParticle.py":
         "hydrodynamics (VQCMMeasure solves the fluid's impedance): out of scope",
     "Tests/VQCM/ImpedanceOneBlob/scripts/generateTestOneParticle.py":

@@ -1,0 +1,335 @@
+#pragma once
+// The force coupling method (Maxey & Patel, Int. J. Multiphase Flow 27, 1603 (2001); Keaveny,
+// J. Comput. Phys. 269, 61 (2014)) in a triply periodic box: the displacement of every particle in
+// one step of Brownian dynamics with hydrodynamic interactions,
+//   dx = dt M F + sqrt(2 kT dt) M^{1/2} W,    M = J L^{-1} S,
+// S spreading each force with the Gaussian g(r) = (2 pi sigma^2)^{-3/2} exp(-r^2 / (2 sigma^2)),
+// sigma = a / sqrt(pi) (a the hydrodynamic radius), L^{-1} the Stokes solve in Fourier space,
+//   u_k = (I - k k^T / k^2) f_k / (eta k^2),   k = 0 removed (no net flow),
+// and J = S^T the same Gaussian's average of the velocity at the particle. The noise is a random
+// velocity field drawn in Fourier space with covariance 2 kT dt times that of L^{-1} (Keaveny 2014,
+// section 3), added to the deterministic one before the inverse transform: averaged by J it has
+// covariance 2 kT dt M exactly, for the same grid and kernel as the deterministic part.
+//
+// The Nyquist planes of the grid are left out of both parts: the projector there has no consistent
+// sign, and leaving them out keeps M symmetric and the noise its exact square root.
+//
+// Forces go onto the grid one line along x per thread from the particles sorted by the line their
+// kernel starts on (neighbour/line_bins.hpp, as the particle-mesh Ewald of electrostatics does).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/fft_grid.hpp"
+#include "core/hd.hpp"
+#include "core/random.hpp"
+#include "core/vec.hpp"
+#include "neighbour/line_bins.hpp"
+#include "state/particles.hpp"
+#include "state/step_clock.hpp"
+
+namespace structmd {
+
+// Everything the mesh needs, fixed for one box (make_fcm_plan).
+struct FcmPlan {
+    FftGrid grid;
+    double box[3] = {0, 0, 0};
+    double sigma = 0.0;  // the Gaussian's width, a / sqrt(pi)
+    int support = 0;     // grid points the Gaussian covers along each axis
+};
+
+// The Gaussian's weights along one axis: a particle at grid coordinate u reaches the `support`
+// points first .. first + support - 1 (not folded), the ones closest to it.
+template <class R>
+struct FcmAxis {
+    R spacing;        // h = L / n
+    R inverseLength;  // 1 / L
+    int n;
+    int support;
+    R inverseTwoSigma2;  // 1 / (2 sigma^2)
+    R norm;              // (2 pi sigma^2)^{-1/2}
+
+    SMD_HD SMD_INLINE R coordinate(R x) const { return R(n) * (x * inverseLength + R(0.5)); }
+    SMD_HD SMD_INLINE int first(R u) const { return static_cast<int>(floor(u - R(0.5) * R(support) + R(1))); }
+    // The weight at point first + j (distance (first + j - u) h).
+    SMD_HD SMD_INLINE R weight(int first, int j, R u) const {
+        const R d = (R(first + j) - u) * spacing;
+        return norm * exp(-d * d * inverseTwoSigma2);
+    }
+    SMD_HD SMD_INLINE int fold(int i) const {
+        const int m = i % n;
+        return m < 0 ? m + n : m;
+    }
+};
+
+template <class R>
+struct FcmAxes {
+    FcmAxis<R> x, y, z;
+    FftGrid grid;
+};
+
+#if SMD_HOST_CODE
+template <class R>
+inline FcmAxes<R> fcm_axes(const FcmPlan& plan) {
+    const int sizes[3] = {plan.grid.nx, plan.grid.ny, plan.grid.nz};
+    FcmAxis<R> axis[3];
+    for (int d = 0; d < 3; ++d)
+        axis[d] = FcmAxis<R>{R(plan.box[d] / sizes[d]), R(1.0 / plan.box[d]), sizes[d], plan.support,
+                             R(0.5 / (plan.sigma * plan.sigma)), R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma))};
+    return {axis[0], axis[1], axis[2], plan.grid};
+}
+#endif
+
+// The grid line (y, z) a group member's kernel starts on, by which LineBins sorts the particles.
+template <class R>
+struct FcmKernelLine {
+    const Real4<R>* pos;
+    const uint8_t* group;
+    FcmAxes<R> axes;
+    SMD_HD int operator()(int64_t i) const {
+        if (group && !group[i]) return -1;
+        const Real4<R> r = pos[i];
+        const int y = axes.y.fold(axes.y.first(axes.y.coordinate(r.y)));
+        const int z = axes.z.fold(axes.z.first(axes.z.coordinate(r.z)));
+        return z * axes.grid.ny + y;
+    }
+};
+
+// One grid line along x of the three force-density grids (x, y, z components, one after the
+// other), cleared and then summed: a particle whose kernel starts on line (y - b, z - c) adds
+// F g_x g_y[b] g_z[c] along the line. Bins in (c, b) order and each in particle order.
+template <class R>
+struct FcmSpreadLine {
+    const Real4<R>* pos;
+    const Real4<R>* force;
+    const int* order;
+    const int* lineStart;
+    FcmAxes<R> axes;
+    R* density;
+
+    SMD_HD void operator()(int64_t line) const {
+        const FftGrid& g = axes.grid;
+        const int64_t points = g.points();
+        const int y = static_cast<int>(line % g.ny), z = static_cast<int>(line / g.ny);
+        R* rowX = density + g.index(0, y, z);
+        R* rowY = rowX + points;
+        R* rowZ = rowY + points;
+        for (int x = 0; x < g.nx; ++x) rowX[x] = rowY[x] = rowZ[x] = R(0);
+        const int support = axes.x.support;
+        for (int c = 0; c < support; ++c) {
+            const int binZ = axes.z.fold(z - c);
+            for (int b = 0; b < support; ++b) {
+                const int bin = binZ * g.ny + axes.y.fold(y - b);
+                for (int s = lineStart[bin]; s < lineStart[bin + 1]; ++s) {
+                    const int i = order[s];
+                    const Real4<R> r = pos[i];
+                    const R uy = axes.y.coordinate(r.y), uz = axes.z.coordinate(r.z);
+                    const R wyz = axes.y.weight(axes.y.first(uy), b, uy) * axes.z.weight(axes.z.first(uz), c, uz);
+                    const Real4<R> f = force[i];
+                    const R ux = axes.x.coordinate(r.x);
+                    const int firstX = axes.x.first(ux);
+                    for (int a = 0; a < support; ++a) {
+                        const R w = wyz * axes.x.weight(firstX, a, ux);
+                        const int at = axes.x.fold(firstX + a);
+                        rowX[at] += w * f.x;
+                        rowY[at] += w * f.y;
+                        rowZ[at] += w * f.z;
+                    }
+                }
+            }
+        }
+    }
+};
+
+// One wave vector of the half spectrum: the transformed force density (three components, one
+// spectrum after the other) becomes the displacement field's spectrum,
+//   A_k = dt/(N eta k^2) P_k F_k  +  sqrt(2 kT dt / (V eta k^2)) P_k Z_k,
+// N the grid's points, V the box's volume, P_k = I - k k^T / k^2, Z_k complex normal with
+// <Z Z^H> = I. The inverse transform (unnormalised) then gives dt u + noise on the grid. On the
+// plane x = 0 the spectrum holds both k and -k: the one of higher index takes the conjugate of its
+// partner's noise, so that the field is real.
+template <class R>
+struct FcmStokesSolve {
+    Complex<R>* spectrum;
+    FftGrid grid;
+    Vec3<R> length;
+    R driftScale;  // dt / (N eta)
+    R noiseScale;  // 2 kT dt / (V eta); 0: no noise
+    uint64_t seed, noiseStream;
+    ClockView now;  // the step keys the noise
+
+    SMD_HD void operator()(int64_t at) const {
+        const int hx = grid.half_x();
+        const int64_t spectrumPoints = grid.spectrum_points();
+        Complex<R>* fx = spectrum + at;
+        Complex<R>* fy = fx + spectrumPoints;
+        Complex<R>* fz = fy + spectrumPoints;
+        const int x = static_cast<int>(at % hx);
+        const int y = static_cast<int>((at / hx) % grid.ny);
+        const int z = static_cast<int>(at / (int64_t(hx) * grid.ny));
+        if (at == 0 || 2 * x == grid.nx || 2 * y == grid.ny || 2 * z == grid.nz) {
+            *fx = *fy = *fz = Complex<R>{R(0), R(0)};
+            return;
+        }
+        const R twoPi = R(6.283185307179586);
+        const Vec3<R> k{twoPi * R(x) / length.x, twoPi * R(2 * y < grid.ny ? y : y - grid.ny) / length.y,
+                        twoPi * R(2 * z < grid.nz ? z : z - grid.nz) / length.z};
+        const R k2 = dot(k, k);
+        Vec3<R> re{fx->re, fy->re, fz->re}, im{fx->im, fy->im, fz->im};
+        re = driftScale / k2 * re;
+        im = driftScale / k2 * im;
+        if (noiseScale > R(0)) {
+            int64_t drawn = at;
+            R conjugate = R(1);
+            if (x == 0) {
+                const int64_t partner = int64_t(hx) * ((grid.ny - y) % grid.ny + int64_t(grid.ny) * ((grid.nz - z) % grid.nz));
+                if (partner < at) {
+                    drawn = partner;
+                    conjugate = R(-1);
+                }
+            }
+            double xi[8];
+            normal4(seed, noiseStream ^ static_cast<uint64_t>(2 * drawn), static_cast<uint64_t>(now.step()), xi);
+            normal4(seed, noiseStream ^ static_cast<uint64_t>(2 * drawn + 1), static_cast<uint64_t>(now.step()), xi + 4);
+            const R amplitude = sqrt(noiseScale / k2 * R(0.5));  // re and im each carry half
+            re = re + amplitude * Vec3<R>{R(xi[0]), R(xi[1]), R(xi[2])};
+            im = im + (conjugate * amplitude) * Vec3<R>{R(xi[4]), R(xi[5]), R(xi[6])};
+        }
+        re = re - (dot(k, re) / k2) * k;
+        im = im - (dot(k, im) / k2) * k;
+        *fx = Complex<R>{re.x, im.x};
+        *fy = Complex<R>{re.y, im.y};
+        *fz = Complex<R>{re.z, im.z};
+    }
+};
+
+// Each group member's displacement: the grid's field averaged by its Gaussian, times the cell
+// volume.
+template <class R>
+struct FcmInterpolate {
+    const Real4<R>* pos;
+    const uint8_t* group;
+    FcmAxes<R> axes;
+    const R* field;  // three grids, x, y, z components
+    R cellVolume;
+    Vec3<R>* displacement;
+
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) return;
+        const FftGrid& g = axes.grid;
+        const int64_t points = g.points();
+        const Real4<R> r = pos[i];
+        const R ux = axes.x.coordinate(r.x), uy = axes.y.coordinate(r.y), uz = axes.z.coordinate(r.z);
+        const int firstX = axes.x.first(ux), firstY = axes.y.first(uy), firstZ = axes.z.first(uz);
+        const int support = axes.x.support;
+        Vec3<R> sum{R(0), R(0), R(0)};
+        for (int c = 0; c < support; ++c) {
+            const int z = axes.z.fold(firstZ + c);
+            const R wz = axes.z.weight(firstZ, c, uz);
+            for (int b = 0; b < support; ++b) {
+                const R wyz = wz * axes.y.weight(firstY, b, uy);
+                const R* line = field + g.index(0, axes.y.fold(firstY + b), z);
+                for (int a = 0; a < support; ++a) {
+                    const int at = axes.x.fold(firstX + a);
+                    const R w = wyz * axes.x.weight(firstX, a, ux);
+                    sum.x += w * line[at];
+                    sum.y += w * line[at + points];
+                    sum.z += w * line[at + 2 * points];
+                }
+            }
+        }
+        displacement[i] = cellVolume * sum;
+    }
+};
+
+#if SMD_HOST_CODE
+// The smallest size >= n whose only prime factors are 2, 3 and 5, and even (FFT-friendly).
+inline int fft_friendly_size(int n) {
+    for (int m = std::max(n, 2);; ++m) {
+        if (m % 2) continue;
+        int rest = m;
+        for (int p : {2, 3, 5})
+            while (rest % p == 0) rest /= p;
+        if (rest == 1) return m;
+    }
+}
+
+// The grid and the kernel's support for a hydrodynamic radius and tolerance, as UAMMD's
+// BDHI::FCM chooses them: the grid spacing h = sigma / f(tol), f growing from 0.55 to 1.65 as the
+// tolerance falls (its empirical "upsampling"); the support covers the distance at which the
+// Gaussian falls to tol of its peak. Unlike UAMMD, the grid is rounded up (finer) rather than
+// down, and the radius stays the one given rather than being refitted to the rounded grid.
+inline FcmPlan make_fcm_plan(const double box[3], double radius, double tolerance, const std::string& path) {
+    FcmPlan plan;
+    plan.sigma = radius / std::sqrt(M_PI);
+    const double upsampling = std::min(0.55 + (-std::log10(3.0 * tolerance) / 10.0) * (1.65 - 0.55), 1.65);
+    const double spacing = plan.sigma / upsampling;
+    const double reach = plan.sigma * std::sqrt(2.0 * std::log(1.0 / tolerance));
+    int sizes[3];
+    for (int d = 0; d < 3; ++d) {
+        plan.box[d] = box[d];
+        if (!std::isfinite(box[d]) || !(box[d] > 0.0))
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ": the force coupling method needs a periodic box along x, y "
+                                                         "and z, but the box is not periodic along " +
+                                                         std::string(1, "xyz"[d]));
+        sizes[d] = fft_friendly_size(static_cast<int>(std::ceil(box[d] / spacing)));
+    }
+    plan.grid = FftGrid{sizes[0], sizes[1], sizes[2]};
+    // The same support along every axis: enough points to span 2 reach on the finest one.
+    double finest = spacing;
+    for (int d = 0; d < 3; ++d) finest = std::min(finest, box[d] / sizes[d]);
+    plan.support = static_cast<int>(std::ceil(2.0 * reach / finest)) + 1;
+    for (int d = 0; d < 3; ++d)
+        if (plan.support >= sizes[d])
+            throw input_error(path + ".parameters.hydrodynamicRadius",
+                              "the Gaussian of radius " + std::to_string(radius) + " spans " +
+                                  std::to_string(plan.support) + " of the " + std::to_string(sizes[d]) +
+                                  " grid points along " + std::string(1, "xyz"[d]) +
+                                  ": the box is too small for this radius and tolerance");
+    return plan;
+}
+
+template <class B, class R>
+class FcmMesh {
+public:
+    FcmMesh(const B& backend, const FcmPlan& plan)
+        : backend_(backend), plan_(plan), axes_(fcm_axes<R>(plan)), fft_(backend, plan.grid),
+          bins_(backend, plan.grid.ny * plan.grid.nz) {
+        backend_.resize(field_, static_cast<size_t>(3 * plan.grid.points()));
+        backend_.resize(spectrum_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
+    }
+
+    const FcmPlan& plan() const { return plan_; }
+
+    // Fills displacement (by particle, group members only) with dt M F + sqrt(2 kT dt) M^{1/2} W.
+    void displace(const Particles<B, R>& p, const uint8_t* group, double dt, double viscosity, double kT,
+                  uint64_t noiseStream, Vec3<R>* displacement) {
+        const FftGrid grid = plan_.grid;
+        const int64_t points = grid.points(), spectrumPoints = grid.spectrum_points();
+        bins_.sort(p.count, FcmKernelLine<R>{p.pos.data(), group, axes_});
+        backend_.for_each(grid.ny * grid.nz, FcmSpreadLine<R>{p.pos.data(), p.force.data(), bins_.order(),
+                                                              bins_.line_start(), axes_, field_.data()});
+        for (int d = 0; d < 3; ++d) fft_.forward(field_.data() + d * points, spectrum_.data() + d * spectrumPoints);
+        const double volume = plan_.box[0] * plan_.box[1] * plan_.box[2];
+        backend_.for_each(spectrumPoints,
+                          FcmStokesSolve<R>{spectrum_.data(), grid, p.box.length, R(dt / (double(points) * viscosity)),
+                                            R(2.0 * kT * dt / (volume * viscosity)), p.seed, noiseStream, p.now()});
+        for (int d = 0; d < 3; ++d) fft_.inverse(spectrum_.data() + d * spectrumPoints, field_.data() + d * points);
+        backend_.for_each(p.count, FcmInterpolate<R>{p.pos.data(), group, axes_, field_.data(),
+                                                     R(volume / double(points)), displacement});
+    }
+
+private:
+    const B& backend_;
+    FcmPlan plan_;
+    FcmAxes<R> axes_;
+    typename B::template Fft3d<R> fft_;
+    LineBins<B> bins_;
+    typename B::template Buffer<R> field_;  // the force density, then dt u + noise: x, y, z grids
+    typename B::template Buffer<Complex<R>> spectrum_;
+};
+#endif
+
+}  // namespace structmd

@@ -1,0 +1,106 @@
+#pragma once
+// ["BDHITriplyPeriodic","ForceCouplingMethod"]: Brownian dynamics with hydrodynamic interactions in
+// a triply periodic box of Stokes flow,
+//   x += dt M F + sqrt(2 kT dt) M^{1/2} W,
+// with the force coupling method's mobility M (hydrodynamics/fcm_mesh.hpp). As in UAMMD, only the
+// integrator's group takes part: particles outside it neither push the fluid nor are carried by it.
+#include <memory>
+#include <string>
+
+#include "core/error.hpp"
+#include "hydrodynamics/fcm_mesh.hpp"
+#include "integrators/brownian.hpp"
+#include "integrators/integrator.hpp"
+#include "integrators/thermal_noise.hpp"
+#include "state/fault.hpp"
+
+namespace structmd {
+
+struct BdhiForceCouplingInputs : IntegratorInputs {
+    static std::vector<Parameter> parameters() {
+        return {number("viscosity", "mass/(length time)", Must::be_positive),
+                number("hydrodynamicRadius", "length", Must::be_positive),
+                with_default(number("tolerance", "1", Must::be_positive), 1e-3)};
+    }
+    static constexpr bool overdamped = true;
+    static constexpr double smallestTolerance = 1e-10, largestTolerance = 0.1;
+    static void validate(const ParameterValues& v, const std::string& path) {
+        if (!(v["tolerance"] >= smallestTolerance && v["tolerance"] <= largestTolerance))
+            throw input_error(path + ".parameters.tolerance",
+                              "expected a tolerance in [1e-10, 0.1], got " + std::to_string(v["tolerance"]));
+    }
+};
+
+// Moves each group member by its displacement; every particle's drift is bookkept.
+template <class R>
+struct ApplyDisplacement {
+    Real4<R>* pos;
+    Image* image;
+    const Real4<R>* force;
+    const Vec3<R>* displacement;
+    const uint8_t* group;
+    Box<R> box;
+    FaultSlot fault;
+    DriftBookkeeping<R> bookkeeping;
+    SMD_HD void operator()(int64_t i) const {
+        if (group && !group[i]) {
+            bookkeeping(i, pos[i]);
+            return;
+        }
+        const Vec3<R> move = displacement[i];
+        fault.check_move(i, move);
+        const Real4<R> p = displaced(pos[i], move, box, image[i]);
+        pos[i] = p;
+        fault.check(i, p, force[i]);
+        bookkeeping(i, p);
+    }
+};
+
+template <class B, class R>
+class BdhiForceCoupling : public Integrator<B, R> {
+public:
+    BdhiForceCoupling(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
+        : Integrator<B, R>(scope), backend_(backend), viscosity_(v["viscosity"]),
+          radius_(v["hydrodynamicRadius"]), tolerance_(v["tolerance"]) {}
+
+    bool overdamped() const override { return true; }
+
+    void begin(Particles<B, R>& p, ForceSource&) override {
+        backend_.for_each(p.count, StopParticles<R>{p.vel.data(), this->scope().group});
+        prepare(p);
+    }
+
+    void step(Particles<B, R>& p, ForceSource& forces) override {
+        const IntegratorScope& s = this->scope();
+        prepare(p);
+        forces.update_forces();
+        mesh_->displace(p, s.group, s.timeStep, viscosity_, s.kT, static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48,
+                        displacement_.data());
+        backend_.for_each(p.count, ApplyDisplacement<R>{p.pos.data(), p.image.data(), p.force.data(),
+                                                        displacement_.data(), s.group, p.box, p.fault_slot(1), p.drift});
+        forces.positions_moved(s.timeStep, true);
+    }
+
+private:
+    // The mesh for the present box, made once: a box that changes afterwards is refused.
+    void prepare(const Particles<B, R>& p) {
+        const double box[3] = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
+        if (mesh_) {
+            for (int d = 0; d < 3; ++d)
+                if (box[d] != mesh_->plan().box[d])
+                    throw Error(STRUCTMD_ERR_UNSUPPORTED,
+                                this->scope().name + ": the box changed; [\"BDHITriplyPeriodic\", \"ForceCouplingMethod\"] "
+                                                     "solves the Stokes flow of the box it started with");
+        } else {
+            mesh_ = std::make_unique<FcmMesh<B, R>>(backend_, make_fcm_plan(box, radius_, tolerance_, this->scope().path));
+        }
+        backend_.resize(displacement_, static_cast<size_t>(p.count));
+    }
+
+    const B& backend_;
+    double viscosity_, radius_, tolerance_;
+    std::unique_ptr<FcmMesh<B, R>> mesh_;
+    typename B::template Buffer<Vec3<R>> displacement_;
+};
+
+}  // namespace structmd
