@@ -851,9 +851,10 @@ private:
         backend_.resize(p_.externalForce, p_.count);
         backend_.fill(p_.externalForce, Real4<R>{R(0), R(0), R(0), R(0)});
     }
-    // Current forces follow the change in place; stale ones take the new field when evaluated.
+    // Current forces, and forces a drift kernel cleared to the old field, follow the change in place;
+    // stale ones take the new field when evaluated.
     void replace_external_forces(const int64_t* ids, const Real4<R>* values, int64_t m) {
-        Real4<R>* force = cache_.forces_current(p_.version) ? p_.force.data() : nullptr;
+        Real4<R>* force = cache_.holds_external_forces(p_.version) ? p_.force.data() : nullptr;
         backend_.for_each(m, ReplaceExternalForces<R>{ids, values, p_.externalForce.data(), force});
     }
 

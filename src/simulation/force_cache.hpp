@@ -58,6 +58,9 @@ public:
     void virial_overwritten() { virial_ = kStale; }
     // Whether the forces are those of these positions.
     bool forces_current(int64_t version) const { return forces_ == version; }
+    // Whether the force buffer holds, for these positions, the forces or the external forces a drift
+    // kernel cleared it to: either way a change of the external forces is made in it in place.
+    bool holds_external_forces(int64_t version) const { return forces_ == version || cleared_ == version; }
     // The drift kernel that made the positions of `version` cleared the forces on its way
     // (state/drift_bookkeeping.hpp): their evaluation there starts without clearing them.
     void forces_cleared(int64_t version) { cleared_ = version; }

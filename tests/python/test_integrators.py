@@ -587,9 +587,10 @@ def test_the_forces_after_each_call_are_those_of_a_fresh_evaluation_of_its_posit
     """The drift kernels of these integrators clear the forces and keep the neighbour list's copy of
     the positions for the evaluation that follows (state/drift_bookkeeping.hpp). Half the particles
     are outside the integrator's group, the host changes the external forces between calls and the
-    lists are rebuilt on the way: after every call the forces must equal those of a new handle loaded
-    at the same positions with the same external forces. A force not cleared, an external force
-    counted twice or stale, or a particle the list still sees where it was would break the equality."""
+    lists are rebuilt on the way: after every call, and after every change of the external forces,
+    the forces must equal those of a new handle loaded at the same positions with the same external
+    forces. A force not cleared, an external force counted twice or stale (a drift kernel cleared the
+    forces to the old ones), or a particle the list still sees where it was would break the equality."""
     positions, box = perturbed_lattice(7, 1.2, 0.1, seed=4)
     n = len(positions)
     force_field = lennard_jones()
@@ -604,16 +605,51 @@ def test_the_forces_after_each_call_are_those_of_a_fresh_evaluation_of_its_posit
         sim.load(doc)
         fresh.load(doc)
         start = sim.positions
-        for call in range(6):
-            external = rng.normal(scale=0.5, size=(n, 3)) if call % 3 != 2 else None
-            sim.external_forces = external
-            sim.step(40)
+        def assert_fresh_forces(external):
             fresh.positions = sim.positions
             fresh.external_forces = external
             np.testing.assert_allclose(sim.forces, fresh.forces, rtol=0, atol=1e-9 * np.max(np.abs(fresh.forces)))
+
+        for call in range(6):
+            external = rng.normal(scale=0.5, size=(n, 3)) if call % 3 != 2 else None
+            sim.external_forces = external
+            assert_fresh_forces(external)  # what the next step starts from
+            sim.step(40)
+            assert_fresh_forces(external)
         moved = np.linalg.norm(minimum_image(sim.positions - start, box), axis=1)
         assert np.max(moved) > 0.25, "some particle must move past half the skin, so the lists are rebuilt"
         assert sim.counters["neighbour_list_builds"] > 1
+
+
+@pytest.mark.parametrize("kind", BOOKKEEPING_CASES)
+def test_external_forces_set_after_a_call_act_on_the_next_step(options, kind):
+    """With no force field the forces are the host's external forces alone. The drift kernel of the
+    last step cleared the force buffer to the external forces it knew; forces set after the call must
+    replace them there: read back at once, and pushing the particles in the next step (at temperature
+    0 the Brownian displacement is dt F / (6 pi eta a); the inertial integrators' velocities turn
+    towards F)."""
+    positions, box = perturbed_lattice(3, 1.2, 0.1, seed=4)
+    n = len(positions)
+    entry = dict(BOOKKEEPING_CASES[kind])
+    entry["parameters"] = dict(entry["parameters"], temperature=0.0)
+    types = half_light_half_heavy(n)
+    doc = document(positions, types, {"integrate": entry}, [("integrate", 1000)], box=box)
+    external = np.random.default_rng(8).normal(size=(n, 3))
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+        sim.step(2)
+        sim.external_forces = external
+        np.testing.assert_allclose(sim.forces, external, rtol=0, atol=1e-12)
+        before, velocities = sim.positions, sim.velocities
+        sim.step(1)
+        moved = minimum_image(sim.positions - before, box)
+        if kind == "EulerMaruyama":
+            dt, viscosity = entry["parameters"]["timeStep"], entry["parameters"]["viscosity"]
+            radius = np.array([RADIUS[t] for t in types])[:, None]
+            np.testing.assert_allclose(moved, dt * external / (6 * np.pi * viscosity * radius), rtol=1e-9, atol=1e-14)
+        else:
+            assert np.all(np.einsum("ij,ij->i", sim.velocities - velocities, external) > 0), \
+                "every particle is pushed along the new external force"
 
 
 # ---- reproducibility -----------------------------------------------------------------------------
