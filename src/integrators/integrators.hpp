@@ -4,6 +4,7 @@
 // (make_integrator.hpp) are both made by visiting this list. A visitor has
 //   template <template <class B, class R> class Integrator, class Inputs> void integrator(ComponentKey key);
 #include "core/registry.hpp"
+#include "integrators/bdhi_cholesky.hpp"
 #include "integrators/brownian.hpp"
 #include "integrators/brownian_rigid_body.hpp"
 #include "integrators/langevin_bbk.hpp"
@@ -22,6 +23,7 @@ void visit_builtin_integrators(Visitor& v) {
     v.template integrator<LangevinGJF, LangevinInputs>({"Langevin", "GJF"});
     v.template integrator<BrownianEulerMaruyama, BrownianInputs>({"Brownian", "EulerMaruyama"});
     v.template integrator<BrownianEulerMaruyamaRigidBody, BrownianRigidBodyInputs>({"Brownian", "EulerMaruyamaRigidBody"});
+    v.template integrator<BdhiCholesky, BdhiOpenBoundaryInputs>({"BDHIOpenBoundary", "Cholesky"});
     v.template integrator<MagneticFixed, MagneticFixedInputs>({"Magnetic", "Fixed"});
     v.template integrator<MagneticBrownian, MagneticBrownianInputs>({"Magnetic", "Brownian"});
     // The minimiser is also known by the reference's two spellings.

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "backends/cpu/cpu_cholesky.hpp"
 #include "core/error.hpp"
 #include "cpu_harness.hpp"
 #include "forcefield/harmonic_bond.hpp"
