@@ -5,6 +5,7 @@
 //   template <template <class B, class R> class Integrator, class Inputs> void integrator(ComponentKey key);
 #include "core/registry.hpp"
 #include "integrators/bdhi_cholesky.hpp"
+#include "integrators/bdhi_lanczos.hpp"
 #include "integrators/brownian.hpp"
 #include "integrators/brownian_rigid_body.hpp"
 #include "integrators/langevin_bbk.hpp"
@@ -24,6 +25,7 @@ void visit_builtin_integrators(Visitor& v) {
     v.template integrator<BrownianEulerMaruyama, BrownianInputs>({"Brownian", "EulerMaruyama"});
     v.template integrator<BrownianEulerMaruyamaRigidBody, BrownianRigidBodyInputs>({"Brownian", "EulerMaruyamaRigidBody"});
     v.template integrator<BdhiCholesky, BdhiOpenBoundaryInputs>({"BDHIOpenBoundary", "Cholesky"});
+    v.template integrator<BdhiLanczos, BdhiLanczosInputs>({"BDHIOpenBoundary", "Lanczos"});
     v.template integrator<MagneticFixed, MagneticFixedInputs>({"Magnetic", "Fixed"});
     v.template integrator<MagneticBrownian, MagneticBrownianInputs>({"Magnetic", "Brownian"});
     // The minimiser is also known by the reference's two spellings.

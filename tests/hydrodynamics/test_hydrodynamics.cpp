@@ -1,6 +1,7 @@
 // The pieces of the hydrodynamic integrators below the engine: the dense RPY mobility against its
 // matrix-free product, the CPU backend's Cholesky factorisation (and its refusal of a matrix that is
-// not positive definite) and the fault word that carries a failed factorisation to the host.
+// not positive definite), the Lanczos square root against the symmetric square root from a full
+// eigendecomposition, and the fault word that carries a failed factorisation to the host.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -11,6 +12,7 @@
 #include "backends/cpu/cpu_backend.hpp"
 #include "backends/cpu/cpu_cholesky.hpp"
 #include "core/error.hpp"
+#include "hydrodynamics/lanczos_sqrt.hpp"
 #include "hydrodynamics/open_mobility.hpp"
 #include "state/fault.hpp"
 
@@ -58,6 +60,11 @@ Vector gaussian_vector(int64_t n, unsigned seed) {
     return z;
 }
 
+Vector symmetric_sqrt_times(const Matrix& m, const Vector& z) {
+    Eigen::SelfAdjointEigenSolver<Matrix> eigen(m);
+    return eigen.eigenvectors() * eigen.eigenvalues().cwiseSqrt().asDiagonal() * eigen.eigenvectors().transpose() * z;
+}
+
 TEST(OpenMobility, DenseMatrixIsSymmetricPositiveDefiniteAndMatchesTheMatrixFreeProduct) {
     Fixture f(random_spheres(12, 3.0, 1));
     const Matrix m = f.dense();
@@ -101,6 +108,50 @@ TEST(CpuCholesky, ReportsAMatrixThatIsNotPositiveDefinite) {
     int failed = -1;
     CpuCholesky<double>(CpuBackend{1}, 4).factor(m.data(), &failed);
     EXPECT_EQ(failed, 1);
+}
+
+TEST(LanczosSqrt, ApproachesTheSymmetricSquareRootToTheTolerance) {
+    Fixture f(random_spheres(20, 3.0, 5));
+    const Matrix m = f.dense();
+    const Vector z = gaussian_vector(m.rows(), 6);
+    const Vector exact = symmetric_sqrt_times(m, z);
+    for (double tolerance : {1e-3, 1e-6, 1e-10}) {
+        LanczosSqrt<CpuBackend, double> lanczos(f.backend, tolerance, 100, "the test operator");
+        Vector y(m.rows());
+        const int iterations = lanczos.apply_sqrt(m.rows(), z.data(), y.data(),
+                                                  [&](const double* v, double* out) { f.product(v, out); });
+        const double error = (y - exact).norm() / exact.norm();
+        // The stopping rule measures the last change, which bounds the error within a small factor.
+        EXPECT_LT(error, 10.0 * tolerance) << "tolerance " << tolerance << ", " << iterations << " iterations";
+        EXPECT_LT(iterations, m.rows());
+    }
+}
+
+TEST(LanczosSqrt, IsExactOnceTheKrylovSpaceIsExhausted) {
+    Fixture f(random_spheres(2, 1.0, 7));
+    const Matrix m = f.dense();
+    const Vector z = gaussian_vector(6, 8);
+    LanczosSqrt<CpuBackend, double> lanczos(f.backend, 1e-300, 100, "the test operator");
+    Vector y(6);
+    EXPECT_LE(lanczos.apply_sqrt(6, z.data(), y.data(), [&](const double* v, double* out) { f.product(v, out); }), 6);
+    EXPECT_LT((y - symmetric_sqrt_times(m, z)).norm(), 1e-12 * z.norm());
+}
+
+TEST(LanczosSqrt, RefusesAnOperatorThatIsNotPositiveDefinite) {
+    CpuBackend backend{1};
+    const Vector diagonal = (Vector(5) << 1.0, 2.0, -3.0, 4.0, 5.0).finished();
+    const Vector z = Vector::Ones(5);
+    Vector y(5);
+    LanczosSqrt<CpuBackend, double> lanczos(backend, 1e-8, 100, "the test operator");
+    try {
+        lanczos.apply_sqrt(5, z.data(), y.data(), [&](const double* v, double* out) {
+            for (int i = 0; i < 5; ++i) out[i] = diagonal[i] * v[i];
+        });
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.status(), STRUCTMD_ERR_NUMERICAL);
+        EXPECT_NE(std::string(e.what()).find("the test operator is not positive definite"), std::string::npos);
+    }
 }
 
 TEST(FaultSlot, CarriesAFailedFactorisationWithTheParticleAndStep) {

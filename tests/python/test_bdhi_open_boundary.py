@@ -16,7 +16,7 @@ import pytest
 
 import structmd
 
-METHODS = ["Cholesky"]
+METHODS = ["Cholesky", "Lanczos"]
 TYPES = [["small", 1.0, 0.5, 0.0], ["large", 1.0, 1.0, 0.0], ["flat", 1.0, 0.0, 0.0]]  # name, mass, radius, charge
 RADIUS = {row[0]: row[2] for row in TYPES}
 VISCOSITY = 0.7
@@ -250,3 +250,29 @@ def test_a_particle_without_radius_needs_the_hydrodynamic_radius(options, method
     with structmd.Simulation(options) as sim:
         sim.load(document([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]], ["small", "flat"], entry, 10))
         sim.run()
+
+
+@pytest.mark.parametrize("tolerance", [0.0, -1e-3])
+def test_lanczos_needs_a_positive_tolerance(options, tolerance):
+    entry = integrator("Lanczos", 0.01, tolerance=tolerance)
+    doc = document([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]], ["small", "small"], entry, 10)
+    with structmd.Simulation(options) as sim:
+        with pytest.raises(structmd.InputError, match=r"integrator\.bdhi\.parameters\.tolerance"):
+            sim.load(doc)
+
+
+def test_lanczos_with_a_loose_tolerance_still_has_the_covariance_of_m_to_that_tolerance(options):
+    # The default tolerance 1e-3 on 12 strongly coupled particles (fewer iterations than 3N = 36): the
+    # covariance of the noise is that of M to the statistical error (2% on the diagonal here), which a
+    # truncation missing the coupling would exceed.
+    rng = np.random.default_rng(4)
+    positions = rng.uniform(-1.2, 1.2, (12, 3))
+    types = ["small"] * 12
+    samples, dt, kt = 6000, 1e-3, 1.0
+    x = displacement_samples(options, "Lanczos", positions, types, samples, dt, kt, extra={"tolerance": 1e-3})
+    expected = 2.0 * kt * dt * rpy_matrix(positions, [0.5] * 12)
+    covariance = x.T @ x / samples
+    diagonal = np.diag(expected)
+    error = np.sqrt((np.outer(diagonal, diagonal) + expected ** 2) / samples)
+    worst = np.max(np.abs(covariance - expected) / error)
+    assert worst < 5.0, f"covariance off by {worst:.1f} standard errors"
