@@ -28,13 +28,8 @@ public:
 
 protected:
     void mobility_sqrt(int64_t n, Particles<B, R>&, const R* w, R* noise) override {
-        const B& backend = this->backend();
-        const MobilityProduct<R> product{this->spheres(), n, this->rpy(), nullptr, nullptr};
         lanczos_.apply_sqrt(3 * n, w, noise, [&](const R* v, R* out) {
-            MobilityProduct<R> step = product;
-            step.v = v;
-            step.out = out;
-            backend.for_each(n, step);
+            this->backend().for_each(n, MobilityProduct<R>{this->spheres(), n, this->rpy(), v, out});
         });
     }
 

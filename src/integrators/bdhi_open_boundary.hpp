@@ -7,7 +7,7 @@
 // (bdhi_lanczos.hpp) derive from BdhiOpenBoundary below.
 // Particles outside the group neither move nor take part in the hydrodynamics (UAMMD's BDHI sees
 // only its group); their forces still act on the group through the force field.
-#include <memory>
+#include <cmath>
 
 #include "hydrodynamics/open_mobility.hpp"
 #include "integrators/brownian.hpp"
