@@ -3,7 +3,7 @@
 # when nvcc is already installed; without it the build is CPU-only.
 set -euo pipefail
 
-packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev libdlpack-dev googletest
+packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev libdlpack-dev libeigen3-dev googletest
           lammps python3 python3-pip curl
           doxygen  # the API reference rendered from include/structmd.h: test api_reference
           clang libclang-rt-dev libomp-dev)  # clang, libFuzzer and clang's OpenMP: scripts/fuzz.sh
@@ -44,4 +44,11 @@ if [ ! -f "$deps_include/pocketfft_hdronly.h" ]; then
     echo "$pocketfft_sha256  $deps_include/pocketfft_hdronly.h.part" | sha256sum -c --quiet
     mv "$deps_include/pocketfft_hdronly.h.part" "$deps_include/pocketfft_hdronly.h"
   fi
+fi
+
+# Eigen (the CPU backend's Cholesky factorisation, the Lanczos solver's small eigenproblems; header
+# only) into .deps/include/eigen3 for the same reason: the GPU machine has no libeigen3-dev.
+if [ ! -f "$deps_include/eigen3/Eigen/Cholesky" ]; then
+  mkdir -p "$deps_include/eigen3"
+  cp -r /usr/include/eigen3/Eigen "$deps_include/eigen3/"
 fi

@@ -1,5 +1,6 @@
 // Engine<CpuBackend, double> (double precision), in a translation unit of its own.
 #include "backends/cpu/cpu_backend.hpp"
+#include "backends/cpu/cpu_cholesky.hpp"
 #include "backends/cpu/cpu_fft.hpp"
 #include "engines/engine_instances.hpp"
 #include "simulation/engine.hpp"

@@ -75,6 +75,9 @@ struct IntegratorInputs {
     // (UAMMD-structured's particle data): its default 0 then means "from the column".
     static constexpr const char* fallbackParameter = nullptr;
     static constexpr const char* fallbackColumn = nullptr;
+    // A parameter that, where given (> 0), stands for every particle's radius: the state's radii are
+    // then not needed.
+    static constexpr const char* radiusParameter = nullptr;
     // Rejects values the integrator cannot run with (beyond each parameter's own rule).
     static void validate(const ParameterValues&, const std::string&) {}
 };

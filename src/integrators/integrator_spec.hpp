@@ -41,6 +41,7 @@ struct IntegratorComponent {
     bool rotates = false;
     std::vector<TextOption> textOptions;
     bool magnetic = false;
+    const char* radiusParameter = nullptr;  // IntegratorInputs::radiusParameter
 };
 
 const Registry<IntegratorComponent>& integrator_registry();

@@ -4,7 +4,9 @@
 // (make_integrator.hpp) are both made by visiting this list. A visitor has
 //   template <template <class B, class R> class Integrator, class Inputs> void integrator(ComponentKey key);
 #include "core/registry.hpp"
+#include "integrators/bdhi_cholesky.hpp"
 #include "integrators/bdhi_force_coupling.hpp"
+#include "integrators/bdhi_lanczos.hpp"
 #include "integrators/brownian.hpp"
 #include "integrators/brownian_rigid_body.hpp"
 #include "integrators/langevin_bbk.hpp"
@@ -23,6 +25,8 @@ void visit_builtin_integrators(Visitor& v) {
     v.template integrator<LangevinGJF, LangevinInputs>({"Langevin", "GJF"});
     v.template integrator<BrownianEulerMaruyama, BrownianInputs>({"Brownian", "EulerMaruyama"});
     v.template integrator<BrownianEulerMaruyamaRigidBody, BrownianRigidBodyInputs>({"Brownian", "EulerMaruyamaRigidBody"});
+    v.template integrator<BdhiCholesky, BdhiOpenBoundaryInputs>({"BDHIOpenBoundary", "Cholesky"});
+    v.template integrator<BdhiLanczos, BdhiLanczosInputs>({"BDHIOpenBoundary", "Lanczos"});
     // UAMMD-structured registers it as BDHITriplePeriodic; its documentation says BDHITriplyPeriodic.
     v.template integrator<BdhiForceCoupling, BdhiForceCouplingInputs>({"BDHITriplyPeriodic", "ForceCouplingMethod"});
     v.template integrator<BdhiForceCoupling, BdhiForceCouplingInputs>({"BDHITriplePeriodic", "ForceCouplingMethod"});

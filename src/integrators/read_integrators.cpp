@@ -18,7 +18,7 @@ struct ReaderEntries {
     void integrator(ComponentKey key) {
         registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate,
                       Inputs::overdamped, Inputs::fallbackParameter, Inputs::fallbackColumn, Inputs::rotates,
-                      Inputs::text_options(), Inputs::magnetic});
+                      Inputs::text_options(), Inputs::magnetic, Inputs::radiusParameter});
     }
 };
 
@@ -109,12 +109,16 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
             throw input_error(spec.path + ".parameters.temperature",
                               std::string("the mobility D / (k_B T) from the state's ") + component.fallbackColumn +
                                   " needs a temperature > 0");
-        if (component.needsRadius && !fromColumn)
+        const bool radiusGiven = component.radiusParameter && spec.parameters[component.radiusParameter] > 0.0;
+        if (component.needsRadius && !fromColumn && !radiusGiven)
             for (int64_t i = 0; i < system.numParticles(); ++i)
                 if ((spec.group < 0 || groups[spec.group].members[i]) && !(system.radius[i] > 0.0))
                     throw input_error(spec.path, "particle id " + std::to_string(i) + " has radius " +
                                                      std::to_string(system.radius[i]) + ": " + entry.cls + " " +
-                                                     entry.subclass + " needs a positive radius");
+                                                     entry.subclass + " needs a positive radius" +
+                                                     (component.radiusParameter
+                                                          ? std::string(" (or parameters.") + component.radiusParameter + ")"
+                                                          : std::string()));
         integrators.push_back(std::move(spec));
     }
     schedule.clear();

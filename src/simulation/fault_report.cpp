@@ -13,6 +13,9 @@ std::string describe_fault(unsigned long long word, double skin, int64_t failedS
         case FaultQuantity::displacement:
             what = "the displacement in one step is longer than the neighbour-list skin (" + std::to_string(skin) + ")";
             break;
+        case FaultQuantity::mobility:
+            what = "the hydrodynamic mobility matrix is not positive definite (its Cholesky factorisation failed)";
+            break;
     }
     return "step " + std::to_string(FaultSlot::step_of(word)) + ", particle id " +
            std::to_string(FaultSlot::particle_of(word)) + ": " + what +

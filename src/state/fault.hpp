@@ -13,7 +13,8 @@ namespace structmd {
 
 constexpr unsigned long long kNoFault = ~0ull;
 
-enum class FaultQuantity : unsigned { position = 0, velocity = 1, force = 2, displacement = 3 };
+// mobility: the hydrodynamic mobility matrix could not be factorised (not positive definite).
+enum class FaultQuantity : unsigned { position = 0, velocity = 1, force = 2, displacement = 3, mobility = 4 };
 
 template <class R>
 SMD_HD SMD_INLINE bool finite(const Real4<R>& a) {
@@ -21,7 +22,7 @@ SMD_HD SMD_INLINE bool finite(const Real4<R>& a) {
     return isfinite(a.x) && isfinite(a.y) && isfinite(a.z);
 }
 
-// The word holds step << 32 | particle << 2 | quantity, so the smallest is the earliest report.
+// The word holds step << 32 | particle << 3 | quantity, so the smallest is the earliest report.
 struct FaultSlot {
     unsigned long long* word;
     ClockView now;
@@ -29,7 +30,7 @@ struct FaultSlot {
 
     SMD_HD SMD_INLINE void report(int64_t particle, FaultQuantity quantity) const {
         atomic_min(word, (static_cast<unsigned long long>(now.step()) << 32) |
-                             (static_cast<unsigned long long>(particle) << 2) | static_cast<unsigned long long>(quantity));
+                             (static_cast<unsigned long long>(particle) << 3) | static_cast<unsigned long long>(quantity));
     }
     template <class R>
     SMD_HD SMD_INLINE void check(int64_t i, const Real4<R>& position, const Real4<R>& force) const {
@@ -50,8 +51,8 @@ struct FaultSlot {
     }
 
     static int64_t step_of(unsigned long long word) { return static_cast<int64_t>(word >> 32); }
-    static int64_t particle_of(unsigned long long word) { return static_cast<int64_t>((word & 0xffffffffull) >> 2); }
-    static FaultQuantity quantity_of(unsigned long long word) { return static_cast<FaultQuantity>(word & 3ull); }
+    static int64_t particle_of(unsigned long long word) { return static_cast<int64_t>((word & 0xffffffffull) >> 3); }
+    static FaultQuantity quantity_of(unsigned long long word) { return static_cast<FaultQuantity>(word & 7ull); }
 };
 
 }  // namespace structmd

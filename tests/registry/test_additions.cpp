@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "backends/cpu/cpu_cholesky.hpp"  // the open-boundary integrators factor their mobility with it
 #include "backends/cpu/cpu_fft.hpp"  // the integrators' factories include the spectral ones, which hold an FFT
 #include "core/error.hpp"
 #include "cpu_harness.hpp"

@@ -52,6 +52,8 @@ private:
 
 template <class R>
 class CpuFft3d;  // backends/cpu/cpu_fft.hpp, included where engines are instantiated (engines/)
+template <class R>
+class CpuCholesky;  // backends/cpu/cpu_cholesky.hpp, likewise
 
 class CpuBackend {
 public:
@@ -61,6 +63,8 @@ public:
     using Staging = HostStaging<T>;
     template <class R>
     using Fft3d = CpuFft3d<R>;
+    template <class R>
+    using Cholesky = CpuCholesky<R>;
 
     static constexpr const char* name = "cpu";
     // Neighbour lists in index order: force sums independent of the build history, so a restart

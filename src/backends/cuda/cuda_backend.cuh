@@ -86,6 +86,8 @@ struct FillFunctor {
 
 template <class R>
 class CudaFft3d;  // backends/cuda/cuda_fft.cuh, included where engines are instantiated (engines/)
+template <class R>
+class CudaCholesky;  // backends/cuda/cuda_cholesky.cuh, likewise
 
 class CudaBackend {
 public:
@@ -95,6 +97,8 @@ public:
     using Staging = PinnedStaging<T>;
     template <class R>
     using Fft3d = CudaFft3d<R>;
+    template <class R>
+    using Cholesky = CudaCholesky<R>;
 
     static constexpr const char* name = "cuda";
     // Sorting every list in global memory at each build cut the LJ benchmark at a million particles
