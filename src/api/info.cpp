@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 
 #include "api/handle.hpp"
+#include "parallel/communicator.hpp"
 
 using namespace structmd;
 using namespace structmd::api;
@@ -17,6 +18,9 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
         info["loaded"] = static_cast<bool>(s.simulation);
         info["device"] = device_description(s.options);
         info["threads"] = s.options.backend == BackendKind::cpu ? cpu_thread_count(s.options) : 0;
+        info["mpi"] = {{"compiled", mpi_compiled()},
+                       {"ranks", s.communicator ? s.communicator->size() : 1},
+                       {"rank", s.communicator ? s.communicator->rank() : 0}};
         if (s.simulation) {
             info["particles"] = s.simulation->particle_count();
             info["final_step"] = s.simulation->final_step();
