@@ -3,6 +3,7 @@
 
 #include "api/handle.hpp"
 #include "parallel/communicator.hpp"
+#include "parallel/replica_exchange.hpp"
 
 using namespace structmd;
 using namespace structmd::api;
@@ -26,6 +27,17 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
             info["final_step"] = s.simulation->final_step();
             const std::string& stoppedBy = s.simulation->stopped_by();
             info["stopped_by"] = stoppedBy.empty() ? nlohmann::json(nullptr) : nlohmann::json(stoppedBy);
+            if (const auto* exchange = dynamic_cast<const ReplicaExchange*>(s.simulation.get())) {
+                std::vector<double> acceptance;
+                for (size_t k = 0; k < exchange->attempts().size(); ++k)
+                    acceptance.push_back(exchange->attempts()[k] > 0 ? static_cast<double>(exchange->accepted()[k]) /
+                                                                           static_cast<double>(exchange->attempts()[k])
+                                                                     : 0.0);
+                info["replica_exchange"] = {{"temperatures", exchange->spec().temperatures},
+                                            {"attempts", exchange->attempts()},
+                                            {"accepted", exchange->accepted()},
+                                            {"acceptance", acceptance}};
+            }
         } else {
             info["particles"] = 0;
             info["final_step"] = -1;

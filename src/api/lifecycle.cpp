@@ -21,8 +21,8 @@ void load_text(structmd_sim& sim, const std::string& text) {
     sim.simulation.reset();  // a failed load leaves no simulation, and the old one's memory is freed first
     sim.document.clear();
     sim.runtimeDocument.reset();
-    sim.simulation = sim.communicator ? load_over_ranks(sim.options, text, *sim.components, sim.log, sim.communicator)
-                                      : load_simulation(sim.options, text, *sim.components, sim.log);
+    sim.simulation = load_over_ranks(sim.options, text, *sim.components, sim.log,
+                                     sim.communicator ? sim.communicator : single_process());
     sim.document = text;
     sim.log.info("loaded " + std::to_string(sim.simulation->particle_count()) + " particles on " +
                  sim.simulation->backend_name() + " (" + sim.simulation->device_name() + "), " +

@@ -1,6 +1,8 @@
 // The Communicator over MPI where the build has it, and its refusal otherwise.
 #include "parallel/communicator.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 
 #ifdef STRUCTMD_HAVE_MPI
@@ -11,6 +13,32 @@
 #endif
 
 namespace structmd {
+
+namespace {
+
+class SingleProcess final : public Communicator {
+public:
+    int rank() const override { return 0; }
+    int size() const override { return 1; }
+    void all_gather(const double* mine, double* all, const std::vector<int64_t>& counts) const override {
+        std::copy(mine, mine + counts[0], all);
+    }
+    void all_gather(const int32_t* mine, int32_t* all, const std::vector<int64_t>& counts) const override {
+        std::copy(mine, mine + counts[0], all);
+    }
+    void all_sum(double*, int) const override {}
+    int64_t all_min(int64_t value) const override { return value; }
+    int64_t all_max(int64_t value) const override { return value; }
+    void broadcast(std::string&, int) const override {}
+    std::vector<int64_t> all_counts(int64_t mine) const override { return {mine}; }
+    void send_receive(const double*, double*, int64_t, int partner) const override {
+        throw Error(STRUCTMD_ERR_INTERNAL, "an exchange with rank " + std::to_string(partner) + " of one process");
+    }
+};
+
+}  // namespace
+
+std::shared_ptr<const Communicator> single_process() { return std::make_shared<SingleProcess>(); }
 
 #ifdef STRUCTMD_HAVE_MPI
 
@@ -70,6 +98,12 @@ public:
         std::vector<int64_t> counts(static_cast<size_t>(size_));
         check(MPI_Allgather(&mine, 1, MPI_INT64_T, counts.data(), 1, MPI_INT64_T, comm_), "MPI_Allgather");
         return counts;
+    }
+    void send_receive(const double* mine, double* theirs, int64_t n, int partner) const override {
+        if (n > INT32_MAX) throw Error(STRUCTMD_ERR_UNSUPPORTED, "an exchange between ranks of more than 2^31 values");
+        check(MPI_Sendrecv(mine, static_cast<int>(n), MPI_DOUBLE, partner, 0, theirs, static_cast<int>(n), MPI_DOUBLE,
+                           partner, 0, comm_, MPI_STATUS_IGNORE),
+              "MPI_Sendrecv");
     }
 
 private:

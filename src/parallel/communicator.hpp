@@ -30,6 +30,8 @@ public:
     // Root's bytes (resized on the other ranks) to every rank.
     virtual void broadcast(std::string& bytes, int root) const = 0;
     virtual std::vector<int64_t> all_counts(int64_t mine) const = 0;  // every rank's value, in rank order
+    // n values to rank `partner` and n from it, into theirs (a pairwise exchange: only the two call it).
+    virtual void send_receive(const double* mine, double* theirs, int64_t n, int partner) const = 0;
 };
 
 // Runs `local` on every rank of `comm`; when it throws on any, every rank throws the error of the
@@ -64,6 +66,10 @@ void run_together(const Communicator& comm, F&& local) {
 
 // Whether this library was built with MPI (CMake option STRUCTMD_MPI).
 bool mpi_compiled();
+
+// One process alone: what a handle without "mpi_comm" runs over (parallel tempering with every
+// replica in this process).
+std::shared_ptr<const Communicator> single_process();
 
 // The communicator of a Fortran handle (MPI_Comm_c2f of the host's MPI_Comm). Throws
 // ERR_UNSUPPORTED without MPI compiled in, ERR_STATE when MPI is not initialised (the host owns

@@ -1,6 +1,8 @@
 #pragma once
-// Loading an input over the ranks of a handle's communicator: one rank loads it whole; several
-// spread its batches over themselves (batch_split.hpp, batches_over_ranks.hpp). Collective.
+// Loading an input over the ranks of a handle's communicator (single_process() for a handle without
+// one): an input with parallel tempering as replicas over the ranks (replica_exchange.hpp); else one
+// rank loads it whole, and several spread its batches over themselves (batch_split.hpp,
+// batches_over_ranks.hpp). Collective.
 #include <memory>
 #include <string>
 

@@ -4,7 +4,9 @@ and 3 against a run without MPI, on batched inputs (4 bead chains, Langevin with
 load, and Brownian). Trajectory files (wrapped and unwrapped positions, velocities) must be the
 same bytes, the thermodynamic measure (whole-system sums, added over the ranks) the same to
 rounding, and rank 0 alone must print. A flow-control step stops every rank at the same step, and an
-input with fewer batches than ranks is refused with one message. Without MPI in the build, checks
+input with fewer batches than ranks is refused with one message. Parallel tempering (four
+temperatures, replicas over 1, 2 and 3 ranks, two on rank 0 of 3) makes the same exchanges and writes
+the same files as one process. Without MPI in the build, checks
 that `structmd run --mpi` says MPI is not compiled in, and reports itself skipped (77).
 
 usage: check_launcher_batches.py LAUNCHER [--mpiexec MPIEXEC --numproc-flag=FLAG --mpi-flags="..."]"""
@@ -151,6 +153,29 @@ def main():
                 expect(len(summaries) == 1, f"{name}, {ranks} ranks: {len(summaries)} summaries, expected rank 0's alone")
                 expect(f"MPI ranks         {ranks}" in result.stdout, f"{name}, {ranks} ranks: the summary names no ranks")
 
+        # Parallel tempering (each replica the four batches): the same exchanges, and so the same files,
+        # however the replicas are spread.
+        tempering = chains(LANGEVIN, 400)
+        tempering["simulationStep"]["exchange"] = {
+            "type": ["ReplicaExchange", "ParallelTempering"],
+            "parameters": {"intervalStep": 10, "temperatures": [1.0, 1.3, 1.7, 2.2], "outputFilePath": "exchanges.dat"}}
+        alone = os.path.join(work, "tempering", "alone")
+        result = run([launcher], alone, tempering)
+        expect(result.returncode == 0, f"tempering without MPI exited {result.returncode}")
+        files = sorted(f for f in os.listdir(alone) if f != "input.json")
+        expect(len(files) == 1 + 4 * (len(OUTPUTS) + 1), f"tempering wrote {files}")
+        exchanged = [line.split()[1:4] for line in open(os.path.join(alone, "exchanges.dat")) if line[0] != "#"]
+        expect(any("1" in row for row in exchanged) and any("0" in row for row in exchanged),
+               "tempering: no exchange accepted, or none refused")
+        for ranks in (1, 2, 3):
+            folder = os.path.join(work, "tempering", f"np{ranks}")
+            result = run(mpirun(ranks), folder, tempering)
+            expect(result.returncode == 0, f"tempering, {ranks} ranks: exited {result.returncode}")
+            for name in files:
+                expect(os.path.exists(os.path.join(folder, name)) and
+                       filecmp.cmp(os.path.join(alone, name), os.path.join(folder, name), shallow=False),
+                       f"tempering, {ranks} ranks: {name} differs from the run without MPI")
+
         # A flow-control step on rank 0 stops every rank at the same step.
         stopped = run(mpirun(2), os.path.join(work, "stopped"), chains(BROWNIAN, 300, escape=True))
         expect(stopped.returncode == 0, f"stopped run exited {stopped.returncode}")
@@ -167,7 +192,7 @@ def main():
 
     if problems:
         sys.exit("\n".join(problems))
-    print("batches over 1, 2 and 3 ranks: outputs identical to one process")
+    print("batches and parallel tempering over 1, 2 and 3 ranks: outputs identical to one process")
 
 
 if __name__ == "__main__":
