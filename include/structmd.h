@@ -828,8 +828,10 @@ STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const c
  * "threads": CPU threads of the CPU backend (0 on CUDA), "loaded": bool, "particles": n (0 before
  * a load), "final_step": step at which the schedule ends (-1 before a load), "stopped_by": the
  * simulationStep entry that ended the last step call early, or null, "mpi": {"compiled": bool,
- * "ranks": ranks of the "mpi_comm" communicator (1 without), "rank": this one's (0 without)}}.
- * Keys may be added in later versions.
+ * "ranks": ranks of the "mpi_comm" communicator (1 without), "rank": this one's (0 without)},
+ * and under parallel tempering "replica_exchange": {"temperatures", and per pair of neighbouring
+ * temperatures "attempts", "accepted", "acceptance"} (docs/input-format.md)}. Keys may be added in
+ * later versions.
  *
  * @param sim          the handle.
  * @param[out] buffer  receives the text; may be NULL when size is 0.
