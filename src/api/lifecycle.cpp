@@ -6,7 +6,7 @@
 
 #include "api/handle.hpp"
 #include "engines/make_engine.hpp"
-#include "parallel/load_batches.hpp"
+#include "parallel/load_over_ranks.hpp"
 
 namespace structmd::api {
 

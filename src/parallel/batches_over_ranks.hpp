@@ -105,9 +105,6 @@ public:
     int threads() const override { return local_->threads(); }
     std::optional<double> overdamped_kT() const override { return local_->overdamped_kT(); }
 
-    int ranks() const { return comm_->size(); }
-    int rank() const { return comm_->rank(); }
-
 private:
     enum class Op : int32_t;
     struct Request;
@@ -126,7 +123,6 @@ private:
     void gather_per_particle(Op op, double* all, int k, Get&& get);
     // The rank's slice of a whole-system array of k values per particle.
     const double* slice(const double* all, int k) const { return all + k * firstId_; }
-    bool holds(int64_t id) const { return id >= firstId_ && id < firstId_ + local_count(); }
     int64_t local_count() const { return counts_[static_cast<size_t>(comm_->rank())]; }
     [[noreturn]] void unsupported(const std::string& what) const;
 

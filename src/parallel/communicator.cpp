@@ -30,7 +30,6 @@ public:
     int64_t all_min(int64_t value) const override { return value; }
     int64_t all_max(int64_t value) const override { return value; }
     void broadcast(std::string&, int) const override {}
-    std::vector<int64_t> all_counts(int64_t mine) const override { return {mine}; }
     void send_receive(const double*, double*, int64_t, int partner) const override {
         throw Error(STRUCTMD_ERR_INTERNAL, "an exchange with rank " + std::to_string(partner) + " of one process");
     }
@@ -93,11 +92,6 @@ public:
         bytes.resize(static_cast<size_t>(length));
         if (length > 0)
             check(MPI_Bcast(bytes.data(), static_cast<int>(length), MPI_CHAR, root, comm_), "MPI_Bcast");
-    }
-    std::vector<int64_t> all_counts(int64_t mine) const override {
-        std::vector<int64_t> counts(static_cast<size_t>(size_));
-        check(MPI_Allgather(&mine, 1, MPI_INT64_T, counts.data(), 1, MPI_INT64_T, comm_), "MPI_Allgather");
-        return counts;
     }
     void send_receive(const double* mine, double* theirs, int64_t n, int partner) const override {
         if (n > INT32_MAX) throw Error(STRUCTMD_ERR_UNSUPPORTED, "an exchange between ranks of more than 2^31 values");

@@ -29,7 +29,6 @@ public:
     virtual int64_t all_max(int64_t value) const = 0;
     // Root's bytes (resized on the other ranks) to every rank.
     virtual void broadcast(std::string& bytes, int root) const = 0;
-    virtual std::vector<int64_t> all_counts(int64_t mine) const = 0;  // every rank's value, in rank order
     // n values to rank `partner` and n from it, into theirs (a pairwise exchange: only the two call it).
     virtual void send_receive(const double* mine, double* theirs, int64_t n, int partner) const = 0;
 };

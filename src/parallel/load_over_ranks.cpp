@@ -1,4 +1,4 @@
-#include "parallel/load_batches.hpp"
+#include "parallel/load_over_ranks.hpp"
 
 #include <optional>
 #include <vector>
