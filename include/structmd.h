@@ -116,7 +116,11 @@ STRUCTMD_API const char* structmd_version(void);
  *                      "log": "quiet" | "warning" (default) | "info" | "debug";
  *                      "log_file": path, appended to (default: standard error);
  *                      "plugins": an array of paths of plugin libraries this handle loads, after
- *                      those loaded by structmd_load_plugin (docs/plugins.md).
+ *                      those loaded by structmd_load_plugin (docs/plugins.md);
+ *                      "mpi_comm": an MPI communicator as a Fortran handle integer (MPI_Comm_c2f),
+ *                      whose ranks share the batches of every input the handle loads; every call
+ *                      on the handle is then collective over it (docs/c-api.md, MPI). The host
+ *                      initialises and finalises MPI; the library never does.
  *                      Read during the call only.
  * @param[out] out      receives the new handle, owned by the caller until structmd_destroy; set to
  *                      NULL on failure.
@@ -124,7 +128,9 @@ STRUCTMD_API const char* structmd_version(void);
  *         "device" that does not exist, or out == NULL; STRUCTMD_ERR_DEVICE when "cuda" is demanded
  *         and no GPU is usable; STRUCTMD_ERR_UNSUPPORTED when "cuda" is demanded from a CPU-only
  *         build; STRUCTMD_ERR_IO when "log_file" cannot be opened; for "plugins", the statuses of
- *         structmd_load_plugin, the message naming the option; STRUCTMD_ERR_MEMORY. On failure
+ *         structmd_load_plugin, the message naming the option; for "mpi_comm",
+ *         STRUCTMD_ERR_UNSUPPORTED from a build without MPI and STRUCTMD_ERR_STATE before MPI_Init;
+ *         STRUCTMD_ERR_MEMORY. On failure
  *         structmd_last_error(NULL) says why, on this thread.
  */
 STRUCTMD_API structmd_status structmd_create(const char* options_json, structmd_sim** out);
@@ -821,7 +827,10 @@ STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const c
  * "auto"), "precision": "single" | "mixed" | "double", "device": the GPU's name or "host CPU",
  * "threads": CPU threads of the CPU backend (0 on CUDA), "loaded": bool, "particles": n (0 before
  * a load), "final_step": step at which the schedule ends (-1 before a load), "stopped_by": the
- * simulationStep entry that ended the last step call early, or null}. Keys may be added in
+ * simulationStep entry that ended the last step call early, or null, "mpi": {"compiled": bool,
+ * "ranks": ranks of the "mpi_comm" communicator (1 without), "rank": this one's (0 without)},
+ * and under parallel tempering "replica_exchange": {"temperatures", and per pair of neighbouring
+ * temperatures "attempts", "accepted", "acceptance"} (docs/input-format.md)}. Keys may be added in
  * later versions.
  *
  * @param sim          the handle.

@@ -17,6 +17,7 @@
 
 namespace structmd {
 class ForceFieldComponents;  // forcefield/component_set.hpp, reached through engines/make_engine.hpp
+class Communicator;          // parallel/communicator.hpp
 }
 
 struct structmd_sim {
@@ -26,6 +27,9 @@ struct structmd_sim {
     std::shared_ptr<const structmd::ForceFieldComponents> components;
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> logFile{nullptr, &std::fclose};
     structmd::Logger log;
+    // The communicator of the "mpi_comm" option, whose ranks share the batches of each load; null
+    // without one. The host owns MPI itself (MPI_Init, MPI_Finalize).
+    std::shared_ptr<const structmd::Communicator> communicator;
     std::unique_ptr<structmd::Simulation> simulation;
     // The input the simulation was loaded from, kept as text until the first parameter call parses
     // it into runtimeDocument (parameters.cpp), which then holds the changes of structmd_set_parameter.

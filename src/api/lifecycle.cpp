@@ -6,6 +6,7 @@
 
 #include "api/handle.hpp"
 #include "engines/make_engine.hpp"
+#include "parallel/load_over_ranks.hpp"
 
 namespace structmd::api {
 
@@ -20,7 +21,8 @@ void load_text(structmd_sim& sim, const std::string& text) {
     sim.simulation.reset();  // a failed load leaves no simulation, and the old one's memory is freed first
     sim.document.clear();
     sim.runtimeDocument.reset();
-    sim.simulation = load_simulation(sim.options, text, *sim.components, sim.log);
+    sim.simulation = load_over_ranks(sim.options, text, *sim.components, sim.log,
+                                     sim.communicator ? sim.communicator : single_process());
     sim.document = text;
     sim.log.info("loaded " + std::to_string(sim.simulation->particle_count()) + " particles on " +
                  sim.simulation->backend_name() + " (" + sim.simulation->device_name() + "), " +
@@ -46,6 +48,7 @@ structmd_status structmd_create(const char* options_json, structmd_sim** out) {
         auto sim = std::make_unique<structmd_sim>();
         sim->options = parse_engine_options(options_json);
         sim->components = handle_components(sim->options.plugins);
+        if (sim->options.mpiComm) sim->communicator = communicator_from_fortran(*sim->options.mpiComm);
         std::FILE* sink = stderr;
         if (!sim->options.logFile.empty()) {
             sim->logFile.reset(std::fopen(sim->options.logFile.c_str(), "a"));

@@ -72,9 +72,14 @@ EngineOptions parse_engine_options(const char* text) {
             } else if (key == "plugins") {
                 if (!value.is_array()) throw option_error(key, "expected an array of paths, got " + value.dump());
                 for (const auto& path : value) options.plugins.push_back(string_option(path, key));
+            } else if (key == "mpi_comm") {
+                if (!value.is_number_integer())
+                    throw option_error(key, "expected an integer (a Fortran communicator handle, MPI_Comm_c2f), got " +
+                                                value.dump());
+                options.mpiComm = value.get<int64_t>();
             } else {
-                throw option_error(
-                    key, "unknown option (known: backend, device, precision, threads, log, log_file, plugins)");
+                throw option_error(key, "unknown option (known: backend, device, precision, threads, log, log_file, "
+                                        "plugins, mpi_comm)");
             }
         }
     }

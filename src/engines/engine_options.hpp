@@ -1,7 +1,9 @@
 #pragma once
 // Options of structmd_create, validated: the backend and precision every load of a handle uses.
+#include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,9 @@ struct EngineOptions {
     LogLevel logLevel = LogLevel::warning;
     std::string logFile;  // empty: standard error
     std::vector<std::string> plugins;  // plugin libraries this handle loads, beside the process-wide ones
+    // The host's MPI communicator as a Fortran handle (MPI_Comm_c2f), over whose ranks the handle
+    // spreads the batches of its inputs (parallel/); empty: no MPI.
+    std::optional<int64_t> mpiComm;
 };
 
 // Parses the options JSON (NULL or "" for defaults) and resolves "auto". Throws Error(ERR_ARGUMENT)

@@ -7,8 +7,10 @@
 namespace structmd {
 
 std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const std::string& text,
-                                            const ForceFieldComponents& components, const Logger& log) {
+                                            const ForceFieldComponents& components, const Logger& log,
+                                            int64_t firstParticleId) {
     SimulationSpec spec = read_simulation(text, log, components.reader());
+    spec.firstParticleId = firstParticleId;
     if (options.backend == BackendKind::cuda) {
         switch (options.precision) {
             case Precision::single: return make_cuda_engine_single(options.device, std::move(spec), components, log);

@@ -14,8 +14,10 @@ namespace structmd {
 // Reads an input document with the handle's force-field components (built-ins and its plugins') and
 // builds its engine as the options say. Throws Error with the JSON path for bad input, ERR_DEVICE /
 // ERR_MEMORY when the backend fails, ERR_UNSUPPORTED for a plugin component not compiled for the
-// engine.
+// engine. firstParticleId: the global id of the document's particle 0 when it is a share of a larger
+// system's batches (parallel/), which keys the particles' noise.
 std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const std::string& text,
-                                            const ForceFieldComponents& components, const Logger& log);
+                                            const ForceFieldComponents& components, const Logger& log,
+                                            int64_t firstParticleId = 0);
 
 }  // namespace structmd

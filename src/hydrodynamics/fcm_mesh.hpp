@@ -315,7 +315,7 @@ public:
         const double volume = plan_.box[0] * plan_.box[1] * plan_.box[2];
         backend_.for_each(spectrumPoints,
                           FcmStokesSolve<R>{spectrum_.data(), grid, p.box.length, R(dt / (double(points) * viscosity)),
-                                            R(2.0 * kT * dt / (volume * viscosity)), p.seed, noiseStream, p.now()});
+                                            R(2.0 * kT * dt / (volume * viscosity)), p.noise.seed, noiseStream, p.now()});
         for (int d = 0; d < 3; ++d) fft_.inverse(spectrum_.data() + d * spectrumPoints, field_.data() + d * points);
         backend_.for_each(p.count, FcmInterpolate<R>{p.pos.data(), group, axes_, field_.data(),
                                                      R(volume / double(points)), displacement});

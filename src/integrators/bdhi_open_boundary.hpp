@@ -44,12 +44,12 @@ struct FlattenForces {
 template <class R>
 struct DrawHydrodynamicNoise {
     const Real4<R>* spheres;
-    uint64_t seed;
+    NoiseKey noise;
     ClockView now;
     R* w;
     SMD_HD void operator()(int64_t i) const {
         Vec3<R> xi{R(0), R(0), R(0)};
-        if (spheres[i].w > R(0)) xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
+        if (spheres[i].w > R(0)) xi = gaussian3<R>(noise, NoisePurpose::integrator, i, now.step());
         w[3 * i] = xi.x;
         w[3 * i + 1] = xi.y;
         w[3 * i + 2] = xi.z;
@@ -111,7 +111,7 @@ public:
         backend_.for_each(n, MobilityProduct<R>{spheres_.data(), n, rpy_, flatForce_.data(), drift_.data()});
         const bool thermal = s.kT > 0.0;
         if (thermal) {
-            backend_.for_each(n, DrawHydrodynamicNoise<R>{spheres_.data(), p.seed, p.now(), gaussian_.data()});
+            backend_.for_each(n, DrawHydrodynamicNoise<R>{spheres_.data(), p.noise, p.now(), gaussian_.data()});
             mobility_sqrt(n, p, gaussian_.data(), noise_.data());
         }
         backend_.for_each(n, BdhiMove<R>{p.pos.data(), p.image.data(), p.force.data(), drift_.data(),

@@ -29,7 +29,7 @@ struct EulerMaruyamaStep {
     const uint8_t* group;
     Box<R> box;
     R dt, viscosity, kT;
-    uint64_t seed;
+    NoiseKey noiseKey;
     ClockView now;
     FaultSlot fault;
     DriftBookkeeping<R> bookkeeping;  // for every particle, moved or not (state/drift_bookkeeping.hpp)
@@ -42,7 +42,7 @@ struct EulerMaruyamaStep {
         const R mobility = selfDiffusion ? selfDiffusion[i] / kT
                                          : R(1) / (R(6 * 3.14159265358979323846) * viscosity * radius[i]);
         const R spread = sqrt(R(2) * kT * mobility * dt);
-        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
+        const Vec3<R> xi = gaussian3<R>(noiseKey, NoisePurpose::integrator, i, now.step());
         const Vec3<R> move = (dt * mobility) * xyz(f) + spread * xi;
         fault.check_move(i, move);
         const Real4<R> p = displaced(pos[i], move, box, image[i]);
@@ -81,7 +81,7 @@ public:
         const R* selfDiffusion = viscosity_ > 0.0 ? nullptr : p.selfDiffusion.data();
         backend_.for_each(p.count, EulerMaruyamaStep<R>{p.pos.data(), p.image.data(), p.force.data(), p.radius.data(),
                                                         selfDiffusion, s.group, p.box, R(s.timeStep), R(viscosity_), R(s.kT),
-                                                        p.seed, p.now(), p.fault_slot(1), p.drift});
+                                                        p.noise, p.now(), p.fault_slot(1), p.drift});
         forces.positions_moved(s.timeStep, true);
     }
 

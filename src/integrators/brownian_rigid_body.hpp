@@ -22,7 +22,7 @@ struct RotateByTorque {
     const R* rotationalDiffusion;  // null: mobility from the viscosity and the radius
     const uint8_t* group;
     R dt, viscosity, kT;
-    uint64_t seed;
+    NoiseKey noiseKey;
     ClockView now;
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
@@ -30,7 +30,7 @@ struct RotateByTorque {
         const R mobility = rotationalDiffusion ? rotationalDiffusion[i] / kT
                                                : R(1) / (R(8 * 3.14159265358979323846) * viscosity * a * a * a);
         const R spread = sqrt(R(2) * kT * mobility * dt);
-        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::rotation, i, now.step());
+        const Vec3<R> xi = gaussian3<R>(noiseKey, NoisePurpose::rotation, i, now.step());
         const Vec3<R> theta = (dt * mobility) * xyz(torque[i]) + spread * xi;
         dir[i] = rotated(dir[i], theta);
     }
@@ -49,7 +49,7 @@ public:
         forces.update_forces();
         const R* rotationalDiffusion = viscosity_ > 0.0 ? nullptr : p.rotationalSelfDiffusion.data();
         backend_.for_each(p.count, RotateByTorque<R>{p.dir.data(), p.torque.data(), p.radius.data(), rotationalDiffusion,
-                                                     s.group, R(s.timeStep), R(viscosity_), R(s.kT), p.seed, p.now()});
+                                                     s.group, R(s.timeStep), R(viscosity_), R(s.kT), p.noise, p.now()});
         BrownianEulerMaruyama<B, R>::step(p, forces);
     }
 

@@ -51,7 +51,7 @@ struct BbkStep {
     const R* frictionOf;  // by particle; null: gamma for all
     Box<R> box;
     R dt, gamma, kT;
-    uint64_t seed;
+    NoiseKey noiseKey;
     ClockView now;
     FaultSlot fault;
     DriftBookkeeping<R> bookkeeping;
@@ -66,7 +66,7 @@ struct BbkStep {
         const R friction = frictionOf ? frictionOf[i] : gamma;
         const R g = R(0.5) * friction * dt;
         const R noise = sqrt(R(2) * m * friction * kT / dt);
-        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
+        const Vec3<R> xi = gaussian3<R>(noiseKey, NoisePurpose::integrator, i, now.step());
         v.x = ((R(1) - g) * v.x + dt * (f.x + noise * xi.x) / m) / (R(1) + g);
         v.y = ((R(1) - g) * v.y + dt * (f.y + noise * xi.y) / m) / (R(1) + g);
         v.z = ((R(1) - g) * v.z + dt * (f.z + noise * xi.z) / m) / (R(1) + g);
@@ -93,7 +93,7 @@ public:
     void begin(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
         if (resetVelocities_)
-            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.seed, p.now(), R(s.kT)});
+            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.noise, p.now(), R(s.kT)});
         if (stopTransRotSteps_ > 0) remove_rigid_motion(backend_, p, s.group, R(0));  // full-step v(0) at x(0)
         forces.update_forces();
         backend_.for_each(p.count, HalfKickBack<R>{p.vel.data(), p.force.data(), s.group, R(s.timeStep)});
@@ -104,7 +104,7 @@ public:
         forces.update_forces();
         const R* frictionOf = friction_ > 0.0 ? nullptr : p.friction.data();
         backend_.for_each(p.count, BbkStep<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
-                                              frictionOf, p.box, R(s.timeStep), R(friction_), R(s.kT), p.seed, p.now(),
+                                              frictionOf, p.box, R(s.timeStep), R(friction_), R(s.kT), p.noise, p.now(),
                                               p.fault_slot(1), p.drift});
         // A reduction, so the host waits: only on the steps that ask for it. It moves the
         // particles again, so the engine does its bookkeeping itself then.

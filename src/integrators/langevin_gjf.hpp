@@ -21,7 +21,7 @@ struct GjfDrift {
     const R* frictionOf;  // by particle; null: gamma for all
     Box<R> box;
     R dt, gamma, kT;
-    uint64_t seed;
+    NoiseKey noiseKey;
     ClockView now;
     FaultSlot fault;
     DriftBookkeeping<R> bookkeeping;  // for every particle, moved or not (state/drift_bookkeeping.hpp)
@@ -37,7 +37,7 @@ struct GjfDrift {
         const R b = R(1) / (R(1) + R(0.5) * friction * dt);
         const R a = (R(1) - R(0.5) * friction * dt) * b;
         const R amplitude = sqrt(R(2) * friction * m * kT * dt);
-        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::integrator, i, now.step());
+        const Vec3<R> xi = gaussian3<R>(noiseKey, NoisePurpose::integrator, i, now.step());
         const Vec3<R> beta{amplitude * xi.x, amplitude * xi.y, amplitude * xi.z};
         const R c = b * dt / (R(2) * m);
         const Vec3<R> move = (b * dt) * xyz(v) + c * (dt * xyz(f) + beta);
@@ -83,7 +83,7 @@ public:
     void begin(Particles<B, R>& p, ForceSource&) override {
         const IntegratorScope& s = this->scope();
         if (resetVelocities_)
-            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.seed, p.now(), R(s.kT)});
+            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.noise, p.now(), R(s.kT)});
     }
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
@@ -92,7 +92,7 @@ public:
         forces.update_forces();
         const R* frictionOf = friction_ > 0.0 ? nullptr : p.friction.data();
         backend_.for_each(p.count, GjfDrift<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
-                                               frictionOf, p.box, dt, R(friction_), R(s.kT), p.seed, p.now(), p.fault_slot(1),
+                                               frictionOf, p.box, dt, R(friction_), R(s.kT), p.noise, p.now(), p.fault_slot(1),
                                                p.drift});
         forces.positions_moved(s.timeStep, true);
         forces.update_forces();

@@ -81,7 +81,7 @@ struct LlgStep {
     const R* anisotropy;      // null: K = 0
     const uint8_t* group;
     R dt, kT, damping, gyroRatio, msat;
-    uint64_t seed;
+    NoiseKey noiseKey;
     ClockView now;
     LlgStage stage;
 
@@ -94,7 +94,7 @@ struct LlgStep {
         // The same Wiener increment in both Heun stages: the noise is drawn by (particle, step).
         if (kT > R(0)) {
             const R spread = sqrt(R(2) * kT * damping / (gyroRatio * mm.w * dt));
-            b += spread * gaussian3<R>(seed, NoisePurpose::magnetization, i, now.step());
+            b += spread * gaussian3<R>(noiseKey, NoisePurpose::magnetization, i, now.step());
         }
         if (anisotropy) b.z += R(2) * anisotropy[i] / msat * m.z;
         const Vec3<R> dm = dt * llg_rate(m, b, damping, gyroRatio);
@@ -138,7 +138,7 @@ private:
         backend_.for_each(p.count, LlgStep<R>{p.magnetization.data(), start_.data(), p.magneticField.data(),
                                               p.dir.empty() ? nullptr : p.dir.data(),
                                               p.anisotropy.empty() ? nullptr : p.anisotropy.data(), s.group,
-                                              R(s.timeStep), R(s.kT), R(damping_), R(gyroRatio_), R(msat_), p.seed,
+                                              R(s.timeStep), R(s.kT), R(damping_), R(gyroRatio_), R(msat_), p.noise,
                                               p.now(), which});
         forces.magnetization_changed();
     }

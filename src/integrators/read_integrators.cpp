@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <optional>
+#include <set>
 
 #include "core/error.hpp"
 #include "input/read_parameters.hpp"
@@ -68,6 +69,11 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
                                                       "moves the same particles through the same periodic Stokes flow");
         const IntegratorComponent& component =
             registry.at({entry.cls, entry.subclass}, spec.path + ".type", "integrator");
+        // Hydrodynamics couples every particle of its group through one fluid, and batches are
+        // independent systems: they would share it.
+        if (entry.cls.rfind("BDHI", 0) == 0 && std::set<int32_t>(system.batchId.begin(), system.batchId.end()).size() > 1)
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ".type: hydrodynamics couples the particles of every batch "
+                                                  "(batchId) through one fluid; batches are independent systems: give one batch");
         spec.key = component.key;
         spec.overdamped = component.overdamped;
         spec.rotates = component.rotates;

@@ -16,12 +16,12 @@ namespace structmd {
 enum class NoisePurpose : uint64_t { initialVelocities = 0, integrator = 1, velocityReset = 2, rotation = 3, magnetization = 4,
                                     hydrodynamics = 5 };
 
-// Three independent N(0, 1) numbers for particle `id` at `step`.
+// Three independent N(0, 1) numbers for the particle in `slot` at `step`, keyed by its global id.
 template <class R>
-SMD_HD SMD_INLINE Vec3<R> gaussian3(uint64_t seed, NoisePurpose purpose, int64_t id, int64_t step) {
+SMD_HD SMD_INLINE Vec3<R> gaussian3(NoiseKey key, NoisePurpose purpose, int64_t slot, int64_t step) {
+    const uint64_t id = static_cast<uint64_t>(slot + key.firstId);
     double xi[4];
-    normal4(seed, (static_cast<uint64_t>(purpose) << 48) ^ static_cast<uint64_t>(id), static_cast<uint64_t>(step),
-            xi);
+    normal4(key.seed, (static_cast<uint64_t>(purpose) << 48) ^ id, static_cast<uint64_t>(step), xi);
     return {R(xi[0]), R(xi[1]), R(xi[2])};
 }
 
@@ -30,13 +30,13 @@ template <class R>
 struct DrawThermalVelocities {
     Real4<R>* vel;
     const uint8_t* group;
-    uint64_t seed;
+    NoiseKey noiseKey;
     ClockView now;
     R kT;
     SMD_HD void operator()(int64_t i) const {
         if ((group && !group[i]) || held_fixed(vel[i])) return;
         Real4<R> v = vel[i];
-        const Vec3<R> xi = gaussian3<R>(seed, NoisePurpose::velocityReset, i, now.step());
+        const Vec3<R> xi = gaussian3<R>(noiseKey, NoisePurpose::velocityReset, i, now.step());
         const R sigma = sqrt(kT / v.w);
         v.x = sigma * xi.x;
         v.y = sigma * xi.y;

@@ -2,7 +2,8 @@
 // host program would: create a handle, load the input, step along the schedule, report.
 //
 //   structmd run INPUT.json [--backend auto|cpu|cuda] [--precision single|mixed|double] [--threads N]
-//                [--plugin LIBRARY.so]... [--steps N] [--thermo K] [--progress SECONDS] [--quiet]
+//                [--plugin LIBRARY.so]... [--steps N] [--thermo K] [--progress SECONDS] [--quiet] [--mpi]
+//   mpirun -np K structmd run INPUT.json ...   (the input's batches spread over K ranks)
 //   structmd client --ipi HOST:PORT|unix:NAME INPUT.json [--backend ...] [--precision ...] [--threads N]
 //                   [--plugin LIBRARY.so]... [--length-unit A] [--energy-unit EV] [--connect-timeout S] [--quiet]
 //   structmd --version
@@ -11,6 +12,9 @@
 // --progress seconds (default 10) otherwise, as in a batch job's log. --thermo K prints the energies
 // every K steps on standard output. A run stops at the first failure (a blow-up included) with the
 // engine's message and a hint.
+//
+// Under MPI (mpirun, or --mpi) every rank runs the same calls on its share of the batches, and rank 0
+// alone prints: progress, thermo rows, the summary and failures.
 //
 // Exit status: 0 on success, the structmd_status code (1..10) when the engine reports a failure,
 // CLI11's own codes for a malformed command line.
@@ -29,6 +33,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ipi_client.hpp"
+#include "mpi_session.hpp"
 #include "structmd.hpp"
 
 namespace {
@@ -53,6 +58,9 @@ struct RunOptions {
     int64_t thermo = 0;                // 0: no energies on screen
     double progressSeconds = 10.0;     // between progress lines without a terminal
     bool quiet = false;
+    bool mpi = false;                  // --mpi: MPI without an MPI launcher's environment
+    const structmd::launcher::MpiSession* session = nullptr;  // the MPI session, when there is one
+    bool prints() const { return !session || session->rank() == 0; }
 };
 
 // The fields of structmd_get_info the launcher reports.
@@ -183,9 +191,10 @@ private:
 std::string create_options(const RunOptions& options) {
     nlohmann::json json = {{"backend", options.backend},
                            {"precision", options.precision},
-                           {"log", options.quiet ? "warning" : "info"}};
+                           {"log", options.quiet || !options.prints() ? "warning" : "info"}};
     if (options.threads > 0) json["threads"] = options.threads;
     if (!options.plugins.empty()) json["plugins"] = options.plugins;
+    if (options.session) json["mpi_comm"] = options.session->world_handle();
     return json.dump();
 }
 
@@ -198,18 +207,23 @@ double energy(structmd_sim* sim, const char* term) {
 // The energies on standard output, a header first, one row per call.
 class ThermoTable {
 public:
+    explicit ThermoTable(bool prints) : prints_(prints) {}
+
+    // Every rank asks for the energies (a collective call under MPI); rank 0 prints them.
     void print(structmd_sim* sim, int64_t step) {
+        const double kinetic = energy(sim, "kinetic"), potential = energy(sim, "potential");
+        const double total = energy(sim, "total");
+        if (!prints_) return;
         if (!headed_) {
             std::printf("%12s  %16s  %16s  %16s\n", "step", "kinetic", "potential", "total");
             headed_ = true;
         }
-        const double kinetic = energy(sim, "kinetic"), potential = energy(sim, "potential");
-        std::printf("%12lld  %16.8g  %16.8g  %16.8g\n", static_cast<long long>(step), kinetic, potential,
-                    energy(sim, "total"));
+        std::printf("%12lld  %16.8g  %16.8g  %16.8g\n", static_cast<long long>(step), kinetic, potential, total);
         std::fflush(stdout);
     }
 
 private:
+    bool prints_;
     bool headed_ = false;
 };
 
@@ -218,15 +232,17 @@ private:
 // does a flow-control step of the input that asks to stop.
 void run_steps(structmd_sim* sim, const RunOptions& options, int64_t first_step, int64_t final_step) {
     std::optional<ProgressLine> progress;
-    if (!options.quiet)
+    if (!options.quiet && options.prints())
         progress.emplace(stderr, first_step, final_step, isatty(STDERR_FILENO) != 0, options.progressSeconds);
-    ThermoTable thermo;
+    ThermoTable thermo(options.prints());
     ChunkPlanner planner(0.5);
     const auto start = Clock::now();
     int64_t step = first_step;
     if (options.thermo > 0) thermo.print(sim, step);
     while (step < final_step) {
-        int64_t chunk = std::min(planner.next(), final_step - step);
+        // Under MPI every rank takes rank 0's chunk: each structmd_step call is collective.
+        int64_t chunk = std::min(options.session ? options.session->rank0_value(planner.next()) : planner.next(),
+                                 final_step - step);
         if (options.thermo > 0) chunk = std::min(chunk, options.thermo - step % options.thermo);
         const auto chunk_start = Clock::now();
         check(structmd_step(sim, chunk), sim, "structmd_step");
@@ -237,7 +253,7 @@ void run_steps(structmd_sim* sim, const RunOptions& options, int64_t first_step,
         if (progress) progress->update(step, seconds_since(start), step >= final_step || !stopper.empty());
         if (!stopper.empty()) {
             progress.reset();  // ends its line first
-            if (!options.quiet)
+            if (!options.quiet && options.prints())
                 std::fprintf(stderr, "structmd run: stopped at step %lld by simulationStep.%s\n",
                              static_cast<long long>(step), stopper.c_str());
             return;
@@ -259,6 +275,7 @@ void print_summary(const RunOptions& options, const EngineInfo& info, int64_t st
     std::printf("  particle-steps/s  %.4g\n", rate * static_cast<double>(info.particles));
     std::printf("  backend           %s\n", backend.c_str());
     std::printf("  precision         %s\n", info.precision.c_str());
+    if (options.session) std::printf("  MPI ranks         %d\n", options.session->size());
 }
 
 int run_command(const RunOptions& options) {
@@ -278,10 +295,12 @@ int run_command(const RunOptions& options) {
             run_steps(sim, options, first_step, final_step);
         const double wall = seconds_since(start);
 
-        if (!options.quiet) print_summary(options, info, current_step(sim) - first_step, wall);
+        if (!options.quiet && options.prints()) print_summary(options, info, current_step(sim) - first_step, wall);
         return 0;
     } catch (const Failure& failure) {
         std::fflush(stdout);
+        // Every rank fails alike (the engine agrees on failures over the ranks); rank 0 says why.
+        if (!options.prints()) return failure.status();
         std::fprintf(stderr, "structmd: stopped: %s (status %d)\n", failure.what(), static_cast<int>(failure.status()));
         if (failure.status() == STRUCTMD_ERR_NUMERICAL)
             std::fprintf(stderr,
@@ -337,6 +356,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     run->add_flag("--quiet", options.quiet,
                   "No progress line, no summary, engine log at warning level (errors still print)");
+    run->add_flag("--mpi", options.mpi,
+                  "Spread the input's batches over MPI ranks (implied under mpirun, srun or another MPI launcher)");
 
     // The engine as an i-PI client: the same engine options as run, double precision by default since
     // the server's optimiser or integrator expects it.
@@ -374,5 +395,13 @@ int main(int argc, char** argv) {
         clientOptions.quiet = clientEngine.quiet;
         return structmd::launcher::run_ipi_client(clientOptions);
     }
+    if (!structmd::launcher::MpiSession::requested(options.mpi)) return run_command(options);
+    if (!structmd::launcher::MpiSession::compiled()) {
+        std::fprintf(stderr, "structmd: MPI is not compiled in: this structmd was built without MPI (install MPI, "
+                             "e.g. Debian's libopenmpi-dev, and build again; CMake option STRUCTMD_MPI)\n");
+        return STRUCTMD_ERR_UNSUPPORTED;
+    }
+    structmd::launcher::MpiSession session(&argc, &argv);
+    options.session = &session;
     return run_command(options);
 }

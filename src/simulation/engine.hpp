@@ -66,7 +66,7 @@ public:
         backend_.activate();
         p_.count = static_cast<int64_t>(spec.positions.size());
         p_.box = Box<R>::make(spec.box[0], spec.box[1], spec.box[2]);
-        p_.seed = spec.seed;
+        p_.noise = {spec.seed, spec.firstParticleId};
         upload_positions(flatten(spec.positions).data());
         upload_velocities(spec.velocities.empty() ? maxwell_boltzmann(spec).data() : flatten(spec.velocities).data());
         backend_.resize(p_.force, p_.count);
@@ -212,6 +212,7 @@ public:
         if (stoppedBy_.empty()) stoppedBy_ = by;
     }
     const std::string& stopped_by() const override { return stoppedBy_; }
+    void set_step_firing(StepFiring* firing) override { stepFiring_ = firing; }
 
     void compute(unsigned flags) override {
         backend_.activate();
@@ -788,8 +789,15 @@ private:
     // Simulation steps see the state before the step is taken; the final state of the schedule
     // is given to every step whose window holds it.
     void fire_steps(bool final) {
+        dueSteps_.clear();
         for (auto& s : steps_)
-            if (final ? s->in_window(current_step()) : s->due(current_step())) s->fire(*this);
+            if (final ? s->in_window(current_step()) : s->due(current_step())) dueSteps_.push_back(s.get());
+        if (dueSteps_.empty()) return;
+        if (stepFiring_) {
+            stepFiring_->fire(dueSteps_);
+            return;
+        }
+        for (SimulationStep* s : dueSteps_) s->fire(*this);
     }
 
     // All the digits a double needs, so that two numbers that differ never print alike.
@@ -927,6 +935,8 @@ private:
     std::vector<std::unique_ptr<Integrator<B, R>>> integrators_;
     Schedule schedule_;
     std::vector<std::unique_ptr<SimulationStep>> steps_;
+    std::vector<SimulationStep*> dueSteps_;  // those fire_steps fires, kept to reuse its memory
+    StepFiring* stepFiring_ = nullptr;
     std::vector<int32_t> typeIndex_;
     std::vector<int> batchId_;
     std::vector<double> masses_;

@@ -1,5 +1,7 @@
 #include "simulation/host_transfer.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -62,24 +64,38 @@ template void unpack_vectors<double>(const Real4<double>*, int64_t, double*);
 std::vector<double> maxwell_boltzmann(const SimulationSpec& spec) {
     const int64_t n = static_cast<int64_t>(spec.positions.size());
     std::vector<double> v(3 * n);
-    double momentum[3] = {0, 0, 0};
-    double totalMass = 0;
+    // Each batch is a system of its own: its centre-of-mass momentum is removed on its own, which
+    // also keeps the draw of a batch the same whichever share of the batches an engine holds.
+    std::vector<int32_t> batches(spec.batchId.begin(), spec.batchId.end());
+    std::sort(batches.begin(), batches.end());
+    batches.erase(std::unique(batches.begin(), batches.end()), batches.end());
+    auto batch_of = [&](int64_t i) {
+        if (spec.batchId.empty()) return size_t{0};
+        return static_cast<size_t>(std::lower_bound(batches.begin(), batches.end(), spec.batchId[i]) - batches.begin());
+    };
+    const size_t count = std::max<size_t>(batches.size(), 1);
+    std::vector<std::array<double, 3>> momentum(count, {0.0, 0.0, 0.0});
+    std::vector<double> totalMass(count, 0.0);
+    std::vector<int64_t> members(count, 0);
     for (int64_t i = 0; i < n; ++i) {
         double normal[4];
-        normal4(spec.seed, static_cast<uint64_t>(i), 0, normal);
+        normal4(spec.seed, static_cast<uint64_t>(i + spec.firstParticleId), 0, normal);
+        const size_t b = batch_of(i);
+        ++members[b];
         // A massless particle (a type of mass 0, as Brownian inputs write) has no thermal velocity.
         if (!(spec.mass[i] > 0.0)) continue;
         const double sigma = std::sqrt(spec.velocityKT / spec.mass[i]);
         for (int d = 0; d < 3; ++d) {
             v[3 * i + d] = sigma * normal[d];
-            momentum[d] += spec.mass[i] * v[3 * i + d];
+            momentum[b][d] += spec.mass[i] * v[3 * i + d];
         }
-        totalMass += spec.mass[i];
+        totalMass[b] += spec.mass[i];
     }
-    if (n > 1 && totalMass > 0.0)
-        for (int64_t i = 0; i < n; ++i)
-            if (spec.mass[i] > 0.0)
-                for (int d = 0; d < 3; ++d) v[3 * i + d] -= momentum[d] / totalMass;
+    for (int64_t i = 0; i < n; ++i) {
+        const size_t b = batch_of(i);
+        if (members[b] > 1 && totalMass[b] > 0.0 && spec.mass[i] > 0.0)
+            for (int d = 0; d < 3; ++d) v[3 * i + d] -= momentum[b][d] / totalMass[b];
+    }
     return v;
 }
 

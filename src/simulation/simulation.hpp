@@ -15,6 +15,15 @@ namespace structmd {
 
 struct RuntimeSpec;           // simulation/read_simulation.hpp
 class ForceFieldComponents;  // forcefield/component_set.hpp
+class SimulationStep;        // steps/simulation_step.hpp
+
+// Fires the simulation steps due at the present step. By default a simulation fires them on itself;
+// one that holds a share of the batches (parallel/) fires them on the whole system instead.
+class StepFiring {
+public:
+    virtual ~StepFiring() = default;
+    virtual void fire(const std::vector<SimulationStep*>& due) = 0;
+};
 
 enum ComputeFlags : unsigned { kForces = 1u, kEnergy = 2u, kVirial = 4u };
 
@@ -56,6 +65,8 @@ public:
     virtual void request_stop(const std::string& by) = 0;
     // The step that ended the last step call early; empty when it ran all its steps.
     virtual const std::string& stopped_by() const = 0;
+    // Who fires the due simulation steps from now on; nullptr: the simulation, on itself.
+    virtual void set_step_firing(StepFiring* firing) = 0;
     virtual void compute(unsigned flags) = 0;
 
     virtual void get_positions(double* xyz) = 0;  // wrapped into the box

@@ -16,6 +16,9 @@ namespace structmd {
 
 struct SimulationSpec {
     uint64_t seed = 0;
+    // The global id of particle 0 here: non-zero for an engine holding a share of the batches
+    // (parallel/batch_split.hpp), whose particles keep their global ids' noise.
+    int64_t firstParticleId = 0;
     Constants constants;  // k_B, the electric conversion factor of the units, the largest particle radius
     double velocityKT = 0.0;  // k_B T of drawn velocities: the first scheduled integrator's temperature
     std::array<double, 3> box{0, 0, 0};

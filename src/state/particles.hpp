@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "core/box.hpp"
+#include "core/random.hpp"
 #include "core/vec.hpp"
 #include "state/drift_bookkeeping.hpp"
 #include "state/fault.hpp"
@@ -39,7 +40,7 @@ struct Particles {
     Timeline timeline;                 // the step and time, as the host knows them
     int64_t version = 0;               // changes whenever positions or the box change
     DriftBookkeeping<R> drift;         // what the next drift kernel may do for the engine
-    uint64_t seed = 0;                 // the system's seed, for counter-based noise
+    NoiseKey noise;                    // the seed and the global id of slot 0, for counter-based noise
 
     ClockView now() const { return timeline.view(clock.data()); }
     double maxMove2 = 1e300;           // see FaultSlot; no limit without neighbour lists

@@ -27,7 +27,8 @@ ALLOWED = {
                           "simulation", "steps"},
     "engines": BASE | {"state", "input", "expression", "neighbour", "forcefield", "hydrodynamics", "integrators",
                        "simulation", "steps", "backends", "engines"},
-    "api": BASE | {"simulation", "engines", "api"},
+    "parallel": BASE | {"state", "input", "forcefield", "simulation", "steps", "engines", "parallel"},
+    "api": BASE | {"simulation", "engines", "parallel", "api"},
     "launcher": set(),  # a host like any other: the public header only
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.MULTILINE)

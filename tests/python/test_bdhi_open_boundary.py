@@ -276,3 +276,16 @@ def test_lanczos_with_a_loose_tolerance_still_has_the_covariance_of_m_to_that_to
     error = np.sqrt((np.outer(diagonal, diagonal) + expected ** 2) / samples)
     worst = np.max(np.abs(covariance - expected) / error)
     assert worst < 5.0, f"covariance off by {worst:.1f} standard errors"
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_several_batches_are_refused_since_they_would_share_one_fluid(options, method):
+    doc = document([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]], ["small", "small"], integrator(method, 0.01), 10)
+    doc["topology"]["structure"] = {"labels": ["id", "type", "batchId"], "data": [[0, "small", 0], [1, "small", 1]]}
+    with structmd.Simulation(options) as sim:
+        with pytest.raises(structmd.UnsupportedError, match=r"integrator\.bdhi\.type: .*batch"):
+            sim.load(doc)
+    doc["topology"]["structure"]["data"][1][2] = 0
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+        sim.run()

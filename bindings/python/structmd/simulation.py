@@ -47,7 +47,8 @@ class Simulation:
     (vectors) or lists (scalars). Every failure raises the StructmdError subclass of its status.
 
     options: None (all defaults), a dict or a JSON string with the keys of structmd_create
-    ("backend", "device", "precision", "threads", "log", "log_file", "plugins").
+    ("backend", "device", "precision", "threads", "log", "log_file", "plugins", "mpi_comm": a
+    communicator as a Fortran handle, e.g. mpi4py's comm.py2f(), under which every call is collective).
     """
 
     def __init__(self, options=None):
@@ -533,7 +534,7 @@ class Simulation:
     @property
     def info(self):
         """A dict describing the handle: backend, precision, device, threads, loaded, particles,
-        final_step."""
+        final_step, stopped_by, mpi (compiled, ranks, rank)."""
         size = _INFO_FIRST_GUESS
         while True:
             buffer = create_string_buffer(size)

@@ -1,0 +1,71 @@
+#include "parallel/load_over_ranks.hpp"
+
+#include <optional>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engines/make_engine.hpp"
+#include "parallel/batch_split.hpp"
+#include "parallel/batches_over_ranks.hpp"
+#include "parallel/replica_documents.hpp"
+#include "parallel/replica_exchange.hpp"
+
+namespace structmd {
+
+namespace {
+
+nlohmann::json parse(const std::string& text) {
+    try {
+        return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw input_error("", std::string("not valid JSON: ") + e.what());
+    }
+}
+
+}  // namespace
+
+std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const std::string& text,
+                                            const ForceFieldComponents& components, const Logger& log,
+                                            std::shared_ptr<const Communicator> comm) {
+    // Parallel tempering: the document's replicas over the ranks. A cheap look first, so that
+    // other inputs are not parsed twice.
+    if (text.find("ReplicaExchange") != std::string::npos) {
+        std::vector<std::unique_ptr<Simulation>> replicas;
+        std::optional<ReplicaExchangeSpec> spec;
+        run_together(*comm, [&] {
+            nlohmann::json document = parse(text);
+            spec = take_replica_exchange(document);
+            if (!spec) return;
+            const int count = static_cast<int>(spec->temperatures.size());
+            if (count < comm->size())
+                throw Error(STRUCTMD_ERR_UNSUPPORTED,
+                            "simulationStep." + spec->name + ".parameters.temperatures: " + std::to_string(count) +
+                                " replicas cannot be spread over " + std::to_string(comm->size()) +
+                                " ranks: every rank needs one");
+            for (int k = comm->rank(); k < count; k += comm->size())
+                replicas.push_back(
+                    load_simulation(options, replica_document(document, *spec, k).dump(), components, log));
+        });
+        if (spec) return std::make_unique<ReplicaExchange>(std::move(replicas), std::move(comm), std::move(*spec));
+    }
+    std::unique_ptr<Simulation> local;
+    BatchShare share;
+    // A rank whose share fails to load (its own input error, memory) fails every rank's load.
+    run_together(*comm, [&] {
+        if (comm->size() == 1) {
+            local = load_simulation(options, text, components, log);
+            return;
+        }
+        share = split_batches(parse(text), comm->rank(), comm->size());
+        local = load_simulation(options, share.document.dump(), components, log, share.firstId);
+    });
+    if (comm->size() == 1) return local;
+    log.info("MPI rank " + std::to_string(comm->rank()) + " of " + std::to_string(comm->size()) + ": " +
+             std::to_string(share.batches.size()) + " batch(es), particles " + std::to_string(share.firstId) + " to " +
+             std::to_string(share.firstId + local->particle_count() - 1));
+    return std::make_unique<BatchesOverRanks>(std::move(local), std::move(comm), std::move(share.particleCounts),
+                                              std::move(share.batches));
+}
+
+}  // namespace structmd
