@@ -7,16 +7,9 @@
 #include <cstdint>
 
 #include "core/hd.hpp"
+#include "core/noise_key.hpp"
 
 namespace structmd {
-
-// What keys a particle's noise besides its purpose and the step: the system's seed, and the global id
-// of the engine's slot 0 (non-zero when the engine holds a share of the batches, parallel/), so that a
-// particle draws the same numbers whichever share of the system an engine holds.
-struct NoiseKey {
-    uint64_t seed = 0;
-    int64_t firstId = 0;
-};
 
 // Four independent standard normal numbers for (seed, stream, counter), e.g. stream = particle id
 // and counter = step.

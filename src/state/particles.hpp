@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "core/box.hpp"
-#include "core/random.hpp"
+#include "core/noise_key.hpp"
 #include "core/vec.hpp"
 #include "state/drift_bookkeeping.hpp"
 #include "state/fault.hpp"
