@@ -15,10 +15,11 @@ namespace structmd {
 
 namespace {
 
+// Malformed text, and numbers no double holds (1e3000: nlohmann's out_of_range), are the input's fault.
 nlohmann::json parse(const std::string& text) {
     try {
         return nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {
         throw input_error("", std::string("not valid JSON: ") + e.what());
     }
 }

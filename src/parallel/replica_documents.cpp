@@ -89,12 +89,19 @@ std::optional<ReplicaExchangeSpec> take_replica_exchange(json& document) {
 
 json replica_document(const json& document, const ReplicaExchangeSpec& spec, int k) {
     json replica = document;
-    json& ensemble = replica["global"]["ensemble"];
-    const json& labels = ensemble["labels"];
-    for (size_t c = 0; c < labels.size(); ++c)
-        if (labels[c] == "temperature")
-            for (json& row : ensemble["data"])
-                if (row.is_array() && c < row.size()) row[c] = spec.temperatures[static_cast<size_t>(k)];
+    // An ensemble of another shape is left as it is, for the replica's reader to name.
+    json* global = replica.is_object() && replica.contains("global") && replica["global"].is_object() ? &replica["global"]
+                                                                                                     : nullptr;
+    json* ensemble = global && global->contains("ensemble") && (*global)["ensemble"].is_object() ? &(*global)["ensemble"]
+                                                                                                 : nullptr;
+    if (ensemble && ensemble->contains("labels") && (*ensemble)["labels"].is_array() && ensemble->contains("data") &&
+        (*ensemble)["data"].is_array()) {
+        const json& labels = (*ensemble)["labels"];
+        for (size_t c = 0; c < labels.size(); ++c)
+            if (labels[c] == "temperature")
+                for (json& row : (*ensemble)["data"])
+                    if (row.is_array() && c < row.size()) row[c] = spec.temperatures[static_cast<size_t>(k)];
+    }
     // Replica k's noise: the seed moved along by a large odd constant (Weyl sequence), so no two
     // replicas draw alike.
     if (json* info = information(replica); info && info->contains("parameters") && (*info)["parameters"].is_object())
