@@ -14,7 +14,10 @@ the loop names the same ones every time) is 32-64 bytes per particle, far below 
 one whole array. The plain-step loop that follows an exchange still gathers the watched region once
 (docs/c-api.md), which the difference of the two loops takes off: hence 10% of slack below.
 
-usage: check_benchmark_smoke.py lj|accuracy|coupling PROGRAM"""
+The hydrodynamics benchmark (a Python script over the binding) measures the error of each method's
+deterministic displacement; its bounds are in check_hydrodynamics.
+
+usage: check_benchmark_smoke.py lj|accuracy|coupling|hydrodynamics PROGRAM"""
 import csv
 import math
 import os
@@ -26,6 +29,7 @@ LJ_COLUMNS = ["n", "backend", "precision", "steps_per_call", "steps_per_second",
               "list_builds_per_1000_steps", "device_memory_mib", "setup_seconds", "pair", "scene"]
 ACCURACY_COLUMNS = ["precision", "dt", "skin", "n", "backend", "steps", "steps_per_second", "seconds_per_tau",
                     "energy_drift", "relative_force_error", "list_builds_per_1000_steps"]
+HYDRODYNAMICS_COLUMNS = ["method", "n", "backend", "precision", "tolerance", "steps_per_second", "error"]
 COUPLING_COLUMNS = ["n", "backend", "precision", "region", "iterations", "step_us", "exchange_us", "extra_us",
                     "extra_fraction", "bytes_per_exchange", "get_us", "set_us"]
 # Force-error bounds per precision (the forces' arithmetic), see the docstring.
@@ -38,7 +42,8 @@ def run(program, arguments, columns):
     """Runs the program with --csv and returns its rows as dicts after checking the header."""
     with tempfile.TemporaryDirectory() as work:
         path = os.path.join(work, "rows.csv")
-        result = subprocess.run([program, *arguments, "--csv", path], capture_output=True, text=True)
+        command = [sys.executable, program] if program.endswith(".py") else [program]
+        result = subprocess.run([*command, *arguments, "--csv", path], capture_output=True, text=True)
         print(result.stdout, result.stderr, sep="")
         if result.returncode != 0:
             sys.exit(f"{os.path.basename(program)} {' '.join(arguments)} exited with {result.returncode}")
@@ -134,7 +139,23 @@ def check_coupling(program):
         expect(0.9 * 32 * 10 <= moved <= 64 * 10, f"{moved} bytes per exchange of 10 particles in {row}")
 
 
+def check_hydrodynamics(script):
+    # The open-boundary methods against the RPY product the script writes in numpy: exact but for
+    # rounding in double precision. The periodic ones against themselves at tolerance 1e-6: within a
+    # few times the asked tolerance 1e-3, and not exact (a reference that is the measured run itself
+    # would give 0).
+    rows = run(script, ["--n", "150", "--backend", "cpu", "--seconds", "0.05", "--reference-max", "200"],
+               HYDRODYNAMICS_COLUMNS)
+    expect([row["method"] for row in rows] == ["cholesky", "lanczos", "fcm"], f"rows {rows}")
+    for row in rows:
+        positive_finite(row, "steps_per_second")
+        error = float(row["error"])
+        bound = (1e-25, 1e-10) if row["method"] in ("cholesky", "lanczos") else (1e-7, 1e-2)
+        expect(bound[0] < error < bound[1], f"{row['method']} error {error} outside {bound}")
+
+
 kind, program = sys.argv[1], os.path.abspath(sys.argv[2])
-{"lj": check_lj, "accuracy": check_accuracy, "coupling": check_coupling}[kind](program)
+{"lj": check_lj, "accuracy": check_accuracy, "coupling": check_coupling,
+ "hydrodynamics": check_hydrodynamics}[kind](program)
 if problems:
     sys.exit("\n".join(problems))

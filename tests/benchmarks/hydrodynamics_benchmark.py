@@ -1,0 +1,185 @@
+#!/usr/bin/env python3
+"""Run time against size and error of the hydrodynamic integrators (issue 15): for each method and
+size, steps per second of a thermal run (noise drawn every step, a constant random force on every
+particle, nothing read back between steps) and the error of the deterministic displacement dt M F.
+
+System: N spheres of radius 1 at random positions at volume fraction 0.05 (overlaps allowed: the RPY
+mobility is defined for them), viscosity 1, kT 1, dt 0.01; a cubic box of side (4 pi N / 3 / 0.05)^(1/3),
+periodic for the periodic methods, a cube the particles start in for the open-boundary ones.
+
+Error, relative RMS of dt M F over the particles, in double precision at the method's tolerance, against:
+- open boundary: the dense RPY product written here in numpy (Zuk et al. 2014, equal radii), for
+  every size;
+- triply periodic: the same method in double precision at tolerance 1e-6 (the method's converged
+  mobility, which tests/python/test_bdhi_*.py check against independent Ewald and lattice sums), at the
+  sizes up to --reference-max.
+Lanczos is exact in its deterministic part; its tolerance bounds the noise, which
+tests/python/test_bdhi_open_boundary.py checks against Cholesky.
+
+usage: hydrodynamics_benchmark.py [--backend cuda] [--method fcm --method cholesky ...] [--n 1000 ...]
+       [--precision single] [--seconds 1.0] [--csv FILE]
+Prints a markdown table (docs/benchmarks.md) and writes --csv FILE if asked."""
+import argparse
+import csv
+import math
+import time
+
+import numpy as np
+
+import structmd
+
+RADIUS = 1.0
+ETA = 1.0
+PHI = 0.05
+DT = 0.01
+REFERENCE_TOLERANCE = 1e-6
+
+# Each method: its integrator entry, whether the box is periodic, whether it takes a tolerance, and
+# its default sizes.
+METHODS = {
+    "cholesky": (["BDHIOpenBoundary", "Cholesky"], False, False, [1000, 2000, 4000]),
+    "lanczos": (["BDHIOpenBoundary", "Lanczos"], False, True, [1000, 4000, 16000]),
+    "fcm": (["BDHITriplyPeriodic", "ForceCouplingMethod"], True, True, [1000, 10000, 100000, 1000000]),
+}
+
+
+def side(n):
+    return (4.0 * math.pi * RADIUS ** 3 * n / 3.0 / PHI) ** (1.0 / 3.0)
+
+
+def placement(n, seed=11):
+    rng = np.random.default_rng(seed)
+    length = side(n)
+    return rng.uniform(-length / 2, length / 2, (n, 3)), rng.normal(size=(n, 3))
+
+
+def document(method, n, positions, temperature, tolerance):
+    kind, periodic, tolerant, _ = METHODS[method]
+    length = side(n)
+    # An open-boundary box only has to hold the particles: they are never folded back into it.
+    box = length if periodic else 10.0 * length
+    parameters = {"timeStep": DT, "viscosity": ETA, "hydrodynamicRadius": RADIUS}
+    if tolerant:
+        parameters["tolerance"] = tolerance
+    return {
+        "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": method, "seed": 5}}},
+        "global": {
+            "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
+                      "data": [["A", 1.0, RADIUS, 0.0]]},
+            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
+                         "data": [[[box] * 3, temperature]]},
+        },
+        "integrator": {
+            "bd": {"type": kind, "parameters": parameters},
+            "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                         "data": [[1, "bd", 10 ** 9]]},
+        },
+        "state": {"labels": ["id", "position"], "data": [[i, list(p)] for i, p in enumerate(positions)]},
+        "topology": {"structure": {"labels": ["id", "type"], "data": [[i, "A"] for i in range(n)]},
+                     "forceField": {}},
+    }
+
+
+def displacement(backend, precision, method, n, tolerance):
+    """dt M F from one step at temperature 0."""
+    positions, forces = placement(n)
+    with structmd.Simulation({"backend": backend, "precision": precision, "log": "quiet"}) as sim:
+        sim.load(document(method, n, positions, 0.0, tolerance))
+        start = np.array(sim.positions)
+        sim.external_forces = forces
+        sim.step(1)
+        moved = np.array(sim.positions) - start
+    if METHODS[method][1]:
+        length = side(n)
+        moved -= length * np.round(moved / length)
+    return moved
+
+
+def rpy_product(positions, forces, chunk=512):
+    """dt M F for the free-space RPY mobility of equal spheres (overlapping pairs included)."""
+    a = RADIUS
+    mu0 = 1.0 / (6.0 * math.pi * ETA * a)
+    velocity = mu0 * forces.copy()
+    for begin in range(0, len(positions), chunk):
+        r = positions[begin:begin + chunk, None, :] - positions[None, :, :]
+        d = np.linalg.norm(r, axis=2)
+        same = d == 0.0
+        d = np.where(same, 1.0, d)
+        unit = r / d[..., None]
+        far = d >= 2 * a
+        c1 = np.where(far, 0.75 * a / d * (1 + 2 * a * a / (3 * d * d)), 1 - 9 * d / (32 * a))
+        c2 = np.where(far, 0.75 * a / d * (1 - 2 * a * a / (d * d)), 3 * d / (32 * a))
+        c1 = np.where(same, 0.0, c1)
+        c2 = np.where(same, 0.0, c2)
+        projected = np.einsum("ijk,jk->ij", unit, forces)
+        velocity[begin:begin + chunk] += mu0 * (np.einsum("ij,jk->ik", c1, forces)
+                                                + np.einsum("ij,ij,ijk->ik", c2, projected, unit))
+    return DT * velocity
+
+
+def relative_error(measured, reference):
+    return float(np.sqrt(np.mean((measured - reference) ** 2) / np.mean(reference ** 2)))
+
+
+def error(backend, method, n, tolerance, reference_max):
+    # In double precision: a one-step displacement is a few 1e-4 of a position, so single precision
+    # would measure its own rounding, not the method.
+    measured = displacement(backend, "double", method, n, tolerance)
+    if not METHODS[method][1]:
+        positions, forces = placement(n)
+        return relative_error(measured, rpy_product(positions, forces))
+    if n > reference_max:
+        return None
+    return relative_error(measured, displacement(backend, "double", method, n, REFERENCE_TOLERANCE))
+
+
+def steps_per_second(backend, precision, method, n, tolerance, seconds):
+    positions, forces = placement(n)
+    with structmd.Simulation({"backend": backend, "precision": precision, "log": "quiet"}) as sim:
+        sim.load(document(method, n, positions, 1.0, tolerance))
+        sim.external_forces = forces
+        start = time.perf_counter()
+        sim.step(2)
+        sim.positions  # the warm-up is done
+        estimate = max((time.perf_counter() - start) / 2, 1e-6)
+        steps = max(3, int(seconds / estimate))
+        start = time.perf_counter()
+        sim.step(steps)
+        sim.positions  # waits for the device
+        return steps / (time.perf_counter() - start)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--backend", default="cpu")
+    parser.add_argument("--method", action="append", choices=sorted(METHODS))
+    parser.add_argument("--n", type=int, action="append", help="sizes for every method (default: each method's own)")
+    parser.add_argument("--tolerance", type=float, default=1e-3)
+    parser.add_argument("--precision", default="single")
+    parser.add_argument("--seconds", type=float, default=1.0)
+    parser.add_argument("--reference-max", type=int, default=10000,
+                        help="largest periodic size whose error is measured (the reference is a double-precision run)")
+    parser.add_argument("--csv")
+    args = parser.parse_args()
+    rows = []
+    print("| method | N | precision | tolerance | steps/s | particle-steps/s | relative error of dt M F (double) |")
+    print("| --- | ---: | --- | ---: | ---: | ---: | ---: |")
+    for method in args.method or list(METHODS):
+        for n in args.n or METHODS[method][3]:
+            rate = steps_per_second(args.backend, args.precision, method, n, args.tolerance, args.seconds)
+            err = error(args.backend, method, n, args.tolerance, args.reference_max)
+            rows.append({"method": method, "n": n, "backend": args.backend, "precision": args.precision,
+                         "tolerance": args.tolerance, "steps_per_second": rate, "error": err})
+            shown = "-" if err is None else f"{err:.1e}"
+            tolerance = f"{args.tolerance:g}" if METHODS[method][2] else "exact"
+            print(f"| {method} | {n:,} | {args.precision} | {tolerance} | {rate:,.0f} | {rate * n:.3g} | {shown} |",
+                  flush=True)
+    if args.csv:
+        with open(args.csv, "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+
+
+if __name__ == "__main__":
+    main()
