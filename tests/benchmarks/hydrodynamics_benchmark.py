@@ -169,7 +169,8 @@ def main():
             rate = steps_per_second(args.backend, args.precision, method, n, args.tolerance, args.seconds)
             err = error(args.backend, method, n, args.tolerance, args.reference_max)
             rows.append({"method": method, "n": n, "backend": args.backend, "precision": args.precision,
-                         "tolerance": args.tolerance, "steps_per_second": rate, "error": err})
+                         "tolerance": args.tolerance if METHODS[method][2] else "",
+                         "steps_per_second": rate, "error": err})
             shown = "-" if err is None else f"{err:.1e}"
             tolerance = f"{args.tolerance:g}" if METHODS[method][2] else "exact"
             print(f"| {method} | {n:,} | {args.precision} | {tolerance} | {rate:,.0f} | {rate * n:.3g} | {shown} |",
