@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "core/error.hpp"
-#include "steps/write_step.hpp"
 
 namespace structmd {
 
@@ -12,45 +11,15 @@ WritePatchyParticlesStep::WritePatchyParticlesStep(std::string name, int64_t int
                                                    std::unique_ptr<TrajectoryWriter> writer,
                                                    std::vector<std::shared_ptr<const PatchyConfig>> patchy,
                                                    std::vector<int> firstType, std::vector<std::string> typeNames)
-    : SimulationStep(std::move(name), interval, start, end),
-      wrapped_(wrapped),
-      members_(std::move(members)),
-      writer_(std::move(writer)),
+    : WriteStep(std::move(name), interval, start, end, wrapped, std::move(members), std::move(writer),
+                std::move(typeNames)),
       patchy_(std::move(patchy)),
-      firstType_(std::move(firstType)),
-      typeNames_(std::move(typeNames)) {}
+      firstType_(std::move(firstType)) {}
 
-void WritePatchyParticlesStep::run(Simulation& sim) {
+void WritePatchyParticlesStep::append(Simulation& sim, const std::vector<double>& positions, TrajectoryFrame& frame) {
     const int64_t n = sim.particle_count();
-    positions_.resize(3 * n);
-    types_.resize(n);
-    radii_.resize(n);
     orientations_.resize(4 * n);
-    if (wrapped_)
-        sim.get_positions(positions_.data());
-    else
-        sim.get_unwrapped_positions(positions_.data());
-    sim.get_types(types_.data());
-    sim.get_radii(radii_.data());
     sim.get_orientations(orientations_.data());
-
-    frame_.step = sim.current_step();
-    frame_.time = sim.current_time();
-    frame_.box = sim.box();
-    frame_.wrapped = wrapped_;
-    frame_.typeNames = typeNames_;
-    frame_.ids.clear();
-    frame_.positions.clear();
-    frame_.types.clear();
-    frame_.radii.clear();
-    const auto written = [&](int64_t i) { return members_.empty() || members_[i]; };
-    for (int64_t i = 0; i < n; ++i) {
-        if (!written(i)) continue;
-        frame_.ids.push_back(i);
-        frame_.positions.insert(frame_.positions.end(), &positions_[3 * i], &positions_[3 * i] + 3);
-        frame_.types.push_back(types_[i]);
-        frame_.radii.push_back(radii_[i]);
-    }
     int64_t id = n;
     for (size_t e = 0; e < patchy_.size(); ++e) {
         const PatchyConfig& config = *patchy_[e];
@@ -59,16 +28,14 @@ void WritePatchyParticlesStep::run(Simulation& sim) {
             if (!written(p)) continue;
             const double* q = &orientations_[4 * p];
             const Real4<double> dir{q[0], q[1], q[2], q[3]};
-            const Vec3<double> x =
-                Vec3<double>{positions_[3 * p], positions_[3 * p + 1], positions_[3 * p + 2]} +
-                patch_math::apply(patch_math::frame_of(dir), config.offset[a]);
-            frame_.ids.push_back(id);
-            frame_.positions.insert(frame_.positions.end(), {x.x, x.y, x.z});
-            frame_.types.push_back(firstType_[e] + config.type[a]);
-            frame_.radii.push_back(config.typeRadius[config.type[a]]);
+            const Vec3<double> x = Vec3<double>{positions[3 * p], positions[3 * p + 1], positions[3 * p + 2]} +
+                                   patch_math::apply(patch_math::frame_of(dir), config.offset[a]);
+            frame.ids.push_back(id);
+            frame.positions.insert(frame.positions.end(), {x.x, x.y, x.z});
+            frame.types.push_back(firstType_[e] + config.type[a]);
+            frame.radii.push_back(config.typeRadius[config.type[a]]);
         }
     }
-    writer_->write(frame_);
 }
 
 namespace {

@@ -12,34 +12,28 @@
 #include <vector>
 
 #include "forcefield/patchy_particles.hpp"
-#include "steps/simulation_step.hpp"
 #include "steps/simulation_step_registry.hpp"
 #include "steps/trajectory_writer.hpp"
+#include "steps/write_step.hpp"
 
 namespace structmd {
 
-class WritePatchyParticlesStep : public SimulationStep {
+class WritePatchyParticlesStep : public WriteStep {
 public:
     // patchy: the patchy entries' configurations, in the order written; firstType: the type number of
-    // each one's patch type 0.
+    // each one's patch type 0; typeNames: the particles', the gaps (empty) and the patches'.
     WritePatchyParticlesStep(std::string name, int64_t interval, int64_t start, int64_t end, bool wrapped,
                              std::vector<uint8_t> members, std::unique_ptr<TrajectoryWriter> writer,
                              std::vector<std::shared_ptr<const PatchyConfig>> patchy, std::vector<int> firstType,
                              std::vector<std::string> typeNames);
 
 protected:
-    void run(Simulation& sim) override;
+    void append(Simulation& sim, const std::vector<double>& positions, TrajectoryFrame& frame) override;
 
 private:
-    bool wrapped_;
-    std::vector<uint8_t> members_;
-    std::unique_ptr<TrajectoryWriter> writer_;
     std::vector<std::shared_ptr<const PatchyConfig>> patchy_;
     std::vector<int> firstType_;
-    std::vector<std::string> typeNames_;  // the particles', the gaps (empty) and the patches'
-    std::vector<double> positions_, radii_, orientations_;
-    std::vector<int32_t> types_;
-    TrajectoryFrame frame_;
+    std::vector<double> orientations_;
 };
 
 SimulationStepEntry write_patchy_particles_step_entry();

@@ -7,10 +7,12 @@
 namespace structmd {
 
 WriteStep::WriteStep(std::string name, int64_t interval, int64_t start, int64_t end, bool wrapped,
-                     std::vector<uint8_t> members, std::unique_ptr<TrajectoryWriter> writer)
+                     std::vector<uint8_t> members, std::unique_ptr<TrajectoryWriter> writer,
+                     std::vector<std::string> typeNames)
     : SimulationStep(std::move(name), interval, start, end),
       wrapped_(wrapped),
       members_(std::move(members)),
+      typeNames_(std::move(typeNames)),
       writer_(std::move(writer)) {}
 
 void WriteStep::run(Simulation& sim) {
@@ -37,7 +39,7 @@ void WriteStep::run(Simulation& sim) {
     frame_.time = sim.current_time();
     frame_.box = sim.box();
     frame_.wrapped = wrapped_;
-    frame_.typeNames = sim.type_names();
+    frame_.typeNames = typeNames_.empty() ? sim.type_names() : typeNames_;
     frame_.ids.clear();
     frame_.positions.clear();
     frame_.types.clear();
@@ -47,7 +49,7 @@ void WriteStep::run(Simulation& sim) {
     frame_.orientations.clear();
     frame_.moments.clear();
     for (int64_t i = 0; i < n; ++i) {
-        if (!members_.empty() && !members_[i]) continue;
+        if (!written(i)) continue;
         frame_.ids.push_back(i);
         frame_.positions.insert(frame_.positions.end(), &positions_[3 * i], &positions_[3 * i] + 3);
         frame_.types.push_back(types_[i]);
@@ -59,8 +61,11 @@ void WriteStep::run(Simulation& sim) {
             frame_.orientations.insert(frame_.orientations.end(), &orientations_[4 * i], &orientations_[4 * i] + 4);
         if (!moments_.empty()) frame_.moments.insert(frame_.moments.end(), &moments_[3 * i], &moments_[3 * i] + 3);
     }
+    append(sim, positions_, frame_);
     writer_->write(frame_);
 }
+
+void WriteStep::append(Simulation&, const std::vector<double>&, TrajectoryFrame&) {}
 
 namespace {
 

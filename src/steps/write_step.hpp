@@ -16,15 +16,22 @@ class WriteStep : public SimulationStep {
 public:
     // wrapped: positions wrapped into the box (pbc true) or unwrapped (pbc false). members: by
     // particle id, nonzero for the particles written; empty writes them all.
+    // typeNames: the names the frame gives the type numbers; empty takes the simulation's.
     WriteStep(std::string name, int64_t interval, int64_t start, int64_t end, bool wrapped,
-              std::vector<uint8_t> members, std::unique_ptr<TrajectoryWriter> writer);
+              std::vector<uint8_t> members, std::unique_ptr<TrajectoryWriter> writer,
+              std::vector<std::string> typeNames = {});
 
 protected:
-    void run(Simulation& sim) override;
+    void run(Simulation& sim) final;
+    // Entries written after the particles (a patchy particle's patches), added to a frame that holds
+    // the particles; positions: every particle's, as the frame has them (wrapped or not).
+    virtual void append(Simulation& sim, const std::vector<double>& positions, TrajectoryFrame& frame);
+    bool written(int64_t id) const { return members_.empty() || members_[static_cast<size_t>(id)]; }
 
 private:
     bool wrapped_;
     std::vector<uint8_t> members_;
+    std::vector<std::string> typeNames_;
     std::unique_ptr<TrajectoryWriter> writer_;
     std::vector<double> positions_;  // every particle's, before the selection
     std::vector<int32_t> types_;
