@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "core/box.hpp"
+#include "core/lanes.hpp"
 #include "core/vec.hpp"
 #include "hydrodynamics/rpy_tensor.hpp"
 
@@ -34,7 +35,8 @@ struct PlaceSpheres {
     }
 };
 
-// out = M v, one particle's three rows per call: an O(N^2) pair sum.
+// out = M v, one particle's three rows per item: an O(N^2) pair sum, split over the item's lanes
+// so that a thousand particles still fill the device.
 template <class R>
 struct MobilityProduct {
     const Real4<R>* spheres;
@@ -42,16 +44,18 @@ struct MobilityProduct {
     RpyTensor<R> rpy;
     const R* v;
     R* out;
-    SMD_HD void operator()(int64_t i) const {
+    SMD_HD void operator()(int64_t i, Lanes lanes) const {
         const Real4<R> si = spheres[i];
         Vec3<R> sum{R(0), R(0), R(0)};
         if (si.w > R(0))
-            for (int64_t j = 0; j < count; ++j) {
+            for (int64_t j = lanes.lane; j < count; j += lanes.count) {
                 const Real4<R> sj = spheres[j];
                 if (!(sj.w > R(0))) continue;
                 const Vec3<R> d{sj.x - si.x, sj.y - si.y, sj.z - si.z};
                 sum += rpy.apply(d, si.w, sj.w, Vec3<R>{v[3 * j], v[3 * j + 1], v[3 * j + 2]});
             }
+        sum = lanes.sum(sum);
+        if (!lanes.leader()) return;
         out[3 * i] = sum.x;
         out[3 * i + 1] = sum.y;
         out[3 * i + 2] = sum.z;

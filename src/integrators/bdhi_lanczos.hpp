@@ -29,7 +29,8 @@ public:
 protected:
     void mobility_sqrt(int64_t n, Particles<B, R>&, const R* w, R* noise) override {
         lanczos_.apply_sqrt(3 * n, w, noise, [&](const R* v, R* out) {
-            this->backend().for_each(n, MobilityProduct<R>{this->spheres(), n, this->rpy(), v, out});
+            this->backend().for_each_lanes(n, MobilityProduct<R>{this->spheres(), n, this->rpy(), v, out},
+                                           LaneSizing::kFillDevice);
         });
     }
 

@@ -108,7 +108,8 @@ public:
         backend_.for_each(n, PlaceSpheres<R>{spheres_.data(), p.pos.data(), p.image.data(), p.radius.data(), s.group,
                                              p.box, R(hydrodynamicRadius_)});
         backend_.for_each(n, FlattenForces<R>{p.force.data(), flatForce_.data()});
-        backend_.for_each(n, MobilityProduct<R>{spheres_.data(), n, rpy_, flatForce_.data(), drift_.data()});
+        backend_.for_each_lanes(n, MobilityProduct<R>{spheres_.data(), n, rpy_, flatForce_.data(), drift_.data()},
+                                LaneSizing::kFillDevice);
         const bool thermal = s.kT > 0.0;
         if (thermal) {
             backend_.for_each(n, DrawHydrodynamicNoise<R>{spheres_.data(), p.noise, p.now(), gaussian_.data()});

@@ -48,7 +48,7 @@ struct Fixture {
         return Eigen::Map<Matrix>(matrix.data(), rows, rows);
     }
     void product(const double* v, double* out) const {
-        backend.for_each(count(), MobilityProduct<double>{spheres.data(), count(), rpy, v, out});
+        backend.for_each_lanes(count(), MobilityProduct<double>{spheres.data(), count(), rpy, v, out});
     }
 };
 
