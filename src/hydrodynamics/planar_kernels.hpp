@@ -37,7 +37,8 @@ struct PlanarKernel {
             return;
         }
         const R ks = k * sigma;
-        // erfc(x) exp(x^2) stays finite (< 1) on every grid the plan allows (k sigma < 10).
+        // erfc(x) exp(x^2) stays finite (< 1) in single precision too on every grid the plan allows
+        // (spacing >= sigma / 1.65 before rounding up to a size the support fits in: k sigma < 9).
         const R scaledErfc = erfc(ks) * exp(ks * ks);
         const R inverseTwoK = R(0.5) / k;
         transverse = scaledErfc * inverseTwoK;

@@ -13,8 +13,8 @@
 // exactly, for the same grid and kernel. The thermal drift kT sum_b d/dq_b . M(q_a - q_b) is the
 // field -kT div K convolved with the particles' density spread by S, (i k . K)_i = i L(k) k_i / eta in
 // Fourier space: it is not zero where the kernel is compressible (quasi-2D), and needs only the
-// density's transform beside the forces'. Each particle's own term is zero by symmetry (its
-// kernel is even) and is left to the grid as it falls.
+// density's transform beside the forces'. Each particle's own term vanishes, on the grid too: the
+// grid's div K is odd and J = S^T.
 //
 // The Nyquist lines of the grid are left out of every part, as the 3D force coupling method does
 // (hydrodynamics/fcm_mesh.hpp, whose Gaussian axes and grid sizes this mesh shares).
