@@ -121,14 +121,6 @@ struct PlanarSpreadLine {
     }
 };
 
-// One wave vector of the half spectrum: the transformed force density (x, y spectra, one after the
-// other) becomes the displacement field's spectrum,
-//   A_k = dt/(N eta) K_k F_k  -  i dt kT/(N eta) L(k) k n_k  +  sqrt(2 kT dt / (A eta)) K_k^{1/2} Z_k,
-// K_k = T(k) k^perp k^perp^T + L(k) k^ k^T, N the grid's points, A the box's area, n_k the number
-// density's transform (only where the drift is wanted), Z_k a complex normal 2-vector with
-// <Z Z^H> = I. The inverse transform (unnormalised) then gives the displacement field on the grid.
-// On the line x = 0 the spectrum holds both k and -k: the one of higher index takes the conjugate of
-// its partner's noise (K^{1/2} is even in k), so that the field is real.
 // t k^perp k^perp^T + l k^ k^T applied to the real 2-vector (v, w), k^ = (ux, uy), k^perp = (-uy, ux).
 template <class R>
 SMD_HD SMD_INLINE void planar_project(R ux, R uy, R v, R w, R t, R l, R& outX, R& outY) {
@@ -137,9 +129,17 @@ SMD_HD SMD_INLINE void planar_project(R ux, R uy, R v, R w, R t, R l, R& outX, R
     outY = along * uy + across * ux;
 }
 
+// One wave vector of the half spectrum: the transformed force density (x, y spectra, one after the
+// other) becomes the displacement field's spectrum,
+//   A_k = dt/(N eta) K_k F_k  -  i dt kT/(N eta) L(k) k n_k  +  sqrt(2 kT dt / (A eta)) K_k^{1/2} Z_k,
+// K_k = T(k) k^perp k^perp^T + L(k) k^ k^T, N the grid's points, A the box's area, n_k the number
+// density's transform (only where the drift is wanted), Z_k a complex normal 2-vector with
+// <Z Z^H> = I. The inverse transform (unnormalised) then gives the displacement field on the grid.
+// On the line x = 0 the spectrum holds both k and -k: the one of higher index takes the conjugate of
+// its partner's noise (K^{1/2} is even in k), so that the field is real.
 template <class R>
 struct PlanarStokesSolve {
-    Complex<R>* spectrum;         // x, y force spectra in, displacement spectra out
+    Complex<R>* spectrum;             // x, y force spectra in, displacement spectra out
     const Complex<R>* numberDensity;  // null: no thermal drift
     FftGrid grid;
     R lengthX, lengthY;
