@@ -2,8 +2,8 @@
 // The layout of the 3D real-to-complex transforms every backend's Fft3d performs (backends/cpu/
 // cpu_fft.hpp on pocketfft, backends/cuda/cuda_fft.cuh on cuFFT): a real grid of nx * ny * nz points,
 // x fastest, and its half spectrum of (nx/2 + 1) * ny * nz complex numbers, x fastest. Neither
-// direction is normalised: inverse(forward(g)) = nx ny nz g. Long-range electrostatics uses it; the
-// hydrodynamics of spectral methods will too.
+// direction is normalised: inverse(forward(g)) = nx ny nz g. A grid with nz = 1 is a 2D transform (the
+// planar hydrodynamics). Long-range electrostatics and the spectral hydrodynamics use it.
 #include "core/hd.hpp"
 
 namespace structmd {

@@ -118,6 +118,8 @@ inline const std::vector<Override>& overrides() {
         // Its validate() takes a tolerance in [1e-10, 0.1]; generic values are about 1. Under both of
         // its class names.
         {{"", "ForceCouplingMethod"}, "tolerance", {1e-3}},
+        // Likewise the planar hydrodynamics' validate().
+        {{"BDHIDoublyPeriodic", "Quasi2D"}, "tolerance", {1e-3}},
         // zeroEnergy acts only in the rows whose epsilon is 0 (the excluded-volume form); generic
         // epsilons are all about 1.
         {{"NonBonded", "KimHummer"}, "epsilon", {0.0}},

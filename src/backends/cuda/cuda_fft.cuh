@@ -25,11 +25,15 @@ class CudaFft3d {
 
 public:
     CudaFft3d(const CudaBackend& backend, FftGrid grid) : backend_(backend) {
-        // cuFFT's dimensions go slowest first.
-        cufft_check(cufftPlan3d(&forward_, grid.nz, grid.ny, grid.nx, kDouble ? CUFFT_D2Z : CUFFT_R2C),
-                    "planning a forward FFT");
-        cufft_check(cufftPlan3d(&inverse_, grid.nz, grid.ny, grid.nx, kDouble ? CUFFT_Z2D : CUFFT_C2R),
-                    "planning an inverse FFT");
+        // cuFFT's dimensions go slowest first; a grid one point thick is planned as the 2D transform it is.
+        const cufftType forward = kDouble ? CUFFT_D2Z : CUFFT_R2C, inverse = kDouble ? CUFFT_Z2D : CUFFT_C2R;
+        if (grid.nz == 1) {
+            cufft_check(cufftPlan2d(&forward_, grid.ny, grid.nx, forward), "planning a forward FFT");
+            cufft_check(cufftPlan2d(&inverse_, grid.ny, grid.nx, inverse), "planning an inverse FFT");
+        } else {
+            cufft_check(cufftPlan3d(&forward_, grid.nz, grid.ny, grid.nx, forward), "planning a forward FFT");
+            cufft_check(cufftPlan3d(&inverse_, grid.nz, grid.ny, grid.nx, inverse), "planning an inverse FFT");
+        }
     }
     CudaFft3d(const CudaFft3d&) = delete;
     CudaFft3d& operator=(const CudaFft3d&) = delete;

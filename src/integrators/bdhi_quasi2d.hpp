@@ -1,0 +1,81 @@
+#pragma once
+// ["BDHIDoublyPeriodic","Quasi2D"]: Brownian dynamics with hydrodynamic interactions of particles
+// that move in a plane, periodic along x and y,
+//   x += dt M F + dt kT div M + sqrt(2 kT dt) M^{1/2} W    (in x and y; z is not integrated),
+// with the quasi-2D mobility (the plane in an unbounded 3D fluid) or the true 2D one
+// (hydrodynamics/planar_mesh.hpp). As the force coupling method, only the integrator's group takes
+// part: particles outside it neither push the fluid nor are carried by it.
+#include <memory>
+#include <string>
+
+#include "core/error.hpp"
+#include "hydrodynamics/planar_mesh.hpp"
+#include "integrators/bdhi_force_coupling.hpp"
+#include "integrators/brownian.hpp"
+#include "integrators/integrator.hpp"
+#include "integrators/thermal_noise.hpp"
+
+namespace structmd {
+
+struct BdhiQuasi2DInputs : IntegratorInputs {
+    static std::vector<Parameter> parameters() {
+        return {number("viscosity", "mass/(length time)", Must::be_positive),
+                number("hydrodynamicRadius", "length", Must::be_positive),
+                with_default(number("tolerance", "1", Must::be_positive), 1e-3)};
+    }
+    // Which fluid the plane is in (the order of PlanarHydrodynamics).
+    static std::vector<TextOption> text_options() { return {{"hydrodynamicKernel", "Quasi2D", {"Quasi2D", "True2D"}, {}, ""}}; }
+    static constexpr bool overdamped = true;
+    static void validate(const ParameterValues& v, const std::string& path) { BdhiForceCouplingInputs::validate(v, path); }
+};
+
+template <class B, class R>
+class BdhiQuasi2D : public Integrator<B, R> {
+public:
+    BdhiQuasi2D(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
+        : Integrator<B, R>(scope), backend_(backend), viscosity_(v["viscosity"]), radius_(v["hydrodynamicRadius"]),
+          tolerance_(v["tolerance"]), kind_(static_cast<PlanarHydrodynamics>(static_cast<int>(v["hydrodynamicKernel"]))) {}
+
+    bool overdamped() const override { return true; }
+
+    void begin(Particles<B, R>& p, ForceSource&) override {
+        backend_.for_each(p.count, StopParticles<R>{p.vel.data(), this->scope().group});
+        prepare(p);
+    }
+
+    void step(Particles<B, R>& p, ForceSource& forces) override {
+        const IntegratorScope& s = this->scope();
+        prepare(p);
+        forces.update_forces();
+        mesh_->displace(p, s.group, s.timeStep, viscosity_, s.kT, static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48,
+                        displacement_.data());
+        backend_.for_each(p.count, ApplyDisplacement<R>{p.pos.data(), p.image.data(), p.force.data(),
+                                                        displacement_.data(), s.group, p.box, p.fault_slot(1), p.drift});
+        forces.positions_moved(s.timeStep, true);
+    }
+
+private:
+    // The mesh for the present box, made once: a box whose x or y changes afterwards is refused.
+    void prepare(const Particles<B, R>& p) {
+        const double box[2] = {double(p.box.length.x), double(p.box.length.y)};
+        if (mesh_) {
+            for (int d = 0; d < 2; ++d)
+                if (box[d] != mesh_->plan().box[d])
+                    throw Error(STRUCTMD_ERR_UNSUPPORTED,
+                                this->scope().name + ": the box changed; [\"BDHIDoublyPeriodic\", \"Quasi2D\"] "
+                                                     "solves the flow of the box it started with");
+        } else {
+            mesh_ = std::make_unique<PlanarMesh<B, R>>(backend_, make_planar_plan(box, kind_, radius_, tolerance_,
+                                                                                  this->scope().path));
+        }
+        backend_.resize(displacement_, static_cast<size_t>(p.count));
+    }
+
+    const B& backend_;
+    double viscosity_, radius_, tolerance_;
+    PlanarHydrodynamics kind_;
+    std::unique_ptr<PlanarMesh<B, R>> mesh_;
+    typename B::template Buffer<Vec3<R>> displacement_;
+};
+
+}  // namespace structmd
