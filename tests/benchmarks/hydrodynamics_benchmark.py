@@ -5,7 +5,9 @@ particle, nothing read back between steps) and the error of the deterministic di
 
 System: N spheres of radius 1 at random positions at volume fraction 0.05 (overlaps allowed: the RPY
 mobility is defined for them), viscosity 1, kT 1, dt 0.01; a cubic box of side (4 pi N / 3 / 0.05)^(1/3),
-periodic for the periodic methods, a cube the particles start in for the open-boundary ones.
+periodic for the periodic methods, a cube the particles start in for the open-boundary ones; the
+planar method (Quasi2D) puts them in the plane z = 0 of a square of side (pi N / 0.05)^(1/2), at area
+fraction 0.05.
 
 Error, relative RMS of dt M F over the particles, in double precision at the method's tolerance, against:
 - open boundary: the dense RPY product written here in numpy (Zuk et al. 2014, equal radii), for
@@ -40,22 +42,30 @@ METHODS = {
     "cholesky": (["BDHIOpenBoundary", "Cholesky"], False, False, [1000, 2000, 4000]),
     "lanczos": (["BDHIOpenBoundary", "Lanczos"], False, True, [1000, 4000, 16000]),
     "fcm": (["BDHITriplyPeriodic", "ForceCouplingMethod"], True, True, [1000, 10000, 100000, 1000000]),
+    "quasi2d": (["BDHIDoublyPeriodic", "Quasi2D"], True, True, [1000, 10000, 100000, 1000000]),
 }
+# The planar methods: particles in the plane z = 0 of an x-y periodic square at area fraction 0.05.
+PLANAR = {"quasi2d"}
 
 
-def side(n):
+def side(method, n):
+    if method in PLANAR:
+        return math.sqrt(math.pi * RADIUS ** 2 * n / PHI)
     return (4.0 * math.pi * RADIUS ** 3 * n / 3.0 / PHI) ** (1.0 / 3.0)
 
 
-def placement(n, seed=11):
+def placement(method, n, seed=11):
     rng = np.random.default_rng(seed)
-    length = side(n)
-    return rng.uniform(-length / 2, length / 2, (n, 3)), rng.normal(size=(n, 3))
+    length = side(method, n)
+    positions = rng.uniform(-length / 2, length / 2, (n, 3))
+    if method in PLANAR:
+        positions[:, 2] = 0.0
+    return positions, rng.normal(size=(n, 3))
 
 
 def document(method, n, positions, temperature, tolerance):
     kind, periodic, tolerant, _ = METHODS[method]
-    length = side(n)
+    length = side(method, n)
     # An open-boundary box only has to hold the particles: they are never folded back into it.
     box = length if periodic else 10.0 * length
     parameters = {"timeStep": DT, "viscosity": ETA, "hydrodynamicRadius": RADIUS}
@@ -82,7 +92,7 @@ def document(method, n, positions, temperature, tolerance):
 
 def displacement(backend, precision, method, n, tolerance):
     """dt M F from one step at temperature 0."""
-    positions, forces = placement(n)
+    positions, forces = placement(method, n)
     with structmd.Simulation({"backend": backend, "precision": precision, "log": "quiet"}) as sim:
         sim.load(document(method, n, positions, 0.0, tolerance))
         start = np.array(sim.positions)
@@ -90,7 +100,7 @@ def displacement(backend, precision, method, n, tolerance):
         sim.step(1)
         moved = np.array(sim.positions) - start
     if METHODS[method][1]:
-        length = side(n)
+        length = side(method, n)
         moved -= length * np.round(moved / length)
     return moved
 
@@ -126,7 +136,7 @@ def error(backend, method, n, tolerance, reference_max):
     # would measure its own rounding, not the method.
     measured = displacement(backend, "double", method, n, tolerance)
     if not METHODS[method][1]:
-        positions, forces = placement(n)
+        positions, forces = placement(method, n)
         return relative_error(measured, rpy_product(positions, forces))
     if n > reference_max:
         return None
@@ -134,7 +144,7 @@ def error(backend, method, n, tolerance, reference_max):
 
 
 def steps_per_second(backend, precision, method, n, tolerance, seconds):
-    positions, forces = placement(n)
+    positions, forces = placement(method, n)
     with structmd.Simulation({"backend": backend, "precision": precision, "log": "quiet"}) as sim:
         sim.load(document(method, n, positions, 1.0, tolerance))
         sim.external_forces = forces
