@@ -4,7 +4,7 @@ and 3 against a run without MPI, on batched inputs (4 bead chains, Langevin with
 load, and Brownian). Trajectory files (wrapped and unwrapped positions, velocities) must be the
 same bytes, the thermodynamic measure (whole-system sums, added over the ranks) the same to
 rounding, and rank 0 alone must print. A flow-control step stops every rank at the same step, and an
-input with fewer batches than ranks is refused with one message. Parallel tempering (four
+input with more ranks than batches (but more than one batch) is refused with one message. Parallel tempering (four
 temperatures, replicas over 1, 2 and 3 ranks, two on rank 0 of 3) makes the same exchanges and writes
 the same files as one process. Without MPI in the build, checks
 that `structmd run --mpi` says MPI is not compiled in, and reports itself skipped (77).
@@ -182,13 +182,14 @@ def main():
         expect(stopped.stderr.count("stopped at step 100 by simulationStep.escape") == 1,
                "the stop is not said once, at step 100")
 
-        # More ranks than batches: refused, said once, with the engine's status as exit code.
-        single = chains(BROWNIAN, 10)
-        for row in single["topology"]["structure"]["data"]:
-            row[2] = 0
-        refused = run(mpirun(2), os.path.join(work, "refused"), single)
-        expect(refused.returncode == STRUCTMD_ERR_UNSUPPORTED, f"one batch over 2 ranks exited {refused.returncode}")
-        expect(refused.stderr.count("cannot be spread over 2 ranks") == 1, "the refusal is not said once")
+        # More ranks than batches (two, over three ranks): refused, said once, with the engine's status as
+        # exit code. (One batch over several ranks is split in space instead: tests/mpi/domains.c.)
+        few = chains(BROWNIAN, 10)
+        for row in few["topology"]["structure"]["data"]:
+            row[2] = row[0] // (2 * PER_BATCH)
+        refused = run(mpirun(3), os.path.join(work, "refused"), few)
+        expect(refused.returncode == STRUCTMD_ERR_UNSUPPORTED, f"two batches over 3 ranks exited {refused.returncode}")
+        expect(refused.stderr.count("cannot be spread over 3 ranks") == 1, "the refusal is not said once")
 
     if problems:
         sys.exit("\n".join(problems))
