@@ -165,7 +165,8 @@ DomainDocument::DomainDocument(json document) {
 }
 
 std::string DomainDocument::local_text(const std::vector<int64_t>& ids, int64_t owned, const std::vector<double>& positions,
-                                       const std::vector<double>& velocities, int64_t step, double time) const {
+                                       const std::vector<double>& velocities, int64_t step, double time,
+                                       int64_t remaining) const {
     json document = skeleton_;
     std::unordered_map<int64_t, int64_t> slotOf;
     slotOf.reserve(ids.size());
@@ -209,6 +210,16 @@ std::string DomainDocument::local_text(const std::vector<int64_t>& ids, int64_t 
     }
     (*fundamental)["parameters"]["currentStep"] = step;
     (*fundamental)["parameters"]["simulationTime"] = time;
+    // The schedule (one integrator, check_sections) ends where the whole system's does.
+    if (document.contains("integrator"))
+        for (auto it = document["integrator"].begin(); it != document["integrator"].end(); ++it) {
+            json& entry = it.value();
+            if (!has_type(entry, "Schedule") || !entry.contains("labels") || !entry.contains("data")) continue;
+            const int steps = column(entry["labels"], "steps");
+            if (steps >= 0 && entry["data"].is_array() && entry["data"].size() == 1 && entry["data"][0].is_array() &&
+                steps < static_cast<int>(entry["data"][0].size()))
+                entry["data"][0][steps] = remaining;
+        }
     return document.dump();
 }
 

@@ -26,9 +26,10 @@ public:
     const std::vector<int64_t>& bonded_to(int64_t id) const { return partners_[static_cast<size_t>(id)]; }
 
     // The domain's document: ids[slot] the global id of each slot, the first `owned` of them owned;
-    // positions and velocities 3 per slot; the state at `step` and `time`.
+    // positions and velocities 3 per slot; the state at `step` and `time`, `remaining` steps before
+    // the end of the schedule (an engine's schedule starts at its document's step).
     std::string local_text(const std::vector<int64_t>& ids, int64_t owned, const std::vector<double>& positions,
-                           const std::vector<double>& velocities, int64_t step, double time) const;
+                           const std::vector<double>& velocities, int64_t step, double time, int64_t remaining) const;
 
 private:
     struct BondTable {

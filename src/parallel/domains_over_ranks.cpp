@@ -49,6 +49,7 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainDocument 
     typeNames_ = whole->type_names();
     startStep_ = whole->current_step();
     startTime_ = whole->current_time();
+    finalStep_ = whole->final_step();
     box_ = whole->box();
     axis_ = static_cast<int>(std::max_element(box_.begin(), box_.end()) - box_.begin());
 
@@ -313,7 +314,8 @@ void DomainsOverRanks::build(std::vector<Held> owned) {
     const int64_t step = local_ ? local_->current_step() : startStep_;
     const double time = local_ ? local_->current_time() : startTime_;
     local_.reset();
-    local_ = load_simulation(options_, document_.local_text(ids_, owned_, positions, velocities, step, time), *components_,
+    local_ = load_simulation(options_, document_.local_text(ids_, owned_, positions, velocities, step, time,
+                                                                 std::max<int64_t>(0, finalStep_ - step)), *components_,
                              log_);
     local_->hold_ghosts(ids_, this, begun_);
 }
@@ -389,6 +391,10 @@ void DomainsOverRanks::get_velocities(double* v) {
 void DomainsOverRanks::get_forces(double* f) {
     gather_per_particle(Op::forces, f, 3, [&](double* mine) { local_->get_forces(mine); });
 }
+// Identity for all: the domains hold no directions and turn no particle (domain_document.hpp).
+void DomainsOverRanks::get_orientations(double* q) {
+    gather_per_particle(Op::orientations, q, 4, [&](double* mine) { local_->get_orientations(mine); });
+}
 void DomainsOverRanks::get_particle_energies(double* e) {
     gather_per_particle(Op::particleEnergies, e, 1, [&](double* mine) { local_->get_particle_energies(mine); });
 }
@@ -463,7 +469,6 @@ void DomainsOverRanks::term_energies_and_forces(const std::string& term, double*
 
 // ---- what domain decomposition does not do yet ----
 
-void DomainsOverRanks::get_orientations(double*) { unsupported("orientations"); }
 void DomainsOverRanks::set_orientations(const double*) { unsupported("setting orientations"); }
 void DomainsOverRanks::get_torques(double*) { unsupported("torques"); }
 void DomainsOverRanks::get_magnetic_moments(double*) { unsupported("magnetic moments"); }

@@ -29,8 +29,9 @@
 //   passes half that (a collective decision, checked after every step), and a move past it is an
 //   error (never a silently wrong force). A rebuild migrates particles that left the slab to their
 //   new owner (sent to the neighbour with position, velocity and image), picks the ghosts anew
-//   and loads the domain's engine again from its document, at the same step and time, without
-//   beginning its integrator again (half-step Langevin velocities carry over).
+//   and loads the domain's engine again from its document, at the same step and time, with the
+//   schedule's remaining steps, without beginning its integrator again (half-step Langevin
+//   velocities carry over).
 // - Energies: kinetic from owned velocities, potential from owned per-particle energies, summed
 //   over ranks. Per-particle arrays are gathered (global id, values) from every rank into id order;
 //   every gather checks that each id arrives exactly once.
@@ -69,7 +70,7 @@ public:
     int64_t massive_count() const override { return massive_; }
     int64_t current_step() const override { return local_->current_step(); }
     double current_time() const override { return local_->current_time(); }
-    int64_t final_step() const override { return local_->final_step(); }
+    int64_t final_step() const override { return finalStep_; }
     double boltzmann() const override { return local_->boltzmann(); }
     std::array<double, 3> box() const override { return box_; }
     double volume() const override { return box_[0] * box_[1] * box_[2]; }
@@ -208,6 +209,7 @@ private:
     std::vector<int64_t> borderSlots_, ghostSlots_;
     int64_t startStep_ = 0;  // the step and time of the document, for the first engine
     double startTime_ = 0.0;
+    int64_t finalStep_ = 0;  // where the whole system's schedule ends
     bool begun_ = false;  // the integrator began on an engine of this domain
     int64_t rebuilds_ = 0;
 };
