@@ -101,7 +101,11 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainDocument 
               std::to_string(ids_.size() - owned_) + " ghosts (ghost width " + number(width_) + ")");
 }
 
-DomainsOverRanks::~DomainsOverRanks() = default;
+DomainsOverRanks::~DomainsOverRanks() {
+    if (comm_->rank() == 0)
+        log_.info("spatial domains rebuilt " + std::to_string(rebuilds_) + " times (ghost width " + number(width_) +
+                  ", rebuilt past a move of " + number(0.5 * moveLimit_) + ")");
+}
 
 void DomainsOverRanks::set_step_firing(StepFiring*) {
     throw Error(STRUCTMD_ERR_INTERNAL, "the steps of spatial domains are fired by the view itself");

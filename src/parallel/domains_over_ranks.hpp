@@ -142,9 +142,6 @@ public:
     int threads() const override { return local_->threads(); }
     std::optional<double> overdamped_kT() const override { return local_->overdamped_kT(); }
 
-    // Rebuilds of the domains since load (all ranks alike).
-    int64_t rebuilds() const { return rebuilds_; }
-
 private:
     // An owned particle as it travels to a new owner: id, position, velocity, image (10 doubles).
     struct Held {
@@ -211,7 +208,7 @@ private:
     double startTime_ = 0.0;
     int64_t finalStep_ = 0;  // where the whole system's schedule ends
     bool begun_ = false;  // the integrator began on an engine of this domain
-    int64_t rebuilds_ = 0;
+    int64_t rebuilds_ = 0;  // since load, logged at the end: how often the ghost layer ran out
 };
 
 }  // namespace structmd

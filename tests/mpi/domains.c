@@ -239,7 +239,7 @@ int main(int argc, char** argv) {
     MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
     MPI_Comm_size(MPI_COMM_WORLD, &world_size);
     snprintf(world_options, sizeof world_options,
-             "{\"backend\": \"cpu\", \"precision\": \"double\", \"threads\": 1, \"mpi_comm\": %lld}",
+             "{\"backend\": \"cpu\", \"precision\": \"double\", \"threads\": 1, \"log\": \"info\", \"mpi_comm\": %lld}",
              (long long)MPI_Comm_c2f(MPI_COMM_WORLD));
 
     const char* verlet = "{\"type\": [\"Verlet\", \"VelocityVerlet\"], \"parameters\": {\"timeStep\": 0.002}}";
