@@ -8,10 +8,12 @@ namespace structmd {
 
 // The system's seed, and the global id of the engine's slot 0 (non-zero when the engine holds a
 // share of the batches, parallel/), so that a particle draws the same numbers whichever share of the
-// system an engine holds.
+// system an engine holds. ids: the global id of every slot, on the backend, where the slots are not
+// a run of consecutive ids (a spatial domain's owned particles and ghosts); null otherwise.
 struct NoiseKey {
     uint64_t seed = 0;
     int64_t firstId = 0;
+    const int64_t* ids = nullptr;
 };
 
 }  // namespace structmd

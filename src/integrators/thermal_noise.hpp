@@ -19,7 +19,7 @@ enum class NoisePurpose : uint64_t { initialVelocities = 0, integrator = 1, velo
 // Three independent N(0, 1) numbers for the particle in `slot` at `step`, keyed by its global id.
 template <class R>
 SMD_HD SMD_INLINE Vec3<R> gaussian3(NoiseKey key, NoisePurpose purpose, int64_t slot, int64_t step) {
-    const uint64_t id = static_cast<uint64_t>(slot + key.firstId);
+    const uint64_t id = static_cast<uint64_t>(key.ids ? key.ids[slot] : slot + key.firstId);
     double xi[4];
     normal4(key.seed, (static_cast<uint64_t>(purpose) << 48) ^ id, static_cast<uint64_t>(step), xi);
     return {R(xi[0]), R(xi[1]), R(xi[2])};

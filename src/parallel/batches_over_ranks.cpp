@@ -8,41 +8,9 @@
 
 namespace structmd {
 
-// What rank 0 asks the other ranks to take part in while the steps fire.
-enum class BatchesOverRanks::Op : int32_t {
-    done,    // text: the step that asked to stop, or empty
-    failed,  // number: the status, text: the message
-    compute,
-    positions,
-    images,
-    unwrappedPositions,
-    velocities,
-    forces,
-    particleEnergies,
-    masses,
-    types,
-    radii,
-    orientations,
-    torques,
-    magneticMoments,
-    energy,     // text: the term
-    termArrays,  // text: the term
-    virial,
-    pairVirials,
-    setLambda,  // value
-    lambdaDerivative,
-};
-
-struct BatchesOverRanks::Request {
-    Op op = Op::done;
-    int64_t number = 0;
-    double value = 0.0;
-    std::string text;
-};
-
 BatchesOverRanks::BatchesOverRanks(std::unique_ptr<Simulation> local, std::shared_ptr<const Communicator> comm,
                                    std::vector<int64_t> counts, std::vector<int> batches)
-    : local_(std::move(local)), comm_(std::move(comm)), counts_(std::move(counts)), batches_(std::move(batches)) {
+    : StepsOnRankZero(std::move(comm)), local_(std::move(local)), counts_(std::move(counts)), batches_(std::move(batches)) {
     for (int r = 0; r < comm_->rank(); ++r) firstId_ += counts_[static_cast<size_t>(r)];
     for (int64_t c : counts_) total_ += c;
     double massive = static_cast<double>(local_->massive_count());
@@ -63,105 +31,6 @@ void BatchesOverRanks::unsupported(const std::string& what) const {
 
 void BatchesOverRanks::advance(int64_t n) {
     run_together(*comm_, [&] { local_->advance(n); });
-}
-
-// ---- the steps: fired on rank 0, served by the others ----
-
-void BatchesOverRanks::send(const Request& request) {
-    std::string bytes(sizeof(Op) + sizeof(int64_t) + sizeof(double), '\0');
-    std::memcpy(&bytes[0], &request.op, sizeof(Op));
-    std::memcpy(&bytes[sizeof(Op)], &request.number, sizeof(int64_t));
-    std::memcpy(&bytes[sizeof(Op) + sizeof(int64_t)], &request.value, sizeof(double));
-    bytes += request.text;
-    comm_->broadcast(bytes, 0);
-}
-
-BatchesOverRanks::Request BatchesOverRanks::receive() {
-    std::string bytes;
-    comm_->broadcast(bytes, 0);
-    Request request;
-    const size_t head = sizeof(Op) + sizeof(int64_t) + sizeof(double);
-    if (bytes.size() < head) throw Error(STRUCTMD_ERR_INTERNAL, "a malformed request from MPI rank 0");
-    std::memcpy(&request.op, &bytes[0], sizeof(Op));
-    std::memcpy(&request.number, &bytes[sizeof(Op)], sizeof(int64_t));
-    std::memcpy(&request.value, &bytes[sizeof(Op) + sizeof(int64_t)], sizeof(double));
-    request.text = bytes.substr(head);
-    return request;
-}
-
-void BatchesOverRanks::announce(Op op, const std::string& text, int64_t number, double value) {
-    if (driving_) send({op, number, value, text});
-}
-
-void BatchesOverRanks::fire(const std::vector<SimulationStep*>& due) {
-    if (comm_->rank() != 0) {
-        serve();
-        return;
-    }
-    Request done;
-    driving_ = true;
-    try {
-        for (SimulationStep* step : due) step->fire(*this);
-        done.text = local_->stopped_by();
-    } catch (const Error& e) {
-        done = {Op::failed, static_cast<int64_t>(e.status()), 0.0, e.what()};
-    } catch (const std::bad_alloc&) {
-        done = {Op::failed, static_cast<int64_t>(STRUCTMD_ERR_MEMORY), 0.0, "out of host memory"};
-    } catch (const std::exception& e) {
-        done = {Op::failed, static_cast<int64_t>(STRUCTMD_ERR_INTERNAL), 0.0,
-                std::string("internal error, please report: ") + e.what()};
-    }
-    driving_ = false;
-    send(done);
-    if (done.op == Op::failed) throw Error(static_cast<structmd_status>(done.number), done.text);
-}
-
-void BatchesOverRanks::serve() {
-    std::vector<double> scratch(static_cast<size_t>(9 * total_));
-    std::vector<double> more(static_cast<size_t>(3 * total_)), most(static_cast<size_t>(3 * total_));
-    std::vector<int32_t> integers(static_cast<size_t>(3 * total_));
-    for (;;) {
-        const Request request = receive();
-        if (request.op == Op::done) {
-            if (!request.text.empty()) local_->request_stop(request.text);
-            return;
-        }
-        // A gather that failed failed on every rank (run_together), rank 0 included: its steps stop
-        // and it sends the failure, which ends the serving.
-        if (request.op == Op::failed)
-            throw Error(static_cast<structmd_status>(request.number), request.text + " (on MPI rank 0)");
-        try {
-            serve_one(request, scratch, more, most, integers);
-        } catch (const Error&) {
-        }
-    }
-}
-
-void BatchesOverRanks::serve_one(const Request& request, std::vector<double>& scratch, std::vector<double>& more,
-                                 std::vector<double>& most, std::vector<int32_t>& integers) {
-        switch (request.op) {
-            case Op::done:
-            case Op::failed: break;
-            case Op::compute: compute(static_cast<unsigned>(request.number)); break;
-            case Op::positions: get_positions(scratch.data()); break;
-            case Op::images: get_images(integers.data()); break;
-            case Op::unwrappedPositions: get_unwrapped_positions(scratch.data()); break;
-            case Op::velocities: get_velocities(scratch.data()); break;
-            case Op::forces: get_forces(scratch.data()); break;
-            case Op::particleEnergies: get_particle_energies(scratch.data()); break;
-            case Op::masses: get_masses(scratch.data()); break;
-            case Op::types: get_types(integers.data()); break;
-            case Op::radii: get_radii(scratch.data()); break;
-            case Op::orientations: get_orientations(scratch.data()); break;
-            case Op::torques: get_torques(scratch.data()); break;
-            case Op::magneticMoments: get_magnetic_moments(scratch.data()); break;
-            case Op::energy: energy(request.text); break;
-            case Op::termArrays: term_energies_and_forces(request.text, scratch.data(), more.data(), most.data()); break;
-            case Op::virial: virial(); break;
-            case Op::pairVirials: get_pair_virials(scratch.data()); break;
-            case Op::setLambda: set_lambda(request.value); break;
-            case Op::lambdaDerivative: lambda_derivative(); break;
-        }
 }
 
 // ---- gathers and sums ----
@@ -296,23 +165,23 @@ double BatchesOverRanks::lambda_derivative() {
 // ---- the host's setters: every rank passes the whole system's arrays ----
 
 void BatchesOverRanks::set_positions(const double* xyz) {
-    if (driving_) unsupported("setting positions from a simulation step");
+    if (driving()) unsupported("setting positions from a simulation step");
     run_together(*comm_, [&] { local_->set_positions(slice(xyz, 3)); });
 }
 void BatchesOverRanks::set_velocities(const double* v) {
-    if (driving_) unsupported("setting velocities from a simulation step");
+    if (driving()) unsupported("setting velocities from a simulation step");
     run_together(*comm_, [&] { local_->set_velocities(slice(v, 3)); });
 }
 void BatchesOverRanks::set_orientations(const double* q) {
-    if (driving_) unsupported("setting orientations from a simulation step");
+    if (driving()) unsupported("setting orientations from a simulation step");
     run_together(*comm_, [&] { local_->set_orientations(slice(q, 4)); });
 }
 void BatchesOverRanks::set_box(const double lengths[3]) {
-    if (driving_) unsupported("setting the box from a simulation step");
+    if (driving()) unsupported("setting the box from a simulation step");
     run_together(*comm_, [&] { local_->set_box(lengths); });
 }
 void BatchesOverRanks::set_external_forces(const double* f) {
-    if (driving_) unsupported("setting external forces from a simulation step");
+    if (driving()) unsupported("setting external forces from a simulation step");
     run_together(*comm_, [&] { local_->set_external_forces(f ? slice(f, 3) : nullptr); });
 }
 void BatchesOverRanks::set_external_energy(double energy) {
@@ -358,21 +227,21 @@ void held(const int64_t* ids, int64_t m, const double* values, int64_t first, in
 }  // namespace
 
 void BatchesOverRanks::set_positions_of(const int64_t* ids, int64_t m, const double* xyz) {
-    if (driving_) unsupported("setting positions from a simulation step");
+    if (driving()) unsupported("setting positions from a simulation step");
     std::vector<int64_t> localIds;
     std::vector<double> values;
     held(ids, m, xyz, firstId_, local_count(), localIds, values);
     run_together(*comm_, [&] { local_->set_positions_of(localIds.data(), static_cast<int64_t>(localIds.size()), values.data()); });
 }
 void BatchesOverRanks::set_velocities_of(const int64_t* ids, int64_t m, const double* v) {
-    if (driving_) unsupported("setting velocities from a simulation step");
+    if (driving()) unsupported("setting velocities from a simulation step");
     std::vector<int64_t> localIds;
     std::vector<double> values;
     held(ids, m, v, firstId_, local_count(), localIds, values);
     run_together(*comm_, [&] { local_->set_velocities_of(localIds.data(), static_cast<int64_t>(localIds.size()), values.data()); });
 }
 void BatchesOverRanks::set_external_forces_of(const int64_t* ids, int64_t m, const double* f) {
-    if (driving_) unsupported("setting external forces from a simulation step");
+    if (driving()) unsupported("setting external forces from a simulation step");
     std::vector<int64_t> localIds;
     std::vector<double> values;
     held(ids, m, f, firstId_, local_count(), localIds, values);

@@ -9,21 +9,19 @@
 // virial) are the shares' sums added over the ranks, equal to the one-rank values to rounding. An
 // energy of one batch (term@batch:K) is its rank's.
 //
-// Simulation steps fire on rank 0 only, where they see the whole system and write their files once;
-// meanwhile the other ranks serve what they ask (a request broadcast from rank 0 before each gather),
-// until rank 0 says the steps are done, with the stop a flow-control step asked for or the failure of
-// a step, which every rank then reports.
+// Simulation steps fire on rank 0 only (steps_on_rank_zero.hpp).
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "parallel/communicator.hpp"
+#include "parallel/steps_on_rank_zero.hpp"
 #include "simulation/simulation.hpp"
 
 namespace structmd {
 
-class BatchesOverRanks final : public Simulation, private StepFiring {
+class BatchesOverRanks final : public StepsOnRankZero {
 public:
     // `local`: this rank's engine, loaded from its share; counts: every rank's particle count;
     // batches: the batchId values of this rank's share. Collective.
@@ -106,17 +104,6 @@ public:
     std::optional<double> overdamped_kT() const override { return local_->overdamped_kT(); }
 
 private:
-    enum class Op : int32_t;
-    struct Request;
-
-    void fire(const std::vector<SimulationStep*>& due) override;
-    void serve();
-    // On rank 0 while the steps fire: tells the other ranks which gather comes next.
-    void announce(Op op, const std::string& text = std::string(), int64_t number = 0, double value = 0.0);
-    void send(const Request& request);
-    Request receive();
-    void serve_one(const Request& request, std::vector<double>& scratch, std::vector<double>& more,
-                   std::vector<double>& most, std::vector<int32_t>& integers);
     // k values per particle from every share into `all`, in id order.
     void gather(const std::vector<double>& mine, double* all, int k);
     template <class Get>
@@ -127,14 +114,12 @@ private:
     [[noreturn]] void unsupported(const std::string& what) const;
 
     std::unique_ptr<Simulation> local_;
-    std::shared_ptr<const Communicator> comm_;
     std::vector<int64_t> counts_;
     std::vector<int> batches_;
     int64_t firstId_ = 0;
     int64_t total_ = 0;
     int64_t massive_ = 0;
     double externalEnergy_ = 0.0;
-    bool driving_ = false;  // rank 0, while the due steps fire
 };
 
 }  // namespace structmd

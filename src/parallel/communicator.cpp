@@ -33,6 +33,11 @@ public:
     void send_receive(const double*, double*, int64_t, int partner) const override {
         throw Error(STRUCTMD_ERR_INTERNAL, "an exchange with rank " + std::to_string(partner) + " of one process");
     }
+    void shift(const double* sent, int64_t n, int to, double* received, int64_t m, int from) const override {
+        if (to != 0 || from != 0 || n != m)
+            throw Error(STRUCTMD_ERR_INTERNAL, "a shift between ranks of one process");
+        std::copy(sent, sent + n, received);
+    }
 };
 
 }  // namespace
@@ -97,6 +102,13 @@ public:
         if (n > INT32_MAX) throw Error(STRUCTMD_ERR_UNSUPPORTED, "an exchange between ranks of more than 2^31 values");
         check(MPI_Sendrecv(mine, static_cast<int>(n), MPI_DOUBLE, partner, 0, theirs, static_cast<int>(n), MPI_DOUBLE,
                            partner, 0, comm_, MPI_STATUS_IGNORE),
+              "MPI_Sendrecv");
+    }
+    void shift(const double* sent, int64_t n, int to, double* received, int64_t m, int from) const override {
+        if (n > INT32_MAX || m > INT32_MAX)
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, "an exchange between ranks of more than 2^31 values");
+        check(MPI_Sendrecv(sent, static_cast<int>(n), MPI_DOUBLE, to, 1, received, static_cast<int>(m), MPI_DOUBLE, from,
+                           1, comm_, MPI_STATUS_IGNORE),
               "MPI_Sendrecv");
     }
 

@@ -31,6 +31,9 @@ public:
     virtual void broadcast(std::string& bytes, int root) const = 0;
     // n values to rank `partner` and n from it, into theirs (a pairwise exchange: only the two call it).
     virtual void send_receive(const double* mine, double* theirs, int64_t n, int partner) const = 0;
+    // n values to rank `to` and m from rank `from`, into `received` (a shift along a ring of ranks:
+    // every rank calls it at once with its own partners; `to` == `from` == this rank copies).
+    virtual void shift(const double* sent, int64_t n, int to, double* received, int64_t m, int from) const = 0;
 };
 
 // Runs `local` on every rank of `comm`; when it throws on any, every rank throws the error of the

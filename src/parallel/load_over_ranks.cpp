@@ -1,5 +1,6 @@
 #include "parallel/load_over_ranks.hpp"
 
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include "engines/make_engine.hpp"
 #include "parallel/batch_split.hpp"
 #include "parallel/batches_over_ranks.hpp"
+#include "parallel/domains_over_ranks.hpp"
 #include "parallel/replica_documents.hpp"
 #include "parallel/replica_exchange.hpp"
 
@@ -22,6 +24,28 @@ nlohmann::json parse(const std::string& text) {
     } catch (const nlohmann::json::exception& e) {
         throw input_error("", std::string("not valid JSON: ") + e.what());
     }
+}
+
+// One batch (no batchId, or one value in it): the system is split in space rather than by batch.
+bool one_batch(const nlohmann::json& document) {
+    if (!document.is_object() || !document.contains("topology") || !document["topology"].is_object()) return false;
+    const nlohmann::json& topology = document["topology"];
+    if (!topology.contains("structure") || !topology["structure"].is_object()) return false;
+    const nlohmann::json& structure = topology["structure"];
+    if (!structure.contains("labels") || !structure.contains("data") || !structure["labels"].is_array() ||
+        !structure["data"].is_array())
+        return false;
+    const nlohmann::json& labels = structure["labels"];
+    const auto column = std::find(labels.begin(), labels.end(), "batchId");
+    if (column == labels.end()) return true;
+    const auto k = static_cast<size_t>(column - labels.begin());
+    std::optional<nlohmann::json> first;
+    for (const nlohmann::json& row : structure["data"]) {
+        if (!row.is_array() || k >= row.size()) return false;
+        if (!first) first = row[k];
+        else if (row[k] != *first) return false;
+    }
+    return true;
 }
 
 }  // namespace
@@ -51,6 +75,19 @@ std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const 
         if (spec) return std::make_unique<ReplicaExchange>(std::move(replicas), std::move(comm), std::move(*spec));
     }
     std::unique_ptr<Simulation> local;
+    // One batch on several ranks: spatial domains (domains_over_ranks.hpp).
+    if (comm->size() > 1) {
+        std::optional<DomainDocument> domains;
+        run_together(*comm, [&] {
+            nlohmann::json document = parse(text);
+            if (!one_batch(document)) return;
+            domains.emplace(std::move(document));
+            local = load_simulation(options, text, components, log);
+        });
+        if (domains)
+            return std::make_unique<DomainsOverRanks>(options, std::move(*domains), std::move(local), components, log,
+                                                      std::move(comm));
+    }
     BatchShare share;
     // A rank whose share fails to load (its own input error, memory) fails every rank's load.
     run_together(*comm, [&] {

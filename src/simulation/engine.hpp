@@ -214,8 +214,29 @@ public:
     const std::string& stopped_by() const override { return stoppedBy_; }
     void set_step_firing(StepFiring* firing) override { stepFiring_ = firing; }
 
+    void take_steps(std::vector<std::unique_ptr<SimulationStep>>& into) override {
+        for (auto& step : steps_) into.push_back(std::move(step));
+        steps_.clear();
+    }
+    double list_radius() const override { return forceField_.largest_list_radius(); }
+    double pair_cutoff() const override { return largestCutoff_; }
+    void hold_ghosts(const std::vector<int64_t>& globalIds, GhostExchange* exchange, bool begun) override {
+        backend_.activate();
+        backend_.upload(globalIds_, globalIds.data(), globalIds.size());
+        p_.noise.ids = globalIds_.data();
+        ghosts_ = exchange;
+        const std::vector<int64_t>& border = exchange->border_slots();
+        const std::vector<int64_t>& ghosts = exchange->ghost_slots();
+        backend_.upload(borderSlots_, border.data(), border.size());
+        backend_.upload(ghostSlots_, ghosts.data(), ghosts.size());
+        ghostsAt_ = -1;
+        if (begun && schedule_.stages() > 0) activeStage_ = schedule_.stage_after(current_step());
+        cache_.invalidate();
+    }
+
     void compute(unsigned flags) override {
         backend_.activate();
+        refresh_ghosts();
         cache_.evaluate(flags, backend_, p_, forceField_, callbacks_, evaluations_);
     }
 
@@ -313,6 +334,7 @@ public:
             callbacks_.evaluate(backend_, p_);
             return callbacks_.empty() ? 0.0 : callbacks_.energy();
         }
+        refresh_ghosts();
         if (r.term == "kinetic") return kinetic_energy(r.batch);
         if (r.term == "potential") return potential_energy(r.batch);
         // The host's field belongs to no batch: it is part of the whole system's total only.
@@ -333,6 +355,7 @@ public:
         const int index = forceField_.find(term);
         if (index < 0) throw Error(STRUCTMD_ERR_ARGUMENT, "no forceField entry named '" + term + "'");
         backend_.activate();
+        refresh_ghosts();
         backend_.resize(probedEnergies_, p_.count);
         backend_.fill(probedEnergies_, R(0));
         backend_.resize(probedForces_, p_.count);
@@ -704,6 +727,7 @@ private:
 
     // ForceSource
     void update_forces() override {
+        refresh_ghosts();
         cache_.evaluate(kForces, backend_, p_, forceField_, callbacks_, evaluations_);
         arm_drift();
     }
@@ -714,6 +738,41 @@ private:
         if (!driftBookkept) return;
         if (p_.drift.force) cache_.forces_cleared(p_.version);
         if (p_.drift.slotOf) forceField_.drift_mirrored(p_.version);
+    }
+
+    // A spatial domain's ghosts take their owners' positions and velocities whenever the positions
+    // moved since they last did (collective: every rank's engine makes the same calls). Their own
+    // drift moved them with incomplete forces; the new positions are a new version, so the lists
+    // check them afresh.
+    void refresh_ghosts() {
+        if (!ghosts_ || ghostsAt_ == p_.version) return;
+        const auto border = static_cast<int64_t>(ghosts_->border_slots().size());
+        const auto ghosts = static_cast<int64_t>(ghosts_->ghost_slots().size());
+        std::vector<double> sent(static_cast<size_t>(6 * border)), received(static_cast<size_t>(6 * ghosts));
+        if (border > 0) {
+            unpack_six(gather(p_.pos, borderSlots_, border), border, sent.data(), 0);
+            unpack_six(gather(p_.vel, borderSlots_, border), border, sent.data(), 3);
+        }
+        ghosts_->exchange(sent.data(), received.data());
+        if (ghosts > 0) {
+            Real4<R>* values = hostVectors_.reserve(static_cast<size_t>(2 * ghosts));
+            for (int64_t k = 0; k < ghosts; ++k)
+                for (int half = 0; half < 2; ++half) {
+                    const double* x = received.data() + 6 * k + 3 * half;
+                    values[2 * k + half] = {R(x[0]), R(x[1]), R(x[2]), R(0)};
+                }
+            backend_.for_each(ghosts, PlaceGhosts<R>{values, ghostSlots_.data(), p_.pos.data(), p_.vel.data()});
+            backend_.read_from_host(hostVectors_, static_cast<size_t>(2 * ghosts));
+        }
+        ++p_.version;
+        ghostsAt_ = p_.version;
+    }
+    static void unpack_six(const Real4<R>* values, int64_t m, double* out, int offset) {
+        for (int64_t k = 0; k < m; ++k) {
+            out[6 * k + offset] = values[k].x;
+            out[6 * k + offset + 1] = values[k].y;
+            out[6 * k + offset + 2] = values[k].z;
+        }
     }
 
     // What the next drift kernel can take over (state/drift_bookkeeping.hpp): clearing the forces,
@@ -977,6 +1036,11 @@ private:
     int64_t watchedVersion_ = -1;
     bool watchedRead_ = false;
     typename B::template Staging<unsigned long long> faultWord_;
+    // A spatial domain's (hold_ghosts): the global id of every slot, the slots sent to and received
+    // from the neighbouring domains, and the positions version the ghosts were last refreshed at.
+    typename B::template Buffer<int64_t> globalIds_, borderSlots_, ghostSlots_;
+    GhostExchange* ghosts_ = nullptr;
+    int64_t ghostsAt_ = -1;
 };
 
 }  // namespace structmd

@@ -91,6 +91,21 @@ struct ScatterById {
     SMD_HD void operator()(int64_t k) const { to[ids[k]] = from[k]; }
 };
 
+// Ghost slots take their owners' positions and velocities (values: position then velocity, by
+// ghost), keeping the type index and the mass in w.
+template <class R>
+struct PlaceGhosts {
+    const Real4<R>* values;
+    const int64_t* slots;
+    Real4<R>* pos;
+    Real4<R>* vel;
+    SMD_HD void operator()(int64_t k) const {
+        const int64_t i = slots[k];
+        pos[i] = {values[2 * k].x, values[2 * k].y, values[2 * k].z, pos[i].w};
+        vel[i] = {values[2 * k + 1].x, values[2 * k + 1].y, values[2 * k + 1].z, vel[i].w};
+    }
+};
+
 // Replaces the host's external force on some particles (ids, or every particle when null) with
 // values (zero when null). Where the forces are current (force not null) they change by the same
 // difference, so a host that sets its field every step costs no new force evaluation.

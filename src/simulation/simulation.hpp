@@ -4,10 +4,12 @@
 // particle-id order.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "core/thermodynamics.hpp"
 #include "simulation/force_callbacks.hpp"
 
@@ -23,6 +25,19 @@ class StepFiring {
 public:
     virtual ~StepFiring() = default;
     virtual void fire(const std::vector<SimulationStep*>& due) = 0;
+};
+
+// A spatial domain's engine (parallel/domains_over_ranks.hpp) holds the particles its rank owns in
+// slots [0, owned) and ghosts, copies of particles other ranks own, after them. Before every force
+// evaluation at new positions the engine hands the positions and velocities of its border slots (x y
+// z vx vy vz each, in border_slots() order) to exchange(), which fills those of its ghost slots
+// (ghost_slots() order) with their owners'. Staged through the host.
+class GhostExchange {
+public:
+    virtual ~GhostExchange() = default;
+    virtual const std::vector<int64_t>& border_slots() const = 0;
+    virtual const std::vector<int64_t>& ghost_slots() const = 0;
+    virtual void exchange(const double* border, double* ghosts) = 0;
 };
 
 enum ComputeFlags : unsigned { kForces = 1u, kEnergy = 2u, kVirial = 4u };
@@ -68,6 +83,22 @@ public:
     // Who fires the due simulation steps from now on; nullptr: the simulation, on itself.
     virtual void set_step_firing(StepFiring* firing) = 0;
     virtual void compute(unsigned flags) = 0;
+    // Makes this engine a spatial domain's: globalIds[slot] keys each slot's noise, `exchange`
+    // refreshes the ghosts before force evaluations (it outlives the engine's use of it), and
+    // `begun` says that the schedule's present integrator already began on the domain's previous
+    // engine (its state, half-step velocities, is in the particles). Only engines implement it.
+    virtual void hold_ghosts(const std::vector<int64_t>& /*globalIds*/, GhostExchange* /*exchange*/, bool /*begun*/) {
+        throw Error(STRUCTMD_ERR_INTERNAL, "only an engine holds the ghosts of a spatial domain");
+    }
+    // Moves the simulation steps into `into`, for a view that fires them itself (a spatial domain's,
+    // whose engines come and go); the simulation has none after. Only engines implement it.
+    virtual void take_steps(std::vector<std::unique_ptr<SimulationStep>>& /*into*/) {
+        throw Error(STRUCTMD_ERR_INTERNAL, "only an engine hands over its simulation steps");
+    }
+    // How far the pair terms' neighbour lists reach (cutoff and skin, the largest of them; 0 without
+    // lists), and the largest pair cutoff: a spatial domain's ghost width and move limit follow.
+    virtual double list_radius() const { throw Error(STRUCTMD_ERR_INTERNAL, "only an engine has neighbour lists"); }
+    virtual double pair_cutoff() const { throw Error(STRUCTMD_ERR_INTERNAL, "only an engine has neighbour lists"); }
 
     virtual void get_positions(double* xyz) = 0;  // wrapped into the box
     // Box crossings since the positions were set (3n); unwrapped = wrapped + image L.

@@ -4,7 +4,8 @@ and 3 against a run without MPI, on batched inputs (4 bead chains, Langevin with
 load, and Brownian). Trajectory files (wrapped and unwrapped positions, velocities) must be the
 same bytes, the thermodynamic measure (whole-system sums, added over the ranks) the same to
 rounding, and rank 0 alone must print. A flow-control step stops every rank at the same step, and an
-input with fewer batches than ranks is refused with one message. Parallel tempering (four
+input with more ranks than batches (but more than one batch) is refused with one message, and one batch
+over two ranks (split in space) writes the one-process trajectories to their printed digits. Parallel tempering (four
 temperatures, replicas over 1, 2 and 3 ranks, two on rank 0 of 3) makes the same exchanges and writes
 the same files as one process. Without MPI in the build, checks
 that `structmd run --mpi` says MPI is not compiled in, and reports itself skipped (77).
@@ -105,6 +106,25 @@ def same_to_rounding(a, b):
                                                              for x, y in zip(r, s)) for r, s in zip(a, b))
 
 
+def same_numbers(path_a, path_b, rel_tol):
+    """The same text but for numbers, which agree to rel_tol (or 1e-7 absolute)."""
+    def tokens(path):
+        with open(path) as f:
+            return f.read().split()
+    a, b = tokens(path_a), tokens(path_b)
+    if len(a) != len(b):
+        return False
+    for x, y in zip(a, b):
+        if x == y:
+            continue
+        try:
+            if not math.isclose(float(x), float(y), rel_tol=rel_tol, abs_tol=1e-7):
+                return False
+        except ValueError:
+            return False
+    return True
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("launcher")
@@ -182,13 +202,32 @@ def main():
         expect(stopped.stderr.count("stopped at step 100 by simulationStep.escape") == 1,
                "the stop is not said once, at step 100")
 
-        # More ranks than batches: refused, said once, with the engine's status as exit code.
-        single = chains(BROWNIAN, 10)
-        for row in single["topology"]["structure"]["data"]:
+        # One batch over two ranks is split in space (tests/mpi/domains.c checks it to 1e-10 through the C
+        # API): through the launcher, the trajectory files that rank 0 writes hold the one-process
+        # values to their 8 digits, give or take the last.
+        spread = chains(LANGEVIN, 300)
+        for row in spread["topology"]["structure"]["data"]:
             row[2] = 0
-        refused = run(mpirun(2), os.path.join(work, "refused"), single)
-        expect(refused.returncode == STRUCTMD_ERR_UNSUPPORTED, f"one batch over 2 ranks exited {refused.returncode}")
-        expect(refused.stderr.count("cannot be spread over 2 ranks") == 1, "the refusal is not said once")
+        for row in spread["state"]["data"]:
+            k = row[0] % PER_BATCH  # each chain a U of two rows across the slabs' face at x = 0, in a plane of its own
+            row[1] = [1.05 * (k if k < 8 else 15 - k) - 4.0, 1.05 * (k // 8), 3.0 * (row[0] // PER_BATCH) - 4.5]
+        del spread["simulationStep"]["thermo"]
+        alone = run([launcher], os.path.join(work, "domains", "alone"), spread)
+        split = run(mpirun(2), os.path.join(work, "domains", "np2"), spread)
+        expect(alone.returncode == 0 and split.returncode == 0,
+               f"one batch: exited {alone.returncode} alone, {split.returncode} over 2 ranks")
+        for output in OUTPUTS:
+            a, b = (os.path.join(work, "domains", folder, output) for folder in ("alone", "np2"))
+            expect(os.path.exists(b) and same_numbers(a, b, 1e-6), f"one batch over 2 ranks: {output} differs")
+
+        # More ranks than batches (two, over three ranks): refused, said once, with the engine's status as
+        # exit code. (One batch over several ranks is split in space instead: tests/mpi/domains.c.)
+        few = chains(BROWNIAN, 10)
+        for row in few["topology"]["structure"]["data"]:
+            row[2] = row[0] // (2 * PER_BATCH)
+        refused = run(mpirun(3), os.path.join(work, "refused"), few)
+        expect(refused.returncode == STRUCTMD_ERR_UNSUPPORTED, f"two batches over 3 ranks exited {refused.returncode}")
+        expect(refused.stderr.count("cannot be spread over 3 ranks") == 1, "the refusal is not said once")
 
     if problems:
         sys.exit("\n".join(problems))

@@ -1,0 +1,214 @@
+#pragma once
+// One system (one batch) spread in space over the K ranks of an MPI communicator: spatial domain
+// decomposition, first increment (slabs, CPU-tested; the CUDA engine compiles the same path).
+//
+// Design.
+// - Domains: K slabs of equal width along the longest box axis; rank r owns the particles whose
+//   fractional coordinate along it lies in [r/K, (r+1)/K). Its neighbours are ranks r-1 and r+1
+//   (periodic; with K = 2 both are the other rank, and a border particle is sent to it once).
+// - The engine of a domain is an ordinary Engine loaded from a document of its own
+//   (domain_document.hpp) whose slots are the owned particles, in increasing global id, then the
+//   ghosts: copies of the particles other ranks own within the ghost width W of the slab's faces.
+//   Slots keep their global id for the noise (NoiseKey::ids), so a particle draws the same numbers
+//   on any rank, and Langevin trajectories are those of one rank to rounding.
+// - Ghosts: before every force evaluation at new positions the engine refreshes them
+//   (GhostExchange, simulation.hpp): the positions and velocities of its border slots go to the
+//   neighbours and theirs come back into the ghost slots, staged through the host, MPI point to
+//   point (two shifts along the ring of ranks). Ghosts are integrated locally like any particle
+//   but with incomplete forces; the refresh overwrites what that did, so only owned particles'
+//   motion counts.
+// - Pairs: full neighbour lists over owned and ghost slots; an owned particle's pair force is
+//   complete from them, so forces need no reverse communication. Per-particle energies are half of
+//   each pair's, so the sum over owned slots of all ranks counts each pair once.
+// - Bonds (Bond2): a rank keeps every bond of which it owns a particle; the bond kernel gives each
+//   particle its whole force from its own bonds, and its energy share (half), so again the sum
+//   over owned slots counts each bond once. Bonds between two ghosts are left out.
+// - The ghost set is fixed between rebuilds. W = max(list radius, 1.5 x the longest bond at load).
+//   A pair within the cutoff rc of an owned particle is a ghost as long as no particle moved more
+//   than (W - rc)/2 since the rebuild; the domains are rebuilt when the largest move over all ranks
+//   passes half that (a collective decision, checked after every step), and a move past it is an
+//   error (never a silently wrong force). A rebuild migrates particles that left the slab to their
+//   new owner (sent to the neighbour with position, velocity and image), picks the ghosts anew
+//   and loads the domain's engine again from its document, at the same step and time, with the
+//   schedule's remaining steps, without beginning its integrator again (half-step Langevin
+//   velocities carry over).
+// - Energies: kinetic from owned velocities, potential from owned per-particle energies, summed
+//   over ranks. Per-particle arrays are gathered (global id, values) from every rank into id order;
+//   every gather checks that each id arrives exactly once.
+// - Simulation steps: made once from the whole system's document at load (so their files are
+//   opened once), fired by this view on rank 0 with the other ranks serving its gathers
+//   (steps_on_rank_zero.hpp), at the same steps as one engine would.
+// - Everything else is refused by name: "<what> is not available under domain decomposition"
+//   (domain_document.hpp at load; the API calls below).
+// Memory: every rank loads the whole document and the whole system once at load (the same initial
+// velocities as one rank), then holds its domain only (plus the document, for the rebuilds).
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/logger.hpp"
+#include "engines/engine_options.hpp"
+#include "forcefield/component_set.hpp"
+#include "parallel/communicator.hpp"
+#include "parallel/domain_document.hpp"
+#include "parallel/steps_on_rank_zero.hpp"
+#include "steps/simulation_step.hpp"
+
+namespace structmd {
+
+class DomainsOverRanks final : public StepsOnRankZero, private GhostExchange {
+public:
+    // `whole`: the system loaded whole on this rank from `document`'s text, released once the
+    // domains are made. Collective.
+    DomainsOverRanks(const EngineOptions& options, DomainDocument document, std::unique_ptr<Simulation> whole,
+                     const ForceFieldComponents& components, const Logger& log, std::shared_ptr<const Communicator> comm);
+    ~DomainsOverRanks() override;
+
+    int64_t particle_count() const override { return total_; }
+    int64_t massive_count() const override { return massive_; }
+    int64_t current_step() const override { return local_->current_step(); }
+    double current_time() const override { return local_->current_time(); }
+    int64_t final_step() const override { return finalStep_; }
+    double boltzmann() const override { return local_->boltzmann(); }
+    std::array<double, 3> box() const override { return box_; }
+    double volume() const override { return box_[0] * box_[1] * box_[2]; }
+
+    void advance(int64_t n) override;
+    void request_stop(const std::string& by) override {
+        if (stoppedBy_.empty()) stoppedBy_ = by;
+    }
+    const std::string& stopped_by() const override { return stoppedBy_; }
+    void set_step_firing(StepFiring*) override;
+    void compute(unsigned flags) override;
+
+    void get_positions(double* xyz) override;
+    void get_images(int32_t* images) override;
+    void get_unwrapped_positions(double* xyz) override;
+    void get_velocities(double* v) override;
+    void get_forces(double* f) override;
+    void get_particle_energies(double* e) override;
+    void get_masses(double* m) override;
+    void get_types(int32_t* types) override;
+    void get_radii(double* r) override;
+    void get_orientations(double* q) override;
+    void set_orientations(const double* q) override;
+    void get_torques(double* t) override;
+    void get_magnetic_moments(double* m) override;
+    bool has_magnetization() const override { return false; }
+    const std::vector<std::string>& type_names() const override { return typeNames_; }
+
+    double energy(const std::string& term) override;
+    std::vector<std::string> energy_terms() const override { return local_->energy_terms(); }
+    void term_energies_and_forces(const std::string& term, double* energies, double* forces, double* torques) override;
+    std::array<double, 9> virial() override;
+    void get_pair_virials(double* w) override;
+
+    void hessian_column(int64_t id, double* blocks) override;
+    void pair_forces_on(int64_t id, double* f) override;
+    void forces_with_displaced(int64_t id, const double displacement[3], double* f) override;
+
+    void set_positions(const double* xyz) override;
+    void set_velocities(const double* v) override;
+    void set_box(const double lengths[3]) override;
+    void set_external_forces(const double* f) override;
+
+    double lambda() const override { return local_->lambda(); }
+    void set_lambda(double lambda) override;
+    double lambda_derivative() override;
+
+    void get_positions_of(const int64_t* ids, int64_t m, double* xyz) override;
+    void get_velocities_of(const int64_t* ids, int64_t m, double* v) override;
+    void get_forces_of(const int64_t* ids, int64_t m, double* f) override;
+    void set_positions_of(const int64_t* ids, int64_t m, const double* xyz) override;
+    void set_velocities_of(const int64_t* ids, int64_t m, const double* v) override;
+    void set_external_forces_of(const int64_t* ids, int64_t m, const double* f) override;
+
+    void set_external_energy(double energy) override;
+    double external_energy() const override { return 0.0; }
+
+    void set_force_callback(HostForceCallback callback) override;
+    void set_device_force_callback(DeviceForceCallback callback) override;
+    ArrayView view(const std::string& quantity) override;
+    void change_parameters(const RuntimeSpec& spec, const ForceFieldComponents& components) override;
+    void save_checkpoint(const std::string& path) override;
+    void load_checkpoint(const std::string& path) override;
+
+    Counters counters() override { return local_->counters(); }  // this rank's present engine
+    std::string backend_name() const override { return local_->backend_name(); }
+    std::string precision_name() const override { return local_->precision_name(); }
+    std::string device_name() const override { return local_->device_name(); }
+    int threads() const override { return local_->threads(); }
+    std::optional<double> overdamped_kT() const override { return local_->overdamped_kT(); }
+
+private:
+    // An owned particle as it travels to a new owner: id, position, velocity, image (10 doubles).
+    struct Held {
+        int64_t id = 0;
+        std::array<double, 3> position{}, velocity{};
+        std::array<int32_t, 3> image{};
+    };
+    // One neighbour the ghosts are exchanged with: this rank sends to `to` and receives from `from`.
+    struct Link {
+        int to = 0, from = 0;
+        std::vector<int64_t> sent;  // owned slots
+        int64_t received = 0;      // ghosts from it
+    };
+
+    // GhostExchange
+    const std::vector<int64_t>& border_slots() const override { return borderSlots_; }
+    const std::vector<int64_t>& ghost_slots() const override { return ghostSlots_; }
+    void exchange(const double* border, double* ghosts) override;
+
+    void fire_due(bool final);
+    // The owned particles as they are now: positions, velocities and images (whole, since load).
+    std::vector<Held> owned_now();
+    // After a step: the largest move since the rebuild over all ranks; rebuilds past half the limit.
+    void check_moves();
+    // Owned particles that left the slab go to their new owner; returns what this rank owns now.
+    std::vector<Held> migrate(std::vector<Held> held);
+    // Picks the ghosts of `owned` (sorted by id) and loads the domain's engine.
+    void build(std::vector<Held> owned);
+    int slab_of(double x) const;
+    // Per-particle values of the owned slots (k each, from `local` over all the engine's slots) of
+    // every rank, into `all` in id order.
+    void gather_owned(const std::vector<double>& local, int k, double* all);
+    template <class Get>
+    void gather_per_particle(Op op, double* all, int k, Get&& get);
+    double sum_owned(const std::vector<double>& values) const;
+    [[noreturn]] void unsupported(const std::string& what) const;
+
+    EngineOptions options_;
+    DomainDocument document_;
+    const ForceFieldComponents* components_;
+    Logger log_;
+    std::unique_ptr<Simulation> local_;
+    std::vector<std::unique_ptr<SimulationStep>> steps_;
+    std::vector<SimulationStep*> dueSteps_;
+    std::string stoppedBy_;
+
+    int64_t total_ = 0;
+    int64_t massive_ = 0;
+    std::vector<double> masses_, radii_;
+    std::vector<int32_t> types_;
+    std::vector<std::string> typeNames_;
+    std::array<double, 3> box_{};
+    int axis_ = 0;
+    double width_ = 0.0;      // of the ghost layer
+    double moveLimit_ = 0.0;  // the largest move since a rebuild that keeps every pair force whole
+
+    std::vector<int64_t> ids_;  // global id by slot: owned, then ghosts
+    int64_t owned_ = 0;
+    std::vector<std::array<int32_t, 3>> baseImages_;  // owned particles' images before the present engine
+    std::vector<double> reference_;                   // owned positions at the rebuild, 3 each
+    std::vector<Link> links_;
+    std::vector<int64_t> borderSlots_, ghostSlots_;
+    int64_t startStep_ = 0;  // the step and time of the document, for the first engine
+    double startTime_ = 0.0;
+    int64_t finalStep_ = 0;  // where the whole system's schedule ends
+    bool begun_ = false;  // the integrator began on an engine of this domain
+    int64_t rebuilds_ = 0;  // since load, logged at the end: how often the ghost layer ran out
+};
+
+}  // namespace structmd
