@@ -236,6 +236,32 @@ def test_a_trapped_particle_samples_boltzmann(options):
     assert error < 0.1 * kT
 
 
+def test_a_schedule_of_stages_and_brownian_dynamics_between_them(options):
+    """PSE, free Brownian dynamics, the same PSE again (its list and mesh kept from its first stage)
+    and a PSE at temperature 0: every stage moves the particles, and the last, under a push on
+    particle 0, moves particle 1 (overlapping it) as the periodic RPY coupling says."""
+    box, time_step = 12.0, 0.01
+    positions = np.array([[0.0, 0.0, 0.0], [1.5, 0.0, 0.0]])
+    doc = document(positions, box, pse(time_step=time_step), temperature=1.0)
+    doc["integrator"]["free"] = {"type": ["Brownian", "EulerMaruyama"],
+                                 "parameters": {"timeStep": time_step, "viscosity": ETA}}
+    doc["integrator"]["cold"] = pse(time_step=time_step, temperature=0.0)
+    doc["integrator"]["schedule"]["data"] = [[1, "bd", 3], [2, "free", 3], [3, "bd", 3], [4, "cold", 10]]
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+        for _ in range(3):
+            before = sim.positions
+            sim.step(3)
+            assert np.all(np.abs(minimum_image(sim.positions - before, box)) > 0.0)
+        before = sim.positions
+        sim.external_forces = [[1.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+        sim.step(1)
+        moved = minimum_image(sim.positions - before, box) / time_step
+    coupling = periodic_rpy(before, box)
+    assert moved[1] == pytest.approx(coupling[3:6, 0], abs=1e-4 * MU0)
+    assert moved[1, 0] > 0.3 * MU0
+
+
 def test_a_box_changed_by_the_host_is_refused_by_name(options):
     with structmd.Simulation(options) as sim:
         sim.load(document([[0.0, 0.0, 0.0]], 8.0, pse(psi=2.0), steps=10))
