@@ -16,6 +16,11 @@
 //
 // Forces go onto the grid one line along x per thread from the particles sorted by the line their
 // kernel starts on (neighbour/line_bins.hpp, as the particle-mesh Ewald of electrostatics does).
+//
+// The mesh is generic over the Gaussian's width and the Fourier multiplier G(k) that turns the force
+// density into velocity (u_k = G(k) P_k f_k): FcmGreen below is the Stokes solve of the force
+// coupling method; the positively split Ewald method's far field (pse_far_field.hpp) uses the same
+// spreading, transform, noise and interpolation with its own G and kernel width.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -32,11 +37,11 @@
 
 namespace structmd {
 
-// Everything the mesh needs, fixed for one box (make_fcm_plan).
+// Everything the mesh needs, fixed for one box (make_fcm_plan, make_pse_far_plan).
 struct FcmPlan {
     FftGrid grid;
     double box[3] = {0, 0, 0};
-    double sigma = 0.0;  // the Gaussian's width, a / sqrt(pi)
+    double sigma = 0.0;  // the Gaussian's width (the force coupling method's: a / sqrt(pi))
     int support = 0;     // grid points the Gaussian covers along each axis
 };
 
@@ -143,20 +148,28 @@ struct FcmSpreadLine {
     }
 };
 
+// The Stokes solve of the force coupling method: G(k) = 1 / (eta k^2).
+template <class R>
+struct FcmGreen {
+    R inverseViscosity;
+    SMD_HD SMD_INLINE R operator()(R k2) const { return inverseViscosity / k2; }
+};
+
 // One wave vector of the half spectrum: the transformed force density (three components, one
 // spectrum after the other) becomes the displacement field's spectrum,
-//   A_k = dt/(N eta k^2) P_k F_k  +  sqrt(2 kT dt / (V eta k^2)) P_k Z_k,
+//   A_k = dt/N G(k) P_k F_k  +  sqrt(2 kT dt G(k) / V) P_k Z_k,
 // N the grid's points, V the box's volume, P_k = I - k k^T / k^2, Z_k complex normal with
 // <Z Z^H> = I. The inverse transform (unnormalised) then gives dt u + noise on the grid. On the
 // plane x = 0 the spectrum holds both k and -k: the one of higher index takes the conjugate of its
 // partner's noise, so that the field is real.
-template <class R>
+template <class R, class Green>
 struct FcmStokesSolve {
     Complex<R>* spectrum;
     FftGrid grid;
     Vec3<R> length;
-    R driftScale;  // dt / (N eta)
-    R noiseScale;  // 2 kT dt / (V eta); 0: no noise
+    Green green;
+    R driftScale;  // dt / N
+    R noiseScale;  // 2 kT dt / V; 0: no noise
     uint64_t seed, noiseStream;
     ClockView now;  // the step keys the noise
 
@@ -177,9 +190,10 @@ struct FcmStokesSolve {
         const Vec3<R> k{twoPi * R(x) / length.x, twoPi * R(2 * y < grid.ny ? y : y - grid.ny) / length.y,
                         twoPi * R(2 * z < grid.nz ? z : z - grid.nz) / length.z};
         const R k2 = dot(k, k);
+        const R g = green(k2);
         Vec3<R> re{fx->re, fy->re, fz->re}, im{fx->im, fy->im, fz->im};
-        re = driftScale / k2 * re;
-        im = driftScale / k2 * im;
+        re = (driftScale * g) * re;
+        im = (driftScale * g) * im;
         if (noiseScale > R(0)) {
             int64_t drawn = at;
             R conjugate = R(1);
@@ -193,7 +207,7 @@ struct FcmStokesSolve {
             double xi[8];
             normal4(seed, noiseStream ^ static_cast<uint64_t>(2 * drawn), static_cast<uint64_t>(now.step()), xi);
             normal4(seed, noiseStream ^ static_cast<uint64_t>(2 * drawn + 1), static_cast<uint64_t>(now.step()), xi + 4);
-            const R amplitude = sqrt(noiseScale / k2 * R(0.5));  // re and im each carry half
+            const R amplitude = sqrt(noiseScale * g * R(0.5));  // re and im each carry half
             re = re + amplitude * Vec3<R>{R(xi[0]), R(xi[1]), R(xi[2])};
             im = im + (conjugate * amplitude) * Vec3<R>{R(xi[4]), R(xi[5]), R(xi[6])};
         }
@@ -205,8 +219,8 @@ struct FcmStokesSolve {
     }
 };
 
-// Each group member's displacement: the grid's field averaged by its Gaussian, times the cell
-// volume.
+// Each group member's displacement (flat: 3i, 3i+1, 3i+2): the grid's field averaged by its
+// Gaussian, times the cell volume.
 template <class R>
 struct FcmInterpolate {
     const Real4<R>* pos;
@@ -214,7 +228,7 @@ struct FcmInterpolate {
     FcmAxes<R> axes;
     const R* field;  // three grids, x, y, z components
     R cellVolume;
-    Vec3<R>* displacement;
+    R* displacement;
 
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
@@ -240,7 +254,9 @@ struct FcmInterpolate {
                 }
             }
         }
-        displacement[i] = cellVolume * sum;
+        displacement[3 * i] = cellVolume * sum.x;
+        displacement[3 * i + 1] = cellVolume * sum.y;
+        displacement[3 * i + 2] = cellVolume * sum.z;
     }
 };
 
@@ -291,7 +307,7 @@ inline FcmPlan make_fcm_plan(const double box[3], double radius, double toleranc
     return plan;
 }
 
-template <class B, class R>
+template <class B, class R, class Green>
 class FcmMesh {
 public:
     FcmMesh(const B& backend, const FcmPlan& plan)
@@ -303,9 +319,10 @@ public:
 
     const FcmPlan& plan() const { return plan_; }
 
-    // Fills displacement (by particle, group members only) with dt M F + sqrt(2 kT dt) M^{1/2} W.
-    void displace(const Particles<B, R>& p, const uint8_t* group, double dt, double viscosity, double kT,
-                  uint64_t noiseStream, Vec3<R>* displacement) {
+    // Fills displacement (flat, group members only) with dt M F + sqrt(2 kT dt) M^{1/2} W, M the
+    // mobility of this kernel and G.
+    void displace(const Particles<B, R>& p, const uint8_t* group, double dt, double kT, const Green& green,
+                  uint64_t noiseStream, R* displacement) {
         const FftGrid grid = plan_.grid;
         const int64_t points = grid.points(), spectrumPoints = grid.spectrum_points();
         bins_.sort(p.count, FcmKernelLine<R>{p.pos.data(), group, axes_});
@@ -314,8 +331,8 @@ public:
         for (int d = 0; d < 3; ++d) fft_.forward(field_.data() + d * points, spectrum_.data() + d * spectrumPoints);
         const double volume = plan_.box[0] * plan_.box[1] * plan_.box[2];
         backend_.for_each(spectrumPoints,
-                          FcmStokesSolve<R>{spectrum_.data(), grid, p.box.length, R(dt / (double(points) * viscosity)),
-                                            R(2.0 * kT * dt / (volume * viscosity)), p.noise.seed, noiseStream, p.now()});
+                          FcmStokesSolve<R, Green>{spectrum_.data(), grid, p.box.length, green, R(dt / double(points)),
+                                                   R(2.0 * kT * dt / volume), p.noise.seed, noiseStream, p.now()});
         for (int d = 0; d < 3; ++d) fft_.inverse(spectrum_.data() + d * spectrumPoints, field_.data() + d * points);
         backend_.for_each(p.count, FcmInterpolate<R>{p.pos.data(), group, axes_, field_.data(),
                                                      R(volume / double(points)), displacement});

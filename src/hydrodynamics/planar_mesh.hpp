@@ -214,7 +214,7 @@ struct PlanarInterpolate {
     PlanarAxes<R> axes;
     const R* field;  // two grids, x and y components
     R cellArea;
-    Vec3<R>* displacement;
+    R* displacement;  // flat, three numbers a particle
 
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
@@ -235,7 +235,9 @@ struct PlanarInterpolate {
                 sumY += w * line[at + points];
             }
         }
-        displacement[i] = Vec3<R>{cellArea * sumX, cellArea * sumY, R(0)};
+        displacement[3 * i] = cellArea * sumX;
+        displacement[3 * i + 1] = cellArea * sumY;
+        displacement[3 * i + 2] = R(0);
     }
 };
 
@@ -294,7 +296,7 @@ public:
     // Fills displacement (by particle, group members only) with dt M F + dt kT div M +
     // sqrt(2 kT dt) M^{1/2} W, in x and y.
     void displace(const Particles<B, R>& p, const uint8_t* group, double dt, double viscosity, double kT,
-                  uint64_t noiseStream, Vec3<R>* displacement) {
+                  uint64_t noiseStream, R* displacement) {
         const FftGrid grid = plan_.grid;
         const int64_t points = grid.points(), spectrumPoints = grid.spectrum_points();
         const PlanarKernel<R> kernel{plan_.kind, R(plan_.sigma)};

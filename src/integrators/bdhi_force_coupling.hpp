@@ -9,10 +9,8 @@
 
 #include "core/error.hpp"
 #include "hydrodynamics/fcm_mesh.hpp"
+#include "integrators/bdhi_kernels.hpp"
 #include "integrators/brownian.hpp"
-#include "integrators/integrator.hpp"
-#include "integrators/thermal_noise.hpp"
-#include "state/fault.hpp"
 
 namespace structmd {
 
@@ -28,31 +26,6 @@ struct BdhiForceCouplingInputs : IntegratorInputs {
         if (!(v["tolerance"] >= smallestTolerance && v["tolerance"] <= largestTolerance))
             throw input_error(path + ".parameters.tolerance",
                               "expected a tolerance in [1e-10, 0.1], got " + std::to_string(v["tolerance"]));
-    }
-};
-
-// Moves each group member by its displacement; every particle's drift is bookkept.
-template <class R>
-struct ApplyDisplacement {
-    Real4<R>* pos;
-    Image* image;
-    const Real4<R>* force;
-    const Vec3<R>* displacement;
-    const uint8_t* group;
-    Box<R> box;
-    FaultSlot fault;
-    DriftBookkeeping<R> bookkeeping;
-    SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) {
-            bookkeeping(i, pos[i]);
-            return;
-        }
-        const Vec3<R> move = displacement[i];
-        fault.check_move(i, move);
-        const Real4<R> p = displaced(pos[i], move, box, image[i]);
-        pos[i] = p;
-        fault.check(i, p, force[i]);
-        bookkeeping(i, p);
     }
 };
 
@@ -74,10 +47,11 @@ public:
         const IntegratorScope& s = this->scope();
         prepare(p);
         forces.update_forces();
-        mesh_->displace(p, s.group, s.timeStep, viscosity_, s.kT, static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48,
-                        displacement_.data());
-        backend_.for_each(p.count, ApplyDisplacement<R>{p.pos.data(), p.image.data(), p.force.data(),
-                                                        displacement_.data(), s.group, p.box, p.fault_slot(1), p.drift});
+        mesh_->displace(p, s.group, s.timeStep, s.kT, FcmGreen<R>{R(1.0 / viscosity_)},
+                        static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48, displacement_.data());
+        backend_.for_each(p.count, BdhiMove<R>{p.pos.data(), p.image.data(), p.force.data(), nullptr, nullptr,
+                                               displacement_.data(), s.group, p.box, R(0), R(0), p.fault_slot(1),
+                                               p.drift});
         forces.positions_moved(s.timeStep, true);
     }
 
@@ -92,15 +66,15 @@ private:
                                 this->scope().name + ": the box changed; [\"BDHITriplyPeriodic\", \"ForceCouplingMethod\"] "
                                                      "solves the Stokes flow of the box it started with");
         } else {
-            mesh_ = std::make_unique<FcmMesh<B, R>>(backend_, make_fcm_plan(box, radius_, tolerance_, this->scope().path));
+            mesh_ = std::make_unique<FcmMesh<B, R, FcmGreen<R>>>(backend_, make_fcm_plan(box, radius_, tolerance_, this->scope().path));
         }
-        backend_.resize(displacement_, static_cast<size_t>(p.count));
+        backend_.resize(displacement_, static_cast<size_t>(3 * p.count));
     }
 
     const B& backend_;
     double viscosity_, radius_, tolerance_;
-    std::unique_ptr<FcmMesh<B, R>> mesh_;
-    typename B::template Buffer<Vec3<R>> displacement_;
+    std::unique_ptr<FcmMesh<B, R, FcmGreen<R>>> mesh_;
+    typename B::template Buffer<R> displacement_;
 };
 
 }  // namespace structmd

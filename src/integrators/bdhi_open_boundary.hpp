@@ -10,10 +10,8 @@
 #include <cmath>
 
 #include "hydrodynamics/open_mobility.hpp"
+#include "integrators/bdhi_kernels.hpp"
 #include "integrators/brownian.hpp"
-#include "integrators/integrator.hpp"
-#include "integrators/thermal_noise.hpp"
-#include "state/fault.hpp"
 
 namespace structmd {
 
@@ -25,63 +23,6 @@ struct BdhiOpenBoundaryInputs : IntegratorInputs {
     static constexpr bool needsRadius = true;  // without hydrodynamicRadius, each particle's radius
     static constexpr bool overdamped = true;
     static constexpr const char* radiusParameter = "hydrodynamicRadius";
-};
-
-// The forces as a flat vector of 3N numbers (the mobility products read them so).
-template <class R>
-struct FlattenForces {
-    const Real4<R>* force;
-    R* flat;
-    SMD_HD void operator()(int64_t i) const {
-        const Real4<R> f = force[i];
-        flat[3 * i] = f.x;
-        flat[3 * i + 1] = f.y;
-        flat[3 * i + 2] = f.z;
-    }
-};
-
-// W ~ N(0, I) for the group's particles, 0 for the others (so that no noise reaches them).
-template <class R>
-struct DrawHydrodynamicNoise {
-    const Real4<R>* spheres;
-    NoiseKey noise;
-    ClockView now;
-    R* w;
-    SMD_HD void operator()(int64_t i) const {
-        Vec3<R> xi{R(0), R(0), R(0)};
-        if (spheres[i].w > R(0)) xi = gaussian3<R>(noise, NoisePurpose::integrator, i, now.step());
-        w[3 * i] = xi.x;
-        w[3 * i + 1] = xi.y;
-        w[3 * i + 2] = xi.z;
-    }
-};
-
-// x += dt (M F) + spread (M^{1/2} W), with spread = sqrt(2 kT dt); noise is null at kT = 0.
-template <class R>
-struct BdhiMove {
-    Real4<R>* pos;
-    Image* image;
-    const Real4<R>* force;
-    const R* drift;  // M F
-    const R* noise;  // M^{1/2} W
-    const uint8_t* group;
-    Box<R> box;
-    R dt, spread;
-    FaultSlot fault;
-    DriftBookkeeping<R> bookkeeping;
-    SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) {
-            bookkeeping(i, pos[i]);
-            return;
-        }
-        Vec3<R> move = dt * Vec3<R>{drift[3 * i], drift[3 * i + 1], drift[3 * i + 2]};
-        if (noise) move += spread * Vec3<R>{noise[3 * i], noise[3 * i + 1], noise[3 * i + 2]};
-        fault.check_move(i, move);
-        const Real4<R> p = displaced(pos[i], move, box, image[i]);
-        pos[i] = p;
-        fault.check(i, p, force[i]);
-        bookkeeping(i, p);
-    }
 };
 
 template <class B, class R>
@@ -112,11 +53,11 @@ public:
                                 LaneSizing::kFillDevice);
         const bool thermal = s.kT > 0.0;
         if (thermal) {
-            backend_.for_each(n, DrawHydrodynamicNoise<R>{spheres_.data(), p.noise, p.now(), gaussian_.data()});
+            backend_.for_each(n, DrawHydrodynamicNoise<R>{s.group, p.noise, p.now(), gaussian_.data()});
             mobility_sqrt(n, p, gaussian_.data(), noise_.data());
         }
         backend_.for_each(n, BdhiMove<R>{p.pos.data(), p.image.data(), p.force.data(), drift_.data(),
-                                         thermal ? noise_.data() : nullptr, s.group, p.box, R(s.timeStep),
+                                         thermal ? noise_.data() : nullptr, nullptr, s.group, p.box, R(s.timeStep),
                                          R(std::sqrt(2.0 * s.kT * s.timeStep)), p.fault_slot(1), p.drift});
         forces.positions_moved(s.timeStep, true);
     }

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "hydrodynamics/planar_mesh.hpp"
 #include "integrators/bdhi_force_coupling.hpp"
+#include "integrators/bdhi_kernels.hpp"
 #include "integrators/brownian.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/thermal_noise.hpp"
@@ -49,8 +50,9 @@ public:
         forces.update_forces();
         mesh_->displace(p, s.group, s.timeStep, viscosity_, s.kT, static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48,
                         displacement_.data());
-        backend_.for_each(p.count, ApplyDisplacement<R>{p.pos.data(), p.image.data(), p.force.data(),
-                                                        displacement_.data(), s.group, p.box, p.fault_slot(1), p.drift});
+        backend_.for_each(p.count, BdhiMove<R>{p.pos.data(), p.image.data(), p.force.data(), nullptr, nullptr,
+                                               displacement_.data(), s.group, p.box, R(0), R(0), p.fault_slot(1),
+                                               p.drift});
         forces.positions_moved(s.timeStep, true);
     }
 
@@ -68,14 +70,14 @@ private:
             mesh_ = std::make_unique<PlanarMesh<B, R>>(backend_, make_planar_plan(box, kind_, radius_, tolerance_,
                                                                                   this->scope().path));
         }
-        backend_.resize(displacement_, static_cast<size_t>(p.count));
+        backend_.resize(displacement_, static_cast<size_t>(3 * p.count));
     }
 
     const B& backend_;
     double viscosity_, radius_, tolerance_;
     PlanarHydrodynamics kind_;
     std::unique_ptr<PlanarMesh<B, R>> mesh_;
-    typename B::template Buffer<Vec3<R>> displacement_;
+    typename B::template Buffer<R> displacement_;  // flat, three numbers a particle
 };
 
 }  // namespace structmd

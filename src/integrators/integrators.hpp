@@ -7,6 +7,7 @@
 #include "integrators/bdhi_cholesky.hpp"
 #include "integrators/bdhi_force_coupling.hpp"
 #include "integrators/bdhi_lanczos.hpp"
+#include "integrators/bdhi_positively_split_ewald.hpp"
 #include "integrators/bdhi_quasi2d.hpp"
 #include "integrators/brownian.hpp"
 #include "integrators/brownian_rigid_body.hpp"
@@ -32,6 +33,10 @@ void visit_builtin_integrators(Visitor& v) {
     v.template integrator<BdhiForceCoupling, BdhiForceCouplingInputs>({"BDHITriplyPeriodic", "ForceCouplingMethod"});
     v.template integrator<BdhiForceCoupling, BdhiForceCouplingInputs>({"BDHITriplePeriodic", "ForceCouplingMethod"});
     v.template integrator<BdhiQuasi2D, BdhiQuasi2DInputs>({"BDHIDoublyPeriodic", "Quasi2D"});
+    v.template integrator<BdhiPositivelySplitEwald, BdhiPositivelySplitEwaldInputs>(
+        {"BDHITriplyPeriodic", "PositivelySplitEwald"});
+    v.template integrator<BdhiPositivelySplitEwald, BdhiPositivelySplitEwaldInputs>(
+        {"BDHITriplePeriodic", "PositivelySplitEwald"});
     v.template integrator<MagneticFixed, MagneticFixedInputs>({"Magnetic", "Fixed"});
     v.template integrator<MagneticBrownian, MagneticBrownianInputs>({"Magnetic", "Brownian"});
     // The minimiser is also known by the reference's two spellings.

@@ -63,7 +63,7 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         // UAMMD-structured's other triply periodic hydrodynamics: the force coupling method gives the
         // same mobility (periodic RPY beyond overlap) to its tolerance.
         if ((entry.cls == "BDHITriplyPeriodic" || entry.cls == "BDHITriplePeriodic") &&
-            (entry.subclass == "PositivelySplitEwald" || entry.subclass == "FluctuatingImmersedBoundary"))
+            entry.subclass == "FluctuatingImmersedBoundary")
             throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ".type: [\"" + entry.cls + "\",\"" + entry.subclass +
                                                       "\"] is not implemented; [\"BDHITriplyPeriodic\",\"ForceCouplingMethod\"] "
                                                       "moves the same particles through the same periodic Stokes flow");

@@ -1,12 +1,9 @@
 """["BDHITriplyPeriodic","ForceCouplingMethod"]: Brownian dynamics with hydrodynamic interactions in
 a triply periodic box by the force coupling method (docs/input-format.md).
 
-References written here, independent of the engine:
-- Hasimoto's (J. Fluid Mech. 5, 317 (1959)) self-mobility of a sphere in a cubic lattice,
-  mu(L) = (1 - 2.837297 a/L + (4 pi / 3) (a/L)^3 + O((a/L)^6)) / (6 pi eta a).
-- The periodic Rotne-Prager-Yamakawa mobility by Beenakker's Ewald sum (J. Chem. Phys. 85, 1581
-  (1986)), checked here to be independent of the splitting parameter.
-- The force coupling method's own mobility, the lattice sum over wave vectors of its Gaussian kernels
+References, independent of the engine: Hasimoto's self-mobility and Beenakker's Ewald sum of the
+periodic RPY mobility (periodic_rpy.py, checked here to be independent of its splitting), and
+- the force coupling method's own mobility, the lattice sum over wave vectors of its Gaussian kernels
   (1/(eta V)) sum_{k != 0} exp(-k^2 sigma^2) (I - k k^T/k^2) cos(k.r) / k^2, sigma = a / sqrt(pi),
   which the grid approximates to the method's tolerance.
 
@@ -20,11 +17,9 @@ import numpy as np
 import pytest
 
 import structmd
-
-ETA = 1.3
-RADIUS = 1.0
-HASIMOTO = 2.837297
-MU0 = 1.0 / (6.0 * math.pi * ETA * RADIUS)
+from periodic_rpy import (ETA, MU0, RADIUS, add_wave_sum, document, hasimoto, minimum_image, rpy_ewald,
+                          wave_vectors)
+from periodic_rpy import measured_mobility as measured_entry_mobility
 
 
 # ---- input documents ------------------------------------------------------------------------------
@@ -35,87 +30,11 @@ def fcm(time_step=0.01, viscosity=ETA, radius=RADIUS, tolerance=1e-4, cls="BDHIT
     return {"type": [cls, "ForceCouplingMethod"], "parameters": {k: v for k, v in parameters.items() if v is not None}}
 
 
-def document(positions, box, entry, steps=1, temperature=0.0, force_field=None, seed=7):
-    box = [float(b) for b in (box if np.ndim(box) else [box] * 3)]
-    return {
-        "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": "fcm", "seed": seed}}},
-        "global": {
-            "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
-                      "data": [["A", 1.0, RADIUS, 0.0]]},
-            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[box, temperature]]},
-        },
-        "integrator": {"bd": entry, "schedule": {"type": ["Schedule", "Integrator"],
-                                                 "labels": ["order", "integrator", "steps"], "data": [[1, "bd", steps]]}},
-        "state": {"labels": ["id", "position"], "data": [[i, [float(c) for c in p]] for i, p in enumerate(positions)]},
-        "topology": {"structure": {"labels": ["id", "type"], "data": [[i, "A"] for i in range(len(positions))]},
-                     "forceField": force_field or {}},
-    }
-
-
-def minimum_image(d, box):
-    return d - box * np.round(d / box)
-
-
 def measured_mobility(options, positions, box, time_step=0.01, **fcm_parameters):
-    """M (3N x 3N) from the integrator's step at temperature 0: column (j, axis) is the displacement
-    of every particle under a unit force on j along that axis, over dt."""
-    positions = np.asarray(positions, float)
-    n = len(positions)
-    box = np.asarray(box if np.ndim(box) else [box] * 3, float)
-    mobility = np.zeros((3 * n, 3 * n))
-    with structmd.Simulation(options) as sim:
-        sim.load(document(positions, box, fcm(time_step=time_step, **fcm_parameters), steps=10 ** 6))
-        start = sim.positions
-        for column in range(3 * n):
-            force = np.zeros((n, 3))
-            force.flat[column] = 1.0
-            sim.positions = start
-            sim.external_forces = force
-            sim.step(1)
-            mobility[:, column] = minimum_image(sim.positions - start, box).ravel() / time_step
-    return mobility
+    return measured_entry_mobility(options, positions, box, fcm(time_step=time_step, **fcm_parameters), time_step)
 
 
 # ---- independent references -----------------------------------------------------------------------
-
-def rpy_ewald(positions, a, eta, box, xi, real_images=3):
-    """The periodic RPY mobility (3N x 3N, particles at least 2a apart) by Beenakker's Ewald sum with
-    splitting parameter xi."""
-    pos = np.asarray(positions, float)
-    n = len(pos)
-    box = np.asarray(box, float)
-    mu0 = 1.0 / (6.0 * math.pi * eta * a)
-    root_pi = math.sqrt(math.pi)
-    span = range(-real_images, real_images + 1)
-    images = np.array([[i, j, k] for i in span for j in span for k in span], float) * box
-    mobility = np.zeros((3 * n, 3 * n))
-    for i in range(n):
-        for j in range(n):
-            block = np.zeros((3, 3))
-            for image in images:
-                r = pos[i] - pos[j] + image
-                d = np.linalg.norm(r)
-                if d == 0.0:
-                    continue
-                gauss, tail = math.exp(-xi * xi * d * d) / root_pi, math.erfc(xi * d)
-                f = tail * (0.75 * a / d + 0.5 * a ** 3 / d ** 3) + gauss * (
-                    4 * xi ** 7 * a ** 3 * d ** 4 + 3 * xi ** 3 * a * d ** 2 - 20 * xi ** 5 * a ** 3 * d ** 2
-                    - 4.5 * xi * a + 14 * xi ** 3 * a ** 3 + xi * a ** 3 / d ** 2)
-                g = tail * (0.75 * a / d - 1.5 * a ** 3 / d ** 3) + gauss * (
-                    -4 * xi ** 7 * a ** 3 * d ** 4 - 3 * xi ** 3 * a * d ** 2 + 16 * xi ** 5 * a ** 3 * d ** 2
-                    + 1.5 * xi * a - 2 * xi ** 3 * a ** 3 - 3 * xi * a ** 3 / d ** 2)
-                unit = r / d
-                block += mu0 * (f * np.eye(3) + g * np.outer(unit, unit))
-            if i == j:
-                block += mu0 * (1 - 6 * xi * a / root_pi + 40 * xi ** 3 * a ** 3 / (3 * root_pi)) * np.eye(3)
-            mobility[3 * i:3 * i + 3, 3 * j:3 * j + 3] = block
-    volume = box.prod()
-    waves, k2 = wave_vectors(box, 2.0 * xi * math.sqrt(36.0 * math.log(10.0)))
-    amplitude = ((1 - a * a * k2 / 3) * (1 + k2 / (4 * xi * xi) + k2 * k2 / (8 * xi ** 4))
-                 * np.exp(-k2 / (4 * xi * xi)) / k2 / (eta * volume))
-    add_wave_sum(mobility, pos, waves, k2, amplitude)
-    return mobility
-
 
 def fcm_lattice_sum(positions, a, eta, box):
     """The force coupling method's mobility without a grid: Gaussian kernels of width a / sqrt(pi)."""
@@ -126,27 +45,6 @@ def fcm_lattice_sum(positions, a, eta, box):
     mobility = np.zeros((3 * len(pos), 3 * len(pos)))
     add_wave_sum(mobility, pos, waves, k2, np.exp(-k2 * sigma * sigma) / k2 / (eta * box.prod()))
     return mobility
-
-
-def wave_vectors(box, cut):
-    axes = [2 * math.pi * np.arange(-m, m + 1) / length
-            for m, length in ((int(math.ceil(cut * length / (2 * math.pi))), length) for length in box)]
-    waves = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 3)
-    k2 = (waves * waves).sum(1)
-    keep = (k2 > 0) & (k2 < cut * cut)
-    return waves[keep], k2[keep]
-
-
-def add_wave_sum(mobility, pos, waves, k2, amplitude):
-    projector = np.eye(3)[None] - waves[:, :, None] * waves[:, None, :] / k2[:, None, None]
-    for i in range(len(pos)):
-        for j in range(len(pos)):
-            phase = np.cos(waves @ (pos[i] - pos[j]))
-            mobility[3 * i:3 * i + 3, 3 * j:3 * j + 3] += np.einsum("k,kab->ab", amplitude * phase, projector)
-
-
-def hasimoto(a, length):
-    return MU0 * (1 - HASIMOTO * a / length + (4 * math.pi / 3) * (a / length) ** 3)
 
 
 # ---- tests ----------------------------------------------------------------------------------------
@@ -333,12 +231,12 @@ def test_a_box_changed_by_the_host_is_refused_by_name(options):
             sim.step(1)
 
 
-@pytest.mark.parametrize("subclass", ["PositivelySplitEwald", "FluctuatingImmersedBoundary"])
-def test_the_other_triply_periodic_methods_are_refused_by_name(options, subclass):
-    entry = fcm(cls="BDHITriplePeriodic", psi=0.5)
-    entry["type"] = ["BDHITriplePeriodic", subclass]
+def test_the_immersed_boundary_method_is_refused_by_name(options):
+    entry = fcm(cls="BDHITriplePeriodic")
+    entry["type"] = ["BDHITriplePeriodic", "FluctuatingImmersedBoundary"]
     with structmd.Simulation(options) as sim:
-        with pytest.raises(structmd.UnsupportedError, match=r"integrator\.bd\.type: .*" + subclass + ".*not implemented"):
+        with pytest.raises(structmd.UnsupportedError,
+                           match=r"integrator\.bd\.type: .*FluctuatingImmersedBoundary.*not implemented"):
             sim.load(document([[0.0, 0.0, 0.0]], 8.0, entry))
 
 

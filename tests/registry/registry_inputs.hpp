@@ -115,9 +115,10 @@ inline const std::vector<Override>& overrides() {
         // every spring's minimum, each move is undone, and nothing ever moves. Under each of its names
         // (an empty class matches any).
         {{"", "SteepestDescent"}, "h", {0.01}},
-        // Its validate() takes a tolerance in [1e-10, 0.1]; generic values are about 1. Under both of
-        // its class names.
+        // Their validate() takes a tolerance in [1e-10, 0.1]; generic values are about 1. Under both of
+        // their class names.
         {{"", "ForceCouplingMethod"}, "tolerance", {1e-3}},
+        {{"", "PositivelySplitEwald"}, "tolerance", {1e-3}},
         // Likewise the planar hydrodynamics' validate().
         {{"BDHIDoublyPeriodic", "Quasi2D"}, "tolerance", {1e-3}},
         // zeroEnergy acts only in the rows whose epsilon is 0 (the excluded-volume form); generic
