@@ -42,6 +42,7 @@ METHODS = {
     "cholesky": (["BDHIOpenBoundary", "Cholesky"], False, False, [1000, 2000, 4000]),
     "lanczos": (["BDHIOpenBoundary", "Lanczos"], False, True, [1000, 4000, 16000]),
     "fcm": (["BDHITriplyPeriodic", "ForceCouplingMethod"], True, True, [1000, 10000, 100000, 1000000]),
+    "pse": (["BDHITriplyPeriodic", "PositivelySplitEwald"], True, True, [1000, 10000, 100000, 1000000]),
     "quasi2d": (["BDHIDoublyPeriodic", "Quasi2D"], True, True, [1000, 10000, 100000, 1000000]),
 }
 # The planar methods: particles in the plane z = 0 of an x-y periodic square at area fraction 0.05.
