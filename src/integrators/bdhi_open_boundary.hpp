@@ -16,6 +16,7 @@
 namespace structmd {
 
 struct BdhiOpenBoundaryInputs : IntegratorInputs {
+    static constexpr bool oneFluid = true;
     static std::vector<Parameter> parameters() {
         return {number("viscosity", "mass/(length time)", Must::be_positive),
                 with_default(number("hydrodynamicRadius", "length", Must::be_positive), 0.0)};

@@ -19,6 +19,7 @@
 namespace structmd {
 
 struct BdhiQuasi2DInputs : IntegratorInputs {
+    static constexpr bool oneFluid = true;
     static std::vector<Parameter> parameters() {
         return {number("viscosity", "mass/(length time)", Must::be_positive),
                 number("hydrodynamicRadius", "length", Must::be_positive),

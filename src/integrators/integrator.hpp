@@ -71,6 +71,9 @@ struct IntegratorInputs {
     static constexpr bool overdamped = false;   // moves positions only: the particles have no velocities
     static constexpr bool rotates = false;      // moves orientations too (by the torques)
     static constexpr bool magnetic = false;     // turns the magnetic moments: the state must give them
+    // Couples every particle of its group through one fluid: batches, independent systems, would
+    // share it, so an input of several is refused.
+    static constexpr bool oneFluid = false;
     // A parameter that may be left out when the state gives each particle's value in a column
     // (UAMMD-structured's particle data): its default 0 then means "from the column".
     static constexpr const char* fallbackParameter = nullptr;

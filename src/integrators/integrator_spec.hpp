@@ -42,6 +42,7 @@ struct IntegratorComponent {
     std::vector<TextOption> textOptions;
     bool magnetic = false;
     const char* radiusParameter = nullptr;  // IntegratorInputs::radiusParameter
+    bool oneFluid = false;                  // IntegratorInputs::oneFluid
 };
 
 const Registry<IntegratorComponent>& integrator_registry();

@@ -19,7 +19,7 @@ struct ReaderEntries {
     void integrator(ComponentKey key) {
         registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate,
                       Inputs::overdamped, Inputs::fallbackParameter, Inputs::fallbackColumn, Inputs::rotates,
-                      Inputs::text_options(), Inputs::magnetic, Inputs::radiusParameter});
+                      Inputs::text_options(), Inputs::magnetic, Inputs::radiusParameter, Inputs::oneFluid});
     }
 };
 
@@ -69,9 +69,7 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
                                                       "moves the same particles through the same periodic Stokes flow");
         const IntegratorComponent& component =
             registry.at({entry.cls, entry.subclass}, spec.path + ".type", "integrator");
-        // Hydrodynamics couples every particle of its group through one fluid, and batches are
-        // independent systems: they would share it.
-        if (entry.cls.rfind("BDHI", 0) == 0 && std::set<int32_t>(system.batchId.begin(), system.batchId.end()).size() > 1)
+        if (component.oneFluid && std::set<int32_t>(system.batchId.begin(), system.batchId.end()).size() > 1)
             throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ".type: hydrodynamics couples the particles of every batch "
                                                   "(batchId) through one fluid; batches are independent systems: give one batch");
         spec.key = component.key;

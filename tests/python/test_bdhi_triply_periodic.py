@@ -231,6 +231,21 @@ def test_a_box_changed_by_the_host_is_refused_by_name(options):
             sim.step(1)
 
 
+def test_several_batches_are_refused(options):
+    doc = document([[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]], 8.0, fcm(), steps=10)
+    doc["topology"]["structure"]["labels"].append("batchId")
+    for row, batch in zip(doc["topology"]["structure"]["data"], (0, 1)):
+        row.append(batch)
+    with structmd.Simulation(options) as sim:
+        with pytest.raises(structmd.UnsupportedError, match=r"integrator\.bd\.type: .*one fluid"):
+            sim.load(doc)
+    # One batch is one system: the same input without the split loads.
+    for row in doc["topology"]["structure"]["data"]:
+        row[-1] = 0
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+
+
 def test_the_immersed_boundary_method_is_refused_by_name(options):
     entry = fcm(cls="BDHITriplePeriodic")
     entry["type"] = ["BDHITriplePeriodic", "FluctuatingImmersedBoundary"]
