@@ -41,10 +41,6 @@ def minimum_image(d, box):
     return d - box * np.round(d / box)
 
 
-def minimum_image(d, box):
-    return d - box * np.round(d / box)
-
-
 def measured_mobility(options, positions, box, entry, time_step):
     """M (3N x 3N) from the integrator's step at temperature 0: column (j, axis) is the displacement
     of every particle under a unit force on j along that axis, over dt."""
@@ -145,3 +141,22 @@ def add_wave_sum(mobility, pos, waves, k2, amplitude):
 
 def hasimoto(a, length):
     return MU0 * (1 - HASIMOTO * a / length + (4 * math.pi / 3) * (a / length) ** 3)
+
+
+def windowed_msd(sim, windows, lag, length):
+    """The mean square displacement over `lag` steps of a running simulation, from `windows`
+    consecutive non-overlapping windows of the unwrapped trajectories (each window's particles
+    averaged first, since the fluid correlates them), and its standard error from the windows' spread."""
+    previous = sim.positions
+    unwrapped = previous.copy()
+    window_msd = []
+    for _ in range(windows):
+        start = unwrapped.copy()
+        for _ in range(lag):
+            sim.step(1)
+            now = sim.positions
+            unwrapped += minimum_image(now - previous, length)
+            previous = now
+        window_msd.append(np.mean(np.sum((unwrapped - start) ** 2, axis=1)))
+    window_msd = np.array(window_msd)
+    return window_msd.mean(), window_msd.std(ddof=1) / math.sqrt(windows)

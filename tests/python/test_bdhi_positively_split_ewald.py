@@ -17,7 +17,7 @@ import pytest
 
 import structmd
 from periodic_rpy import (ETA, MU0, RADIUS, document, hasimoto, measured_mobility, minimum_image, rpy_ewald,
-                          rpy_overlap_correction)
+                          rpy_overlap_correction, windowed_msd)
 
 
 def pse(time_step=0.01, viscosity=ETA, radius=RADIUS, tolerance=1e-4, psi=1.0, cls="BDHITriplyPeriodic", **extra):
@@ -170,20 +170,7 @@ def test_a_dilute_suspension_diffuses_with_hasimotos_coefficient(options):
     with structmd.Simulation(options) as sim:
         sim.load(document(positions, length, pse(time_step=time_step, tolerance=1e-3, psi=0.5), steps=10 ** 7,
                           temperature=kT))
-        previous = sim.positions
-        unwrapped = previous.copy()
-        window_msd = []
-        for _ in range(windows):
-            start = unwrapped.copy()
-            for _ in range(lag):
-                sim.step(1)
-                now = sim.positions
-                unwrapped += minimum_image(now - previous, length)
-                previous = now
-            window_msd.append(np.mean(np.sum((unwrapped - start) ** 2, axis=1)))
-    window_msd = np.array(window_msd)
-    measured = window_msd.mean()
-    standard_error = window_msd.std(ddof=1) / math.sqrt(windows)
+        measured, standard_error = windowed_msd(sim, windows, lag, length)
     expected = 6.0 * kT * hasimoto(RADIUS, length) * lag * time_step
     assert abs(measured - expected) < 4 * standard_error, (measured, expected, standard_error)
     free = 6.0 * kT * MU0 * lag * time_step
