@@ -109,7 +109,8 @@ STRUCTMD_API const char* structmd_version(void);
  *
  * @param options_json  NULL, "" or a JSON object with the optional keys
  *                      "backend": "auto" (default: CUDA if a usable GPU exists, else CPU) | "cpu" | "cuda";
- *                      "device": GPU ordinal (default 0);
+ *                      "device": GPU ordinal (default 0; under "mpi_comm", the rank's place among
+ *                      the communicator's ranks on its node, modulo the node's GPUs);
  *                      "precision": "single" (default) | "mixed" | "double"
  *                      (mixed: state, forces and sums in double, pair potentials in single);
  *                      "threads": CPU threads, >= 1 (default: all the OpenMP runtime offers);
@@ -119,7 +120,8 @@ STRUCTMD_API const char* structmd_version(void);
  *                      those loaded by structmd_load_plugin (docs/plugins.md);
  *                      "mpi_comm": an MPI communicator as a Fortran handle integer (MPI_Comm_c2f),
  *                      whose ranks share the batches of every input the handle loads; every call
- *                      on the handle is then collective over it (docs/c-api.md, MPI). The host
+ *                      on the handle, this one included, is then collective over it
+ *                      (docs/c-api.md, MPI). The host
  *                      initialises and finalises MPI; the library never does.
  *                      Read during the call only.
  * @param[out] out      receives the new handle, owned by the caller until structmd_destroy; set to

@@ -21,7 +21,8 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
         info["threads"] = s.options.backend == BackendKind::cpu ? cpu_thread_count(s.options) : 0;
         info["mpi"] = {{"compiled", mpi_compiled()},
                        {"ranks", s.communicator ? s.communicator->size() : 1},
-                       {"rank", s.communicator ? s.communicator->rank() : 0}};
+                       {"rank", s.communicator ? s.communicator->rank() : 0},
+                       {"node_rank", s.communicator ? s.communicator->node_rank() : 0}};
         if (s.simulation) {
             info["particles"] = s.simulation->particle_count();
             info["final_step"] = s.simulation->final_step();

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "api/handle.hpp"
+#include "engines/devices.hpp"
 #include "engines/make_engine.hpp"
 #include "parallel/load_over_ranks.hpp"
 
@@ -48,7 +49,12 @@ structmd_status structmd_create(const char* options_json, structmd_sim** out) {
         auto sim = std::make_unique<structmd_sim>();
         sim->options = parse_engine_options(options_json);
         sim->components = handle_components(sim->options.plugins);
-        if (sim->options.mpiComm) sim->communicator = communicator_from_fortran(*sim->options.mpiComm);
+        if (sim->options.mpiComm) {
+            sim->communicator = communicator_from_fortran(*sim->options.mpiComm);
+            // One GPU per rank on a node with several, as mpirun places ranks node by node.
+            if (sim->options.backend == BackendKind::cuda && !sim->options.deviceGiven)
+                sim->options.device = sim->communicator->node_rank() % usable_gpu_count();
+        }
         std::FILE* sink = stderr;
         if (!sim->options.logFile.empty()) {
             sim->logFile.reset(std::fopen(sim->options.logFile.c_str(), "a"));

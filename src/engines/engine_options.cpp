@@ -52,6 +52,7 @@ EngineOptions parse_engine_options(const char* text) {
                     throw option_error(key, "expected \"auto\", \"cpu\" or \"cuda\", got \"" + backend + "\"");
             } else if (key == "device") {
                 options.device = int_option(value, key, 0);
+                options.deviceGiven = true;
             } else if (key == "precision") {
                 const std::string precision = string_option(value, key);
                 if (precision == "single") options.precision = Precision::single;

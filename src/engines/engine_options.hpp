@@ -15,6 +15,7 @@ namespace structmd {
 struct EngineOptions {
     BackendKind backend = BackendKind::cpu;  // "auto" resolved
     int device = 0;
+    bool deviceGiven = false;  // "device" was given: under "mpi_comm" the ranks do not choose their own
     Precision precision = Precision::single;
     int threads = 0;  // 0: all the OpenMP runtime offers
     LogLevel logLevel = LogLevel::warning;

@@ -20,6 +20,7 @@ class SingleProcess final : public Communicator {
 public:
     int rank() const override { return 0; }
     int size() const override { return 1; }
+    int node_rank() const override { return 0; }
     void all_gather(const double* mine, double* all, const std::vector<int64_t>& counts) const override {
         std::copy(mine, mine + counts[0], all);
     }
@@ -75,10 +76,15 @@ public:
     explicit MpiCommunicator(MPI_Comm comm) : comm_(comm) {
         check(MPI_Comm_rank(comm_, &rank_), "MPI_Comm_rank");
         check(MPI_Comm_size(comm_, &size_), "MPI_Comm_size");
+        MPI_Comm node = MPI_COMM_NULL;
+        check(MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node), "MPI_Comm_split_type");
+        check(MPI_Comm_rank(node, &nodeRank_), "MPI_Comm_rank");
+        check(MPI_Comm_free(&node), "MPI_Comm_free");
     }
 
     int rank() const override { return rank_; }
     int size() const override { return size_; }
+    int node_rank() const override { return nodeRank_; }
 
     void all_gather(const double* mine, double* all, const std::vector<int64_t>& counts) const override {
         gather(mine, all, counts, MPI_DOUBLE);
@@ -129,6 +135,7 @@ private:
     MPI_Comm comm_;
     int rank_ = 0;
     int size_ = 1;
+    int nodeRank_ = 0;
 };
 
 }  // namespace

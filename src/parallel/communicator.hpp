@@ -19,6 +19,9 @@ public:
 
     virtual int rank() const = 0;
     virtual int size() const = 0;
+    // This rank's place among the communicator's ranks on its own node (those that share memory):
+    // which of the node's GPUs it takes.
+    virtual int node_rank() const = 0;
 
     // counts[r] values from rank r, concatenated in rank order into every rank's `all`.
     virtual void all_gather(const double* mine, double* all, const std::vector<int64_t>& counts) const = 0;

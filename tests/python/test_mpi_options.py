@@ -14,7 +14,7 @@ def test_info_says_whether_mpi_is_compiled_in():
     with structmd.Simulation({"backend": "cpu"}) as sim:
         mpi = sim.info["mpi"]
     assert isinstance(mpi["compiled"], bool)
-    assert mpi["ranks"] == 1 and mpi["rank"] == 0
+    assert mpi["ranks"] == 1 and mpi["rank"] == 0 and mpi["node_rank"] == 0
 
 
 @pytest.mark.parametrize("value", ["0", 1.5, [0], None])
