@@ -44,13 +44,13 @@ public:
         return all;
     }
 
-    // The thinnest skin of the lists (infinite without lists): no particle may move farther in a step.
     // The longest reach of the neighbour lists (cutoff and skin); 0 without any.
     double largest_list_radius() const {
         double radius = 0.0;
         for (const auto& list : lists_) radius = std::max(radius, list->cutoff() + list->skin());
         return radius;
     }
+    // The thinnest skin of the lists (infinite without lists): no particle may move farther in a step.
     double smallest_skin() const {
         double skin = std::numeric_limits<double>::infinity();
         for (const auto& list : lists_) skin = std::min(skin, list->skin());

@@ -45,7 +45,8 @@ struct PseFarGreen {
 inline FcmPlan make_pse_far_plan(const double box[3], double xi, double tolerance, const std::string& path) {
     FcmPlan plan;
     const double cutoffWave = 2.0 * xi * std::sqrt(-std::log(tolerance));
-    const double resolved = 2.0 * M_PI / cutoffWave;  // half the grid spacing at most
+    // The shortest wavelength the far field needs: the grid spacing is at most half of it.
+    const double cutoffWavelength = 2.0 * M_PI / cutoffWave;
     int sizes[3];
     for (int d = 0; d < 3; ++d) {
         plan.box[d] = box[d];
@@ -53,7 +54,7 @@ inline FcmPlan make_pse_far_plan(const double box[3], double xi, double toleranc
             throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ": the positively split Ewald method needs a periodic box "
                                                          "along x, y and z, but the box is not periodic along " +
                                                          std::string(1, "xyz"[d]));
-        sizes[d] = fft_friendly_size(static_cast<int>(2.0 * box[d] / resolved) + 1);
+        sizes[d] = fft_friendly_size(static_cast<int>(2.0 * box[d] / cutoffWavelength) + 1);
     }
     plan.grid = FftGrid{sizes[0], sizes[1], sizes[2]};
     double deviations = 1.0;

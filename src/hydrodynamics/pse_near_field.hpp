@@ -79,14 +79,16 @@ struct PseNearTensor {
         return {f, g, 0.0};
     }
 
-    // M_near(d) v for the separation d (not 0), 0 beyond the cutoff.
+    // M_near(d) v for the separation d, 0 beyond the cutoff. Two particles at one point (d = 0) have
+    // the isotropic limit c.x I of the overlapping tensor, not the 0/0 of its r r^T / r^2 term.
     SMD_HD SMD_INLINE Vec3<R> apply(const Vec3<R>& d, const Vec3<R>& v) const {
         const double dx = double(d.x), dy = double(d.y), dz = double(d.z);
         const double r2 = dx * dx + dy * dy + dz * dz;
         if (!(r2 < cutoff2)) return {R(0), R(0), R(0)};
         const double r = sqrt(r2);
         const Vec3<double> c = coefficients(r);
-        const double along = (c.y - c.x) * (dx * double(v.x) + dy * double(v.y) + dz * double(v.z)) / r2;
+        const double along =
+            r2 > 0.0 ? (c.y - c.x) * (dx * double(v.x) + dy * double(v.y) + dz * double(v.z)) / r2 : 0.0;
         return {R(mobility * (c.x * double(v.x) + along * dx)), R(mobility * (c.x * double(v.y) + along * dy)),
                 R(mobility * (c.x * double(v.z) + along * dz))};
     }

@@ -22,12 +22,7 @@ struct BdhiForceCouplingInputs : IntegratorInputs {
                 with_default(number("tolerance", "1", Must::be_positive), 1e-3)};
     }
     static constexpr bool overdamped = true;
-    static constexpr double smallestTolerance = 1e-10, largestTolerance = 0.1;
-    static void validate(const ParameterValues& v, const std::string& path) {
-        if (!(v["tolerance"] >= smallestTolerance && v["tolerance"] <= largestTolerance))
-            throw input_error(path + ".parameters.tolerance",
-                              "expected a tolerance in [1e-10, 0.1], got " + std::to_string(v["tolerance"]));
-    }
+    static void validate(const ParameterValues& v, const std::string& path) { validate_grid_tolerance(v, path); }
 };
 
 template <class B, class R>

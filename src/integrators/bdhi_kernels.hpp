@@ -1,17 +1,27 @@
 #pragma once
 // The kernels every Brownian-dynamics-with-hydrodynamics integrator shares (open boundary, force
-// coupling, positively split Ewald): the forces and the noise as flat vectors of 3N numbers
+// coupling, positively split Ewald, quasi-2D): the forces and the noise as flat vectors of 3N numbers
 // (particle i's components at 3i, 3i+1, 3i+2, as the mobility products read them), and the move
 //   x += dt (M F) + sqrt(2 kT dt) (M^{1/2} W) + (a displacement a mesh made whole),
 // with its bookkeeping. Particles outside the integrator's group take no part and do not move.
 #include <cstdint>
+#include <string>
 
+#include "core/error.hpp"
 #include "core/vec.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/thermal_noise.hpp"
 #include "state/fault.hpp"
 
 namespace structmd {
+
+// The tolerance of a method on a grid (force coupling, positively split Ewald, quasi-2D): the range
+// its grid and Gaussian are chosen for.
+inline void validate_grid_tolerance(const ParameterValues& v, const std::string& path) {
+    if (!(v["tolerance"] >= 1e-10 && v["tolerance"] <= 0.1))
+        throw input_error(path + ".parameters.tolerance",
+                          "expected a tolerance in [1e-10, 0.1], got " + std::to_string(v["tolerance"]));
+}
 
 template <class R>
 struct FlattenForces {

@@ -34,12 +34,7 @@ struct BdhiPositivelySplitEwaldInputs : IntegratorInputs {
     static constexpr bool needsRadius = true;  // without hydrodynamicRadius, the particles' radius
     static constexpr bool overdamped = true;
     static constexpr const char* radiusParameter = "hydrodynamicRadius";
-    static constexpr double smallestTolerance = 1e-10, largestTolerance = 0.1;
-    static void validate(const ParameterValues& v, const std::string& path) {
-        if (!(v["tolerance"] >= smallestTolerance && v["tolerance"] <= largestTolerance))
-            throw input_error(path + ".parameters.tolerance",
-                              "expected a tolerance in [1e-10, 0.1], got " + std::to_string(v["tolerance"]));
-    }
+    static void validate(const ParameterValues& v, const std::string& path) { validate_grid_tolerance(v, path); }
 };
 
 // out = M_near v (flat vectors by particle), one list slot per call: the self block and the pairs

@@ -10,7 +10,6 @@
 
 #include "core/error.hpp"
 #include "hydrodynamics/planar_mesh.hpp"
-#include "integrators/bdhi_force_coupling.hpp"
 #include "integrators/bdhi_kernels.hpp"
 #include "integrators/brownian.hpp"
 #include "integrators/integrator.hpp"
@@ -28,7 +27,7 @@ struct BdhiQuasi2DInputs : IntegratorInputs {
     // Which fluid the plane is in (the order of PlanarHydrodynamics).
     static std::vector<TextOption> text_options() { return {{"hydrodynamicKernel", "Quasi2D", {"Quasi2D", "True2D"}, {}, ""}}; }
     static constexpr bool overdamped = true;
-    static void validate(const ParameterValues& v, const std::string& path) { BdhiForceCouplingInputs::validate(v, path); }
+    static void validate(const ParameterValues& v, const std::string& path) { validate_grid_tolerance(v, path); }
 };
 
 template <class B, class R>

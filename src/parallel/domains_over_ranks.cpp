@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <tuple>
 
 #include "core/error.hpp"
@@ -73,7 +74,9 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainDocument 
     const double listRadius = whole->list_radius();
     const double cutoff = whole->pair_cutoff();
     width_ = std::max(listRadius, 1.5 * longestBond);
-    moveLimit_ = 0.5 * (width_ - (listRadius > 0.0 ? cutoff : 0.0));
+    // Without pairs or bonds nothing reaches across a face: no ghosts, and no move calls for a rebuild.
+    moveLimit_ = width_ > 0.0 ? 0.5 * (width_ - (listRadius > 0.0 ? cutoff : 0.0))
+                              : std::numeric_limits<double>::infinity();
     const double slab = box_[axis_] / comm_->size();
     if (slab < width_)
         throw Error(STRUCTMD_ERR_UNSUPPORTED,
@@ -95,7 +98,9 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainDocument 
         owned.push_back(h);
     }
     whole.reset();
-    run_together(*comm_, [&] { build(std::move(owned)); });
+    Domain first;
+    run_together(*comm_, [&] { first = build(std::move(owned)); });
+    adopt(std::move(first));
     log_.info("MPI rank " + std::to_string(comm_->rank()) + " of " + std::to_string(comm_->size()) +
               ": spatial domain along axis " + std::to_string(axis_) + ", " + std::to_string(owned_) + " particles and " +
               std::to_string(ids_.size() - owned_) + " ghosts (ghost width " + number(width_) + ")");
@@ -166,6 +171,7 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::owned_now() {
 }
 
 void DomainsOverRanks::check_moves() {
+    if (std::isinf(moveLimit_)) return;
     const size_t slots = ids_.size();
     std::vector<double> x(3 * slots);
     run_together(*comm_, [&] { local_->get_positions(x.data()); });
@@ -189,7 +195,9 @@ void DomainsOverRanks::check_moves() {
                         number(moveLimit_) + "): its pair forces may have missed a neighbour; reduce the time step");
     if (move <= 0.5 * moveLimit_) return;
     std::vector<Held> held = owned_now();
-    run_together(*comm_, [&] { build(migrate(std::move(held))); });
+    Domain next;
+    run_together(*comm_, [&] { next = build(migrate(std::move(held))); });
+    adopt(std::move(next));
     ++rebuilds_;
 }
 
@@ -241,47 +249,43 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::migrate(std::vector<Held> 
     return kept;
 }
 
-void DomainsOverRanks::build(std::vector<Held> owned) {
+DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const {
     std::sort(owned.begin(), owned.end(), [](const Held& a, const Held& b) { return a.id < b.id; });
     const int me = comm_->rank(), ranks = comm_->size();
     const int right = (me + 1) % ranks, left = (me + ranks - 1) % ranks;
     const double length = box_[axis_];
     const double lower = length * me / ranks, upper = length * (me + 1) / ranks;
 
-    ids_.clear();
-    owned_ = static_cast<int64_t>(owned.size());
+    Domain d;
+    d.owned = static_cast<int64_t>(owned.size());
     std::vector<double> positions, velocities;
-    baseImages_.clear();
     for (const Held& h : owned) {
-        ids_.push_back(h.id);
+        d.ids.push_back(h.id);
         positions.insert(positions.end(), h.position.begin(), h.position.end());
         velocities.insert(velocities.end(), h.velocity.begin(), h.velocity.end());
-        baseImages_.push_back(h.image);
+        d.baseImages.push_back(h.image);
     }
-    reference_ = positions;
+    d.reference = positions;
 
     // The owned particles within the ghost width of each face go to the rank beyond it; with two
     // ranks both faces face the same rank, which gets each particle once.
-    links_.clear();
     if (ranks == 2) {
-        links_.push_back({right, right, {}, 0});
+        d.links.push_back({right, right, {}, 0});
     } else {
-        links_.push_back({right, left, {}, 0});
-        links_.push_back({left, right, {}, 0});
+        d.links.push_back({right, left, {}, 0});
+        d.links.push_back({left, right, {}, 0});
     }
-    for (int64_t s = 0; s < owned_; ++s) {
+    for (int64_t s = 0; s < d.owned; ++s) {
         const double x = fraction(owned[static_cast<size_t>(s)].position[axis_], length) * length;
         const bool nearUpper = upper - x < width_, nearLower = x - lower < width_;
         if (ranks == 2) {
-            if (nearUpper || nearLower) links_[0].sent.push_back(s);
+            if (nearUpper || nearLower) d.links[0].sent.push_back(s);
         } else {
-            if (nearUpper) links_[0].sent.push_back(s);
-            if (nearLower) links_[1].sent.push_back(s);
+            if (nearUpper) d.links[0].sent.push_back(s);
+            if (nearLower) d.links[1].sent.push_back(s);
         }
     }
-    borderSlots_.clear();
-    ghostSlots_.clear();
-    for (Link& link : links_) {
+    for (Link& link : d.links) {
         std::vector<double> out;
         for (int64_t s : link.sent) {
             const Held& h = owned[static_cast<size_t>(s)];
@@ -296,31 +300,42 @@ void DomainsOverRanks::build(std::vector<Held> owned) {
                      link.from);
         link.received = static_cast<int64_t>(in.size()) / kGhostValues;
         for (size_t k = 0; k < in.size(); k += kGhostValues) {
-            ghostSlots_.push_back(static_cast<int64_t>(ids_.size()));
-            ids_.push_back(static_cast<int64_t>(in[k]));
+            d.ghostSlots.push_back(static_cast<int64_t>(d.ids.size()));
+            d.ids.push_back(static_cast<int64_t>(in[k]));
             positions.insert(positions.end(), in.begin() + k + 1, in.begin() + k + 4);
             velocities.insert(velocities.end(), in.begin() + k + 4, in.begin() + k + 7);
         }
-        borderSlots_.insert(borderSlots_.end(), link.sent.begin(), link.sent.end());
+        d.borderSlots.insert(d.borderSlots.end(), link.sent.begin(), link.sent.end());
     }
 
     // Every bond of an owned particle must reach a particle the domain holds.
-    std::vector<int64_t> held(ids_);
+    std::vector<int64_t> held(d.ids);
     std::sort(held.begin(), held.end());
-    for (int64_t s = 0; s < owned_; ++s)
-        for (int64_t j : document_.bonded_to(ids_[static_cast<size_t>(s)]))
+    for (int64_t s = 0; s < d.owned; ++s)
+        for (int64_t j : document_.bonded_to(d.ids[static_cast<size_t>(s)]))
             if (!std::binary_search(held.begin(), held.end(), j))
                 throw Error(STRUCTMD_ERR_NUMERICAL,
                             "step " + std::to_string(local_ ? local_->current_step() : 0) + ": the bond between ids " +
-                                std::to_string(ids_[static_cast<size_t>(s)]) + " and " + std::to_string(j) +
+                                std::to_string(d.ids[static_cast<size_t>(s)]) + " and " + std::to_string(j) +
                                 " reaches beyond the ghost layer of the spatial domains (" + number(width_) + ")");
 
     const int64_t step = local_ ? local_->current_step() : startStep_;
     const double time = local_ ? local_->current_time() : startTime_;
-    local_.reset();
-    local_ = load_simulation(options_, document_.local_text(ids_, owned_, positions, velocities, step, time,
-                                                                 std::max<int64_t>(0, finalStep_ - step)), *components_,
-                             log_);
+    d.engine = load_simulation(options_, document_.local_text(d.ids, d.owned, positions, velocities, step, time,
+                                                              std::max<int64_t>(0, finalStep_ - step)),
+                               *components_, log_);
+    return d;
+}
+
+void DomainsOverRanks::adopt(Domain next) {
+    ids_ = std::move(next.ids);
+    owned_ = next.owned;
+    baseImages_ = std::move(next.baseImages);
+    reference_ = std::move(next.reference);
+    links_ = std::move(next.links);
+    borderSlots_ = std::move(next.borderSlots);
+    ghostSlots_ = std::move(next.ghostSlots);
+    local_ = std::move(next.engine);
     local_->hold_ghosts(ids_, this, begun_);
 }
 

@@ -168,8 +168,22 @@ private:
     void check_moves();
     // Owned particles that left the slab go to their new owner; returns what this rank owns now.
     std::vector<Held> migrate(std::vector<Held> held);
-    // Picks the ghosts of `owned` (sorted by id) and loads the domain's engine.
-    void build(std::vector<Held> owned);
+    // A domain ready to be adopted: its slots, ghosts and engine.
+    struct Domain {
+        std::vector<int64_t> ids;
+        int64_t owned = 0;
+        std::vector<std::array<int32_t, 3>> baseImages;
+        std::vector<double> reference;
+        std::vector<Link> links;
+        std::vector<int64_t> borderSlots, ghostSlots;
+        std::unique_ptr<Simulation> engine;
+    };
+    // Picks the ghosts of `owned` and loads the domain's engine, leaving the present one untouched
+    // (collective: the ghosts are exchanged).
+    Domain build(std::vector<Held> owned) const;
+    // Makes `next` this rank's domain. Called by every rank once all have built theirs, so that a
+    // build that fails on one rank leaves every rank with the domains it had.
+    void adopt(Domain next);
     int slab_of(double x) const;
     // Per-particle values of the owned slots (k each, from `local` over all the engine's slots) of
     // every rank, into `all` in id order.

@@ -81,8 +81,10 @@ std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const 
         run_together(*comm, [&] {
             nlohmann::json document = parse(text);
             if (!one_batch(document)) return;
-            domains.emplace(std::move(document));
+            // The reader first, so that bad input is named by its JSON path before the domains
+            // look at the document.
             local = load_simulation(options, text, components, log);
+            domains.emplace(std::move(document));
         });
         if (domains)
             return std::make_unique<DomainsOverRanks>(options, std::move(*domains), std::move(local), components, log,

@@ -72,38 +72,40 @@ void StepsOnRankZero::serve() {
         // and it sends the failure, which ends the serving.
         if (request.op == Op::failed)
             throw Error(static_cast<structmd_status>(request.number), request.text + " (on MPI rank 0)");
+        // A request this rank fails on fails on every rank, rank 0 included (its gathers run
+        // together), which then sends the failure; this rank goes on serving until it does.
         try {
             serve_one(request, scratch, more, most, integers);
-        } catch (const Error&) {
+        } catch (const std::exception&) {
         }
     }
 }
 
 void StepsOnRankZero::serve_one(const Request& request, std::vector<double>& scratch, std::vector<double>& more,
                                  std::vector<double>& most, std::vector<int32_t>& integers) {
-        switch (request.op) {
-            case Op::done:
-            case Op::failed: break;
-            case Op::compute: compute(static_cast<unsigned>(request.number)); break;
-            case Op::positions: get_positions(scratch.data()); break;
-            case Op::images: get_images(integers.data()); break;
-            case Op::unwrappedPositions: get_unwrapped_positions(scratch.data()); break;
-            case Op::velocities: get_velocities(scratch.data()); break;
-            case Op::forces: get_forces(scratch.data()); break;
-            case Op::particleEnergies: get_particle_energies(scratch.data()); break;
-            case Op::masses: get_masses(scratch.data()); break;
-            case Op::types: get_types(integers.data()); break;
-            case Op::radii: get_radii(scratch.data()); break;
-            case Op::orientations: get_orientations(scratch.data()); break;
-            case Op::torques: get_torques(scratch.data()); break;
-            case Op::magneticMoments: get_magnetic_moments(scratch.data()); break;
-            case Op::energy: energy(request.text); break;
-            case Op::termArrays: term_energies_and_forces(request.text, scratch.data(), more.data(), most.data()); break;
-            case Op::virial: virial(); break;
-            case Op::pairVirials: get_pair_virials(scratch.data()); break;
-            case Op::setLambda: set_lambda(request.value); break;
-            case Op::lambdaDerivative: lambda_derivative(); break;
-        }
+    switch (request.op) {
+        case Op::done:
+        case Op::failed: break;
+        case Op::compute: compute(static_cast<unsigned>(request.number)); break;
+        case Op::positions: get_positions(scratch.data()); break;
+        case Op::images: get_images(integers.data()); break;
+        case Op::unwrappedPositions: get_unwrapped_positions(scratch.data()); break;
+        case Op::velocities: get_velocities(scratch.data()); break;
+        case Op::forces: get_forces(scratch.data()); break;
+        case Op::particleEnergies: get_particle_energies(scratch.data()); break;
+        case Op::masses: get_masses(scratch.data()); break;
+        case Op::types: get_types(integers.data()); break;
+        case Op::radii: get_radii(scratch.data()); break;
+        case Op::orientations: get_orientations(scratch.data()); break;
+        case Op::torques: get_torques(scratch.data()); break;
+        case Op::magneticMoments: get_magnetic_moments(scratch.data()); break;
+        case Op::energy: energy(request.text); break;
+        case Op::termArrays: term_energies_and_forces(request.text, scratch.data(), more.data(), most.data()); break;
+        case Op::virial: virial(); break;
+        case Op::pairVirials: get_pair_virials(scratch.data()); break;
+        case Op::setLambda: set_lambda(request.value); break;
+        case Op::lambdaDerivative: lambda_derivative(); break;
+    }
 }
 
 }  // namespace structmd

@@ -229,7 +229,7 @@ public:
         const std::vector<int64_t>& ghosts = exchange->ghost_slots();
         backend_.upload(borderSlots_, border.data(), border.size());
         backend_.upload(ghostSlots_, ghosts.data(), ghosts.size());
-        ghostsAt_ = -1;
+        ghostsAt_ = p_.version;  // the ghosts were loaded with their owners' present positions
         if (begun && schedule_.stages() > 0) activeStage_ = schedule_.stage_after(current_step());
         cache_.invalidate();
     }

@@ -96,6 +96,19 @@ TEST(PseNearField, IsContinuousAtContactAndAtTheSmallDistanceExpansion) {
     }
 }
 
+TEST(PseNearField, TwoParticlesAtOnePointGetTheIsotropicLimit) {
+    for (const Split& s : {Split{1.0, 0.5, 1.0}, Split{0.5, 3.0, 1.0}}) {
+        const PseNearTensor<double> near = s.tensor();
+        const Vec3<double> v{0.3, -1.1, 0.7};
+        const Vec3<double> atZero = near.apply(Vec3<double>{0.0, 0.0, 0.0}, v);
+        const Vec3<double> nearZero = near.apply(Vec3<double>{1e-9, 0.0, 0.0}, v);
+        for (const double c : {atZero.x, atZero.y, atZero.z}) EXPECT_TRUE(std::isfinite(c));
+        EXPECT_NEAR(atZero.x, nearZero.x, 1e-6 * std::fabs(nearZero.x));
+        EXPECT_NEAR(atZero.y, nearZero.y, 1e-6 * std::fabs(nearZero.y));
+        EXPECT_NEAR(atZero.z, nearZero.z, 1e-6 * std::fabs(nearZero.z));
+    }
+}
+
 TEST(PseNearField, FallsBelowTheToleranceBeyondItsCutoff) {
     for (double tolerance : {1e-2, 1e-4, 1e-8})
         for (const Split& s : {Split{1.0, 0.5, 1.0}, Split{0.5, 4.0, 1.0}, Split{1.0, 0.1, 1.0}}) {

@@ -8,6 +8,7 @@
  *   - a dilute gas flowing along the split axis, so that every particle migrates many times: the
  *     particle count and the positions of every id (the gather refuses an id held twice or never)
  *     checked at every output;
+ *   - an ideal gas (no force field) flowing the same way under Langevin: no ghosts and no rebuilds;
  *   - an unsupported integrator, and an unsupported call (the virial), refused by name.
  *
  * usage (under mpirun with 2 or more ranks): test_mpi_domains */
@@ -73,7 +74,7 @@ typedef struct {
     int n;                /* particles */
     double box[3];
     const char* integrator;  /* the integrator entry's JSON */
-    const char* pair;        /* "lj" (cutoff 2.5) or "wca" */
+    const char* pair;        /* "lj" (cutoff 2.5), "wca" or "none" (an ideal gas: no force field) */
     int chain;            /* beads per chain (0: no bonds) */
     double flow;          /* a drift velocity along x added to every particle */
     int steps, interval;
@@ -107,6 +108,10 @@ static char* make_input(const Case* c) {
     }
     put(&t, "]}, \"topology\": {\"structure\": {\"labels\": [\"id\", \"type\"], \"data\": [");
     for (int i = 0; i < c->n; ++i) put(&t, "%s[%d, \"A\"]", i ? ", " : "", i);
+    if (strcmp(c->pair, "none") == 0) {
+        put(&t, "]}, \"forceField\": {}}}");
+        return t.text;
+    }
     put(&t, "]}, \"forceField\": {\"nl\": {\"type\": [\"VerletConditionalListSet\", \"all\"], \"parameters\": "
             "{\"cutOffVerletFactor\": 1.2}},");
     if (strcmp(c->pair, "lj") == 0)
@@ -192,7 +197,8 @@ static void run_case(const Case* c, double position_tolerance, double energy_tol
         check(structmd_get_velocities(alone, b, n), alone, "structmd_get_velocities (alone)");
         worst_x = fmax(worst_x, largest_difference(a, b, 3 * n, NULL));
         const char* terms[] = {"kinetic", "potential", "pairs"};
-        for (int k = 0; k < 3; ++k) {
+        const int named = strcmp(c->pair, "none") == 0 ? 2 : 3; /* an ideal gas has no entry "pairs" */
+        for (int k = 0; k < named; ++k) {
             const double es = energy(split, terms[k]), ea = energy(alone, terms[k]);
             worst_e = fmax(worst_e, fabs(es - ea) / fmax(fabs(ea), 1.0));
         }
@@ -253,6 +259,9 @@ int main(int argc, char** argv) {
     run_case(&chains, 1e-10, 1e-10, 1);
     run_case(&thermostat, 1e-10, 1e-10, 0);
     run_case(&gas, 1e-10, 1e-10, 1);
+    /* Nothing reaches across a face: no ghosts, and however far the particles flow, no rebuild. */
+    const Case ideal = {"ideal", 64, {12.0, 8.0, 8.0}, langevin, "none", 0, 5.0, 1000, 100};
+    run_case(&ideal, 1e-10, 1e-10, 0);
 
     /* What the domains do not support is refused by name, at load or when called. */
     Case brownian = liquid;
