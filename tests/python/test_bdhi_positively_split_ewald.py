@@ -17,7 +17,7 @@ import pytest
 
 import structmd
 from periodic_rpy import (ETA, MU0, RADIUS, document, hasimoto, measured_mobility, minimum_image, rpy_ewald,
-                          rpy_overlap_correction, windowed_msd)
+                          rpy_overlap_correction, trapped_particle_energy, windowed_msd)
 
 
 def pse(time_step=0.01, viscosity=ETA, radius=RADIUS, tolerance=1e-4, psi=1.0, cls="BDHITriplyPeriodic", **extra):
@@ -204,21 +204,8 @@ def test_a_trapped_particle_samples_boltzmann(options):
     self-mobility mu (Hasimoto's), Euler-Maruyama samples <K x^2> = kT / (1 - mu K dt / 2) per axis
     exactly; samples one relaxation time apart in 20 blocks give the standard error (4 allowed)."""
     box, kT, stiffness, time_step = 10.0, 1.0, 50.0, 0.05
-    trap = {"trap": {"type": ["Bond1", "FixedHarmonic"], "labels": ["id_i", "K", "r0", "position"],
-                     "data": [[0, stiffness, 0.0, [0.0, 0.0, 0.0]]]}}
-    mobility = hasimoto(RADIUS, box)
-    stride = int(math.ceil(1.0 / (mobility * stiffness * time_step)))
-    with structmd.Simulation(options) as sim:
-        sim.load(document([[0.0, 0.0, 0.0]], box, pse(time_step=time_step, tolerance=1e-3), steps=10 ** 7,
-                          temperature=kT, force_field=trap))
-        samples = []
-        for _ in range(400):
-            sim.step(stride)
-            samples.append(sim.positions[0].copy())
-    energy = stiffness * np.array(samples) ** 2
-    blocks = energy.reshape(20, -1, 3).mean(axis=(1, 2))
-    measured, error = blocks.mean(), blocks.std(ddof=1) / math.sqrt(len(blocks))
-    expected = kT / (1.0 - 0.5 * mobility * stiffness * time_step)
+    measured, error, expected = trapped_particle_energy(options, pse(time_step=time_step, tolerance=1e-3), box, kT,
+                                                        stiffness, time_step)
     assert abs(measured - expected) < 4 * error, (measured, expected, error)
     assert error < 0.1 * kT
 
