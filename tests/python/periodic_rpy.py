@@ -20,8 +20,12 @@ HASIMOTO = 2.837297
 MU0 = 1.0 / (6.0 * math.pi * ETA * RADIUS)
 
 
-def document(positions, box, entry, steps=1, temperature=0.0, force_field=None, seed=7):
+def document(positions, box, entry, steps=1, temperature=0.0, force_field=None, seed=7, batches=None):
+    """One type A of radius RADIUS at `positions`, integrated by `entry`; `batches`: a batchId by particle."""
     box = [float(b) for b in (box if np.ndim(box) else [box] * 3)]
+    structure = {"labels": ["id", "type"], "data": [[i, "A"] for i in range(len(positions))]}
+    if batches is not None:
+        structure = {"labels": ["id", "type", "batchId"], "data": [[i, "A", b] for i, b in enumerate(batches)]}
     return {
         "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": "periodic-bdhi", "seed": seed}}},
         "global": {
@@ -32,8 +36,7 @@ def document(positions, box, entry, steps=1, temperature=0.0, force_field=None, 
         "integrator": {"bd": entry, "schedule": {"type": ["Schedule", "Integrator"],
                                                  "labels": ["order", "integrator", "steps"], "data": [[1, "bd", steps]]}},
         "state": {"labels": ["id", "position"], "data": [[i, [float(c) for c in p]] for i, p in enumerate(positions)]},
-        "topology": {"structure": {"labels": ["id", "type"], "data": [[i, "A"] for i in range(len(positions))]},
-                     "forceField": force_field or {}},
+        "topology": {"structure": structure, "forceField": force_field or {}},
     }
 
 
@@ -180,3 +183,23 @@ def trapped_particle_energy(options, entry, box, kT, stiffness, time_step):
     blocks = energy.reshape(20, -1, 3).mean(axis=(1, 2))
     expected = kT / (1.0 - 0.5 * mobility * stiffness * time_step)
     return blocks.mean(), blocks.std(ddof=1) / math.sqrt(len(blocks)), expected
+
+
+def noise_samples(options, positions, box, entry, kT, samples):
+    """The displacements (samples x 3N) of many single steps from the same configuration, reset
+    before each, with no force: the noise alone (and a drift where the mobility has a divergence)."""
+    moves = np.empty((samples, 3 * len(positions)))
+    with structmd.Simulation(options) as sim:
+        sim.load(document(positions, box, entry, steps=10 ** 7, temperature=kT))
+        start = sim.positions
+        for s in range(samples):
+            sim.positions = start
+            sim.step(1)
+            moves[s] = minimum_image(sim.positions - start, np.asarray(box, float)).ravel()
+    return moves
+
+
+def covariance_standard_error(expected, samples):
+    """The standard error of each element of the sample covariance of n Gaussian vectors whose
+    covariance is `expected`: sqrt((C_aa C_bb + C_ab^2) / n)."""
+    return np.sqrt((np.outer(np.diag(expected), np.diag(expected)) + expected ** 2) / samples)

@@ -16,8 +16,9 @@ import numpy as np
 import pytest
 
 import structmd
-from periodic_rpy import (ETA, MU0, RADIUS, document, hasimoto, measured_mobility, minimum_image, rpy_ewald,
-                          rpy_overlap_correction, trapped_particle_energy, windowed_msd)
+from periodic_rpy import (ETA, MU0, RADIUS, covariance_standard_error, document, hasimoto, measured_mobility,
+                          minimum_image, noise_samples, rpy_ewald, rpy_overlap_correction, trapped_particle_energy,
+                          windowed_msd)
 
 
 def pse(time_step=0.01, viscosity=ETA, radius=RADIUS, tolerance=1e-4, psi=1.0, cls="BDHITriplyPeriodic", **extra):
@@ -121,18 +122,6 @@ def test_single_and_mixed_precision_give_the_same_mobility(options):
         assert np.max(np.abs(other - reference)) < 1e-4 * MU0, (precision, np.max(np.abs(other - reference)) / MU0)
 
 
-def noise_samples(options, positions, box, entry, kT, samples):
-    moves = np.empty((samples, 3 * len(positions)))
-    with structmd.Simulation(options) as sim:
-        sim.load(document(positions, box, entry, steps=10 ** 7, temperature=kT))
-        start = sim.positions
-        for s in range(samples):
-            sim.positions = start
-            sim.step(1)
-            moves[s] = minimum_image(sim.positions - start, np.asarray(box, float)).ravel()
-    return moves
-
-
 @pytest.mark.parametrize("psi, length", [(0.3, 22.0), (1.5, 12.0)])
 def test_the_noise_has_covariance_2_kT_dt_M(options, psi, length):
     """Many zero-force steps from the same configuration (reset before each): the sample covariance
@@ -150,7 +139,7 @@ def test_the_noise_has_covariance_2_kT_dt_M(options, psi, length):
     moves = noise_samples(options, positions, box, entry, kT, samples)
     assert np.all(np.abs(moves.mean(0)) < 4 * np.sqrt(np.diag(expected) / samples))
     sampled = moves.T @ moves / samples
-    standard_error = np.sqrt((np.outer(np.diag(expected), np.diag(expected)) + expected ** 2) / samples)
+    standard_error = covariance_standard_error(expected, samples)
     assert np.all(np.abs(sampled - expected) < 4 * standard_error), np.max(np.abs(sampled - expected) / standard_error)
     # The overlapping pair's coupling is resolved: the covariance between them is many errors from 0.
     assert abs(sampled[0, 3]) > 10 * standard_error[0, 3]
@@ -246,10 +235,7 @@ def test_a_box_changed_by_the_host_is_refused_by_name(options):
 
 
 def test_several_batches_are_refused(options):
-    doc = document([[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]], 8.0, pse(psi=2.0), steps=10)
-    doc["topology"]["structure"]["labels"].append("batchId")
-    for row, batch in zip(doc["topology"]["structure"]["data"], (0, 1)):
-        row.append(batch)
+    doc = document([[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]], 8.0, pse(psi=2.0), steps=10, batches=[0, 1])
     with structmd.Simulation(options) as sim:
         with pytest.raises(structmd.UnsupportedError, match="batches"):
             sim.load(doc)

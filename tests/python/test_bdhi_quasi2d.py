@@ -27,6 +27,7 @@ import math
 import numpy as np
 import pytest
 
+import periodic_rpy
 import structmd
 
 ETA = 1.3
@@ -52,34 +53,15 @@ def planar_box(box):
     return np.array(box[:2])
 
 
-def document(positions, box, entry, steps=1, temperature=0.0, force_field=None, seed=7, batches=None):
-    box = list(planar_box(box)) + [Z_BOX]
-    state = {"labels": ["id", "position"], "data": [[i, [float(c) for c in p]] for i, p in enumerate(positions)]}
-    structure = {"labels": ["id", "type"], "data": [[i, "A"] for i in range(len(positions))]}
-    if batches is not None:
-        structure = {"labels": ["id", "type", "batchId"], "data": [[i, "A", b] for i, b in enumerate(batches)]}
-    return {
-        "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": "q2d", "seed": seed}}},
-        "global": {
-            "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
-                      "data": [["A", 1.0, RADIUS, 0.0]]},
-            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"], "data": [[box, temperature]]},
-        },
-        "integrator": {"bd": entry, "schedule": {"type": ["Schedule", "Integrator"],
-                                                 "labels": ["order", "integrator", "steps"], "data": [[1, "bd", steps]]}},
-        "state": state,
-        "topology": {"structure": structure, "forceField": force_field or {}},
-    }
-
-
-def minimum_image(d, box):
-    return d - box * np.round(d / box)
+def document(positions, box, entry, **rest):
+    """periodic_rpy's document in the box of `box`'s plane, Z_BOX high."""
+    return periodic_rpy.document(positions, list(planar_box(box)) + [Z_BOX], entry, **rest)
 
 
 def planar_moves(after, before, box):
     """The in-plane displacements (N x 2), z's must not have moved at all."""
     assert np.array_equal(after[:, 2], before[:, 2]), "z must be untouched"
-    return minimum_image(after[:, :2] - before[:, :2], planar_box(box))
+    return periodic_rpy.minimum_image(after[:, :2] - before[:, :2], planar_box(box))
 
 
 def measured_mobility(options, positions, box, time_step=0.01, **parameters):
@@ -318,7 +300,7 @@ def test_the_noise_has_covariance_2_kT_dt_M(options):
     assert np.all(np.abs(moves.mean(0) - time_step * kT * drift.ravel()) < 4 * mean_error)
     centred = moves - moves.mean(0)
     sampled = centred.T @ centred / (samples - 1)
-    standard_error = np.sqrt((np.outer(np.diag(expected), np.diag(expected)) + expected ** 2) / samples)
+    standard_error = periodic_rpy.covariance_standard_error(expected, samples)
     assert np.all(np.abs(sampled - expected) < 4 * standard_error), np.max(np.abs(sampled - expected) / standard_error)
     # The pair's coupling is resolved: the covariance between the particles is many errors from 0.
     assert abs(sampled[0, 2]) > 10 * standard_error[0, 2]

@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 import structmd
-from periodic_rpy import (ETA, MU0, RADIUS, add_wave_sum, document, hasimoto, minimum_image, rpy_ewald,
-                          trapped_particle_energy, wave_vectors, windowed_msd)
+from periodic_rpy import (ETA, MU0, RADIUS, add_wave_sum, covariance_standard_error, document, hasimoto,
+                          minimum_image, noise_samples, rpy_ewald, trapped_particle_energy, wave_vectors, windowed_msd)
 from periodic_rpy import measured_mobility as measured_entry_mobility
 
 
@@ -114,17 +114,10 @@ def test_the_noise_has_covariance_2_kT_dt_M(options):
     time_step, kT, samples = 0.01, 1.7, 3000
     mobility = measured_mobility(options, positions, box, time_step=time_step, tolerance=1e-3)
     expected = 2.0 * kT * time_step * mobility
-    moves = np.empty((samples, 6))
-    with structmd.Simulation(options) as sim:
-        sim.load(document(positions, box, fcm(time_step=time_step, tolerance=1e-3), steps=10 ** 7, temperature=kT))
-        start = sim.positions
-        for s in range(samples):
-            sim.positions = start
-            sim.step(1)
-            moves[s] = minimum_image(sim.positions - start, box).ravel()
+    moves = noise_samples(options, positions, box, fcm(time_step=time_step, tolerance=1e-3), kT, samples)
     assert np.all(np.abs(moves.mean(0)) < 4 * np.sqrt(np.diag(expected) / samples))
     sampled = moves.T @ moves / samples
-    standard_error = np.sqrt((np.outer(np.diag(expected), np.diag(expected)) + expected ** 2) / samples)
+    standard_error = covariance_standard_error(expected, samples)
     assert np.all(np.abs(sampled - expected) < 4 * standard_error), np.max(np.abs(sampled - expected) / standard_error)
     # The pair's coupling is resolved: the covariance between the particles is many errors from 0.
     assert abs(sampled[0, 3]) > 10 * standard_error[0, 3]
@@ -206,18 +199,13 @@ def test_a_box_changed_by_the_host_is_refused_by_name(options):
 
 
 def test_several_batches_are_refused(options):
-    doc = document([[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]], 8.0, fcm(), steps=10)
-    doc["topology"]["structure"]["labels"].append("batchId")
-    for row, batch in zip(doc["topology"]["structure"]["data"], (0, 1)):
-        row.append(batch)
+    doc = document([[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]], 8.0, fcm(), steps=10, batches=[0, 1])
     with structmd.Simulation(options) as sim:
         with pytest.raises(structmd.UnsupportedError, match=r"integrator\.bd\.type: .*one fluid"):
             sim.load(doc)
     # One batch is one system: the same input without the split loads.
-    for row in doc["topology"]["structure"]["data"]:
-        row[-1] = 0
     with structmd.Simulation(options) as sim:
-        sim.load(doc)
+        sim.load(document([[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]], 8.0, fcm(), steps=10, batches=[0, 0]))
 
 
 def test_the_immersed_boundary_method_is_refused_by_name(options):
