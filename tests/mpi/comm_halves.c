@@ -12,26 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mpi_checks.h"
 #include "structmd.h"
 
 enum { kBatches = 4, kPerBatch = 12, kN = kBatches * kPerBatch, kSteps = 300 };
-
-static int failures = 0;
-static int world_rank = 0;
-
-static void expect(int condition, const char* what) {
-    if (!condition) {
-        fprintf(stderr, "rank %d: FAILED: %s\n", world_rank, what);
-        ++failures;
-    }
-}
-
-static void check(structmd_status status, structmd_sim* sim, const char* call) {
-    if (status != STRUCTMD_OK) {
-        fprintf(stderr, "rank %d: %s failed (%d): %s\n", world_rank, call, (int)status, structmd_last_error(sim));
-        MPI_Abort(MPI_COMM_WORLD, 1);
-    }
-}
 
 /* kBatches overlaid copies of a bead chain (harmonic bonds, Lennard-Jones between all pairs of a
  * batch) under Brownian dynamics; bridge != 0 adds a bond from batch 1's last bead to batch 2's first. */

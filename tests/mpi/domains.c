@@ -18,24 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mpi_checks.h"
 #include "structmd.h"
-
-static int failures = 0;
-static int world_rank = 0;
-
-static void expect(int condition, const char* what) {
-    if (!condition) {
-        fprintf(stderr, "rank %d: FAILED: %s\n", world_rank, what);
-        ++failures;
-    }
-}
-
-static void check(structmd_status status, structmd_sim* sim, const char* call) {
-    if (status != STRUCTMD_OK) {
-        fprintf(stderr, "rank %d: %s failed (%d): %s\n", world_rank, call, (int)status, structmd_last_error(sim));
-        MPI_Abort(MPI_COMM_WORLD, 1);
-    }
-}
 
 /* A growing text buffer. */
 typedef struct {
