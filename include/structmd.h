@@ -51,7 +51,7 @@ extern "C" {
 #endif
 
 /** Version of the binary interface; raised whenever a name or a meaning below changes. */
-#define STRUCTMD_ABI_VERSION 3
+#define STRUCTMD_ABI_VERSION 4
 
 /** @name Status codes
  *  The values are fixed and part of the ABI.

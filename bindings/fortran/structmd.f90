@@ -20,7 +20,7 @@ module structmd
 
   ! STRUCTMD_ABI_VERSION of the header this module was written against. Fortran names are not case
   ! sensitive, so the C macro's own name would clash with the function structmd_abi_version.
-  integer(c_int), parameter, public :: STRUCTMD_BINDING_ABI_VERSION = 3
+  integer(c_int), parameter, public :: STRUCTMD_BINDING_ABI_VERSION = 4
 
   integer(c_int32_t), parameter, public :: STRUCTMD_OK = 0
   integer(c_int32_t), parameter, public :: STRUCTMD_ERR_ARGUMENT = 1

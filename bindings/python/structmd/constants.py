@@ -4,7 +4,7 @@ tests/python/test_binding.py checks that these equal the header's #defines, so a
 that is not mirrored here fails the tests instead of silently drifting.
 """
 
-ABI_VERSION = 3
+ABI_VERSION = 4
 
 STATUS = {
     "STRUCTMD_OK": 0,
