@@ -853,7 +853,9 @@ STRUCTMD_API structmd_status structmd_get_info(const structmd_sim* sim, char* bu
  * backend, between the caller's arrays and the engine's); "device_memory_bytes": bytes the
  * handle's buffers hold on its backend now (GPU memory on CUDA, the CUDA context not counted);
  * "step_graphs_captured", "step_graphs_replayed": batches of up to 16 steps captured as CUDA
- * graphs, and batches that replayed one (0 on the CPU)}. It shows that work a scene does not
+ * graphs, and batches that replayed one (0 on the CPU); "domain_rebuilds": how often a system
+ * split in space over MPI ranks rebuilt its domains (0 otherwise)}. Under spatial domains the
+ * other counts are this rank's. It shows that work a scene does not
  * need is skipped: no list without pair terms, no energy between the steps that read it, no
  * particle data leaving the device while stepping.
  *

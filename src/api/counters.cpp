@@ -21,6 +21,7 @@ structmd_status structmd_get_counters(structmd_sim* sim, char* buffer, size_t si
         counters["device_memory_bytes"] = c.deviceMemoryBytes;
         counters["step_graphs_captured"] = c.stepGraphsCaptured;
         counters["step_graphs_replayed"] = c.stepGraphsReplayed;
+        counters["domain_rebuilds"] = c.domainRebuilds;
         copy_text(counters.dump(), buffer, size);
     });
 }

@@ -11,6 +11,11 @@ std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const 
                                             int64_t firstParticleId) {
     SimulationSpec spec = read_simulation(text, log, components.reader());
     spec.firstParticleId = firstParticleId;
+    return make_simulation(options, std::move(spec), components, log);
+}
+
+std::unique_ptr<Simulation> make_simulation(const EngineOptions& options, SimulationSpec spec,
+                                            const ForceFieldComponents& components, const Logger& log) {
     if (options.backend == BackendKind::cuda) {
         switch (options.precision) {
             case Precision::single: return make_cuda_engine_single(options.device, std::move(spec), components, log);

@@ -8,6 +8,7 @@
 #include "engines/engine_options.hpp"
 #include "forcefield/component_set.hpp"
 #include "simulation/simulation.hpp"
+#include "simulation/simulation_spec.hpp"
 
 namespace structmd {
 
@@ -19,5 +20,9 @@ namespace structmd {
 std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const std::string& text,
                                             const ForceFieldComponents& components, const Logger& log,
                                             int64_t firstParticleId = 0);
+
+// Builds the engine of a spec already read (a spatial domain's, parallel/domain_spec.hpp).
+std::unique_ptr<Simulation> make_simulation(const EngineOptions& options, SimulationSpec spec,
+                                            const ForceFieldComponents& components, const Logger& log);
 
 }  // namespace structmd

@@ -30,12 +30,12 @@ double fraction(double x, double length) {
 
 }  // namespace
 
-DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainDocument document, std::unique_ptr<Simulation> whole,
+DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec, std::unique_ptr<Simulation> whole,
                                    const ForceFieldComponents& components, const Logger& log,
                                    std::shared_ptr<const Communicator> comm)
     : StepsOnRankZero(std::move(comm)),
       options_(options),
-      document_(std::move(document)),
+      spec_(std::move(spec)),
       components_(&components),
       log_(log) {
     total_ = whole->particle_count();
@@ -59,10 +59,12 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainDocument 
     whole->get_positions(x.data());
     whole->get_velocities(v.data());
     whole->get_images(images.data());
-    // The ghost width: the neighbour lists' reach, and room for every bond with half as much again.
+    // The ghost width: the neighbour lists' reach and their skin again, so that the domains are
+    // rebuilt about as often as the lists (past half the skin), and room for every bond with half
+    // as much again.
     double longestBond = 0.0;
     for (int64_t i = 0; i < total_; ++i)
-        for (int64_t j : document_.bonded_to(i)) {
+        for (int64_t j : spec_.bonded_to(i)) {
             double r2 = 0.0;
             for (int d = 0; d < 3; ++d) {
                 double dx = x[3 * i + d] - x[3 * j + d];
@@ -73,7 +75,7 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainDocument 
         }
     const double listRadius = whole->list_radius();
     const double cutoff = whole->pair_cutoff();
-    width_ = std::max(listRadius, 1.5 * longestBond);
+    width_ = std::max(listRadius > 0.0 ? 2.0 * listRadius - cutoff : 0.0, 1.5 * longestBond);
     // Without pairs or bonds nothing reaches across a face: no ghosts, and no move calls for a rebuild.
     moveLimit_ = width_ > 0.0 ? 0.5 * (width_ - (listRadius > 0.0 ? cutoff : 0.0))
                               : std::numeric_limits<double>::infinity();
@@ -172,22 +174,11 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::owned_now() {
 
 void DomainsOverRanks::check_moves() {
     if (std::isinf(moveLimit_)) return;
-    const size_t slots = ids_.size();
-    std::vector<double> x(3 * slots);
-    run_together(*comm_, [&] { local_->get_positions(x.data()); });
     double largest = 0.0;
-    for (int64_t s = 0; s < owned_; ++s) {
-        double r2 = 0.0;
-        for (int d = 0; d < 3; ++d) {
-            double dx = x[3 * s + d] - reference_[3 * s + d];
-            dx -= box_[d] * std::round(dx / box_[d]);
-            r2 += dx * dx;
-        }
-        largest = std::max(largest, r2);
-    }
+    run_together(*comm_, [&] { largest = local_->largest_owned_move(); });
     std::vector<double> all(static_cast<size_t>(comm_->size()));
     comm_->all_gather(&largest, all.data(), std::vector<int64_t>(all.size(), 1));
-    const double move = std::sqrt(*std::max_element(all.begin(), all.end()));
+    const double move = *std::max_element(all.begin(), all.end());
     if (move > moveLimit_)
         throw Error(STRUCTMD_ERR_NUMERICAL,
                     "step " + std::to_string(current_step()) + ": a particle moved " + number(move) +
@@ -265,7 +256,6 @@ DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const 
         velocities.insert(velocities.end(), h.velocity.begin(), h.velocity.end());
         d.baseImages.push_back(h.image);
     }
-    d.reference = positions;
 
     // The owned particles within the ghost width of each face go to the rank beyond it; with two
     // ranks both faces face the same rank, which gets each particle once.
@@ -312,7 +302,7 @@ DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const 
     std::vector<int64_t> held(d.ids);
     std::sort(held.begin(), held.end());
     for (int64_t s = 0; s < d.owned; ++s)
-        for (int64_t j : document_.bonded_to(d.ids[static_cast<size_t>(s)]))
+        for (int64_t j : spec_.bonded_to(d.ids[static_cast<size_t>(s)]))
             if (!std::binary_search(held.begin(), held.end(), j))
                 throw Error(STRUCTMD_ERR_NUMERICAL,
                             "step " + std::to_string(local_ ? local_->current_step() : 0) + ": the bond between ids " +
@@ -321,17 +311,35 @@ DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const 
 
     const int64_t step = local_ ? local_->current_step() : startStep_;
     const double time = local_ ? local_->current_time() : startTime_;
-    d.engine = load_simulation(options_, document_.local_text(d.ids, d.owned, positions, velocities, step, time,
-                                                              std::max<int64_t>(0, finalStep_ - step)),
-                               *components_, log_);
+    d.engine = make_simulation(
+        options_, spec_.local(d.ids, d.owned, positions, velocities, step, time, std::max<int64_t>(0, finalStep_ - step)),
+        *components_, log_);
     return d;
 }
 
+Counters DomainsOverRanks::counters() {
+    Counters c = local_->counters();
+    c.forceEvaluations += retired_.forceEvaluations;
+    c.energyEvaluations += retired_.energyEvaluations;
+    c.virialEvaluations += retired_.virialEvaluations;
+    c.neighbourListBuilds += retired_.neighbourListBuilds;
+    c.hostToDeviceBytes += retired_.hostToDeviceBytes;
+    c.deviceToHostBytes += retired_.deviceToHostBytes;
+    c.stepGraphsCaptured += retired_.stepGraphsCaptured;
+    c.stepGraphsReplayed += retired_.stepGraphsReplayed;
+    c.domainRebuilds = static_cast<uint64_t>(rebuilds_);
+    return c;
+}
+
 void DomainsOverRanks::adopt(Domain next) {
+    if (local_) {
+        const Counters c = counters();
+        retired_ = c;
+        retired_.deviceMemoryBytes = 0;
+    }
     ids_ = std::move(next.ids);
     owned_ = next.owned;
     baseImages_ = std::move(next.baseImages);
-    reference_ = std::move(next.reference);
     links_ = std::move(next.links);
     borderSlots_ = std::move(next.borderSlots);
     ghostSlots_ = std::move(next.ghostSlots);
@@ -410,7 +418,7 @@ void DomainsOverRanks::get_velocities(double* v) {
 void DomainsOverRanks::get_forces(double* f) {
     gather_per_particle(Op::forces, f, 3, [&](double* mine) { local_->get_forces(mine); });
 }
-// Identity for all: the domains hold no directions and turn no particle (domain_document.hpp).
+// Identity for all: the domains hold no directions and turn no particle (domain_support.hpp).
 void DomainsOverRanks::get_orientations(double* q) {
     gather_per_particle(Op::orientations, q, 4, [&](double* mine) { local_->get_orientations(mine); });
 }

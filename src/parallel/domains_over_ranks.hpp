@@ -6,9 +6,9 @@
 // - Domains: K slabs of equal width along the longest box axis; rank r owns the particles whose
 //   fractional coordinate along it lies in [r/K, (r+1)/K). Its neighbours are ranks r-1 and r+1
 //   (periodic; with K = 2 both are the other rank, and a border particle is sent to it once).
-// - The engine of a domain is an ordinary Engine loaded from a document of its own
-//   (domain_document.hpp) whose slots are the owned particles, in increasing global id, then the
-//   ghosts: copies of the particles other ranks own within the ghost width W of the slab's faces.
+// - The engine of a domain is an ordinary Engine made from a spec of its own (domain_spec.hpp: the
+//   whole system's spec, read once, with the domain's rows) whose slots are the owned particles, in
+//   increasing global id, then the ghosts: copies of the particles other ranks own within the ghost width W of the slab's faces.
 //   Slots keep their global id for the noise (NoiseKey::ids), so a particle draws the same numbers
 //   on any rank, and Langevin trajectories are those of one rank to rounding.
 // - Ghosts: before every force evaluation at new positions the engine refreshes them
@@ -23,13 +23,15 @@
 // - Bonds (Bond2): a rank keeps every bond of which it owns a particle; the bond kernel gives each
 //   particle its whole force from its own bonds, and its energy share (half), so again the sum
 //   over owned slots counts each bond once. Bonds between two ghosts are left out.
-// - The ghost set is fixed between rebuilds. W = max(list radius, 1.5 x the longest bond at load).
+// - The ghost set is fixed between rebuilds. W = max(list radius + skin, 1.5 x the longest bond at
+//   load), the skin being the lists' reach beyond the cutoff rc.
 //   A pair within the cutoff rc of an owned particle is a ghost as long as no particle moved more
 //   than (W - rc)/2 since the rebuild; the domains are rebuilt when the largest move over all ranks
-//   passes half that (a collective decision, checked after every step), and a move past it is an
-//   error (never a silently wrong force). A rebuild migrates particles that left the slab to their
+//   passes half that (a collective decision, checked after every step on one number each rank's
+//   engine reduces where its particles live), and a move past it is an error (never a silently
+//   wrong force). A rebuild migrates particles that left the slab to their
 //   new owner (sent to the neighbour with position, velocity and image), picks the ghosts anew
-//   and loads the domain's engine again from its document, at the same step and time, with the
+//   and makes the domain's engine again from its spec, at the same step and time, with the
 //   schedule's remaining steps, without beginning its integrator again (half-step Langevin
 //   velocities carry over).
 // - Energies: kinetic from owned velocities, potential from owned per-particle energies, summed
@@ -39,9 +41,9 @@
 //   opened once), fired by this view on rank 0 with the other ranks serving its gathers
 //   (steps_on_rank_zero.hpp), at the same steps as one engine would.
 // - Everything else is refused by name: "<what> is not available under domain decomposition"
-//   (domain_document.hpp at load; the API calls below).
+//   (domain_support.hpp at load; the API calls below).
 // Memory: every rank loads the whole document and the whole system once at load (the same initial
-// velocities as one rank), then holds its domain only (plus the document, for the rebuilds).
+// velocities as one rank), then holds its domain only (plus the whole spec, for the rebuilds).
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -52,7 +54,7 @@
 #include "engines/engine_options.hpp"
 #include "forcefield/component_set.hpp"
 #include "parallel/communicator.hpp"
-#include "parallel/domain_document.hpp"
+#include "parallel/domain_spec.hpp"
 #include "parallel/steps_on_rank_zero.hpp"
 #include "steps/simulation_step.hpp"
 
@@ -60,9 +62,9 @@ namespace structmd {
 
 class DomainsOverRanks final : public StepsOnRankZero, private GhostExchange {
 public:
-    // `whole`: the system loaded whole on this rank from `document`'s text, released once the
-    // domains are made. Collective.
-    DomainsOverRanks(const EngineOptions& options, DomainDocument document, std::unique_ptr<Simulation> whole,
+    // `whole`: the system loaded whole on this rank from `spec`, released once the domains are
+    // made. Collective.
+    DomainsOverRanks(const EngineOptions& options, DomainSpec spec, std::unique_ptr<Simulation> whole,
                      const ForceFieldComponents& components, const Logger& log, std::shared_ptr<const Communicator> comm);
     ~DomainsOverRanks() override;
 
@@ -135,7 +137,7 @@ public:
     void save_checkpoint(const std::string& path) override;
     void load_checkpoint(const std::string& path) override;
 
-    Counters counters() override { return local_->counters(); }  // this rank's present engine
+    Counters counters() override;  // this rank's engines since load
     std::string backend_name() const override { return local_->backend_name(); }
     std::string precision_name() const override { return local_->precision_name(); }
     std::string device_name() const override { return local_->device_name(); }
@@ -173,7 +175,6 @@ private:
         std::vector<int64_t> ids;
         int64_t owned = 0;
         std::vector<std::array<int32_t, 3>> baseImages;
-        std::vector<double> reference;
         std::vector<Link> links;
         std::vector<int64_t> borderSlots, ghostSlots;
         std::unique_ptr<Simulation> engine;
@@ -194,7 +195,7 @@ private:
     [[noreturn]] void unsupported(const std::string& what) const;
 
     EngineOptions options_;
-    DomainDocument document_;
+    DomainSpec spec_;
     const ForceFieldComponents* components_;
     Logger log_;
     std::unique_ptr<Simulation> local_;
@@ -215,7 +216,6 @@ private:
     std::vector<int64_t> ids_;  // global id by slot: owned, then ghosts
     int64_t owned_ = 0;
     std::vector<std::array<int32_t, 3>> baseImages_;  // owned particles' images before the present engine
-    std::vector<double> reference_;                   // owned positions at the rebuild, 3 each
     std::vector<Link> links_;
     std::vector<int64_t> borderSlots_, ghostSlots_;
     int64_t startStep_ = 0;  // the step and time of the document, for the first engine
@@ -223,6 +223,7 @@ private:
     int64_t finalStep_ = 0;  // where the whole system's schedule ends
     bool begun_ = false;  // the integrator began on an engine of this domain
     int64_t rebuilds_ = 0;  // since load, logged at the end: how often the ghost layer ran out
+    Counters retired_;      // of the engines this domain had before the present one
 };
 
 }  // namespace structmd

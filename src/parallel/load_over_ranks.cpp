@@ -9,9 +9,12 @@
 #include "engines/make_engine.hpp"
 #include "parallel/batch_split.hpp"
 #include "parallel/batches_over_ranks.hpp"
+#include "parallel/domain_spec.hpp"
+#include "parallel/domain_support.hpp"
 #include "parallel/domains_over_ranks.hpp"
 #include "parallel/replica_documents.hpp"
 #include "parallel/replica_exchange.hpp"
+#include "simulation/read_simulation.hpp"
 
 namespace structmd {
 
@@ -77,14 +80,16 @@ std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const 
     std::unique_ptr<Simulation> local;
     // One batch on several ranks: spatial domains (domains_over_ranks.hpp).
     if (comm->size() > 1) {
-        std::optional<DomainDocument> domains;
+        std::optional<DomainSpec> domains;
         run_together(*comm, [&] {
-            nlohmann::json document = parse(text);
+            const nlohmann::json document = parse(text);
             if (!one_batch(document)) return;
             // The reader first, so that bad input is named by its JSON path before the domains
             // look at the document.
-            local = load_simulation(options, text, components, log);
-            domains.emplace(std::move(document));
+            SimulationSpec spec = read_simulation(text, log, components.reader());
+            check_domain_support(document);
+            domains.emplace(static_cast<const SystemSpec&>(spec));
+            local = make_simulation(options, std::move(spec), components, log);
         });
         if (domains)
             return std::make_unique<DomainsOverRanks>(options, std::move(*domains), std::move(local), components, log,

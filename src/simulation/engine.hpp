@@ -229,9 +229,17 @@ public:
         const std::vector<int64_t>& ghosts = exchange->ghost_slots();
         backend_.upload(borderSlots_, border.data(), border.size());
         backend_.upload(ghostSlots_, ghosts.data(), ghosts.size());
+        ownedSlots_ = p_.count - static_cast<int64_t>(ghosts.size());
+        backend_.resize(heldPositions_, static_cast<size_t>(p_.count));
+        backend_.for_each(p_.count, CopyArray<Real4<R>>{p_.pos.data(), heldPositions_.data()});
         ghostsAt_ = p_.version;  // the ghosts were loaded with their owners' present positions
         if (begun && schedule_.stages() > 0) activeStage_ = schedule_.stage_after(current_step());
         cache_.invalidate();
+    }
+
+    double largest_owned_move() override {
+        backend_.activate();
+        return std::sqrt(backend_.maximum(ownedSlots_, SquaredMoveSince<R>{p_.pos.data(), heldPositions_.data(), p_.box}));
     }
 
     void compute(unsigned flags) override {
@@ -1040,6 +1048,8 @@ private:
     // from the neighbouring domains, and the positions version the ghosts were last refreshed at.
     typename B::template Buffer<int64_t> globalIds_, borderSlots_, ghostSlots_;
     GhostExchange* ghosts_ = nullptr;
+    int64_t ownedSlots_ = 0;
+    typename B::template Buffer<Real4<R>> heldPositions_;  // at hold_ghosts, for largest_owned_move
     int64_t ghostsAt_ = -1;
 };
 

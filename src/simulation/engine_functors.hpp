@@ -3,6 +3,7 @@
 // virial. Sums are taken in double whatever the working precision.
 #include <cstdint>
 
+#include "core/box.hpp"
 #include "core/vec.hpp"
 #include "state/fault.hpp"
 
@@ -103,6 +104,26 @@ struct PlaceGhosts {
         const int64_t i = slots[k];
         pos[i] = {values[2 * k].x, values[2 * k].y, values[2 * k].z, pos[i].w};
         vel[i] = {values[2 * k + 1].x, values[2 * k + 1].y, values[2 * k + 1].z, vel[i].w};
+    }
+};
+
+template <class T>
+struct CopyArray {
+    const T* from;
+    T* to;
+    SMD_HD void operator()(int64_t i) const { to[i] = from[i]; }
+};
+
+// The squared distance (minimum image) slot i moved from where it was.
+template <class R>
+struct SquaredMoveSince {
+    const Real4<R>* pos;
+    const Real4<R>* was;
+    Box<R> box;
+    SMD_HD R operator()(int64_t i) const {
+        const Vec3<R> d = box.minimum_image(
+            Vec3<R>{pos[i].x - was[i].x, pos[i].y - was[i].y, pos[i].z - was[i].z});
+        return d.x * d.x + d.y * d.y + d.z * d.z;
     }
 };
 

@@ -55,6 +55,7 @@ struct Counters {
     int64_t deviceMemoryBytes = 0;  // held now, not accumulated
     uint64_t stepGraphsCaptured = 0;  // CUDA graphs of steps made, and launches of ones made before
     uint64_t stepGraphsReplayed = 0;
+    uint64_t domainRebuilds = 0;  // a system split in space: how often its domains were rebuilt
 };
 
 class Simulation {
@@ -88,6 +89,11 @@ public:
     // `begun` says that the schedule's present integrator already began on the domain's previous
     // engine (its state, half-step velocities, is in the particles). Only engines implement it.
     virtual void hold_ghosts(const std::vector<int64_t>& /*globalIds*/, GhostExchange* /*exchange*/, bool /*begun*/) {
+        throw Error(STRUCTMD_ERR_INTERNAL, "only an engine holds the ghosts of a spatial domain");
+    }
+    // A spatial domain's engine: the largest distance any owned slot (those before the ghosts) moved
+    // since hold_ghosts, reduced where the particles live.
+    virtual double largest_owned_move() {
         throw Error(STRUCTMD_ERR_INTERNAL, "only an engine holds the ghosts of a spatial domain");
     }
     // Moves the simulation steps into `into`, for a view that fires them itself (a spatial domain's,

@@ -14,7 +14,9 @@
 
 namespace structmd {
 
-struct SimulationSpec {
+// Everything but the simulation steps: plain copyable data, so that a spatial domain's engine
+// (parallel/domain_spec.hpp) is made from a selection of the whole system's rows.
+struct SystemSpec {
     uint64_t seed = 0;
     // The global id of particle 0 here: non-zero for an engine holding a share of the batches
     // (parallel/batch_split.hpp), whose particles keep their global ids' noise.
@@ -41,6 +43,9 @@ struct SimulationSpec {
     ForceFieldSpec forceField;
     std::vector<IntegratorSpec> integrators;
     std::vector<ScheduleStage> schedule;
+};
+
+struct SimulationSpec : SystemSpec {
     std::vector<std::unique_ptr<SimulationStep>> steps;
 };
 

@@ -17,7 +17,12 @@ one whole array. The plain-step loop that follows an exchange still gathers the 
 The hydrodynamics benchmark (a Python script over the binding) measures the error of each method's
 deterministic displacement; its bounds are in check_hydrodynamics.
 
-usage: check_benchmark_smoke.py lj|accuracy|coupling|hydrodynamics PROGRAM"""
+The domains benchmark runs a liquid on 1 MPI rank and over 2, long enough that the domains are
+rebuilt (the particles migrate), in double precision: the drift of the NVE energy over the timed
+steps is the same on both to 1e-8, which a ghost that missed a neighbour would break.
+
+usage: check_benchmark_smoke.py lj|accuracy|coupling|hydrodynamics PROGRAM
+       check_benchmark_smoke.py domains PROGRAM MPIEXEC [MPIEXEC FLAGS...]"""
 import csv
 import math
 import os
@@ -30,6 +35,8 @@ LJ_COLUMNS = ["n", "backend", "precision", "steps_per_call", "steps_per_second",
 ACCURACY_COLUMNS = ["precision", "dt", "skin", "n", "backend", "steps", "steps_per_second", "seconds_per_tau",
                     "energy_drift", "relative_force_error", "list_builds_per_1000_steps"]
 HYDRODYNAMICS_COLUMNS = ["method", "n", "backend", "precision", "tolerance", "steps_per_second", "error"]
+DOMAINS_COLUMNS = ["n", "ranks", "backend", "precision", "steps_per_second", "particle_steps_per_second",
+                   "domain_rebuilds_per_1000_steps", "list_builds_per_1000_steps", "setup_seconds", "energy_drift"]
 COUPLING_COLUMNS = ["n", "backend", "precision", "region", "iterations", "step_us", "exchange_us", "extra_us",
                     "extra_fraction", "bytes_per_exchange", "get_us", "set_us"]
 # Force-error bounds per precision (the forces' arithmetic), see the docstring.
@@ -38,11 +45,12 @@ FORCE_ERROR_BOUNDS = {"double": (0.0, 1e-10), "mixed": (1e-9, 1e-3), "single": (
 problems = []
 
 
-def run(program, arguments, columns):
-    """Runs the program with --csv and returns its rows as dicts after checking the header."""
+def run(program, arguments, columns, launcher=()):
+    """Runs the program (under launcher, e.g. mpiexec) with --csv and returns its rows as dicts after
+    checking the header."""
     with tempfile.TemporaryDirectory() as work:
         path = os.path.join(work, "rows.csv")
-        command = [sys.executable, program] if program.endswith(".py") else [program]
+        command = [*launcher, sys.executable, program] if program.endswith(".py") else [*launcher, program]
         result = subprocess.run([*command, *arguments, "--csv", path], capture_output=True, text=True)
         print(result.stdout, result.stderr, sep="")
         if result.returncode != 0:
@@ -154,8 +162,28 @@ def check_hydrodynamics(script):
         expect(bound[0] < error < bound[1], f"{row['method']} error {error} outside {bound}")
 
 
+def check_domains(program, launcher):
+    arguments = ["--n", "500", "--n", "2048", "--backend", "cpu", "--precision", "double", "--steps", "100",
+                 "--repeats", "2", "--warmup", "20"]
+    alone = run(program, arguments, DOMAINS_COLUMNS, [*launcher, "-np", "1"])
+    split = run(program, arguments, DOMAINS_COLUMNS, [*launcher, "-np", "2"])
+    expect([int(row["n"]) for row in split] == [500, 2048], f"rows {split}")
+    for one, two in zip(alone, split):
+        expect(int(one["ranks"]) == 1 and int(two["ranks"]) == 2, f"ranks in {one}, {two}")
+        positive_finite(two, "particle_steps_per_second")
+        expect(float(one["domain_rebuilds_per_1000_steps"]) == 0, f"domain rebuilds on one rank in {one}")
+        expect(positive_finite(two, "domain_rebuilds_per_1000_steps") > 0, f"no domain rebuild in {two}")
+        # The same trajectory to rounding: the drift of the total energy (the unshifted cutoff's
+        # jumps, ~1e-3) is the one rank's to many digits.
+        drift_one, drift_two = float(one["energy_drift"]), float(two["energy_drift"])
+        expect(abs(drift_two - drift_one) < 1e-8, f"energy drift {drift_two} over 2 ranks, {drift_one} on one")
+
+
 kind, program = sys.argv[1], os.path.abspath(sys.argv[2])
-{"lj": check_lj, "accuracy": check_accuracy, "coupling": check_coupling,
- "hydrodynamics": check_hydrodynamics}[kind](program)
+if kind == "domains":
+    check_domains(program, sys.argv[3:])
+else:
+    {"lj": check_lj, "accuracy": check_accuracy, "coupling": check_coupling,
+     "hydrodynamics": check_hydrodynamics}[kind](program)
 if problems:
     sys.exit("\n".join(problems))
