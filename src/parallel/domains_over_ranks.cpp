@@ -1,6 +1,7 @@
 #include "parallel/domains_over_ranks.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -111,7 +112,9 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec
 DomainsOverRanks::~DomainsOverRanks() {
     if (comm_->rank() == 0)
         log_.info("spatial domains rebuilt " + std::to_string(rebuilds_) + " times (ghost width " + number(width_) +
-                  ", rebuilt past a move of " + number(0.5 * moveLimit_) + ")");
+                  ", rebuilt past a move of " + number(0.5 * moveLimit_) + "); rank 0 spent " +
+                  number(rebuildSeconds_) + " s rebuilding and " + number(exchangeSeconds_) +
+                  " s in the ghosts' MPI exchange");
 }
 
 void DomainsOverRanks::set_step_firing(StepFiring*) {
@@ -185,11 +188,13 @@ void DomainsOverRanks::check_moves() {
                         " since the spatial domains were last rebuilt, more than the ghost layer allows (" +
                         number(moveLimit_) + "): its pair forces may have missed a neighbour; reduce the time step");
     if (move <= 0.5 * moveLimit_) return;
+    const auto start = std::chrono::steady_clock::now();
     std::vector<Held> held = owned_now();
     Domain next;
     run_together(*comm_, [&] { next = build(migrate(std::move(held))); });
     adopt(std::move(next));
     ++rebuilds_;
+    rebuildSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::vector<DomainsOverRanks::Held> DomainsOverRanks::migrate(std::vector<Held> held) {
@@ -348,6 +353,7 @@ void DomainsOverRanks::adopt(Domain next) {
 }
 
 void DomainsOverRanks::exchange(const double* border, double* ghosts) {
+    const auto start = std::chrono::steady_clock::now();
     const double* out = border;
     double* in = ghosts;
     for (const Link& link : links_) {
@@ -356,6 +362,7 @@ void DomainsOverRanks::exchange(const double* border, double* ghosts) {
         out += 6 * sent;
         in += 6 * link.received;
     }
+    exchangeSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // ---- gathers and sums ----

@@ -224,6 +224,7 @@ private:
     bool begun_ = false;  // the integrator began on an engine of this domain
     int64_t rebuilds_ = 0;  // since load, logged at the end: how often the ghost layer ran out
     Counters retired_;      // of the engines this domain had before the present one
+    double rebuildSeconds_ = 0.0, exchangeSeconds_ = 0.0;  // wall time, logged at the end
 };
 
 }  // namespace structmd

@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
     }
 
     nlohmann::json options = nlohmann::json::parse(create_options(backend, precision, 0));
+    options["log"] = "info";  // the domains' timing: rebuilds and the ghosts' exchange
     options["mpi_comm"] = static_cast<long long>(MPI_Comm_c2f(MPI_COMM_WORLD));
     const std::string optionText = options.dump();
     if (rank == 0)
