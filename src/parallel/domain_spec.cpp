@@ -41,6 +41,16 @@ DomainSpec::DomainSpec(SystemSpec whole) : whole_(std::move(whole)) {
     }
 }
 
+bool DomainSpec::renumbers_in_place() const {
+    const ForceFieldSpec& field = whole_.forceField;
+    for (const BondSpec& term : field.bonds)
+        if (!term.members.empty()) return false;
+    for (const NeighbourListSpec& list : field.lists)
+        if (!list.filterInputs.excluded.empty() || !list.filterInputs.kind.empty() || !list.filterInputs.charged.empty())
+            return false;
+    return field.groups.empty() && std::all_of(whole_.batchId.begin(), whole_.batchId.end(), [](int b) { return b == 0; });
+}
+
 SimulationSpec DomainSpec::local(const std::vector<int64_t>& ids, int64_t owned, const std::vector<double>& positions,
                                  const std::vector<double>& velocities, int64_t step, double time,
                                  int64_t remaining) const {

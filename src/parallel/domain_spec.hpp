@@ -18,6 +18,11 @@ public:
     explicit DomainSpec(SystemSpec whole);
 
     int64_t particle_count() const { return static_cast<int64_t>(whole_.positions.size()); }
+    const SystemSpec& whole() const { return whole_; }
+    // Whether the domain's terms hold nothing by slot (no bonds, no neighbour-list exclusions or
+    // per-particle conditions, no groups, one batch numbered 0), so that a rebuild can renumber the
+    // engine's slots in place (Simulation::reseat) instead of making it anew.
+    bool renumbers_in_place() const;
     // The ids bonded to particle `id`.
     const std::vector<int64_t>& bonded_to(int64_t id) const { return partners_[static_cast<size_t>(id)]; }
 

@@ -87,6 +87,7 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec
                         number(width_) + " (neighbour lists' reach, or 1.5 x the longest bond), are not available "
                         "under domain decomposition: use fewer MPI ranks");
     whole->take_steps(steps_);
+    inPlace_ = spec_.renumbers_in_place();
 
     std::vector<Held> owned;
     for (int64_t i = 0; i < total_; ++i) {
@@ -142,6 +143,7 @@ void DomainsOverRanks::fire_due(bool final) {
 void DomainsOverRanks::advance(int64_t n) {
     if (n < 0) throw Error(STRUCTMD_ERR_ARGUMENT, "nsteps: expected a count >= 0, got " + std::to_string(n));
     if (n == 0) return;
+    usable();
     const int64_t last = final_step();
     stoppedBy_.clear();
     for (int64_t k = 0; k < n; ++k) {
@@ -189,10 +191,14 @@ void DomainsOverRanks::check_moves() {
                         number(moveLimit_) + "): its pair forces may have missed a neighbour; reduce the time step");
     if (move <= 0.5 * moveLimit_) return;
     const auto start = std::chrono::steady_clock::now();
-    std::vector<Held> held = owned_now();
-    Domain next;
-    run_together(*comm_, [&] { next = build(migrate(std::move(held))); });
-    adopt(std::move(next));
+    if (inPlace_) {
+        rebuild_in_place();
+    } else {
+        std::vector<Held> held = owned_now();
+        Domain next;
+        run_together(*comm_, [&] { next = build(migrate(std::move(held))); });
+        adopt(std::move(next));
+    }
     ++rebuilds_;
     rebuildSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -247,11 +253,6 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::migrate(std::vector<Held> 
 
 DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const {
     std::sort(owned.begin(), owned.end(), [](const Held& a, const Held& b) { return a.id < b.id; });
-    const int me = comm_->rank(), ranks = comm_->size();
-    const int right = (me + 1) % ranks, left = (me + ranks - 1) % ranks;
-    const double length = box_[axis_];
-    const double lower = length * me / ranks, upper = length * (me + 1) / ranks;
-
     Domain d;
     d.owned = static_cast<int64_t>(owned.size());
     std::vector<double> positions, velocities;
@@ -262,24 +263,7 @@ DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const 
         d.baseImages.push_back(h.image);
     }
 
-    // The owned particles within the ghost width of each face go to the rank beyond it; with two
-    // ranks both faces face the same rank, which gets each particle once.
-    if (ranks == 2) {
-        d.links.push_back({right, right, {}, 0});
-    } else {
-        d.links.push_back({right, left, {}, 0});
-        d.links.push_back({left, right, {}, 0});
-    }
-    for (int64_t s = 0; s < d.owned; ++s) {
-        const double x = fraction(owned[static_cast<size_t>(s)].position[axis_], length) * length;
-        const bool nearUpper = upper - x < width_, nearLower = x - lower < width_;
-        if (ranks == 2) {
-            if (nearUpper || nearLower) d.links[0].sent.push_back(s);
-        } else {
-            if (nearUpper) d.links[0].sent.push_back(s);
-            if (nearLower) d.links[1].sent.push_back(s);
-        }
-    }
+    choose_borders(d.links, d.owned, [&](int64_t s) { return owned[static_cast<size_t>(s)].position[axis_]; });
     for (Link& link : d.links) {
         std::vector<double> out;
         for (int64_t s : link.sent) {
@@ -334,6 +318,143 @@ Counters DomainsOverRanks::counters() {
     c.stepGraphsReplayed += retired_.stepGraphsReplayed;
     c.domainRebuilds = static_cast<uint64_t>(rebuilds_);
     return c;
+}
+
+template <class Along>
+void DomainsOverRanks::choose_borders(std::vector<Link>& links, int64_t owned, Along&& along) const {
+    const int me = comm_->rank(), ranks = comm_->size();
+    const int right = (me + 1) % ranks, left = (me + ranks - 1) % ranks;
+    const double length = box_[axis_];
+    const double lower = length * me / ranks, upper = length * (me + 1) / ranks;
+    // The owned particles within the ghost width of each face go to the rank beyond it; with two
+    // ranks both faces face the same rank, which gets each particle once.
+    links.clear();
+    if (ranks == 2) {
+        links.push_back({right, right, {}, 0});
+    } else {
+        links.push_back({right, left, {}, 0});
+        links.push_back({left, right, {}, 0});
+    }
+    for (int64_t s = 0; s < owned; ++s) {
+        const double x = fraction(along(s), length) * length;
+        const bool nearUpper = upper - x < width_, nearLower = x - lower < width_;
+        if (ranks == 2) {
+            if (nearUpper || nearLower) links[0].sent.push_back(s);
+        } else {
+            if (nearUpper) links[0].sent.push_back(s);
+            if (nearLower) links[1].sent.push_back(s);
+        }
+    }
+}
+
+void DomainsOverRanks::rebuild_in_place() {
+    const int me = comm_->rank();
+    const size_t slots = ids_.size();
+    std::vector<double> x(3 * slots), v;
+    std::vector<int32_t> images;
+    std::vector<int64_t> kept, leaving;
+    run_together(*comm_, [&] {
+        local_->get_positions(x.data());
+        for (int64_t s = 0; s < owned_; ++s)
+            (slab_of(x[static_cast<size_t>(3 * s + axis_)]) == me ? kept : leaving).push_back(s);
+        if (leaving.empty()) return;
+        v.resize(3 * slots);
+        images.resize(3 * slots);
+        local_->get_velocities(v.data());
+        local_->get_images(images.data());
+    });
+    std::vector<Held> out;
+    for (int64_t s : leaving) {
+        Held h;
+        h.id = ids_[static_cast<size_t>(s)];
+        for (int d = 0; d < 3; ++d) {
+            h.position[d] = x[static_cast<size_t>(3 * s + d)];
+            h.velocity[d] = v[static_cast<size_t>(3 * s + d)];
+            h.image[d] = baseImages_[static_cast<size_t>(s)][d] + images[static_cast<size_t>(3 * s + d)];
+        }
+        out.push_back(h);
+    }
+    const std::vector<Held> arrived = migrate(std::move(out));
+
+    // The new slots: those that stay (their images stay in the engine), the arrivals, the ghosts.
+    std::vector<int64_t> ids;
+    std::vector<std::array<int32_t, 3>> baseImages;
+    ids.reserve(kept.size() + arrived.size());
+    baseImages.reserve(ids.capacity());
+    for (int64_t s : kept) {
+        ids.push_back(ids_[static_cast<size_t>(s)]);
+        baseImages.push_back(baseImages_[static_cast<size_t>(s)]);
+    }
+    for (const Held& h : arrived) {
+        ids.push_back(h.id);
+        baseImages.push_back(h.image);
+    }
+    const auto owned = static_cast<int64_t>(ids.size());
+    const auto stay = static_cast<int64_t>(kept.size());
+    std::vector<Link> links;
+    choose_borders(links, owned, [&](int64_t s) {
+        return s < stay ? x[static_cast<size_t>(3 * kept[static_cast<size_t>(s)] + axis_)]
+                        : arrived[static_cast<size_t>(s - stay)].position[axis_];
+    });
+    // The neighbours learn which ids their ghosts are; the positions follow at the next refresh.
+    std::vector<int64_t> borderSlots, ghostSlots;
+    for (Link& link : links) {
+        std::vector<double> sent;
+        for (int64_t s : link.sent) sent.push_back(static_cast<double>(ids[static_cast<size_t>(s)]));
+        double count = static_cast<double>(sent.size()), incoming = 0.0;
+        comm_->shift(&count, 1, link.to, &incoming, 1, link.from);
+        std::vector<double> received(static_cast<size_t>(incoming));
+        comm_->shift(sent.data(), static_cast<int64_t>(sent.size()), link.to, received.data(),
+                     static_cast<int64_t>(received.size()), link.from);
+        link.received = static_cast<int64_t>(received.size());
+        for (double id : received) {
+            ghostSlots.push_back(static_cast<int64_t>(ids.size()));
+            ids.push_back(static_cast<int64_t>(id));
+        }
+        borderSlots.insert(borderSlots.end(), link.sent.begin(), link.sent.end());
+    }
+
+    SlotReseat plan;
+    plan.kept = std::move(kept);
+    const size_t added = ids.size() - static_cast<size_t>(stay);
+    plan.addedPositions.assign(3 * added, 0.0);
+    plan.addedVelocities.assign(3 * added, 0.0);
+    for (size_t k = 0; k < arrived.size(); ++k)
+        for (int d = 0; d < 3; ++d) {
+            plan.addedPositions[3 * k + d] = arrived[k].position[d];
+            plan.addedVelocities[3 * k + d] = arrived[k].velocity[d];
+        }
+    const SystemSpec& whole = spec_.whole();
+    for (int64_t id : ids) {
+        const auto i = static_cast<size_t>(id);
+        plan.typeIndex.push_back(types_[i]);
+        plan.mass.push_back(masses_[i]);
+        plan.radius.push_back(radii_[i]);
+        plan.charge.push_back(whole.charge.empty() ? 0.0 : whole.charge[i]);
+        if (!whole.modelId.empty()) plan.model.push_back(whole.modelId[i]);
+    }
+    plan.globalIds = ids;
+    plan.forceField = &whole.forceField;
+    plan.integrators = &whole.integrators;
+    plan.components = components_;
+
+    ids_ = std::move(ids);
+    owned_ = owned;
+    baseImages_ = std::move(baseImages);
+    links_ = std::move(links);
+    borderSlots_ = std::move(borderSlots);
+    ghostSlots_ = std::move(ghostSlots);
+    // A failure here (device memory) may leave the engine half renumbered: every rank reports it,
+    // and the domains refuse to go on (usable()).
+    broken_ = true;
+    run_together(*comm_, [&] { local_->reseat(plan); });
+    broken_ = false;
+}
+
+void DomainsOverRanks::usable() const {
+    if (broken_)
+        throw Error(STRUCTMD_ERR_STATE, "a rebuild of the spatial domains failed part way (see the error it returned): "
+                                        "load the input again");
 }
 
 void DomainsOverRanks::adopt(Domain next) {
@@ -398,6 +519,7 @@ void DomainsOverRanks::gather_owned(const std::vector<double>& local, int k, dou
 
 template <class Get>
 void DomainsOverRanks::gather_per_particle(Op op, double* all, int k, Get&& get) {
+    usable();
     announce(op);
     std::vector<double> local(static_cast<size_t>(k) * ids_.size());
     run_together(*comm_, [&] { get(local.data()); });
@@ -412,6 +534,7 @@ double DomainsOverRanks::sum_owned(const std::vector<double>& values) const {
 }
 
 void DomainsOverRanks::compute(unsigned flags) {
+    usable();
     announce(Op::compute, std::string(), flags);
     run_together(*comm_, [&] { local_->compute(flags); });
 }
@@ -456,6 +579,7 @@ void DomainsOverRanks::get_types(int32_t* types) { std::copy(types_.begin(), typ
 void DomainsOverRanks::get_radii(double* r) { std::copy(radii_.begin(), radii_.end(), r); }
 
 double DomainsOverRanks::energy(const std::string& term) {
+    usable();
     announce(Op::energy, term);
     double value = 0.0;
     run_together(*comm_, [&] {

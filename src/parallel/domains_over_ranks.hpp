@@ -31,7 +31,9 @@
 //   engine reduces where its particles live), and a move past it is an error (never a silently
 //   wrong force). A rebuild migrates particles that left the slab to their
 //   new owner (sent to the neighbour with position, velocity and image), picks the ghosts anew
-//   and makes the domain's engine again from its spec, at the same step and time, with the
+//   and either renumbers the engine's slots in place (rebuild_in_place: terms that hold nothing by
+//   slot, e.g. pair terms alone) or makes the domain's engine again from its spec, at the same
+//   step and time, with the
 //   schedule's remaining steps, without beginning its integrator again (half-step Langevin
 //   velocities carry over).
 // - Energies: kinetic from owned velocities, potential from owned per-particle energies, summed
@@ -170,6 +172,14 @@ private:
     void check_moves();
     // Owned particles that left the slab go to their new owner; returns what this rank owns now.
     std::vector<Held> migrate(std::vector<Held> held);
+    // A rebuild that renumbers the present engine's slots (DomainSpec::renumbers_in_place): only the
+    // migrants and the new ghosts' ids cross the host; the slots that stay are gathered where they
+    // live. Collective.
+    void rebuild_in_place();
+    // The owned slots of `owned` particles (whose coordinates along the axis `along` gives) that
+    // each link sends as ghosts.
+    template <class Along>
+    void choose_borders(std::vector<Link>& links, int64_t owned, Along&& along) const;
     // A domain ready to be adopted: its slots, ghosts and engine.
     struct Domain {
         std::vector<int64_t> ids;
@@ -193,6 +203,8 @@ private:
     void gather_per_particle(Op op, double* all, int k, Get&& get);
     double sum_owned(const std::vector<double>& values) const;
     [[noreturn]] void unsupported(const std::string& what) const;
+    // Throws ERR_STATE after a rebuild in place that failed part way.
+    void usable() const;
 
     EngineOptions options_;
     DomainSpec spec_;
@@ -222,6 +234,8 @@ private:
     double startTime_ = 0.0;
     int64_t finalStep_ = 0;  // where the whole system's schedule ends
     bool begun_ = false;  // the integrator began on an engine of this domain
+    bool inPlace_ = false;  // rebuilds renumber the engine's slots (DomainSpec::renumbers_in_place)
+    bool broken_ = false;   // a rebuild in place failed part way
     int64_t rebuilds_ = 0;  // since load, logged at the end: how often the ghost layer ran out
     Counters retired_;      // of the engines this domain had before the present one
     double rebuildSeconds_ = 0.0, exchangeSeconds_ = 0.0;  // wall time, logged at the end

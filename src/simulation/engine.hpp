@@ -237,6 +237,49 @@ public:
         cache_.invalidate();
     }
 
+    void reseat(const SlotReseat& plan) override {
+        if (!ghosts_) throw Error(STRUCTMD_ERR_INTERNAL, "only a spatial domain's engine is renumbered");
+        backend_.activate();
+        const auto kept = static_cast<int64_t>(plan.kept.size());
+        const auto count = static_cast<int64_t>(plan.globalIds.size());
+        backend_.upload(reseatFrom_, plan.kept.data(), plan.kept.size());
+        std::vector<Real4<R>> pos(static_cast<size_t>(count - kept)), vel(pos.size());
+        for (size_t k = 0; k < pos.size(); ++k) {
+            const double* x = &plan.addedPositions[3 * k];
+            const double* v = &plan.addedVelocities[3 * k];
+            pos[k] = {R(x[0]), R(x[1]), R(x[2]), R(plan.typeIndex[kept + k])};
+            vel[k] = {R(v[0]), R(v[1]), R(v[2]), R(plan.mass[kept + k])};
+        }
+        renumber(p_.pos, kept, pos);
+        renumber(p_.vel, kept, vel);
+        renumber(p_.image, kept, std::vector<Image>(pos.size(), Image{0, 0, 0}));
+        backend_.resize(p_.force, static_cast<size_t>(count));
+        if (!p_.energy.empty()) backend_.resize(p_.energy, static_cast<size_t>(count));
+        if (!p_.virial.empty()) backend_.resize(p_.virial, static_cast<size_t>(count));
+        const std::vector<R> radius(plan.radius.begin(), plan.radius.end()), charge(plan.charge.begin(), plan.charge.end());
+        backend_.upload(p_.radius, radius.data(), radius.size());
+        backend_.upload(p_.charge, charge.data(), charge.size());
+        backend_.upload(p_.model, plan.model.data(), plan.model.size());
+        typeIndex_ = plan.typeIndex;
+        masses_ = plan.mass;
+        radii_ = plan.radius;
+        batchId_.assign(static_cast<size_t>(count), batchId_.empty() ? 0 : batchId_.front());
+        p_.count = count;
+        p_.drift = {};
+        context_.particles = count;
+        context_.model = p_.model.data();
+        // The terms and integrators again, over the new slots (their lists hold the old buffers).
+        ForceField<B, R> forceField = make_force_field(*plan.forceField, *plan.components, &forceField_);
+        std::vector<std::unique_ptr<Integrator<B, R>>> integrators = make_integrators(*plan.integrators, forceField);
+        for (size_t k = 0; k < integrators.size(); ++k) integrators[k]->restore(integrators_[k]->state());
+        retiredListBuilds_ += forceField_.builds();
+        forceField_ = std::move(forceField);
+        integrators_ = std::move(integrators);
+        hold_ghosts(plan.globalIds, ghosts_, true);
+        ghostsAt_ = -1;  // the ghost slots hold nothing yet: refreshed before the next evaluation
+        positions_changed();
+    }
+
     double largest_owned_move() override {
         backend_.activate();
         return std::sqrt(backend_.maximum(ownedSlots_, SquaredMoveSince<R>{p_.pos.data(), heldPositions_.data(), p_.box}));
@@ -726,6 +769,20 @@ private:
         backend_.upload(p_.clock, &p_.timeline.launched(), 1);
     }
 
+    // A per-slot array renumbered for reseat(): the kept slots gathered from the old array (by
+    // reseatFrom_), then `added`.
+    template <class T>
+    void renumber(typename B::template Buffer<T>& array, int64_t kept, const std::vector<T>& added) {
+        typename B::template Buffer<T> renumbered, staged;
+        backend_.resize(renumbered, static_cast<size_t>(kept) + added.size());
+        backend_.for_each(kept, GatherSlots<T>{array.data(), reseatFrom_.data(), renumbered.data()});
+        if (!added.empty()) {
+            backend_.upload(staged, added.data(), added.size());
+            backend_.for_each(static_cast<int64_t>(added.size()), CopyArray<T>{staged.data(), renumbered.data() + kept});
+        }
+        std::swap(array, renumbered);
+    }
+
     // New positions (or a new box): every cached quantity and every list is out of date.
     void positions_changed() {
         ++p_.version;
@@ -1049,6 +1106,7 @@ private:
     typename B::template Buffer<int64_t> globalIds_, borderSlots_, ghostSlots_;
     GhostExchange* ghosts_ = nullptr;
     int64_t ownedSlots_ = 0;
+    typename B::template Buffer<int64_t> reseatFrom_;  // reseat(): the old slot of each kept one
     typename B::template Buffer<Real4<R>> heldPositions_;  // at hold_ghosts, for largest_owned_move
     int64_t ghostsAt_ = -1;
 };

@@ -114,6 +114,15 @@ struct CopyArray {
     SMD_HD void operator()(int64_t i) const { to[i] = from[i]; }
 };
 
+// Slot k of a renumbered array takes slot from[k] of the old one.
+template <class T>
+struct GatherSlots {
+    const T* old;
+    const int64_t* from;
+    T* renumbered;
+    SMD_HD void operator()(int64_t k) const { renumbered[k] = old[from[k]]; }
+};
+
 // The squared distance (minimum image) slot i moved from where it was.
 template <class R>
 struct SquaredMoveSince {

@@ -16,6 +16,8 @@
 namespace structmd {
 
 struct RuntimeSpec;           // simulation/read_simulation.hpp
+struct ForceFieldSpec;        // forcefield/forcefield_spec.hpp
+struct IntegratorSpec;        // integrators/integrator_spec.hpp
 class ForceFieldComponents;  // forcefield/component_set.hpp
 class SimulationStep;        // steps/simulation_step.hpp
 
@@ -38,6 +40,22 @@ public:
     virtual const std::vector<int64_t>& border_slots() const = 0;
     virtual const std::vector<int64_t>& ghost_slots() const = 0;
     virtual void exchange(const double* border, double* ghosts) = 0;
+};
+
+// A spatial domain's rebuild in place: its engine's slots renumbered. New slot k < kept.size() is
+// old slot kept[k] (position, velocity and image carried over where they live); the slots after
+// them take the added positions and velocities (3 each), image 0. Per-slot attributes are given for
+// every new slot. The force field and integrators are made again from the specs for the new slots,
+// which suits terms that hold nothing by slot (no bonds, no exclusions): the caller's to check.
+struct SlotReseat {
+    std::vector<int64_t> kept;
+    std::vector<double> addedPositions, addedVelocities;
+    std::vector<int64_t> globalIds;
+    std::vector<int32_t> typeIndex, model;
+    std::vector<double> mass, radius, charge;
+    const ForceFieldSpec* forceField = nullptr;
+    const std::vector<IntegratorSpec>* integrators = nullptr;
+    const ForceFieldComponents* components = nullptr;
 };
 
 enum ComputeFlags : unsigned { kForces = 1u, kEnergy = 2u, kVirial = 4u };
@@ -89,6 +107,12 @@ public:
     // `begun` says that the schedule's present integrator already began on the domain's previous
     // engine (its state, half-step velocities, is in the particles). Only engines implement it.
     virtual void hold_ghosts(const std::vector<int64_t>& /*globalIds*/, GhostExchange* /*exchange*/, bool /*begun*/) {
+        throw Error(STRUCTMD_ERR_INTERNAL, "only an engine holds the ghosts of a spatial domain");
+    }
+    // A spatial domain's engine (after hold_ghosts): renumbers its slots as `plan` says, then takes
+    // the exchange's new border and ghost slots; the ghosts are refreshed before the next force
+    // evaluation, and the forces evaluated again.
+    virtual void reseat(const SlotReseat& /*plan*/) {
         throw Error(STRUCTMD_ERR_INTERNAL, "only an engine holds the ghosts of a spatial domain");
     }
     // A spatial domain's engine: the largest distance any owned slot (those before the ghosts) moved
