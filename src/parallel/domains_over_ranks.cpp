@@ -425,13 +425,13 @@ void DomainsOverRanks::rebuild_in_place() {
             plan.addedVelocities[3 * k + d] = arrived[k].velocity[d];
         }
     const SystemSpec& whole = spec_.whole();
-    for (int64_t id : ids) {
-        const auto i = static_cast<size_t>(id);
+    for (size_t slot = static_cast<size_t>(stay); slot < ids.size(); ++slot) {
+        const auto i = static_cast<size_t>(ids[slot]);
         plan.typeIndex.push_back(types_[i]);
         plan.mass.push_back(masses_[i]);
         plan.radius.push_back(radii_[i]);
         plan.charge.push_back(whole.charge.empty() ? 0.0 : whole.charge[i]);
-        if (!whole.modelId.empty()) plan.model.push_back(whole.modelId[i]);
+        plan.model.push_back(whole.modelId.empty() ? 0 : whole.modelId[i]);
     }
     plan.globalIds = ids;
     plan.forceField = &whole.forceField;

@@ -247,22 +247,22 @@ public:
         for (size_t k = 0; k < pos.size(); ++k) {
             const double* x = &plan.addedPositions[3 * k];
             const double* v = &plan.addedVelocities[3 * k];
-            pos[k] = {R(x[0]), R(x[1]), R(x[2]), R(plan.typeIndex[kept + k])};
-            vel[k] = {R(v[0]), R(v[1]), R(v[2]), R(plan.mass[kept + k])};
+            pos[k] = {R(x[0]), R(x[1]), R(x[2]), R(plan.typeIndex[k])};
+            vel[k] = {R(v[0]), R(v[1]), R(v[2]), R(plan.mass[k])};
         }
         renumber(p_.pos, kept, pos);
         renumber(p_.vel, kept, vel);
         renumber(p_.image, kept, std::vector<Image>(pos.size(), Image{0, 0, 0}));
+        // Arrays the input left empty stay empty.
+        if (!p_.radius.empty()) renumber(p_.radius, kept, std::vector<R>(plan.radius.begin(), plan.radius.end()));
+        if (!p_.charge.empty()) renumber(p_.charge, kept, std::vector<R>(plan.charge.begin(), plan.charge.end()));
+        if (!p_.model.empty()) renumber(p_.model, kept, plan.model);
         backend_.resize(p_.force, static_cast<size_t>(count));
         if (!p_.energy.empty()) backend_.resize(p_.energy, static_cast<size_t>(count));
         if (!p_.virial.empty()) backend_.resize(p_.virial, static_cast<size_t>(count));
-        const std::vector<R> radius(plan.radius.begin(), plan.radius.end()), charge(plan.charge.begin(), plan.charge.end());
-        backend_.upload(p_.radius, radius.data(), radius.size());
-        backend_.upload(p_.charge, charge.data(), charge.size());
-        backend_.upload(p_.model, plan.model.data(), plan.model.size());
-        typeIndex_ = plan.typeIndex;
-        masses_ = plan.mass;
-        radii_ = plan.radius;
+        typeIndex_ = renumbered_on_host(typeIndex_, plan.kept, plan.typeIndex);
+        masses_ = renumbered_on_host(masses_, plan.kept, plan.mass);
+        radii_ = renumbered_on_host(radii_, plan.kept, plan.radius);
         batchId_.assign(static_cast<size_t>(count), batchId_.empty() ? 0 : batchId_.front());
         p_.count = count;
         p_.drift = {};
@@ -781,6 +781,16 @@ private:
             backend_.for_each(static_cast<int64_t>(added.size()), CopyArray<T>{staged.data(), renumbered.data() + kept});
         }
         std::swap(array, renumbered);
+    }
+
+    template <class T>
+    static std::vector<T> renumbered_on_host(const std::vector<T>& old, const std::vector<int64_t>& kept,
+                                             const std::vector<T>& added) {
+        std::vector<T> renumbered;
+        renumbered.reserve(kept.size() + added.size());
+        for (int64_t slot : kept) renumbered.push_back(old[static_cast<size_t>(slot)]);
+        renumbered.insert(renumbered.end(), added.begin(), added.end());
+        return renumbered;
     }
 
     // New positions (or a new box): every cached quantity and every list is out of date.

@@ -44,8 +44,8 @@ public:
 
 // A spatial domain's rebuild in place: its engine's slots renumbered. New slot k < kept.size() is
 // old slot kept[k] (position, velocity and image carried over where they live); the slots after
-// them take the added positions and velocities (3 each), image 0. Per-slot attributes are given for
-// every new slot. The force field and integrators are made again from the specs for the new slots,
+// them take the added positions and velocities (3 each), image 0, and the added attributes (type
+// index, mass, radius, charge, model: one each); globalIds are every new slot's. The force field and integrators are made again from the specs for the new slots,
 // which suits terms that hold nothing by slot (no bonds, no exclusions): the caller's to check.
 struct SlotReseat {
     std::vector<int64_t> kept;
