@@ -6,9 +6,9 @@
 // onto a grid periodic in x and y and of nz uniform nodes from z = -H/2 to H/2 (the walls, where
 // there are walls), 2D transforms of every z plane, the slab's Stokes solve per wave vector
 // (slab_stokes.hpp), the inverse transforms, and J = S^T the Gaussian's average of the velocity at
-// the particle, times the cell volume. The part of a Gaussian beyond the slab is left out (on both
-// sides of the product, so M stays symmetric). Only the group's particles take part; the product
-// is 0 at the others.
+// the particle, times the cell volume. Near a wall the Gaussian has its mirror image subtracted
+// (SlabAxisZ); the part of a Gaussian beyond the slab is left out (on both sides of the product,
+// so M stays symmetric). Only the group's particles take part; the product is 0 at the others.
 //
 // The positions are placed once (place) and then any number of products taken (apply), as the
 // Lanczos square root and the random finite difference need.
@@ -38,7 +38,10 @@ struct SlabPlan {
 };
 
 // The Gaussian's weights along z: the `support` nodes first .. first + support - 1, first chosen
-// closest to centring them on the particle but kept inside the slab.
+// closest to centring them on the particle but kept inside the slab. Where there are walls, the
+// Gaussian of the particle's mirror image through the nearer wall is subtracted (as UAMMD does):
+// the force density is then odd about the wall, so it vanishes there smoothly (a particle on the
+// wall spreads nothing), and the sum over z nodes stays as accurate as in the open slab.
 template <class R>
 struct SlabAxisZ {
     R bottom;  // -H/2
@@ -47,14 +50,21 @@ struct SlabAxisZ {
     int support;
     R inverseTwoSigma2;
     R norm;
+    SlabWalls walls;
 
     SMD_HD SMD_INLINE int first(R z) const {
         const int centred = static_cast<int>(floor((z - bottom) / spacing - R(0.5) * R(support) + R(1)));
         return centred < 0 ? 0 : (centred > n - support ? n - support : centred);
     }
     SMD_HD SMD_INLINE R weight(int node, R z) const {
-        const R d = bottom + R(node) * spacing - z;
-        return norm * exp(-d * d * inverseTwoSigma2);
+        const R at = bottom + R(node) * spacing, d = at - z;
+        R w = norm * exp(-d * d * inverseTwoSigma2);
+        if (walls != SlabWalls::none) {
+            const R mirror = walls == SlabWalls::slit && z > R(0) ? R(-2) * bottom - z : R(2) * bottom - z;
+            const R e = at - mirror;
+            w -= norm * exp(-e * e * inverseTwoSigma2);
+        }
+        return w;
     }
 };
 
@@ -199,7 +209,7 @@ public:
         axes_ = SlabAxes<R>{axis_[0], axis_[1],
                             SlabAxisZ<R>{R(-0.5 * plan.height), R(spacing), plan.grid.nz, plan.supportZ,
                                          R(0.5 / (plan.sigma * plan.sigma)),
-                                         R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma))},
+                                         R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma)), plan.walls},
                             plan.grid};
         backend_.resize(field_, static_cast<size_t>(3 * plan.grid.points()));
         backend_.resize(spectrum_, static_cast<size_t>(3 * plan.grid.spectrum_points()));

@@ -20,7 +20,8 @@
 // from incompressibility); both parts are symmetric, so the discrete operator is too.
 // k = 0 (the mean flow of the plane): no walls, none (UAMMD's choice: no net flow); a bottom wall,
 // eta u'' = -f with u = 0 at the wall and u' = 0 above the forces (the fluid above moves as a plug);
-// a slit, u = 0 at both walls. The mean vertical velocity is zero.
+// a slit, u = 0 at both walls. The mean vertical velocity is zero. Its kernels' kink -|z - z'|/2 is
+// band-limited as above.
 // The Nyquist lines of x and y are left out, as the other grid methods do.
 #include <cmath>
 #include <cstdint>
@@ -111,11 +112,13 @@ struct SlabKernelTable {
         const int64_t at = index / grid.nz;
         const double s = zSpacing * double(index % grid.nz);
         R* out = table + 4 * index;
-        R kx, ky;
-        if (!slab_wave_vector(grid, at, lengthX, lengthY, kx, ky)) {
-            for (int c = 0; c < 4; ++c) out[c] = R(0);
+        for (int c = 0; c < 4; ++c) out[c] = R(0);
+        if (at == 0) {
+            out[0] = R(band_limited_kink(index % grid.nz));
             return;
         }
+        R kx, ky;
+        if (!slab_wave_vector(grid, at, lengthX, lengthY, kx, ky)) return;
         const double k2 = double(kx) * double(kx) + double(ky) * double(ky), kappa = sqrt(k2);
         const double step = 3.141592653589793 / zSpacing / kIntervals;
         double sum[4] = {0, 0, 0, 0};
@@ -128,6 +131,21 @@ struct SlabKernelTable {
             sum[3] += weight * kappa * q * sn / (d * d);
         }
         for (int c = 0; c < 4; ++c) out[c] = R(sum[c] * step / 3.0 / 3.141592653589793);
+    }
+
+    // The kink -|s|/2 of the mean flow's kernel band-limited likewise, at s = n hz:
+    // (1/pi) f.p. int_0^Q cos(q s) / q^2 dq = -(-1)^n hz / pi^2 - n hz Si(n pi) / pi.
+    SMD_HD double band_limited_kink(int64_t n) const {
+        const double pi = 3.141592653589793;
+        const int intervals = 64 * static_cast<int>(n > 0 ? n : 1);
+        const double step = pi * double(n) / intervals;
+        double si = 0.0;  // Si(n pi) by Simpson's rule; sin t / t is 1 at t = 0
+        for (int m = 0; m <= intervals && n > 0; ++m) {
+            const double t = step * m, f = m == 0 ? 1.0 : sin(t) / t;
+            si += ((m == 0 || m == intervals) ? 1.0 : (m % 2 ? 4.0 : 2.0)) * f;
+        }
+        si *= step / 3.0;
+        return -(n % 2 ? -1.0 : 1.0) * zSpacing / (pi * pi) - double(n) * zSpacing * si / pi;
     }
 };
 
@@ -261,8 +279,11 @@ private:
             Complex<R> ux{R(0), R(0)}, uy{R(0), R(0)};
             if (walls != SlabWalls::none)
                 for (int j = 0; j < grid.nz; ++j) {
-                    const R low = zSpacing * R(i < j ? i : j), high = zSpacing * R(i < j ? j : i);
-                    const R g = walls == SlabWalls::bottom ? low : low * (height - high) / height;
+                    // min(z, z') (bottom) and min (H - max) / H (slit), heights from the bottom
+                    // wall, as their smooth parts plus the band-limited kink -|s|/2.
+                    const R middle = R(0.5) * zSpacing * R(i + j), s = zSpacing * R(i - j);
+                    const R smooth = walls == SlabWalls::bottom ? middle : (middle * (height - middle) + R(0.25) * s * s) / height;
+                    const R g = smooth + kernel[4 * (i < j ? j - i : i - j)];
                     ux = ux + (scale * g) * force[j * plane];
                     uy = uy + (scale * g) * force[j * plane + component];
                 }
