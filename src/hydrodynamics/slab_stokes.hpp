@@ -175,14 +175,14 @@ struct SlabStokesSolve {
             mean_flow(plane, component);
             return;
         }
-        const R twoPi = R(6.283185307179586);
-        const R kx = twoPi * R(x) / lengthX, ky = twoPi * R(2 * y < grid.ny ? y : y - grid.ny) / lengthY;
+        R kx, ky;
+        slab_wave_vector(grid, at, lengthX, lengthY, kx, ky);
         const R kappa = sqrt(kx * kx + ky * ky);
         const R ux = kx / kappa, uy = ky / kappa;
         const R q = exp(-kappa * zSpacing);  // exp(-kappa |s|) = q^|i - j|
         SlabColumn<R> bottom{}, top{};
-        if (walls != SlabWalls::none) bottom = free_velocity(at, 0, plane, component, kappa, ux, uy, q);
-        if (walls == SlabWalls::slit) top = free_velocity(at, grid.nz - 1, plane, component, kappa, ux, uy, q);
+        if (walls != SlabWalls::none) bottom = wall_velocity(at, 0, plane, component, kappa, ux, uy, q);
+        if (walls == SlabWalls::slit) top = wall_velocity(at, grid.nz - 1, plane, component, kappa, ux, uy, q);
         const R height = zSpacing * R(grid.nz - 1);
         const R across = exp(-kappa * height);
         // The wall solution's coefficients: transverse p exp(-kappa s_a) + r exp(-kappa s_b), along
@@ -244,27 +244,25 @@ private:
         return u;
     }
 
-    // The unbounded fluid's velocity at node i by the exact kernel, scaled: at the walls, where the
-    // forces are smooth and the exact kernel is what the wall solution cancels.
-    SMD_HD SlabColumn<R> free_velocity(int64_t at, int i, int64_t plane, int64_t component, R kappa, R ux, R uy,
+    // The unbounded fluid's velocity at a wall (node 0 or nz - 1) by the exact kernel, scaled: the
+    // forces lie on one side of it, where the exact kernel is smooth and what the wall solution
+    // cancels. exp(-kappa |s|) = q^|i - j| is carried along from the wall inwards.
+    SMD_HD SlabColumn<R> wall_velocity(int64_t at, int wall, int64_t plane, int64_t component, R kappa, R ux, R uy,
                                        R q) const {
         SlabColumn<R> u{};
         const R inverseKappa = R(1) / kappa;
-        for (int side = 0; side < 2; ++side) {
-            // side 0: j = i, i - 1, ..., 0 (s >= 0); side 1: j = i + 1, ..., nz - 1 (s < 0).
-            R e = side == 0 ? R(1) : q;
-            for (int j = side == 0 ? i : i + 1; side == 0 ? j >= 0 : j < grid.nz; j += side == 0 ? -1 : 1) {
-                const int64_t node = at + j * plane;
-                const Complex<R> fx = force[node], fy = force[node + component], fz = force[node + 2 * component];
-                const Complex<R> fl = ux * fx + uy * fy, ft = (-uy) * fx + ux * fy;
-                const R s = zSpacing * R(i - j), ks = kappa * fabs(s);
-                const R ll = e * (R(1) - ks) * inverseKappa * R(0.25), zz = e * (R(1) + ks) * inverseKappa * R(0.25);
-                const R lz = R(-0.25) * s * e;  // G_lz / i
-                u.l = u.l + ll * fl + lz * times_i(fz);
-                u.z = u.z + zz * fz + lz * times_i(fl);
-                u.t = u.t + (R(0.5) * e * inverseKappa) * ft;
-                e *= q;
-            }
+        R e = R(1);
+        for (int distance = 0; distance < grid.nz; ++distance, e *= q) {
+            const int j = wall == 0 ? distance : wall - distance;
+            const int64_t node = at + j * plane;
+            const Complex<R> fx = force[node], fy = force[node + component], fz = force[node + 2 * component];
+            const Complex<R> fl = ux * fx + uy * fy, ft = (-uy) * fx + ux * fy;
+            const R s = zSpacing * R(wall - j), ks = kappa * fabs(s);
+            const R ll = e * (R(1) - ks) * inverseKappa * R(0.25), zz = e * (R(1) + ks) * inverseKappa * R(0.25);
+            const R lz = R(-0.25) * s * e;  // G_lz / i
+            u.l = u.l + ll * fl + lz * times_i(fz);
+            u.z = u.z + zz * fz + lz * times_i(fl);
+            u.t = u.t + (R(0.5) * e * inverseKappa) * ft;
         }
         u.l = scale * u.l;
         u.t = scale * u.t;
