@@ -11,13 +11,12 @@ References written here, independent of the engine:
   (2007)) at height h (lambda = a / h),
     mu_par / mu0 = 1 - 9/16 lambda + 1/8 lambda^3 - 1/16 lambda^5,
     mu_perp / mu0 = 1 - 9/8 lambda + 1/2 lambda^3 - 1/8 lambda^5,
-  after removing the periodic images: the plane's mean flow (the fluid above the forces moving as a
-  plug, (h - sigma/sqrt(pi)) / (eta A) for a Gaussian at height h, exactly) and then the rest,
-  which falls as 1/L^3, extrapolated from two box sizes.
+  in an infinite plane: the periodic images' effect falls as 1/L^3 (the plane's mean flow, a plug
+  above the forces, is cancelled at leading order by the missing small-k part of the plane's
+  integral), so two box sizes extrapolate it away.
 - Slit: Faxen's mobility of a sphere midway between two walls a distance 2l apart (Happel & Brenner,
   section 7-4), mu / mu0 = 1 - 1.004 lambda + 0.418 lambda^3 + 0.21 lambda^4 - 0.169 lambda^5,
-  lambda = a / l, after removing the plane's mean flow (Couette's, l/2 / (eta A) at the middle) and
-  the images (extrapolated as above).
+  lambda = a / l; the slit's images fall as 1/L^2, extrapolated likewise.
 
 The mobility is read column by column from the integrator's own deterministic step at temperature 0
 (periodic_rpy.measured_mobility): a force F on one particle along one axis moves every particle by
