@@ -5,6 +5,7 @@
 //   template <template <class B, class R> class Integrator, class Inputs> void integrator(ComponentKey key);
 #include "core/registry.hpp"
 #include "integrators/bdhi_cholesky.hpp"
+#include "integrators/bdhi_dpstokes.hpp"
 #include "integrators/bdhi_force_coupling.hpp"
 #include "integrators/bdhi_lanczos.hpp"
 #include "integrators/bdhi_positively_split_ewald.hpp"
@@ -33,6 +34,7 @@ void visit_builtin_integrators(Visitor& v) {
     v.template integrator<BdhiForceCoupling, BdhiForceCouplingInputs>({"BDHITriplyPeriodic", "ForceCouplingMethod"});
     v.template integrator<BdhiForceCoupling, BdhiForceCouplingInputs>({"BDHITriplePeriodic", "ForceCouplingMethod"});
     v.template integrator<BdhiQuasi2D, BdhiQuasi2DInputs>({"BDHIDoublyPeriodic", "Quasi2D"});
+    v.template integrator<BdhiDPStokes, BdhiDPStokesInputs>({"BDHIDoublyPeriodic", "DPStokes"});
     v.template integrator<BdhiPositivelySplitEwald, BdhiPositivelySplitEwaldInputs>(
         {"BDHITriplyPeriodic", "PositivelySplitEwald"});
     v.template integrator<BdhiPositivelySplitEwald, BdhiPositivelySplitEwaldInputs>(

@@ -14,7 +14,7 @@ namespace structmd {
 
 // What a draw is for: each use has its own stream, so no two uses see the same numbers.
 enum class NoisePurpose : uint64_t { initialVelocities = 0, integrator = 1, velocityReset = 2, rotation = 3, magnetization = 4,
-                                    hydrodynamics = 5 };
+                                    hydrodynamics = 5, randomFiniteDifference = 6 };
 
 // Three independent N(0, 1) numbers for the particle in `slot` at `step`, keyed by its global id.
 template <class R>

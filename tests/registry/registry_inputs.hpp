@@ -121,6 +121,20 @@ inline const std::vector<Override>& overrides() {
         {{"", "PositivelySplitEwald"}, "tolerance", {1e-3}},
         // Likewise the planar hydrodynamics' validate().
         {{"BDHIDoublyPeriodic", "Quasi2D"}, "tolerance", {1e-3}},
+        // The slab's grid must fit the periodic box of kBox (20) and resolve the Gaussian (spacing
+        // below 2 a/sqrt(pi)), its slab fit in the box's z, its kernels' alpha stay within w/2, its
+        // nz be left to the spacing (0) and its Lanczos tolerance be at most 0.1.
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "nx", {32.0}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "ny", {32.0}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "nz", {0.0}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "Lx", {kBox}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "Ly", {kBox}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "H", {12.0}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "w", {6.0}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "alpha", {3.0}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "w_d", {6.0}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "alpha_d", {3.0}},
+        {{"BDHIDoublyPeriodic", "DPStokes"}, "tolerance", {1e-3}},
         // zeroEnergy acts only in the rows whose epsilon is 0 (the excluded-volume form); generic
         // epsilons are all about 1.
         {{"NonBonded", "KimHummer"}, "epsilon", {0.0}},

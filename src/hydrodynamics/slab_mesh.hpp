@@ -1,0 +1,269 @@
+#pragma once
+// The mobility product of the doubly periodic slab (["BDHIDoublyPeriodic","DPStokes"]),
+//   M v = J G S v,
+// S spreading each particle's vector with the Gaussian g(r) = (2 pi sigma^2)^{-3/2} exp(-r^2 / (2 sigma^2)),
+// sigma = a / sqrt(pi) (the force coupling method's: far from walls the self-mobility is 1 / (6 pi eta a)),
+// onto a grid periodic in x and y and of nz uniform nodes from z = -H/2 to H/2 (the walls, where
+// there are walls), 2D transforms of every z plane, the slab's Stokes solve per wave vector
+// (slab_stokes.hpp), the inverse transforms, and J = S^T the Gaussian's average of the velocity at
+// the particle, times the cell volume. Near a wall the Gaussian has its mirror image subtracted
+// (SlabAxisZ); the part of a Gaussian beyond the slab is left out (on both sides of the product,
+// so M stays symmetric). Only the group's particles take part; the product is 0 at the others.
+//
+// The positions are placed once (place) and then any number of products taken (apply), as the
+// Lanczos square root and the random finite difference need.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "core/fft_grid.hpp"
+#include "core/hd.hpp"
+#include "core/vec.hpp"
+#include "hydrodynamics/fcm_mesh.hpp"
+#include "hydrodynamics/slab_stokes.hpp"
+#include "neighbour/line_bins.hpp"
+
+namespace structmd {
+
+// Everything the mesh needs, fixed for one box (make_slab_plan).
+struct SlabPlan {
+    FftGrid grid;  // nz: the z nodes, walls included
+    double box[2] = {0, 0};
+    double height = 0.0;  // H
+    double sigma = 0.0;
+    int support = 0;  // points the Gaussian covers along x and y
+    int supportZ = 0;
+    SlabWalls walls = SlabWalls::none;
+};
+
+// The Gaussian's weights along z: the `support` nodes first .. first + support - 1, first chosen
+// closest to centring them on the particle but kept inside the slab. Where there are walls, the
+// Gaussian of the particle's mirror image through the nearer wall is subtracted (as UAMMD does):
+// the force density is then odd about the wall, so it vanishes there smoothly (a particle on the
+// wall spreads nothing), and the sum over z nodes stays as accurate as in the open slab.
+template <class R>
+struct SlabAxisZ {
+    R bottom;  // -H/2
+    R spacing;
+    int n;
+    int support;
+    R inverseTwoSigma2;
+    R norm;
+    SlabWalls walls;
+
+    SMD_HD SMD_INLINE int first(R z) const {
+        const int centred = static_cast<int>(floor((z - bottom) / spacing - R(0.5) * R(support) + R(1)));
+        return centred < 0 ? 0 : (centred > n - support ? n - support : centred);
+    }
+    SMD_HD SMD_INLINE R weight(int node, R z) const {
+        const R at = bottom + R(node) * spacing, d = at - z;
+        R w = norm * exp(-d * d * inverseTwoSigma2);
+        if (walls != SlabWalls::none) {
+            const R mirror = walls == SlabWalls::slit && z > R(0) ? R(-2) * bottom - z : R(2) * bottom - z;
+            const R e = at - mirror;
+            w -= norm * exp(-e * e * inverseTwoSigma2);
+        }
+        return w;
+    }
+};
+
+template <class R>
+struct SlabAxes {
+    FcmAxis<R> x, y;
+    SlabAxisZ<R> z;
+    FftGrid grid;
+};
+
+// The grid line (y, z) a group member's kernel starts on, by which LineBins sorts the particles.
+template <class R>
+struct SlabKernelLine {
+    const Real4<R>* pos;
+    const uint8_t* group;
+    SlabAxes<R> axes;
+    SMD_HD int operator()(int64_t i) const {
+        if (group && !group[i]) return -1;
+        const Real4<R> r = pos[i];
+        return axes.z.first(r.z) * axes.grid.ny + axes.y.fold(axes.y.first(axes.y.coordinate(r.y)));
+    }
+};
+
+// One grid line along x of the three density grids, cleared and then summed: a particle whose
+// kernel starts on line (y - b, z - c) adds v g_x g_y[b] g_z along the line.
+template <class R>
+struct SlabSpreadLine {
+    const Real4<R>* pos;
+    const R* values;  // flat, three numbers a particle
+    const int* order;
+    const int* lineStart;
+    SlabAxes<R> axes;
+    R* density;
+
+    SMD_HD void operator()(int64_t line) const {
+        const FftGrid& g = axes.grid;
+        const int64_t points = g.points();
+        const int y = static_cast<int>(line % g.ny), z = static_cast<int>(line / g.ny);
+        R* rowX = density + g.index(0, y, z);
+        R* rowY = rowX + points;
+        R* rowZ = rowY + points;
+        for (int x = 0; x < g.nx; ++x) rowX[x] = rowY[x] = rowZ[x] = R(0);
+        const int support = axes.x.support;
+        for (int c = 0; c < axes.z.support && c <= z; ++c) {
+            for (int b = 0; b < support; ++b) {
+                const int bin = (z - c) * g.ny + axes.y.fold(y - b);
+                for (int s = lineStart[bin]; s < lineStart[bin + 1]; ++s) {
+                    const int i = order[s];
+                    const Real4<R> r = pos[i];
+                    const R uy = axes.y.coordinate(r.y);
+                    const R wyz = axes.y.weight(axes.y.first(uy), b, uy) * axes.z.weight(z, r.z);
+                    const Vec3<R> v{values[3 * i], values[3 * i + 1], values[3 * i + 2]};
+                    const R ux = axes.x.coordinate(r.x);
+                    const int firstX = axes.x.first(ux);
+                    for (int a = 0; a < support; ++a) {
+                        const R w = wyz * axes.x.weight(firstX, a, ux);
+                        const int at = axes.x.fold(firstX + a);
+                        rowX[at] += w * v.x;
+                        rowY[at] += w * v.y;
+                        rowZ[at] += w * v.z;
+                    }
+                }
+            }
+        }
+    }
+};
+
+// Each group member's velocity (flat): the grid's field averaged by its Gaussian, times the cell
+// volume; 0 for the others.
+template <class R>
+struct SlabInterpolate {
+    const Real4<R>* pos;
+    const uint8_t* group;
+    SlabAxes<R> axes;
+    const R* field;
+    R cellVolume;
+    R* out;
+
+    SMD_HD void operator()(int64_t i) const {
+        Vec3<R> sum{R(0), R(0), R(0)};
+        if (!group || group[i]) {
+            const FftGrid& g = axes.grid;
+            const int64_t points = g.points();
+            const Real4<R> r = pos[i];
+            const R ux = axes.x.coordinate(r.x), uy = axes.y.coordinate(r.y);
+            const int firstX = axes.x.first(ux), firstY = axes.y.first(uy), firstZ = axes.z.first(r.z);
+            const int support = axes.x.support;
+            for (int c = 0; c < axes.z.support; ++c) {
+                const R wz = axes.z.weight(firstZ + c, r.z);
+                for (int b = 0; b < support; ++b) {
+                    const R wyz = wz * axes.y.weight(firstY, b, uy);
+                    const R* line = field + g.index(0, axes.y.fold(firstY + b), firstZ + c);
+                    for (int a = 0; a < support; ++a) {
+                        const int at = axes.x.fold(firstX + a);
+                        const R w = wyz * axes.x.weight(firstX, a, ux);
+                        sum.x += w * line[at];
+                        sum.y += w * line[at + points];
+                        sum.z += w * line[at + 2 * points];
+                    }
+                }
+            }
+            sum = cellVolume * sum;
+        }
+        out[3 * i] = sum.x;
+        out[3 * i + 1] = sum.y;
+        out[3 * i + 2] = sum.z;
+    }
+};
+
+#if SMD_HOST_CODE
+// The Gaussian reaches out to where it falls to 1e-8 of its peak: the truncation is far below the
+// grid's own error.
+constexpr double kSlabKernelCut = 1e-8;
+
+inline SlabPlan make_slab_plan(const int sizes[3], const double box[2], double height, double radius, SlabWalls walls) {
+    SlabPlan plan;
+    plan.walls = walls;
+    plan.box[0] = box[0];
+    plan.box[1] = box[1];
+    plan.height = height;
+    plan.sigma = radius / std::sqrt(M_PI);
+    plan.grid = FftGrid{sizes[0], sizes[1], sizes[2]};
+    const double reach = plan.sigma * std::sqrt(2.0 * std::log(1.0 / kSlabKernelCut));
+    const double finest = std::min(box[0] / sizes[0], box[1] / sizes[1]);
+    plan.support = static_cast<int>(std::ceil(2.0 * reach / finest)) + 1;
+    plan.supportZ = std::min(static_cast<int>(std::ceil(2.0 * reach / (height / (sizes[2] - 1)))) + 1, sizes[2]);
+    return plan;
+}
+
+template <class B, class R>
+class SlabMesh {
+public:
+    SlabMesh(const B& backend, const SlabPlan& plan)
+        : backend_(backend), plan_(plan), fft_(backend, FftGrid{plan.grid.nx, plan.grid.ny, 1}),
+          bins_(backend, plan.grid.ny * plan.grid.nz) {
+        const int sizes[2] = {plan.grid.nx, plan.grid.ny};
+        for (int d = 0; d < 2; ++d)
+            axis_[d] = FcmAxis<R>{R(plan.box[d] / sizes[d]), R(1.0 / plan.box[d]), sizes[d], plan.support,
+                                  R(0.5 / (plan.sigma * plan.sigma)),
+                                  R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma))};
+        const double spacing = plan.height / (plan.grid.nz - 1);
+        axes_ = SlabAxes<R>{axis_[0], axis_[1],
+                            SlabAxisZ<R>{R(-0.5 * plan.height), R(spacing), plan.grid.nz, plan.supportZ,
+                                         R(0.5 / (plan.sigma * plan.sigma)),
+                                         R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma)), plan.walls},
+                            plan.grid};
+        backend_.resize(field_, static_cast<size_t>(3 * plan.grid.points()));
+        backend_.resize(spectrum_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
+        backend_.resize(solved_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
+        const int64_t waves = int64_t(plan.grid.half_x()) * plan.grid.ny;
+        backend_.resize(kernel_, static_cast<size_t>(4 * waves * plan.grid.nz));
+        backend_.for_each(waves * plan.grid.nz, SlabKernelTable<R>{plan.grid, R(plan.box[0]), R(plan.box[1]), spacing,
+                                                                   kernel_.data()});
+    }
+
+    const SlabPlan& plan() const { return plan_; }
+
+    // The positions (backend memory, kept by pointer until the next place) and group of the
+    // products that follow.
+    void place(int64_t count, const Real4<R>* pos, const uint8_t* group) {
+        count_ = count;
+        pos_ = pos;
+        group_ = group;
+        bins_.sort(count, SlabKernelLine<R>{pos, group, axes_});
+    }
+
+    // out = M v, both flat (three numbers a particle) in backend memory.
+    void apply(const R* v, R* out, double viscosity) {
+        const FftGrid grid = plan_.grid;
+        const int64_t planePoints = int64_t(grid.nx) * grid.ny;
+        const int64_t planeSpectrum = int64_t(grid.half_x()) * grid.ny;
+        backend_.for_each(grid.ny * grid.nz,
+                          SlabSpreadLine<R>{pos_, v, bins_.order(), bins_.line_start(), axes_, field_.data()});
+        for (int64_t plane = 0; plane < 3 * grid.nz; ++plane)
+            fft_.forward(field_.data() + plane * planePoints, spectrum_.data() + plane * planeSpectrum);
+        const double spacing = plan_.height / (grid.nz - 1);
+        backend_.for_each(planeSpectrum,
+                          SlabStokesSolve<R>{spectrum_.data(), solved_.data(), kernel_.data(), grid, R(plan_.box[0]), R(plan_.box[1]),
+                                             R(spacing), R(spacing / (double(planePoints) * viscosity)), plan_.walls});
+        for (int64_t plane = 0; plane < 3 * grid.nz; ++plane)
+            fft_.inverse(solved_.data() + plane * planeSpectrum, field_.data() + plane * planePoints);
+        const double cellVolume = plan_.box[0] * plan_.box[1] * spacing / double(planePoints);
+        backend_.for_each(count_, SlabInterpolate<R>{pos_, group_, axes_, field_.data(), R(cellVolume), out});
+    }
+
+private:
+    const B& backend_;
+    SlabPlan plan_;
+    FcmAxis<R> axis_[2];
+    SlabAxes<R> axes_;
+    typename B::template Fft3d<R> fft_;  // one z plane (a 2D transform)
+    LineBins<B> bins_;
+    int64_t count_ = 0;
+    const Real4<R>* pos_ = nullptr;
+    const uint8_t* group_ = nullptr;
+    typename B::template Buffer<R> field_;  // x, y, z grids: the density, then the velocity
+    typename B::template Buffer<Complex<R>> spectrum_, solved_;
+    typename B::template Buffer<R> kernel_;  // SlabKernelTable's
+};
+#endif
+
+}  // namespace structmd

@@ -1,0 +1,223 @@
+#pragma once
+// ["BDHIDoublyPeriodic","DPStokes"]: Brownian dynamics with hydrodynamic interactions in a fluid
+// periodic along x and y, between no-slip walls at z = -H/2 ("bottom") or z = -H/2 and H/2 ("slit"),
+// or open along z ("none"), Euler-Maruyama:
+//   x += dt M F + dt kT div M + sqrt(2 kT dt) M^{1/2} W,
+// M the slab's mobility (hydrodynamics/slab_mesh.hpp), M^{1/2} W by the Lanczos iteration on the
+// product M v (hydrodynamics/lanczos_sqrt.hpp), and div M, which is not zero near a wall, by UAMMD's
+// random finite difference: with W' ~ N(0, I) independent of W and a small delta,
+//   div M ~ (M(x + delta W'/2) W' - M(x - delta W'/2) W') / delta,
+// exact in the mean up to O(delta^2). delta = a sqrt(eps) (eps the precision's), which balances the
+// rounding of the difference against its truncation. Only the integrator's group takes part;
+// rotations are not coupled (w_d, beta_d and alpha_d, UAMMD's torque kernel, are read and unused).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "core/error.hpp"
+#include "hydrodynamics/lanczos_sqrt.hpp"
+#include "hydrodynamics/slab_mesh.hpp"
+#include "integrators/bdhi_kernels.hpp"
+#include "integrators/brownian.hpp"
+#include "integrators/integrator.hpp"
+#include "integrators/thermal_noise.hpp"
+
+namespace structmd {
+
+struct BdhiDPStokesInputs : IntegratorInputs {
+    static constexpr bool oneFluid = true;
+    static constexpr bool overdamped = true;
+    static std::vector<Parameter> parameters() {
+        return {number("viscosity", "mass/(length time)", Must::be_positive),
+                number("hydrodynamicRadius", "length", Must::be_positive),
+                number("nx", "1", Must::be_positive_integer),
+                number("ny", "1", Must::be_positive_integer),
+                with_default(number("nz", "1", Must::be_non_negative), 0.0),
+                number("Lx", "length", Must::be_positive),
+                number("Ly", "length", Must::be_positive),
+                number("H", "length", Must::be_positive),
+                number("w", "1", Must::be_positive),
+                with_default(number("beta", "1"), -1.0),
+                with_default(number("alpha", "1"), -1.0),
+                with_default(number("w_d", "1", Must::be_non_negative), 0.0),
+                with_default(number("beta_d", "1"), -1.0),
+                with_default(number("alpha_d", "1"), -1.0),
+                with_default(number("tolerance", "1", Must::be_positive), 1e-7)};
+    }
+    static std::vector<TextOption> text_options() { return {{"mode", "none", {"none", "bottom", "slit"}, {}, ""}}; }
+
+    static void validate(const ParameterValues& v, const std::string& path) {
+        const std::string at = path + ".parameters.";
+        // UAMMD's kernel exp(beta (sqrt(1 - (r / (alpha h))^2) - 1)) is not real beyond alpha h.
+        if (v["alpha"] > 0.5 * v["w"])
+            throw input_error(at + "alpha", "must be at most w/2 = " + std::to_string(0.5 * v["w"]) + ", got " +
+                                                std::to_string(v["alpha"]));
+        if (v["w_d"] > 0.0 && v["alpha_d"] > 0.5 * v["w_d"])
+            throw input_error(at + "alpha_d", "must be at most w_d/2 = " + std::to_string(0.5 * v["w_d"]) + ", got " +
+                                                  std::to_string(v["alpha_d"]));
+        if (!(v["tolerance"] <= 0.1))
+            throw input_error(at + "tolerance", "expected a Lanczos tolerance <= 0.1, got " + std::to_string(v["tolerance"]));
+        const double nz = v["nz"];
+        if (nz != 0.0 && !(nz >= 3.0 && nz == std::floor(nz)))
+            throw input_error(at + "nz", "expected an integer >= 3 (or leave it out), got " + std::to_string(nz));
+        const SlabPlan plan = slab_plan(v);
+        // A coarser grid than 2 sigma does not resolve the Gaussian (sigma = a / sqrt(pi)).
+        const double spacings[3] = {v["Lx"] / v["nx"], v["Ly"] / v["ny"], v["H"] / (plan.grid.nz - 1)};
+        const char* names[3] = {"nx", "ny", "nz"};
+        for (int d = 0; d < 3; ++d)
+            if (spacings[d] > 2.0 * plan.sigma)
+                throw input_error(at + names[d], "the grid spacing " + std::to_string(spacings[d]) +
+                                                     " is wider than twice the Gaussian's width a/sqrt(pi) = " +
+                                                     std::to_string(plan.sigma) + ": refine the grid");
+        if (plan.support >= plan.grid.nx || plan.support >= plan.grid.ny)
+            throw input_error(at + "hydrodynamicRadius", "the Gaussian spans " + std::to_string(plan.support) +
+                                                             " grid points, more than the grid has along x or y: "
+                                                             "the box is too small for this radius");
+        if (plan.walls != SlabWalls::none && plan.height < 2.0 * v["hydrodynamicRadius"])
+            throw input_error(at + "H", "the slab must be at least one diameter high");
+    }
+
+    // The grid: nz (where not given) makes the z spacing the finer of x's and y's.
+    static SlabPlan slab_plan(const ParameterValues& v) {
+        const double spacing = std::min(v["Lx"] / v["nx"], v["Ly"] / v["ny"]);
+        const int sizes[3] = {static_cast<int>(v["nx"]), static_cast<int>(v["ny"]),
+                              v["nz"] > 0.0 ? static_cast<int>(v["nz"])
+                                            : static_cast<int>(std::ceil(v["H"] / spacing)) + 1};
+        const double box[2] = {v["Lx"], v["Ly"]};
+        return make_slab_plan(sizes, box, v["H"], v["hydrodynamicRadius"],
+                              static_cast<SlabWalls>(static_cast<int>(v["mode"])));
+    }
+};
+
+// W' of the random finite difference, keyed by global id, 0 outside the group.
+template <class R>
+struct DrawFiniteDifferenceNoise {
+    const uint8_t* group;
+    NoiseKey noise;
+    ClockView now;
+    R* w;
+    SMD_HD void operator()(int64_t i) const {
+        Vec3<R> xi{R(0), R(0), R(0)};
+        if (!group || group[i]) xi = gaussian3<R>(noise, NoisePurpose::randomFiniteDifference, i, now.step());
+        w[3 * i] = xi.x;
+        w[3 * i + 1] = xi.y;
+        w[3 * i + 2] = xi.z;
+    }
+};
+
+// shifted = pos + c W'
+template <class R>
+struct ShiftPositions {
+    const Real4<R>* pos;
+    const R* w;
+    R c;
+    Real4<R>* shifted;
+    SMD_HD void operator()(int64_t i) const {
+        Real4<R> r = pos[i];
+        r.x += c * w[3 * i];
+        r.y += c * w[3 * i + 1];
+        r.z += c * w[3 * i + 2];
+        shifted[i] = r;
+    }
+};
+
+// drift += c (plus - minus)
+template <class R>
+struct AddFiniteDifference {
+    const R* plus;
+    const R* minus;
+    R c;
+    R* drift;
+    SMD_HD void operator()(int64_t i) const { drift[i] += c * (plus[i] - minus[i]); }
+};
+
+template <class B, class R>
+class BdhiDPStokes : public Integrator<B, R> {
+public:
+    // More iterations than this mean a tolerance below what the precision can give.
+    static constexpr int kMaxIterations = 100;
+
+    BdhiDPStokes(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
+        : Integrator<B, R>(scope), backend_(backend), plan_(BdhiDPStokesInputs::slab_plan(v)),
+          viscosity_(v["viscosity"]), radius_(v["hydrodynamicRadius"]),
+          // Below 100 eps the iteration cannot see its own convergence.
+          lanczos_(backend, std::max(v["tolerance"], 100.0 * std::numeric_limits<R>::epsilon()), kMaxIterations,
+                   "the mobility of " + scope.name) {}
+
+    bool overdamped() const override { return true; }
+
+    void begin(Particles<B, R>& p, ForceSource&) override {
+        backend_.for_each(p.count, StopParticles<R>{p.vel.data(), this->scope().group});
+        prepare(p);
+    }
+
+    void step(Particles<B, R>& p, ForceSource& forces) override {
+        const IntegratorScope& s = this->scope();
+        const int64_t n = p.count;
+        prepare(p);
+        forces.update_forces();
+        backend_.for_each(n, FlattenForces<R>{p.force.data(), flatForce_.data()});
+        mesh_->place(n, p.pos.data(), s.group);
+        mesh_->apply(flatForce_.data(), drift_.data(), viscosity_);
+        const bool thermal = s.kT > 0.0;
+        if (thermal) {
+            backend_.for_each(n, DrawHydrodynamicNoise<R>{s.group, p.noise, p.now(), gaussian_.data()});
+            lanczos_.apply_sqrt(3 * n, gaussian_.data(), noise_.data(),
+                                [&](const R* v, R* out) { mesh_->apply(v, out, viscosity_); });
+            thermal_drift(p, s.kT);
+        }
+        backend_.for_each(n, BdhiMove<R>{p.pos.data(), p.image.data(), p.force.data(), drift_.data(),
+                                         thermal ? noise_.data() : nullptr, nullptr, s.group, p.box, R(s.timeStep),
+                                         R(std::sqrt(2.0 * s.kT * s.timeStep)), p.fault_slot(1), p.drift});
+        forces.positions_moved(s.timeStep, true);
+    }
+
+private:
+    // drift_ += kT div M by the random finite difference.
+    void thermal_drift(Particles<B, R>& p, double kT) {
+        const IntegratorScope& s = this->scope();
+        const int64_t n = p.count;
+        const double delta = radius_ * std::sqrt(double(std::numeric_limits<R>::epsilon()));
+        backend_.for_each(n, DrawFiniteDifferenceNoise<R>{s.group, p.noise, p.now(), rfdNoise_.data()});
+        backend_.for_each(n, ShiftPositions<R>{p.pos.data(), rfdNoise_.data(), R(0.5 * delta), shifted_.data()});
+        mesh_->place(n, shifted_.data(), s.group);
+        mesh_->apply(rfdNoise_.data(), plus_.data(), viscosity_);
+        backend_.for_each(n, ShiftPositions<R>{p.pos.data(), rfdNoise_.data(), R(-0.5 * delta), shifted_.data()});
+        mesh_->place(n, shifted_.data(), s.group);
+        mesh_->apply(rfdNoise_.data(), minus_.data(), viscosity_);
+        backend_.for_each(3 * n, AddFiniteDifference<R>{plus_.data(), minus_.data(), R(kT / delta), drift_.data()});
+    }
+
+    // The mesh, made once for the box it starts with: Lx and Ly must be the box's x and y, which
+    // may not change afterwards.
+    void prepare(const Particles<B, R>& p) {
+        const IntegratorScope& s = this->scope();
+        const double box[3] = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
+        for (int d = 0; d < 2; ++d)
+            if (!(std::fabs(box[d] - plan_.box[d]) <= 1e-6 * plan_.box[d]))
+                throw input_error(s.path + ".parameters.L" + std::string(1, "xy"[d]),
+                                  "is " + std::to_string(plan_.box[d]) + " but the box's " + std::string(1, "xy"[d]) +
+                                      " length is " + std::to_string(box[d]) + " (the box may not change either)");
+        if (!(box[2] >= plan_.height))
+            throw input_error(s.path + ".parameters.H", "the slab of height " + std::to_string(plan_.height) +
+                                                             " does not fit in the box's z length " +
+                                                             std::to_string(box[2]));
+        if (!mesh_) mesh_ = std::make_unique<SlabMesh<B, R>>(backend_, plan_);
+        const size_t flat = static_cast<size_t>(3 * p.count);
+        for (auto* buffer : {&flatForce_, &drift_, &gaussian_, &noise_, &rfdNoise_, &plus_, &minus_})
+            backend_.resize(*buffer, s.kT > 0.0 || buffer == &flatForce_ || buffer == &drift_ ? flat : 0);
+        backend_.resize(shifted_, s.kT > 0.0 ? static_cast<size_t>(p.count) : 0);
+    }
+
+    const B& backend_;
+    SlabPlan plan_;
+    double viscosity_, radius_;
+    LanczosSqrt<B, R> lanczos_;
+    std::unique_ptr<SlabMesh<B, R>> mesh_;
+    typename B::template Buffer<R> flatForce_, drift_, gaussian_, noise_, rfdNoise_, plus_, minus_;  // flat
+    typename B::template Buffer<Real4<R>> shifted_;
+};
+
+}  // namespace structmd
