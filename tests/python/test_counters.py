@@ -61,8 +61,11 @@ def test_counters_are_json_with_every_field(sim):
     sim.load(document())
     assert set(sim.counters) == {"force_evaluations", "energy_evaluations", "virial_evaluations",
                                  "neighbour_list_builds", "host_to_device_bytes", "device_to_host_bytes",
-                                 "device_memory_bytes", "step_graphs_captured", "step_graphs_replayed"}
+                                 "device_memory_bytes", "step_graphs_captured", "step_graphs_replayed",
+                                 "domain_rebuilds"}
     assert all(isinstance(value, int) and value >= 0 for value in sim.counters.values())
+    sim.step(100)
+    assert sim.counters["domain_rebuilds"] == 0  # one process: no spatial domains
 
 
 def test_a_bonded_only_scene_builds_no_neighbour_list(sim):
