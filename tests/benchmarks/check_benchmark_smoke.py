@@ -154,7 +154,8 @@ def check_hydrodynamics(script):
     # would give 0).
     rows = run(script, ["--n", "150", "--backend", "cpu", "--seconds", "0.05", "--reference-max", "200"],
                HYDRODYNAMICS_COLUMNS)
-    expect([row["method"] for row in rows] == ["cholesky", "lanczos", "fcm", "pse", "quasi2d"], f"rows {rows}")
+    expect([row["method"] for row in rows] == ["cholesky", "lanczos", "fcm", "pse", "quasi2d", "dpstokes"],
+           f"rows {rows}")
     for row in rows:
         positive_finite(row, "steps_per_second")
         error = float(row["error"])

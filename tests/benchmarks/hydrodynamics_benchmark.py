@@ -14,7 +14,10 @@ Error, relative RMS of dt M F over the particles, in double precision at the met
   every size;
 - triply periodic: the same method in double precision at tolerance 1e-6 (the method's converged
   mobility, which tests/python/test_bdhi_*.py check against independent Ewald and lattice sums), at the
-  sizes up to --reference-max.
+  sizes up to --reference-max;
+- the slab (DPStokes, two walls 16 radii apart, particles at least 2 radii from them, grid spacing
+  sigma = a / sqrt(pi)): the same method on a grid of half that spacing, up to --reference-max (its
+  tolerance is the noise's alone).
 Lanczos is exact in its deterministic part; its tolerance bounds the noise, which
 tests/python/test_bdhi_open_boundary.py checks against Cholesky.
 
@@ -44,14 +47,23 @@ METHODS = {
     "fcm": (["BDHITriplyPeriodic", "ForceCouplingMethod"], True, True, [1000, 10000, 100000, 1000000]),
     "pse": (["BDHITriplyPeriodic", "PositivelySplitEwald"], True, True, [1000, 10000, 100000, 1000000]),
     "quasi2d": (["BDHIDoublyPeriodic", "Quasi2D"], True, True, [1000, 10000, 100000, 1000000]),
+    "dpstokes": (["BDHIDoublyPeriodic", "DPStokes"], True, True, [1000, 10000, 100000]),
 }
 # The planar methods: particles in the plane z = 0 of an x-y periodic square at area fraction 0.05.
 PLANAR = {"quasi2d"}
+# The slab methods: particles between two walls SLAB_HEIGHT apart, at least 2 radii from each, at
+# volume fraction 0.05 of the slab they can reach; the grid's spacing is GRID_SPACING (sigma = a /
+# sqrt(pi), the Gaussian's width), and the reference halves it.
+SLAB = {"dpstokes"}
+SLAB_HEIGHT = 16.0 * RADIUS
+GRID_SPACING = RADIUS / math.sqrt(math.pi)
 
 
 def side(method, n):
     if method in PLANAR:
         return math.sqrt(math.pi * RADIUS ** 2 * n / PHI)
+    if method in SLAB:
+        return math.sqrt(4.0 * math.pi * RADIUS ** 3 * n / 3.0 / PHI / (SLAB_HEIGHT - 4.0 * RADIUS))
     return (4.0 * math.pi * RADIUS ** 3 * n / 3.0 / PHI) ** (1.0 / 3.0)
 
 
@@ -61,24 +73,32 @@ def placement(method, n, seed=11):
     positions = rng.uniform(-length / 2, length / 2, (n, 3))
     if method in PLANAR:
         positions[:, 2] = 0.0
+    if method in SLAB:
+        reach = SLAB_HEIGHT / 2 - 2.0 * RADIUS
+        positions[:, 2] = rng.uniform(-reach, reach, n)
     return positions, rng.normal(size=(n, 3))
 
 
-def document(method, n, positions, temperature, tolerance):
+def document(method, n, positions, temperature, tolerance, refinement=1):
     kind, periodic, tolerant, _ = METHODS[method]
     length = side(method, n)
     # An open-boundary box only has to hold the particles: they are never folded back into it.
-    box = length if periodic else 10.0 * length
+    box = [length] * 3 if periodic else [10.0 * length] * 3
     parameters = {"timeStep": DT, "viscosity": ETA, "hydrodynamicRadius": RADIUS}
     if tolerant:
         parameters["tolerance"] = tolerance
+    if method in SLAB:
+        box[2] = SLAB_HEIGHT
+        cells = math.ceil(length / GRID_SPACING) * refinement
+        parameters.update({"nx": cells, "ny": cells, "Lx": length, "Ly": length, "H": SLAB_HEIGHT, "w": 6,
+                           "mode": "slit", "nz": math.ceil(SLAB_HEIGHT / GRID_SPACING) * refinement + 1})
     return {
         "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": method, "seed": 5}}},
         "global": {
             "types": {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
                       "data": [["A", 1.0, RADIUS, 0.0]]},
             "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
-                         "data": [[[box] * 3, temperature]]},
+                         "data": [[box, temperature]]},
         },
         "integrator": {
             "bd": {"type": kind, "parameters": parameters},
@@ -91,11 +111,11 @@ def document(method, n, positions, temperature, tolerance):
     }
 
 
-def displacement(backend, precision, method, n, tolerance):
-    """dt M F from one step at temperature 0."""
+def displacement(backend, precision, method, n, tolerance, refinement=1):
+    """dt M F from one step at temperature 0 (on a grid `refinement` times finer for a slab method)."""
     positions, forces = placement(method, n)
     with structmd.Simulation({"backend": backend, "precision": precision, "log": "quiet"}) as sim:
-        sim.load(document(method, n, positions, 0.0, tolerance))
+        sim.load(document(method, n, positions, 0.0, tolerance, refinement))
         start = np.array(sim.positions)
         sim.external_forces = forces
         sim.step(1)
@@ -141,6 +161,9 @@ def error(backend, method, n, tolerance, reference_max):
         return relative_error(measured, rpy_product(positions, forces))
     if n > reference_max:
         return None
+    if method in SLAB:
+        # The tolerance is the noise's alone (Lanczos); the deterministic part's error is the grid's.
+        return relative_error(measured, displacement(backend, "double", method, n, tolerance, refinement=2))
     return relative_error(measured, displacement(backend, "double", method, n, REFERENCE_TOLERANCE))
 
 
