@@ -149,7 +149,11 @@ void DomainsOverRanks::advance(int64_t n) {
     for (int64_t k = 0; k < n; ++k) {
         fire_due(current_step() == last);
         if (!stoppedBy_.empty()) return;
+        // A rank whose step fails (a blow-up) rolls its engine back by that step and the others
+        // do not: the ranks would no longer agree on the step, so the domains go no further.
+        broken_ = true;
         run_together(*comm_, [&] { local_->advance(1); });
+        broken_ = false;
         begun_ = true;
         check_moves();
     }
@@ -453,8 +457,8 @@ void DomainsOverRanks::rebuild_in_place() {
 
 void DomainsOverRanks::usable() const {
     if (broken_)
-        throw Error(STRUCTMD_ERR_STATE, "a rebuild of the spatial domains failed part way (see the error it returned): "
-                                        "load the input again");
+        throw Error(STRUCTMD_ERR_STATE, "a step or a rebuild of the spatial domains failed part way (see the error it "
+                                        "returned), and the ranks no longer agree: load the input again");
 }
 
 void DomainsOverRanks::adopt(Domain next) {
@@ -613,6 +617,7 @@ double DomainsOverRanks::energy(const std::string& term) {
 
 void DomainsOverRanks::term_energies_and_forces(const std::string& term, double* energies, double* forces,
                                                 double* torques) {
+    usable();
     announce(Op::termArrays, term);
     const size_t slots = ids_.size();
     std::vector<double> e(slots), f(3 * slots), t(3 * slots);

@@ -7,8 +7,9 @@
 //   fractional coordinate along it lies in [r/K, (r+1)/K). Its neighbours are ranks r-1 and r+1
 //   (periodic; with K = 2 both are the other rank, and a border particle is sent to it once).
 // - The engine of a domain is an ordinary Engine made from a spec of its own (domain_spec.hpp: the
-//   whole system's spec, read once, with the domain's rows) whose slots are the owned particles, in
-//   increasing global id, then the ghosts: copies of the particles other ranks own within the ghost width W of the slab's faces.
+//   whole system's spec, read once, with the domain's rows) whose slots are the owned particles (in
+//   increasing global id when made, in no particular order after a rebuild in place), then the
+//   ghosts: copies of the particles other ranks own within the ghost width W of the slab's faces.
 //   Slots keep their global id for the noise (NoiseKey::ids), so a particle draws the same numbers
 //   on any rank, and Langevin trajectories are those of one rank to rounding.
 // - Ghosts: before every force evaluation at new positions the engine refreshes them
@@ -203,7 +204,7 @@ private:
     void gather_per_particle(Op op, double* all, int k, Get&& get);
     double sum_owned(const std::vector<double>& values) const;
     [[noreturn]] void unsupported(const std::string& what) const;
-    // Throws ERR_STATE after a rebuild in place that failed part way.
+    // Throws ERR_STATE after a step or a rebuild in place that failed part way.
     void usable() const;
 
     EngineOptions options_;
@@ -235,7 +236,7 @@ private:
     int64_t finalStep_ = 0;  // where the whole system's schedule ends
     bool begun_ = false;  // the integrator began on an engine of this domain
     bool inPlace_ = false;  // rebuilds renumber the engine's slots (DomainSpec::renumbers_in_place)
-    bool broken_ = false;   // a rebuild in place failed part way
+    bool broken_ = false;   // a step or a rebuild in place failed part way: the ranks disagree
     int64_t rebuilds_ = 0;  // since load, logged at the end: how often the ghost layer ran out
     Counters retired_;      // of the engines this domain had before the present one
     double rebuildSeconds_ = 0.0, exchangeSeconds_ = 0.0;  // wall time, logged at the end

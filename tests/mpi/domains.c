@@ -5,10 +5,13 @@
  *     ~1e-10 relative, the total energy conserved;
  *   - bead chains laid across the slabs' faces (harmonic bonds, WCA): the bonds cross domains;
  *   - the LJ liquid under Langevin (BBK): the noise is keyed by global id, so the same trajectory;
+ *   - a salt (Debye-Hueckel between +1 and -1 charges, WCA): charges travel with their particles;
  *   - a dilute gas flowing along the split axis, so that every particle migrates many times: the
  *     particle count and the positions of every id (the gather refuses an id held twice or never)
  *     checked at every output;
  *   - an ideal gas (no force field) flowing the same way under Langevin: no ghosts and no rebuilds;
+ *   - every case but the ideal gas rebuilds its domains (the counter domain_rebuilds);
+ *   - a blow-up (a time step of 0.5) fails every rank, and the handle refuses further calls;
  *   - an unsupported integrator, and an unsupported call (the virial), refused by name.
  *
  * usage (under mpirun with 2 or more ranks): test_mpi_domains */
@@ -58,7 +61,8 @@ typedef struct {
     int n;                /* particles */
     double box[3];
     const char* integrator;  /* the integrator entry's JSON */
-    const char* pair;        /* "lj" (cutoff 2.5), "wca" or "none" (an ideal gas: no force field) */
+    const char* pair;        /* "lj" (cutoff 2.5), "wca", "ions" (WCA and Debye-Hueckel between types A +1
+                                and B -1) or "none" (an ideal gas: no force field) */
     int chain;            /* beads per chain (0: no bonds) */
     double flow;          /* a drift velocity along x added to every particle */
     int steps, interval;
@@ -69,8 +73,10 @@ static char* make_input(const Case* c) {
     rng_state = 88172645463325252ull;
     put(&t, "{\"system\": {\"info\": {\"type\": [\"Simulation\", \"Information\"], \"parameters\": {\"name\": \"%s\", "
             "\"seed\": 7}}},", c->name);
+    const int ions = strcmp(c->pair, "ions") == 0;
     put(&t, "\"global\": {\"types\": {\"type\": [\"Types\", \"Basic\"], \"labels\": [\"name\", \"mass\", \"radius\", "
-            "\"charge\"], \"data\": [[\"A\", 1.0, 0.5, 0.0]]},");
+            "\"charge\"], \"data\": [[\"A\", 1.0, 0.5, %s], [\"B\", 1.0, 0.5, %s]]},", ions ? "1.0" : "0.0",
+        ions ? "-1.0" : "0.0");
     put(&t, "\"ensemble\": {\"type\": [\"Ensemble\", \"NVT\"], \"labels\": [\"box\", \"temperature\"], \"data\": "
             "[[[%.17g, %.17g, %.17g], 1.0]]}},", c->box[0], c->box[1], c->box[2]);
     put(&t, "\"integrator\": {\"dynamics\": %s, \"schedule\": {\"type\": [\"Schedule\", \"Integrator\"], \"labels\": "
@@ -91,7 +97,7 @@ static char* make_input(const Case* c) {
         put(&t, "%s[%d, [%.17g, %.17g, %.17g], [%.17g, %.17g, %.17g]]", i ? ", " : "", i, x[0], x[1], x[2], v[0], v[1], v[2]);
     }
     put(&t, "]}, \"topology\": {\"structure\": {\"labels\": [\"id\", \"type\"], \"data\": [");
-    for (int i = 0; i < c->n; ++i) put(&t, "%s[%d, \"A\"]", i ? ", " : "", i);
+    for (int i = 0; i < c->n; ++i) put(&t, "%s[%d, \"%s\"]", i ? ", " : "", i, ions && i % 2 ? "B" : "A");
     if (strcmp(c->pair, "none") == 0) {
         put(&t, "]}, \"forceField\": {}}}");
         return t.text;
@@ -102,6 +108,12 @@ static char* make_input(const Case* c) {
         put(&t, "\"pairs\": {\"type\": [\"NonBonded\", \"LennardJonesType1\"], \"parameters\": {\"cutOffFactor\": 2.5, "
                 "\"condition\": \"all\", \"shift\": true}, \"labels\": [\"name_i\", \"name_j\", \"epsilon\", \"sigma\"], \"data\": "
                 "[[\"A\", \"A\", 1.0, 1.0]]}");
+    else if (ions)
+        put(&t, "\"pairs\": {\"type\": [\"NonBonded\", \"WCAType2\"], \"parameters\": {\"cutOffFactor\": 1.0, "
+                "\"condition\": \"all\"}, \"labels\": [\"name_i\", \"name_j\", \"epsilon\", \"sigma\"], \"data\": "
+                "[[\"A\", \"A\", 1.0, 1.0], [\"A\", \"B\", 1.0, 1.0], [\"B\", \"B\", 1.0, 1.0]]}, "
+                "\"dh\": {\"type\": [\"NonBonded\", \"DebyeHuckel\"], \"parameters\": {\"cutOffFactor\": 2.5, "
+                "\"dielectricConstant\": 2.0, \"debyeLength\": 1.0, \"condition\": \"all\", \"shift\": true}}");
     else
         put(&t, "\"pairs\": {\"type\": [\"NonBonded\", \"WCAType2\"], \"parameters\": {\"cutOffFactor\": 1.0, "
                 "\"condition\": \"all\"}, \"labels\": [\"name_i\", \"name_j\", \"epsilon\", \"sigma\"], \"data\": "
@@ -203,6 +215,16 @@ static void run_case(const Case* c, double position_tolerance, double energy_tol
         snprintf(what, sizeof what, "%s: the total energy drifts by %.3g relative", c->name, drift);
         expect(drift < 1e-3, what);
     }
+    /* The particles moved far enough that the domains were rebuilt (so what was compared includes
+     * rebuilds), except where nothing reaches across a face. */
+    char counters[1024];
+    check(structmd_get_counters(split, counters, sizeof counters), split, "structmd_get_counters");
+    const char* key = strstr(counters, "\"domain_rebuilds\":");
+    long long rebuilds = -1;
+    if (key) sscanf(key + strlen("\"domain_rebuilds\":"), "%lld", &rebuilds);
+    const int none = strcmp(c->pair, "none") == 0;
+    snprintf(what, sizeof what, "%s: %lld domain rebuilds, expected %s", c->name, rebuilds, none ? "none" : "some");
+    expect(none ? rebuilds == 0 : rebuilds > 0, what);
     free(a);
     free(b);
     structmd_destroy(split);
@@ -243,6 +265,10 @@ int main(int argc, char** argv) {
     run_case(&chains, 1e-10, 1e-10, 1);
     run_case(&thermostat, 1e-10, 1e-10, 0);
     run_case(&gas, 1e-10, 1e-10, 1);
+    /* Charges (Debye-Hueckel between alternating +1 and -1): a per-particle array renumbered with
+     * the slots when the domains are rebuilt in place. */
+    const Case salt = {"ions", 512, {12.0, 7.5, 7.5}, verlet, "ions", 0, 0.0, 1000, 100};
+    run_case(&salt, 1e-10, 1e-10, 1);
     /* Nothing reaches across a face: no ghosts, and however far the particles flow, no rebuild. */
     const Case ideal = {"ideal", 64, {12.0, 8.0, 8.0}, langevin, "none", 0, 5.0, 1000, 100};
     run_case(&ideal, 1e-10, 1e-10, 0);
@@ -264,6 +290,28 @@ int main(int argc, char** argv) {
                    strstr(structmd_last_error(split), "the virial (and the pressure) is not available under domain "
                                                       "decomposition"),
                "the virial is refused by name");
+        structmd_destroy(split);
+    }
+
+    /* A blow-up on one rank leaves it a step behind the others: every rank returns the error, and
+     * the handle refuses to go on. */
+    {
+        Case blowup = liquid;
+        blowup.integrator = "{\"type\": [\"Verlet\", \"VelocityVerlet\"], \"parameters\": {\"timeStep\": 0.5}}";
+        char* input = make_input(&blowup);
+        structmd_sim* split = create(world_options);
+        check(structmd_load_string(split, input), split, "structmd_load_string");
+        free(input);
+        const structmd_status first = structmd_step(split, 20);
+        char what[512];
+        snprintf(what, sizeof what, "a step of 0.5 fails (got %d: %s)", (int)first, structmd_last_error(split));
+        expect(first == STRUCTMD_ERR_NUMERICAL, what);
+        double* x = malloc(sizeof(double) * 3 * blowup.n);
+        const structmd_status again = structmd_step(split, 1), read = structmd_get_positions(split, x, blowup.n);
+        free(x);
+        snprintf(what, sizeof what, "after the failure, stepping and reading are STRUCTMD_ERR_STATE (got %d, %d: %s)",
+                 (int)again, (int)read, structmd_last_error(split));
+        expect(again == STRUCTMD_ERR_STATE && read == STRUCTMD_ERR_STATE, what);
         structmd_destroy(split);
     }
 

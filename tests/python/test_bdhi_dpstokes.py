@@ -230,7 +230,7 @@ def test_the_thermal_drift_is_kT_times_the_slope_of_the_mobility(options):
 
 
 def test_trapped_particles_above_a_wall_sample_boltzmann(options):
-    """Sixteen particles in harmonic traps 1.8 a above the bottom wall (K = 4 kT/a^2), where the
+    """Nine particles in harmonic traps 1.5 a above the bottom wall (K = 4 kT/a^2), where the
     mobility normal to the wall falls steeply towards it: their heights sample exp(-U/kT), mean at
     the trap and variance kT/K, within 4 standard errors (from 10 blocks). Without the thermal drift
     the heights would sample exp(-U/kT) / M_zz(z) instead (Ito), whose mean lies below the trap by
