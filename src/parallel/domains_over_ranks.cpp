@@ -169,16 +169,37 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::owned_now() {
         local_->get_velocities(v.data());
         local_->get_images(images.data());
     });
-    std::vector<Held> held(static_cast<size_t>(owned_));
-    for (size_t s = 0; s < held.size(); ++s) {
-        held[s].id = ids_[s];
+    std::vector<int64_t> owned(static_cast<size_t>(owned_));
+    for (int64_t s = 0; s < owned_; ++s) owned[static_cast<size_t>(s)] = s;
+    return held_at(owned, x, v, images);
+}
+
+std::vector<DomainsOverRanks::Held> DomainsOverRanks::held_at(const std::vector<int64_t>& slots,
+                                                              const std::vector<double>& x,
+                                                              const std::vector<double>& v,
+                                                              const std::vector<int32_t>& images) const {
+    std::vector<Held> held;
+    held.reserve(slots.size());
+    for (int64_t slot : slots) {
+        const auto s = static_cast<size_t>(slot);
+        Held h;
+        h.id = ids_[s];
         for (int d = 0; d < 3; ++d) {
-            held[s].position[d] = x[3 * s + d];
-            held[s].velocity[d] = v[3 * s + d];
-            held[s].image[d] = baseImages_[s][d] + images[3 * s + d];
+            h.position[d] = x[3 * s + d];
+            h.velocity[d] = v[3 * s + d];
+            h.image[d] = baseImages_[s][d] + images[3 * s + d];
         }
+        held.push_back(h);
     }
     return held;
+}
+
+std::vector<double> DomainsOverRanks::shift_values(const std::vector<double>& out, int to, int from) const {
+    double count = static_cast<double>(out.size()), incoming = 0.0;
+    comm_->shift(&count, 1, to, &incoming, 1, from);
+    std::vector<double> in(static_cast<size_t>(incoming));
+    comm_->shift(out.data(), static_cast<int64_t>(out.size()), to, in.data(), static_cast<int64_t>(in.size()), from);
+    return in;
 }
 
 void DomainsOverRanks::check_moves() {
@@ -237,10 +258,7 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::migrate(std::vector<Held> 
     // Two shifts along the ring: to the right (from the left), then to the left (from the right).
     for (const auto& [out, to, from] : {std::tuple<const std::vector<double>&, int, int>{toRight, right, left},
                                         std::tuple<const std::vector<double>&, int, int>{toLeft, left, right}}) {
-        double count = static_cast<double>(out.size()), incoming = 0.0;
-        comm_->shift(&count, 1, to, &incoming, 1, from);
-        std::vector<double> in(static_cast<size_t>(incoming));
-        comm_->shift(out.data(), static_cast<int64_t>(out.size()), to, in.data(), static_cast<int64_t>(in.size()), from);
+        const std::vector<double> in = shift_values(out, to, from);
         for (size_t k = 0; k < in.size(); k += kHeldValues) {
             Held h;
             h.id = static_cast<int64_t>(in[k]);
@@ -276,11 +294,7 @@ DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const 
             out.insert(out.end(), h.position.begin(), h.position.end());
             out.insert(out.end(), h.velocity.begin(), h.velocity.end());
         }
-        double count = static_cast<double>(out.size()), incoming = 0.0;
-        comm_->shift(&count, 1, link.to, &incoming, 1, link.from);
-        std::vector<double> in(static_cast<size_t>(incoming));
-        comm_->shift(out.data(), static_cast<int64_t>(out.size()), link.to, in.data(), static_cast<int64_t>(in.size()),
-                     link.from);
+        const std::vector<double> in = shift_values(out, link.to, link.from);
         link.received = static_cast<int64_t>(in.size()) / kGhostValues;
         for (size_t k = 0; k < in.size(); k += kGhostValues) {
             d.ghostSlots.push_back(static_cast<int64_t>(d.ids.size()));
@@ -367,17 +381,7 @@ void DomainsOverRanks::rebuild_in_place() {
         local_->get_velocities(v.data());
         local_->get_images(images.data());
     });
-    std::vector<Held> out;
-    for (int64_t s : leaving) {
-        Held h;
-        h.id = ids_[static_cast<size_t>(s)];
-        for (int d = 0; d < 3; ++d) {
-            h.position[d] = x[static_cast<size_t>(3 * s + d)];
-            h.velocity[d] = v[static_cast<size_t>(3 * s + d)];
-            h.image[d] = baseImages_[static_cast<size_t>(s)][d] + images[static_cast<size_t>(3 * s + d)];
-        }
-        out.push_back(h);
-    }
+    std::vector<Held> out = held_at(leaving, x, v, images);
     const std::vector<Held> arrived = migrate(std::move(out));
 
     // The new slots: those that stay (their images stay in the engine), the arrivals, the ghosts.
@@ -405,11 +409,7 @@ void DomainsOverRanks::rebuild_in_place() {
     for (Link& link : links) {
         std::vector<double> sent;
         for (int64_t s : link.sent) sent.push_back(static_cast<double>(ids[static_cast<size_t>(s)]));
-        double count = static_cast<double>(sent.size()), incoming = 0.0;
-        comm_->shift(&count, 1, link.to, &incoming, 1, link.from);
-        std::vector<double> received(static_cast<size_t>(incoming));
-        comm_->shift(sent.data(), static_cast<int64_t>(sent.size()), link.to, received.data(),
-                     static_cast<int64_t>(received.size()), link.from);
+        const std::vector<double> received = shift_values(sent, link.to, link.from);
         link.received = static_cast<int64_t>(received.size());
         for (double id : received) {
             ghostSlots.push_back(static_cast<int64_t>(ids.size()));

@@ -169,6 +169,11 @@ private:
     void fire_due(bool final);
     // The owned particles as they are now: positions, velocities and images (whole, since load).
     std::vector<Held> owned_now();
+    // The particles at these slots, from the engine's positions, velocities and images (3 per slot).
+    std::vector<Held> held_at(const std::vector<int64_t>& slots, const std::vector<double>& x,
+                              const std::vector<double>& v, const std::vector<int32_t>& images) const;
+    // `out` to rank `to`, and whatever rank `from` sends in the same shift (its count first).
+    std::vector<double> shift_values(const std::vector<double>& out, int to, int from) const;
     // After a step: the largest move since the rebuild over all ranks; rebuilds past half the limit.
     void check_moves();
     // Owned particles that left the slab go to their new owner; returns what this rank owns now.
