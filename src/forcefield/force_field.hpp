@@ -50,6 +50,15 @@ public:
         for (const auto& list : lists_) radius = std::max(radius, list->cutoff() + list->skin());
         return radius;
     }
+    // Each list sized for as many neighbours a particle as the same list of `grown` (a force field made
+    // from the same spec, for other slots of the same system) came to need, so a new one does not
+    // start from its estimate again.
+    void reserve_lists_like(const ForceField& grown) {
+        for (size_t k = 0; k < lists_.size() && k < grown.lists_.size(); ++k)
+            lists_[k]->reserve(grown.lists_[k]->capacity());
+        for (size_t k = 0; k < siteLists_.size() && k < grown.siteLists_.size(); ++k)
+            siteLists_[k]->reserve(grown.siteLists_[k]->capacity());
+    }
     // The thinnest skin of the lists (infinite without lists): no particle may move farther in a step.
     double smallest_skin() const {
         double skin = std::numeric_limits<double>::infinity();

@@ -83,6 +83,11 @@ public:
 
     void invalidate() { forceRebuild_ = true; }
 
+    // Neighbours a particle the list has room for (or will have at its next layout); reserve()
+    // raises it before the first layout.
+    int capacity() const { return std::max(capacity_, pendingCapacity_); }
+    void reserve(int neighbours) { pendingCapacity_ = std::max(pendingCapacity_, neighbours); }
+
     // What a drift kernel moving the n positions in `pos` needs to keep this list's copy and
     // displacement check (state/drift_bookkeeping.hpp): null slots unless the list is laid out for
     // exactly those positions (not, say, for sites placed from them).

@@ -35,6 +35,16 @@ public:
         throw Error(STRUCTMD_ERR_INTERNAL, "an exchange with rank " + std::to_string(partner) + " of one process");
     }
     void shift(const double* sent, int64_t n, int to, double* received, int64_t m, int from) const override {
+        copy(sent, n, to, received, m, from);
+    }
+    void shift(const unsigned char* sent, int64_t n, int to, unsigned char* received, int64_t m,
+               int from) const override {
+        copy(sent, n, to, received, m, from);
+    }
+
+private:
+    template <class T>
+    static void copy(const T* sent, int64_t n, int to, T* received, int64_t m, int from) {
         if (to != 0 || from != 0 || n != m)
             throw Error(STRUCTMD_ERR_INTERNAL, "a shift between ranks of one process");
         std::copy(sent, sent + n, received);
@@ -111,14 +121,21 @@ public:
               "MPI_Sendrecv");
     }
     void shift(const double* sent, int64_t n, int to, double* received, int64_t m, int from) const override {
-        if (n > INT32_MAX || m > INT32_MAX)
-            throw Error(STRUCTMD_ERR_UNSUPPORTED, "an exchange between ranks of more than 2^31 values");
-        check(MPI_Sendrecv(sent, static_cast<int>(n), MPI_DOUBLE, to, 1, received, static_cast<int>(m), MPI_DOUBLE, from,
-                           1, comm_, MPI_STATUS_IGNORE),
-              "MPI_Sendrecv");
+        sendrecv(sent, n, to, received, m, from, MPI_DOUBLE);
+    }
+    void shift(const unsigned char* sent, int64_t n, int to, unsigned char* received, int64_t m,
+               int from) const override {
+        sendrecv(sent, n, to, received, m, from, MPI_BYTE);
     }
 
 private:
+    void sendrecv(const void* sent, int64_t n, int to, void* received, int64_t m, int from, MPI_Datatype type) const {
+        if (n > INT32_MAX || m > INT32_MAX)
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, "an exchange between ranks of more than 2^31 values");
+        check(MPI_Sendrecv(sent, static_cast<int>(n), type, to, 1, received, static_cast<int>(m), type, from, 1, comm_,
+                           MPI_STATUS_IGNORE),
+              "MPI_Sendrecv");
+    }
     void gather(const void* mine, void* all, const std::vector<int64_t>& counts, MPI_Datatype type) const {
         std::vector<int> sizes, offsets;
         gather_layout(counts, sizes, offsets);

@@ -37,6 +37,9 @@ public:
     // n values to rank `to` and m from rank `from`, into `received` (a shift along a ring of ranks:
     // every rank calls it at once with its own partners; `to` == `from` == this rank copies).
     virtual void shift(const double* sent, int64_t n, int to, double* received, int64_t m, int from) const = 0;
+    // The same for n and m bytes.
+    virtual void shift(const unsigned char* sent, int64_t n, int to, unsigned char* received, int64_t m,
+                       int from) const = 0;
 };
 
 // Runs `local` on every rank of `comm`; when it throws on any, every rank throws the error of the

@@ -15,18 +15,12 @@ namespace structmd {
 namespace {
 
 constexpr int kHeldValues = 10;  // id, position, velocity, image
-constexpr int kGhostValues = 7;  // id, position, velocity
+constexpr int kGhostValues = 7;  // id, position, velocity (a new engine's ghosts)
 
 std::string number(double x) {
     char text[32];
     std::snprintf(text, sizeof text, "%.6g", x);
     return text;
-}
-
-// The fractional coordinate of x in a periodic box of length L, in [0, 1).
-double fraction(double x, double length) {
-    const double f = x / length - std::floor(x / length);
-    return f < 1.0 ? f : 0.0;
 }
 
 }  // namespace
@@ -90,8 +84,9 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec
     inPlace_ = spec_.renumbers_in_place();
 
     std::vector<Held> owned;
+    const SlabGeometry slabs = geometry();
     for (int64_t i = 0; i < total_; ++i) {
-        if (slab_of(x[3 * i + axis_]) != comm_->rank()) continue;
+        if (slabs.slab_of(x[3 * i + axis_]) != comm_->rank()) continue;
         Held h;
         h.id = i;
         for (int d = 0; d < 3; ++d) {
@@ -107,7 +102,7 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec
     adopt(std::move(first));
     log_.info("MPI rank " + std::to_string(comm_->rank()) + " of " + std::to_string(comm_->size()) +
               ": spatial domain along axis " + std::to_string(axis_) + ", " + std::to_string(owned_) + " particles and " +
-              std::to_string(ids_.size() - owned_) + " ghosts (ghost width " + number(width_) + ")");
+              std::to_string(local_->particle_count() - owned_) + " ghosts (ghost width " + number(width_) + ")");
 }
 
 DomainsOverRanks::~DomainsOverRanks() {
@@ -126,9 +121,31 @@ void DomainsOverRanks::unsupported(const std::string& what) const {
     throw Error(STRUCTMD_ERR_UNSUPPORTED, what + " is not available under domain decomposition");
 }
 
-int DomainsOverRanks::slab_of(double x) const {
-    const int ranks = comm_->size();
-    return std::min(ranks - 1, static_cast<int>(fraction(x, box_[axis_]) * ranks));
+SlabGeometry DomainsOverRanks::geometry() const {
+    SlabGeometry g;
+    g.axis = axis_;
+    g.length = box_[axis_];
+    g.ranks = comm_->size();
+    g.rank = comm_->rank();
+    g.width = width_;
+    return g;
+}
+
+std::vector<DomainsOverRanks::Link> DomainsOverRanks::no_links() const {
+    const int me = comm_->rank(), ranks = comm_->size();
+    const int up = (me + 1) % ranks, down = (me + ranks - 1) % ranks;
+    // Link 0 sends across the upper face, link 1 across the lower; with two ranks both faces
+    // face the same rank, which gets each particle once (SlabGeometry::borders).
+    if (ranks == 2) return {Link{up, up, 0, 0}};
+    return {Link{up, down, 0, 0}, Link{down, up, 0, 0}};
+}
+
+const std::vector<int64_t>& DomainsOverRanks::slot_ids() {
+    if (!idsKnown_) {
+        ids_ = local_->global_ids();
+        idsKnown_ = true;
+    }
+    return ids_;
 }
 
 // ---- the step loop: the engine's, with the domains checked after every step ----
@@ -161,35 +178,23 @@ void DomainsOverRanks::advance(int64_t n) {
 }
 
 std::vector<DomainsOverRanks::Held> DomainsOverRanks::owned_now() {
-    const size_t slots = ids_.size();
+    const auto slots = static_cast<size_t>(local_->particle_count());
     std::vector<double> x(3 * slots), v(3 * slots);
     std::vector<int32_t> images(3 * slots);
     run_together(*comm_, [&] {
+        slot_ids();
         local_->get_positions(x.data());
         local_->get_velocities(v.data());
         local_->get_images(images.data());
     });
-    std::vector<int64_t> owned(static_cast<size_t>(owned_));
-    for (int64_t s = 0; s < owned_; ++s) owned[static_cast<size_t>(s)] = s;
-    return held_at(owned, x, v, images);
-}
-
-std::vector<DomainsOverRanks::Held> DomainsOverRanks::held_at(const std::vector<int64_t>& slots,
-                                                              const std::vector<double>& x,
-                                                              const std::vector<double>& v,
-                                                              const std::vector<int32_t>& images) const {
-    std::vector<Held> held;
-    held.reserve(slots.size());
-    for (int64_t slot : slots) {
-        const auto s = static_cast<size_t>(slot);
-        Held h;
-        h.id = ids_[s];
+    std::vector<Held> held(static_cast<size_t>(owned_));
+    for (size_t s = 0; s < held.size(); ++s) {
+        held[s].id = ids_[s];
         for (int d = 0; d < 3; ++d) {
-            h.position[d] = x[3 * s + d];
-            h.velocity[d] = v[3 * s + d];
-            h.image[d] = baseImages_[s][d] + images[3 * s + d];
+            held[s].position[d] = x[3 * s + d];
+            held[s].velocity[d] = v[3 * s + d];
+            held[s].image[d] = images[3 * s + d];
         }
-        held.push_back(h);
     }
     return held;
 }
@@ -229,35 +234,41 @@ void DomainsOverRanks::check_moves() {
 }
 
 std::vector<DomainsOverRanks::Held> DomainsOverRanks::migrate(std::vector<Held> held) {
-    const int me = comm_->rank(), ranks = comm_->size();
-    const int right = (me + 1) % ranks, left = (me + ranks - 1) % ranks;
-    std::vector<Held> kept;
-    std::vector<double> toRight, toLeft;
-    // Every rank learns of a particle that went too far before any waits on the shifts below.
-    int64_t strayed = -1;
-    for (const Held& h : held) {
-        const int owner = slab_of(h.position[axis_]);
-        if (owner != me && owner != right && owner != left) strayed = std::max(strayed, h.id);
-    }
-    strayed = comm_->all_max(strayed);
-    if (strayed >= 0)
-        throw Error(STRUCTMD_ERR_NUMERICAL, "particle id " + std::to_string(strayed) + " crossed more than one domain "
-                                            "between two rebuilds of the spatial domains");
-    for (const Held& h : held) {
-        const int owner = slab_of(h.position[axis_]);
-        if (owner == me) {
-            kept.push_back(h);
-            continue;
+    const SlabGeometry slabs = geometry();
+    std::vector<Held> kept, up, down;
+    int64_t astray = -1;
+    for (const Held& h : held) switch (slabs.destination(h.position[axis_])) {
+            case SlabGeometry::kStays: kept.push_back(h); break;
+            case SlabGeometry::kUp: up.push_back(h); break;
+            case SlabGeometry::kDown: down.push_back(h); break;
+            default: astray = std::max(astray, h.id);
         }
-        std::vector<double>& out = owner == right ? toRight : toLeft;
-        out.push_back(static_cast<double>(h.id));
-        out.insert(out.end(), h.position.begin(), h.position.end());
-        out.insert(out.end(), h.velocity.begin(), h.velocity.end());
-        for (int d = 0; d < 3; ++d) out.push_back(h.image[d]);
-    }
-    // Two shifts along the ring: to the right (from the left), then to the left (from the right).
-    for (const auto& [out, to, from] : {std::tuple<const std::vector<double>&, int, int>{toRight, right, left},
-                                        std::tuple<const std::vector<double>&, int, int>{toLeft, left, right}}) {
+    std::vector<Held> arrived = cross(up, down, astray);
+    kept.insert(kept.end(), arrived.begin(), arrived.end());
+    return kept;
+}
+
+std::vector<DomainsOverRanks::Held> DomainsOverRanks::cross(const std::vector<Held>& up, const std::vector<Held>& down,
+                                                            int64_t astray) const {
+    // Every rank learns of a particle that went too far before any waits on the shifts below.
+    astray = comm_->all_max(astray);
+    if (astray >= 0)
+        throw Error(STRUCTMD_ERR_NUMERICAL, "particle id " + std::to_string(astray) + " crossed more than one domain "
+                                            "between two rebuilds of the spatial domains");
+    const int me = comm_->rank(), ranks = comm_->size();
+    const int above = (me + 1) % ranks, below = (me + ranks - 1) % ranks;
+    std::vector<Held> arrived;
+    // Two shifts along the ring: up (from below), then down (from above).
+    for (const auto& [leaving, to, from] : {std::tuple<const std::vector<Held>&, int, int>{up, above, below},
+                                            std::tuple<const std::vector<Held>&, int, int>{down, below, above}}) {
+        std::vector<double> out;
+        out.reserve(kHeldValues * leaving.size());
+        for (const Held& h : leaving) {
+            out.push_back(static_cast<double>(h.id));
+            out.insert(out.end(), h.position.begin(), h.position.end());
+            out.insert(out.end(), h.velocity.begin(), h.velocity.end());
+            for (int d = 0; d < 3; ++d) out.push_back(h.image[d]);
+        }
         const std::vector<double> in = shift_values(out, to, from);
         for (size_t k = 0; k < in.size(); k += kHeldValues) {
             Held h;
@@ -267,29 +278,35 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::migrate(std::vector<Held> 
                 h.velocity[d] = in[k + 4 + d];
                 h.image[d] = static_cast<int32_t>(in[k + 7 + d]);
             }
-            kept.push_back(h);
+            arrived.push_back(h);
         }
     }
-    return kept;
+    return arrived;
 }
 
 DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const {
     std::sort(owned.begin(), owned.end(), [](const Held& a, const Held& b) { return a.id < b.id; });
     Domain d;
-    d.owned = static_cast<int64_t>(owned.size());
+    DomainLayout& layout = d.layout;
+    layout.owned = static_cast<int64_t>(owned.size());
     std::vector<double> positions, velocities;
     for (const Held& h : owned) {
-        d.ids.push_back(h.id);
+        layout.globalIds.push_back(h.id);
         positions.insert(positions.end(), h.position.begin(), h.position.end());
         velocities.insert(velocities.end(), h.velocity.begin(), h.velocity.end());
-        d.baseImages.push_back(h.image);
+        layout.images.push_back(h.image);
     }
 
-    choose_borders(d.links, d.owned, [&](int64_t s) { return owned[static_cast<size_t>(s)].position[axis_]; });
-    for (Link& link : d.links) {
+    const SlabGeometry slabs = geometry();
+    d.links = no_links();
+    for (size_t l = 0; l < d.links.size(); ++l) {
+        Link& link = d.links[l];
         std::vector<double> out;
-        for (int64_t s : link.sent) {
-            const Held& h = owned[static_cast<size_t>(s)];
+        for (size_t s = 0; s < owned.size(); ++s) {
+            const Held& h = owned[s];
+            if (!((slabs.borders(h.position[axis_]) >> l) & 1)) continue;
+            layout.borderSlots.push_back(static_cast<int64_t>(s));
+            ++link.sent;
             out.push_back(static_cast<double>(h.id));
             out.insert(out.end(), h.position.begin(), h.position.end());
             out.insert(out.end(), h.velocity.begin(), h.velocity.end());
@@ -297,29 +314,28 @@ DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const 
         const std::vector<double> in = shift_values(out, link.to, link.from);
         link.received = static_cast<int64_t>(in.size()) / kGhostValues;
         for (size_t k = 0; k < in.size(); k += kGhostValues) {
-            d.ghostSlots.push_back(static_cast<int64_t>(d.ids.size()));
-            d.ids.push_back(static_cast<int64_t>(in[k]));
+            layout.globalIds.push_back(static_cast<int64_t>(in[k]));
             positions.insert(positions.end(), in.begin() + k + 1, in.begin() + k + 4);
             velocities.insert(velocities.end(), in.begin() + k + 4, in.begin() + k + 7);
         }
-        d.borderSlots.insert(d.borderSlots.end(), link.sent.begin(), link.sent.end());
     }
 
     // Every bond of an owned particle must reach a particle the domain holds.
-    std::vector<int64_t> held(d.ids);
+    const std::vector<int64_t>& ids = layout.globalIds;
+    std::vector<int64_t> held(ids);
     std::sort(held.begin(), held.end());
-    for (int64_t s = 0; s < d.owned; ++s)
-        for (int64_t j : spec_.bonded_to(d.ids[static_cast<size_t>(s)]))
+    for (int64_t s = 0; s < layout.owned; ++s)
+        for (int64_t j : spec_.bonded_to(ids[static_cast<size_t>(s)]))
             if (!std::binary_search(held.begin(), held.end(), j))
                 throw Error(STRUCTMD_ERR_NUMERICAL,
                             "step " + std::to_string(local_ ? local_->current_step() : 0) + ": the bond between ids " +
-                                std::to_string(d.ids[static_cast<size_t>(s)]) + " and " + std::to_string(j) +
+                                std::to_string(ids[static_cast<size_t>(s)]) + " and " + std::to_string(j) +
                                 " reaches beyond the ghost layer of the spatial domains (" + number(width_) + ")");
 
     const int64_t step = local_ ? local_->current_step() : startStep_;
     const double time = local_ ? local_->current_time() : startTime_;
     d.engine = make_simulation(
-        options_, spec_.local(d.ids, d.owned, positions, velocities, step, time, std::max<int64_t>(0, finalStep_ - step)),
+        options_, spec_.local(ids, layout.owned, positions, velocities, step, time, std::max<int64_t>(0, finalStep_ - step)),
         *components_, log_);
     return d;
 }
@@ -338,121 +354,50 @@ Counters DomainsOverRanks::counters() {
     return c;
 }
 
-template <class Along>
-void DomainsOverRanks::choose_borders(std::vector<Link>& links, int64_t owned, Along&& along) const {
-    const int me = comm_->rank(), ranks = comm_->size();
-    const int right = (me + 1) % ranks, left = (me + ranks - 1) % ranks;
-    const double length = box_[axis_];
-    const double lower = length * me / ranks, upper = length * (me + 1) / ranks;
-    // The owned particles within the ghost width of each face go to the rank beyond it; with two
-    // ranks both faces face the same rank, which gets each particle once.
-    links.clear();
-    if (ranks == 2) {
-        links.push_back({right, right, {}, 0});
-    } else {
-        links.push_back({right, left, {}, 0});
-        links.push_back({left, right, {}, 0});
-    }
-    for (int64_t s = 0; s < owned; ++s) {
-        const double x = fraction(along(s), length) * length;
-        const bool nearUpper = upper - x < width_, nearLower = x - lower < width_;
-        if (ranks == 2) {
-            if (nearUpper || nearLower) links[0].sent.push_back(s);
-        } else {
-            if (nearUpper) links[0].sent.push_back(s);
-            if (nearLower) links[1].sent.push_back(s);
-        }
-    }
-}
-
 void DomainsOverRanks::rebuild_in_place() {
-    const int me = comm_->rank();
-    const size_t slots = ids_.size();
-    std::vector<double> x(3 * slots), v;
-    std::vector<int32_t> images;
-    std::vector<int64_t> kept, leaving;
-    run_together(*comm_, [&] {
-        local_->get_positions(x.data());
-        for (int64_t s = 0; s < owned_; ++s)
-            (slab_of(x[static_cast<size_t>(3 * s + axis_)]) == me ? kept : leaving).push_back(s);
-        if (leaving.empty()) return;
-        v.resize(3 * slots);
-        images.resize(3 * slots);
-        local_->get_velocities(v.data());
-        local_->get_images(images.data());
-    });
-    std::vector<Held> out = held_at(leaving, x, v, images);
-    const std::vector<Held> arrived = migrate(std::move(out));
-
-    // The new slots: those that stay (their images stay in the engine), the arrivals, the ghosts.
-    std::vector<int64_t> ids;
-    std::vector<std::array<int32_t, 3>> baseImages;
-    ids.reserve(kept.size() + arrived.size());
-    baseImages.reserve(ids.capacity());
-    for (int64_t s : kept) {
-        ids.push_back(ids_[static_cast<size_t>(s)]);
-        baseImages.push_back(baseImages_[static_cast<size_t>(s)]);
-    }
-    for (const Held& h : arrived) {
-        ids.push_back(h.id);
-        baseImages.push_back(h.image);
-    }
-    const auto owned = static_cast<int64_t>(ids.size());
-    const auto stay = static_cast<int64_t>(kept.size());
-    std::vector<Link> links;
-    choose_borders(links, owned, [&](int64_t s) {
-        return s < stay ? x[static_cast<size_t>(3 * kept[static_cast<size_t>(s)] + axis_)]
-                        : arrived[static_cast<size_t>(s - stay)].position[axis_];
-    });
+    // Which owned particles stay, and those that leave, found where they live.
+    SlabSort sorted;
+    run_together(*comm_, [&] { sorted = local_->sort_owned(geometry()); });
+    const std::vector<Held> arrived = cross(sorted.up, sorted.down, sorted.astray);
+    std::vector<int64_t> arrivedIds(arrived.size());
+    for (size_t k = 0; k < arrived.size(); ++k) arrivedIds[k] = arrived[k].id;
+    std::vector<std::vector<int64_t>> borders;
+    run_together(*comm_, [&] { borders = local_->place_owned(arrived, attributes_of(arrivedIds)); });
     // The neighbours learn which ids their ghosts are; the positions follow at the next refresh.
-    std::vector<int64_t> borderSlots, ghostSlots;
-    for (Link& link : links) {
-        std::vector<double> sent;
-        for (int64_t s : link.sent) sent.push_back(static_cast<double>(ids[static_cast<size_t>(s)]));
-        const std::vector<double> received = shift_values(sent, link.to, link.from);
-        link.received = static_cast<int64_t>(received.size());
-        for (double id : received) {
-            ghostSlots.push_back(static_cast<int64_t>(ids.size()));
-            ids.push_back(static_cast<int64_t>(id));
-        }
-        borderSlots.insert(borderSlots.end(), link.sent.begin(), link.sent.end());
+    std::vector<Link> links = no_links();
+    std::vector<int64_t> ghostIds;
+    for (size_t l = 0; l < links.size(); ++l) {
+        const std::vector<int64_t>& sent = borders[l];
+        const std::vector<double> received =
+            shift_values(std::vector<double>(sent.begin(), sent.end()), links[l].to, links[l].from);
+        links[l].sent = static_cast<int64_t>(sent.size());
+        links[l].received = static_cast<int64_t>(received.size());
+        for (double id : received) ghostIds.push_back(static_cast<int64_t>(id));
     }
-
-    SlotReseat plan;
-    plan.kept = std::move(kept);
-    const size_t added = ids.size() - static_cast<size_t>(stay);
-    plan.addedPositions.assign(3 * added, 0.0);
-    plan.addedVelocities.assign(3 * added, 0.0);
-    for (size_t k = 0; k < arrived.size(); ++k)
-        for (int d = 0; d < 3; ++d) {
-            plan.addedPositions[3 * k + d] = arrived[k].position[d];
-            plan.addedVelocities[3 * k + d] = arrived[k].velocity[d];
-        }
-    const SystemSpec& whole = spec_.whole();
-    for (size_t slot = static_cast<size_t>(stay); slot < ids.size(); ++slot) {
-        const auto i = static_cast<size_t>(ids[slot]);
-        plan.typeIndex.push_back(types_[i]);
-        plan.mass.push_back(masses_[i]);
-        plan.radius.push_back(radii_[i]);
-        plan.charge.push_back(whole.charge.empty() ? 0.0 : whole.charge[i]);
-        plan.model.push_back(whole.modelId.empty() ? 0 : whole.modelId[i]);
-    }
-    plan.globalIds = ids;
-    plan.forceField = &whole.forceField;
-    plan.integrators = &whole.integrators;
-    plan.components = components_;
-
-    ids_ = std::move(ids);
-    owned_ = owned;
-    baseImages_ = std::move(baseImages);
+    owned_ = sorted.stay + static_cast<int64_t>(arrived.size());
     links_ = std::move(links);
-    borderSlots_ = std::move(borderSlots);
-    ghostSlots_ = std::move(ghostSlots);
+    idsKnown_ = false;
+    const SystemSpec& whole = spec_.whole();
+    const DomainTerms terms{&whole.forceField, &whole.integrators, components_};
     // A failure here (device memory) may leave the engine half renumbered: every rank reports it,
     // and the domains refuse to go on (usable()).
     broken_ = true;
-    run_together(*comm_, [&] { local_->reseat(plan); });
+    run_together(*comm_, [&] { local_->place_ghosts(ghostIds, attributes_of(ghostIds), terms); });
     broken_ = false;
+}
+
+SlotAttributes DomainsOverRanks::attributes_of(const std::vector<int64_t>& ids) const {
+    const SystemSpec& whole = spec_.whole();
+    SlotAttributes a;
+    for (int64_t id : ids) {
+        const auto i = static_cast<size_t>(id);
+        a.typeIndex.push_back(types_[i]);
+        a.mass.push_back(masses_[i]);
+        a.radius.push_back(radii_[i]);
+        a.charge.push_back(whole.charge.empty() ? 0.0 : whole.charge[i]);
+        a.model.push_back(whole.modelId.empty() ? 0 : whole.modelId[i]);
+    }
+    return a;
 }
 
 void DomainsOverRanks::usable() const {
@@ -467,25 +412,23 @@ void DomainsOverRanks::adopt(Domain next) {
         retired_ = c;
         retired_.deviceMemoryBytes = 0;
     }
-    ids_ = std::move(next.ids);
-    owned_ = next.owned;
-    baseImages_ = std::move(next.baseImages);
+    ids_ = next.layout.globalIds;
+    idsKnown_ = true;
+    owned_ = next.layout.owned;
     links_ = std::move(next.links);
-    borderSlots_ = std::move(next.borderSlots);
-    ghostSlots_ = std::move(next.ghostSlots);
     local_ = std::move(next.engine);
-    local_->hold_ghosts(ids_, this, begun_);
+    local_->hold_ghosts(next.layout, this, begun_);
 }
 
-void DomainsOverRanks::exchange(const double* border, double* ghosts) {
+void DomainsOverRanks::exchange(const void* border, void* ghosts, size_t bytes) {
     const auto start = std::chrono::steady_clock::now();
-    const double* out = border;
-    double* in = ghosts;
+    const auto* out = static_cast<const unsigned char*>(border);
+    auto* in = static_cast<unsigned char*>(ghosts);
     for (const Link& link : links_) {
-        const auto sent = static_cast<int64_t>(link.sent.size());
-        comm_->shift(out, 6 * sent, link.to, in, 6 * link.received, link.from);
-        out += 6 * sent;
-        in += 6 * link.received;
+        comm_->shift(out, link.sent * static_cast<int64_t>(bytes), link.to, in,
+                     link.received * static_cast<int64_t>(bytes), link.from);
+        out += link.sent * bytes;
+        in += link.received * bytes;
     }
     exchangeSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -525,8 +468,11 @@ template <class Get>
 void DomainsOverRanks::gather_per_particle(Op op, double* all, int k, Get&& get) {
     usable();
     announce(op);
-    std::vector<double> local(static_cast<size_t>(k) * ids_.size());
-    run_together(*comm_, [&] { get(local.data()); });
+    std::vector<double> local(static_cast<size_t>(k * local_->particle_count()));
+    run_together(*comm_, [&] {
+        slot_ids();
+        get(local.data());
+    });
     local.resize(static_cast<size_t>(k * owned_));
     gather_owned(local, k, all);
 }
@@ -563,10 +509,9 @@ void DomainsOverRanks::get_particle_energies(double* e) {
 void DomainsOverRanks::get_images(int32_t* images) {
     std::vector<double> all(static_cast<size_t>(3 * total_));
     gather_per_particle(Op::images, all.data(), 3, [&](double* mine) {
-        std::vector<int32_t> local(3 * ids_.size());
+        std::vector<int32_t> local(static_cast<size_t>(3 * local_->particle_count()));
         local_->get_images(local.data());
-        for (int64_t s = 0; s < owned_; ++s)
-            for (int d = 0; d < 3; ++d) mine[3 * s + d] = baseImages_[static_cast<size_t>(s)][d] + local[3 * s + d];
+        std::copy(local.begin(), local.begin() + 3 * owned_, mine);
     });
     for (size_t k = 0; k < all.size(); ++k) images[k] = static_cast<int32_t>(all[k]);
 }
@@ -587,7 +532,7 @@ double DomainsOverRanks::energy(const std::string& term) {
     announce(Op::energy, term);
     double value = 0.0;
     run_together(*comm_, [&] {
-        const size_t slots = ids_.size();
+        const auto slots = static_cast<size_t>(local_->particle_count());
         const bool kinetic = term == "kinetic" || term == "total";
         const bool potential = term == "potential" || term == "total";
         if (kinetic) {
@@ -595,7 +540,7 @@ double DomainsOverRanks::energy(const std::string& term) {
             local_->get_velocities(v.data());
             for (int64_t s = 0; s < owned_; ++s) {
                 const double* u = &v[static_cast<size_t>(3 * s)];
-                value += 0.5 * masses_[static_cast<size_t>(ids_[static_cast<size_t>(s)])] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+                value += 0.5 * masses_[static_cast<size_t>(slot_ids()[static_cast<size_t>(s)])] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
             }
         }
         if (potential) {
@@ -619,9 +564,12 @@ void DomainsOverRanks::term_energies_and_forces(const std::string& term, double*
                                                 double* torques) {
     usable();
     announce(Op::termArrays, term);
-    const size_t slots = ids_.size();
+    const auto slots = static_cast<size_t>(local_->particle_count());
     std::vector<double> e(slots), f(3 * slots), t(3 * slots);
-    run_together(*comm_, [&] { local_->term_energies_and_forces(term, e.data(), f.data(), t.data()); });
+    run_together(*comm_, [&] {
+        slot_ids();
+        local_->term_energies_and_forces(term, e.data(), f.data(), t.data());
+    });
     e.resize(static_cast<size_t>(owned_));
     f.resize(static_cast<size_t>(3 * owned_));
     t.resize(static_cast<size_t>(3 * owned_));

@@ -13,11 +13,12 @@
 //   Slots keep their global id for the noise (NoiseKey::ids), so a particle draws the same numbers
 //   on any rank, and Langevin trajectories are those of one rank to rounding.
 // - Ghosts: before every force evaluation at new positions the engine refreshes them
-//   (GhostExchange, simulation.hpp): the positions and velocities of its border slots go to the
-//   neighbours and theirs come back into the ghost slots, staged through the host, MPI point to
-//   point (two shifts along the ring of ranks). Ghosts are integrated locally like any particle
-//   but with incomplete forces; the refresh overwrites what that did, so only owned particles'
-//   motion counts.
+//   (GhostExchange, simulation/domain_exchange.hpp): the positions of its border slots, in the
+//   engine's own precision, go to the neighbours and theirs come back into the ghost slots, staged
+//   through pinned host memory, MPI point to point (two shifts along the ring of ranks). Ghosts
+//   are integrated locally like any particle but with incomplete forces; the refresh overwrites
+//   their positions and clears their velocities (no term under domains reads a velocity), so only
+//   owned particles' motion counts.
 // - Pairs: full neighbour lists over owned and ghost slots; an owned particle's pair force is
 //   complete from them, so forces need no reverse communication. Per-particle energies are half of
 //   each pair's, so the sum over owned slots of all ranks counts each pair once.
@@ -33,7 +34,9 @@
 //   wrong force). A rebuild migrates particles that left the slab to their
 //   new owner (sent to the neighbour with position, velocity and image), picks the ghosts anew
 //   and either renumbers the engine's slots in place (rebuild_in_place: terms that hold nothing by
-//   slot, e.g. pair terms alone) or makes the domain's engine again from its spec, at the same
+//   slot, e.g. pair terms alone; which slots stay, leave or border a face is found and the slots
+//   renumbered where the particles live, simulation/domain_slots.hpp, so the host handles only the
+//   migrants and the ghosts' ids) or makes the domain's engine again from its spec, at the same
 //   step and time, with the
 //   schedule's remaining steps, without beginning its integrator again (half-step Langevin
 //   velocities carry over).
@@ -148,51 +151,42 @@ public:
     std::optional<double> overdamped_kT() const override { return local_->overdamped_kT(); }
 
 private:
-    // An owned particle as it travels to a new owner: id, position, velocity, image (10 doubles).
-    struct Held {
-        int64_t id = 0;
-        std::array<double, 3> position{}, velocity{};
-        std::array<int32_t, 3> image{};
-    };
-    // One neighbour the ghosts are exchanged with: this rank sends to `to` and receives from `from`.
+    using Held = Migrant;
+    // One neighbour the ghosts are exchanged with: this rank sends `sent` particles to `to` and
+    // receives `received` from `from`.
     struct Link {
         int to = 0, from = 0;
-        std::vector<int64_t> sent;  // owned slots
-        int64_t received = 0;      // ghosts from it
+        int64_t sent = 0, received = 0;
     };
 
     // GhostExchange
-    const std::vector<int64_t>& border_slots() const override { return borderSlots_; }
-    const std::vector<int64_t>& ghost_slots() const override { return ghostSlots_; }
-    void exchange(const double* border, double* ghosts) override;
+    void exchange(const void* border, void* ghosts, size_t bytes) override;
 
     void fire_due(bool final);
     // The owned particles as they are now: positions, velocities and images (whole, since load).
     std::vector<Held> owned_now();
-    // The particles at these slots, from the engine's positions, velocities and images (3 per slot).
-    std::vector<Held> held_at(const std::vector<int64_t>& slots, const std::vector<double>& x,
-                              const std::vector<double>& v, const std::vector<int32_t>& images) const;
     // `out` to rank `to`, and whatever rank `from` sends in the same shift (its count first).
     std::vector<double> shift_values(const std::vector<double>& out, int to, int from) const;
     // After a step: the largest move since the rebuild over all ranks; rebuilds past half the limit.
     void check_moves();
     // Owned particles that left the slab go to their new owner; returns what this rank owns now.
     std::vector<Held> migrate(std::vector<Held> held);
-    // A rebuild that renumbers the present engine's slots (DomainSpec::renumbers_in_place): only the
-    // migrants and the new ghosts' ids cross the host; the slots that stay are gathered where they
-    // live. Collective.
+    // The particles leaving for the ranks above and below go there, once every rank knows that none
+    // strayed farther (`astray`: the largest id of one that did, -1 for none); returns those that
+    // arrived here.
+    std::vector<Held> cross(const std::vector<Held>& up, const std::vector<Held>& down, int64_t astray) const;
+    // A rebuild that renumbers the present engine's slots where they live
+    // (DomainSpec::renumbers_in_place): only the migrants and the new ghosts' ids cross the host.
+    // Collective.
     void rebuild_in_place();
-    // The owned slots of `owned` particles (whose coordinates along the axis `along` gives) that
-    // each link sends as ghosts.
-    template <class Along>
-    void choose_borders(std::vector<Link>& links, int64_t owned, Along&& along) const;
+    // The attributes of these particles, from the whole system's spec.
+    SlotAttributes attributes_of(const std::vector<int64_t>& ids) const;
+    // The links of this rank's slab (SlabGeometry::links), their counts zero.
+    std::vector<Link> no_links() const;
     // A domain ready to be adopted: its slots, ghosts and engine.
     struct Domain {
-        std::vector<int64_t> ids;
-        int64_t owned = 0;
-        std::vector<std::array<int32_t, 3>> baseImages;
+        DomainLayout layout;
         std::vector<Link> links;
-        std::vector<int64_t> borderSlots, ghostSlots;
         std::unique_ptr<Simulation> engine;
     };
     // Picks the ghosts of `owned` and loads the domain's engine, leaving the present one untouched
@@ -201,7 +195,9 @@ private:
     // Makes `next` this rank's domain. Called by every rank once all have built theirs, so that a
     // build that fails on one rank leaves every rank with the domains it had.
     void adopt(Domain next);
-    int slab_of(double x) const;
+    SlabGeometry geometry() const;
+    // Each slot's global id (owned slots first); after a rebuild in place, from the engine.
+    const std::vector<int64_t>& slot_ids();
     // Per-particle values of the owned slots (k each, from `local` over all the engine's slots) of
     // every rank, into `all` in id order.
     void gather_owned(const std::vector<double>& local, int k, double* all);
@@ -231,11 +227,10 @@ private:
     double width_ = 0.0;      // of the ghost layer
     double moveLimit_ = 0.0;  // the largest move since a rebuild that keeps every pair force whole
 
-    std::vector<int64_t> ids_;  // global id by slot: owned, then ghosts
+    std::vector<int64_t> ids_;  // global id by slot (owned, then ghosts), while idsKnown_
+    bool idsKnown_ = false;
     int64_t owned_ = 0;
-    std::vector<std::array<int32_t, 3>> baseImages_;  // owned particles' images before the present engine
     std::vector<Link> links_;
-    std::vector<int64_t> borderSlots_, ghostSlots_;
     int64_t startStep_ = 0;  // the step and time of the document, for the first engine
     double startTime_ = 0.0;
     int64_t finalStep_ = 0;  // where the whole system's schedule ends

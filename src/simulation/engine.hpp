@@ -22,6 +22,7 @@
 #include "forcefield/make_interactors.hpp"
 #include "integrators/make_integrator.hpp"
 #include "simulation/callback_term.hpp"
+#include "simulation/domain_slots.hpp"
 #include "simulation/checkpoint_file.hpp"
 #include "simulation/energy_terms.hpp"
 #include "simulation/engine_functors.hpp"
@@ -148,6 +149,7 @@ public:
 
     int64_t particle_count() const override { return p_.count; }
     int64_t massive_count() const override {
+        slot_copies_on_host();
         return std::count_if(masses_.begin(), masses_.end(), [](double m) { return m > 0.0; });
     }
     int64_t current_step() const override { return p_.timeline.step(); }
@@ -220,69 +222,58 @@ public:
     }
     double list_radius() const override { return forceField_.largest_list_radius(); }
     double pair_cutoff() const override { return largestCutoff_; }
-    void hold_ghosts(const std::vector<int64_t>& globalIds, GhostExchange* exchange, bool begun) override {
+    void hold_ghosts(const DomainLayout& layout, GhostExchange* exchange, bool begun) override {
         backend_.activate();
-        backend_.upload(globalIds_, globalIds.data(), globalIds.size());
-        p_.noise.ids = globalIds_.data();
-        ghosts_ = exchange;
-        const std::vector<int64_t>& border = exchange->border_slots();
-        const std::vector<int64_t>& ghosts = exchange->ghost_slots();
-        backend_.upload(borderSlots_, border.data(), border.size());
-        backend_.upload(ghostSlots_, ghosts.data(), ghosts.size());
-        ownedSlots_ = p_.count - static_cast<int64_t>(ghosts.size());
-        backend_.resize(heldPositions_, static_cast<size_t>(p_.count));
-        backend_.for_each(p_.count, CopyArray<Real4<R>>{p_.pos.data(), heldPositions_.data()});
+        domain_.hold(p_, layout, exchange);
+        p_.noise.ids = domain_.global_ids();
         ghostsAt_ = p_.version;  // the ghosts were loaded with their owners' present positions
         if (begun && schedule_.stages() > 0) activeStage_ = schedule_.stage_after(current_step());
         cache_.invalidate();
     }
 
-    void reseat(const SlotReseat& plan) override {
-        if (!ghosts_) throw Error(STRUCTMD_ERR_INTERNAL, "only a spatial domain's engine is renumbered");
+    double largest_owned_move() override {
         backend_.activate();
-        const auto kept = static_cast<int64_t>(plan.kept.size());
-        const auto count = static_cast<int64_t>(plan.globalIds.size());
-        backend_.upload(reseatFrom_, plan.kept.data(), plan.kept.size());
-        std::vector<Real4<R>> pos(static_cast<size_t>(count - kept)), vel(pos.size());
-        for (size_t k = 0; k < pos.size(); ++k) {
-            const double* x = &plan.addedPositions[3 * k];
-            const double* v = &plan.addedVelocities[3 * k];
-            pos[k] = {R(x[0]), R(x[1]), R(x[2]), R(plan.typeIndex[k])};
-            vel[k] = {R(v[0]), R(v[1]), R(v[2]), R(plan.mass[k])};
-        }
-        renumber(p_.pos, kept, pos);
-        renumber(p_.vel, kept, vel);
-        renumber(p_.image, kept, std::vector<Image>(pos.size(), Image{0, 0, 0}));
-        // Arrays the input left empty stay empty.
-        if (!p_.radius.empty()) renumber(p_.radius, kept, std::vector<R>(plan.radius.begin(), plan.radius.end()));
-        if (!p_.charge.empty()) renumber(p_.charge, kept, std::vector<R>(plan.charge.begin(), plan.charge.end()));
-        if (!p_.model.empty()) renumber(p_.model, kept, plan.model);
-        backend_.resize(p_.force, static_cast<size_t>(count));
-        if (!p_.energy.empty()) backend_.resize(p_.energy, static_cast<size_t>(count));
-        if (!p_.virial.empty()) backend_.resize(p_.virial, static_cast<size_t>(count));
-        typeIndex_ = renumbered_on_host(typeIndex_, plan.kept, plan.typeIndex);
-        masses_ = renumbered_on_host(masses_, plan.kept, plan.mass);
-        radii_ = renumbered_on_host(radii_, plan.kept, plan.radius);
-        batchId_.assign(static_cast<size_t>(count), batchId_.empty() ? 0 : batchId_.front());
-        p_.count = count;
+        return std::sqrt(domain_.largest_owned_move(p_));
+    }
+
+    SlabSort sort_owned(const SlabGeometry& geometry) override {
+        backend_.activate();
+        return domain_.sort_owned(p_, geometry);
+    }
+    std::vector<std::vector<int64_t>> place_owned(const std::vector<Migrant>& arrivals,
+                                                  const SlotAttributes& attributes) override {
+        backend_.activate();
+        return domain_.place_owned(arrivals, attributes, p_);
+    }
+    void place_ghosts(const std::vector<int64_t>& ghostIds, const SlotAttributes& attributes,
+                      const DomainTerms& terms) override {
+        backend_.activate();
+        domain_.place_ghosts(p_, ghostIds, attributes);
+        p_.noise.ids = domain_.global_ids();
         p_.drift = {};
-        context_.particles = count;
+        context_.particles = p_.count;
         context_.model = p_.model.data();
-        // The terms and integrators again, over the new slots (their lists hold the old buffers).
-        ForceField<B, R> forceField = make_force_field(*plan.forceField, *plan.components, &forceField_);
-        std::vector<std::unique_ptr<Integrator<B, R>>> integrators = make_integrators(*plan.integrators, forceField);
+        // The host's copies by slot are not kept for a domain's slots: its view answers for them.
+        typeIndex_.clear();
+        masses_.clear();
+        radii_.clear();
+        batchId_.assign(static_cast<size_t>(p_.count), 0);
+        // The terms and integrators again, over the new slots (their lists hold the old buffers),
+        // the lists as large as they had grown.
+        ForceField<B, R> forceField = make_force_field(*terms.forceField, *terms.components, &forceField_);
+        forceField.reserve_lists_like(forceField_);
+        std::vector<std::unique_ptr<Integrator<B, R>>> integrators = make_integrators(*terms.integrators, forceField);
         for (size_t k = 0; k < integrators.size(); ++k) integrators[k]->restore(integrators_[k]->state());
         retiredListBuilds_ += forceField_.builds();
         forceField_ = std::move(forceField);
         integrators_ = std::move(integrators);
-        hold_ghosts(plan.globalIds, ghosts_, true);
-        ghostsAt_ = -1;  // the ghost slots hold nothing yet: refreshed before the next evaluation
+        cache_.invalidate();
+        ghostsAt_ = -1;  // the ghost slots hold no positions yet: refreshed before the next evaluation
         positions_changed();
     }
-
-    double largest_owned_move() override {
+    std::vector<int64_t> global_ids() override {
         backend_.activate();
-        return std::sqrt(backend_.maximum(ownedSlots_, SquaredMoveSince<R>{p_.pos.data(), heldPositions_.data(), p_.box}));
+        return domain_.ids_on_host(p_.count);
     }
 
     void compute(unsigned flags) override {
@@ -309,7 +300,10 @@ public:
         get_images(images.data());
         for (int64_t k = 0; k < 3 * p_.count; ++k) xyz[k] += images[k] * boxLengths_[k % 3];
     }
-    void get_radii(double* r) override { std::copy(radii_.begin(), radii_.end(), r); }
+    void get_radii(double* r) override {
+        slot_copies_on_host();
+        std::copy(radii_.begin(), radii_.end(), r);
+    }
     void get_orientations(double* q) override {
         backend_.activate();
         if (p_.dir.empty()) {
@@ -374,8 +368,14 @@ public:
         backend_.download(p_.energy, values.data(), values.size());
         std::copy(values.begin(), values.end(), e);
     }
-    void get_masses(double* m) override { std::copy(masses_.begin(), masses_.end(), m); }
-    void get_types(int32_t* types) override { std::copy(typeIndex_.begin(), typeIndex_.end(), types); }
+    void get_masses(double* m) override {
+        slot_copies_on_host();
+        std::copy(masses_.begin(), masses_.end(), m);
+    }
+    void get_types(int32_t* types) override {
+        slot_copies_on_host();
+        std::copy(typeIndex_.begin(), typeIndex_.end(), types);
+    }
 
     double energy(const std::string& request) override {
         backend_.activate();
@@ -769,30 +769,6 @@ private:
         backend_.upload(p_.clock, &p_.timeline.launched(), 1);
     }
 
-    // A per-slot array renumbered for reseat(): the kept slots gathered from the old array (by
-    // reseatFrom_), then `added`.
-    template <class T>
-    void renumber(typename B::template Buffer<T>& array, int64_t kept, const std::vector<T>& added) {
-        typename B::template Buffer<T> renumbered, staged;
-        backend_.resize(renumbered, static_cast<size_t>(kept) + added.size());
-        backend_.for_each(kept, GatherSlots<T>{array.data(), reseatFrom_.data(), renumbered.data()});
-        if (!added.empty()) {
-            backend_.upload(staged, added.data(), added.size());
-            backend_.for_each(static_cast<int64_t>(added.size()), CopyArray<T>{staged.data(), renumbered.data() + kept});
-        }
-        std::swap(array, renumbered);
-    }
-
-    template <class T>
-    static std::vector<T> renumbered_on_host(const std::vector<T>& old, const std::vector<int64_t>& kept,
-                                             const std::vector<T>& added) {
-        std::vector<T> renumbered;
-        renumbered.reserve(kept.size() + added.size());
-        for (int64_t slot : kept) renumbered.push_back(old[static_cast<size_t>(slot)]);
-        renumbered.insert(renumbered.end(), added.begin(), added.end());
-        return renumbered;
-    }
-
     // New positions (or a new box): every cached quantity and every list is out of date.
     void positions_changed() {
         ++p_.version;
@@ -815,39 +791,21 @@ private:
         if (p_.drift.slotOf) forceField_.drift_mirrored(p_.version);
     }
 
-    // A spatial domain's ghosts take their owners' positions and velocities whenever the positions
-    // moved since they last did (collective: every rank's engine makes the same calls). Their own
-    // drift moved them with incomplete forces; the new positions are a new version, so the lists
-    // check them afresh.
+    // A spatial domain's view answers for its slots' types, masses and radii once it renumbered them.
+    void slot_copies_on_host() const {
+        if (domain_.held() && static_cast<int64_t>(masses_.size()) != p_.count)
+            throw Error(STRUCTMD_ERR_INTERNAL, "a spatial domain's engine keeps no host copy of its slots' attributes");
+    }
+
+    // A spatial domain's ghosts take their owners' positions whenever the positions moved since
+    // they last did (collective: every rank's engine makes the same calls). Their own drift moved
+    // them with incomplete forces; the new positions are a new version, so the lists check them
+    // afresh.
     void refresh_ghosts() {
-        if (!ghosts_ || ghostsAt_ == p_.version) return;
-        const auto border = static_cast<int64_t>(ghosts_->border_slots().size());
-        const auto ghosts = static_cast<int64_t>(ghosts_->ghost_slots().size());
-        std::vector<double> sent(static_cast<size_t>(6 * border)), received(static_cast<size_t>(6 * ghosts));
-        if (border > 0) {
-            unpack_six(gather(p_.pos, borderSlots_, border), border, sent.data(), 0);
-            unpack_six(gather(p_.vel, borderSlots_, border), border, sent.data(), 3);
-        }
-        ghosts_->exchange(sent.data(), received.data());
-        if (ghosts > 0) {
-            Real4<R>* values = hostVectors_.reserve(static_cast<size_t>(2 * ghosts));
-            for (int64_t k = 0; k < ghosts; ++k)
-                for (int half = 0; half < 2; ++half) {
-                    const double* x = received.data() + 6 * k + 3 * half;
-                    values[2 * k + half] = {R(x[0]), R(x[1]), R(x[2]), R(0)};
-                }
-            backend_.for_each(ghosts, PlaceGhosts<R>{values, ghostSlots_.data(), p_.pos.data(), p_.vel.data()});
-            backend_.read_from_host(hostVectors_, static_cast<size_t>(2 * ghosts));
-        }
+        if (!domain_.held() || ghostsAt_ == p_.version) return;
+        domain_.refresh(p_, hostVectors_);
         ++p_.version;
         ghostsAt_ = p_.version;
-    }
-    static void unpack_six(const Real4<R>* values, int64_t m, double* out, int offset) {
-        for (int64_t k = 0; k < m; ++k) {
-            out[6 * k + offset] = values[k].x;
-            out[6 * k + offset + 1] = values[k].y;
-            out[6 * k + offset + 2] = values[k].z;
-        }
     }
 
     // What the next drift kernel can take over (state/drift_bookkeeping.hpp): clearing the forces,
@@ -1111,13 +1069,9 @@ private:
     int64_t watchedVersion_ = -1;
     bool watchedRead_ = false;
     typename B::template Staging<unsigned long long> faultWord_;
-    // A spatial domain's (hold_ghosts): the global id of every slot, the slots sent to and received
-    // from the neighbouring domains, and the positions version the ghosts were last refreshed at.
-    typename B::template Buffer<int64_t> globalIds_, borderSlots_, ghostSlots_;
-    GhostExchange* ghosts_ = nullptr;
-    int64_t ownedSlots_ = 0;
-    typename B::template Buffer<int64_t> reseatFrom_;  // reseat(): the old slot of each kept one
-    typename B::template Buffer<Real4<R>> heldPositions_;  // at hold_ghosts, for largest_owned_move
+    // A spatial domain's slots (hold_ghosts), and the positions version the ghosts were last
+    // refreshed at.
+    DomainSlots<B, R> domain_{backend_};
     int64_t ghostsAt_ = -1;
 };
 

@@ -92,35 +92,11 @@ struct ScatterById {
     SMD_HD void operator()(int64_t k) const { to[ids[k]] = from[k]; }
 };
 
-// Ghost slots take their owners' positions and velocities (values: position then velocity, by
-// ghost), keeping the type index and the mass in w.
-template <class R>
-struct PlaceGhosts {
-    const Real4<R>* values;
-    const int64_t* slots;
-    Real4<R>* pos;
-    Real4<R>* vel;
-    SMD_HD void operator()(int64_t k) const {
-        const int64_t i = slots[k];
-        pos[i] = {values[2 * k].x, values[2 * k].y, values[2 * k].z, pos[i].w};
-        vel[i] = {values[2 * k + 1].x, values[2 * k + 1].y, values[2 * k + 1].z, vel[i].w};
-    }
-};
-
 template <class T>
 struct CopyArray {
     const T* from;
     T* to;
     SMD_HD void operator()(int64_t i) const { to[i] = from[i]; }
-};
-
-// Slot k of a renumbered array takes slot from[k] of the old one.
-template <class T>
-struct GatherSlots {
-    const T* old;
-    const int64_t* from;
-    T* renumbered;
-    SMD_HD void operator()(int64_t k) const { renumbered[k] = old[from[k]]; }
 };
 
 // The squared distance (minimum image) slot i moved from where it was.

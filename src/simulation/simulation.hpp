@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/thermodynamics.hpp"
+#include "simulation/domain_exchange.hpp"
 #include "simulation/force_callbacks.hpp"
 
 namespace structmd {
@@ -27,35 +28,6 @@ class StepFiring {
 public:
     virtual ~StepFiring() = default;
     virtual void fire(const std::vector<SimulationStep*>& due) = 0;
-};
-
-// A spatial domain's engine (parallel/domains_over_ranks.hpp) holds the particles its rank owns in
-// slots [0, owned) and ghosts, copies of particles other ranks own, after them. Before every force
-// evaluation at new positions the engine hands the positions and velocities of its border slots (x y
-// z vx vy vz each, in border_slots() order) to exchange(), which fills those of its ghost slots
-// (ghost_slots() order) with their owners'. Staged through the host.
-class GhostExchange {
-public:
-    virtual ~GhostExchange() = default;
-    virtual const std::vector<int64_t>& border_slots() const = 0;
-    virtual const std::vector<int64_t>& ghost_slots() const = 0;
-    virtual void exchange(const double* border, double* ghosts) = 0;
-};
-
-// A spatial domain's rebuild in place: its engine's slots renumbered. New slot k < kept.size() is
-// old slot kept[k] (position, velocity and image carried over where they live); the slots after
-// them take the added positions and velocities (3 each), image 0, and the added attributes (type
-// index, mass, radius, charge, model: one each); globalIds are every new slot's. The force field and integrators are made again from the specs for the new slots,
-// which suits terms that hold nothing by slot (no bonds, no exclusions): the caller's to check.
-struct SlotReseat {
-    std::vector<int64_t> kept;
-    std::vector<double> addedPositions, addedVelocities;
-    std::vector<int64_t> globalIds;
-    std::vector<int32_t> typeIndex, model;
-    std::vector<double> mass, radius, charge;
-    const ForceFieldSpec* forceField = nullptr;
-    const std::vector<IntegratorSpec>* integrators = nullptr;
-    const ForceFieldComponents* components = nullptr;
 };
 
 enum ComputeFlags : unsigned { kForces = 1u, kEnergy = 2u, kVirial = 4u };
@@ -102,24 +74,33 @@ public:
     // Who fires the due simulation steps from now on; nullptr: the simulation, on itself.
     virtual void set_step_firing(StepFiring* firing) = 0;
     virtual void compute(unsigned flags) = 0;
-    // Makes this engine a spatial domain's: globalIds[slot] keys each slot's noise, `exchange`
-    // refreshes the ghosts before force evaluations (it outlives the engine's use of it), and
-    // `begun` says that the schedule's present integrator already began on the domain's previous
-    // engine (its state, half-step velocities, is in the particles). Only engines implement it.
-    virtual void hold_ghosts(const std::vector<int64_t>& /*globalIds*/, GhostExchange* /*exchange*/, bool /*begun*/) {
-        throw Error(STRUCTMD_ERR_INTERNAL, "only an engine holds the ghosts of a spatial domain");
+    // A spatial domain's engine (simulation/domain_exchange.hpp). hold_ghosts makes this engine the
+    // domain's as `layout` says: `exchange` refreshes the ghosts before force evaluations (it
+    // outlives the engine's use of it), and `begun` says that the schedule's present integrator
+    // already began on the domain's previous engine (its state, half-step velocities, is in the
+    // particles). Only engines implement these.
+    virtual void hold_ghosts(const DomainLayout& /*layout*/, GhostExchange* /*exchange*/, bool /*begun*/) {
+        domain_only();
     }
-    // A spatial domain's engine (after hold_ghosts): renumbers its slots as `plan` says, then takes
-    // the exchange's new border and ghost slots; the ghosts are refreshed before the next force
-    // evaluation, and the forces evaluated again.
-    virtual void reseat(const SlotReseat& /*plan*/) {
-        throw Error(STRUCTMD_ERR_INTERNAL, "only an engine holds the ghosts of a spatial domain");
+    // The largest distance any owned slot moved since its domain was laid out, reduced where the
+    // particles live.
+    virtual double largest_owned_move() { domain_only(); }
+    // A rebuild in place, in three calls (the view moves what they return between ranks in
+    // between): sort_owned finds where each owned particle goes; place_owned makes the slots that
+    // stay and the arrivals (with their attributes) the owned ones and returns, by link, the
+    // global ids of those it sends as ghosts; place_ghosts takes the ghosts' ids and attributes,
+    // makes `terms` again over the new slots, and refreshes the ghosts before the next evaluation.
+    virtual SlabSort sort_owned(const SlabGeometry& /*geometry*/) { domain_only(); }
+    virtual std::vector<std::vector<int64_t>> place_owned(const std::vector<Migrant>& /*arrivals*/,
+                                                          const SlotAttributes& /*attributes*/) {
+        domain_only();
     }
-    // A spatial domain's engine: the largest distance any owned slot (those before the ghosts) moved
-    // since hold_ghosts, reduced where the particles live.
-    virtual double largest_owned_move() {
-        throw Error(STRUCTMD_ERR_INTERNAL, "only an engine holds the ghosts of a spatial domain");
+    virtual void place_ghosts(const std::vector<int64_t>& /*ghostIds*/, const SlotAttributes& /*attributes*/,
+                              const DomainTerms& /*terms*/) {
+        domain_only();
     }
+    // Each slot's global id, owned slots first.
+    virtual std::vector<int64_t> global_ids() { domain_only(); }
     // Moves the simulation steps into `into`, for a view that fires them itself (a spatial domain's,
     // whose engines come and go); the simulation has none after. Only engines implement it.
     virtual void take_steps(std::vector<std::unique_ptr<SimulationStep>>& /*into*/) {
@@ -274,6 +255,11 @@ public:
         return t;
     }
     double pressure() { return thermodynamics().pressure; }
+
+private:
+    [[noreturn]] static void domain_only() {
+        throw Error(STRUCTMD_ERR_INTERNAL, "only an engine holds the slots of a spatial domain");
+    }
 };
 
 }  // namespace structmd

@@ -144,6 +144,16 @@ public:
         return largest;
     }
 
+    // The i < n for which keep(i) holds, in increasing order, into out (room for n); returns how many.
+    template <class Keep>
+    int64_t select(int64_t n, const Keep& keep, int64_t* out) const {
+        int64_t count = 0;
+        for (int64_t i = 0; i < n; ++i)
+            if (keep(i)) out[count++] = i;
+        transfers_.deviceToHost += sizeof(int64_t);
+        return count;
+    }
+
     // Buffers are sized through their backend, which keeps the account of what they hold.
     template <class T>
     void resize(Buffer<T>& buffer, size_t n) const {

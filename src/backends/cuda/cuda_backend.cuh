@@ -2,6 +2,7 @@
 // CUDA backend: device buffers and kernel launches on one stream per handle. Launches are
 // asynchronous; the host waits only where a value must come back (a reduction, a read).
 #include <cuda_runtime.h>
+#include <thrust/copy.h>
 #include <thrust/execution_policy.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/transform_reduce.h>
@@ -255,6 +256,16 @@ public:
         transfers_.deviceToHost += sizeof(double);
         return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
                                         thrust::counting_iterator<int64_t>(n), f, 0.0, ReduceMax());
+    }
+
+    // The i < n for which keep(i) holds, in increasing order, into out (room for n); returns how many.
+    template <class Keep>
+    int64_t select(int64_t n, const Keep& keep, int64_t* out) const {
+        if (n <= 0) return 0;
+        issue_recorded();
+        transfers_.deviceToHost += sizeof(int64_t);
+        return thrust::copy_if(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
+                               thrust::counting_iterator<int64_t>(n), out, keep) - out;
     }
 
     // Buffers are sized through their backend, which keeps the account of what they hold.
