@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "parallel/slab_geometry.hpp"
+#include "core/slab_geometry.hpp"
 
 namespace structmd {
 

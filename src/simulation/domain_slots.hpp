@@ -13,7 +13,7 @@
 #include "core/error.hpp"
 #include "core/hd.hpp"
 #include "core/vec.hpp"
-#include "parallel/slab_geometry.hpp"
+#include "core/slab_geometry.hpp"
 #include "simulation/domain_exchange.hpp"
 #include "simulation/engine_functors.hpp"
 #include "state/particles.hpp"

@@ -39,7 +39,8 @@ struct SlabGeometry {
     // The ghost links of a slab: to the rank above (0) and below (1); with two ranks one link, to
     // the other rank, which gets a particle near both faces once.
     SMD_HD SMD_INLINE int links() const { return ranks == 2 ? 1 : 2; }
-    // Bit l set: an owned particle at x lies within the ghost width of the face link l sends across.
+    // Bit l set: a particle at x, in this slab, lies within the ghost width of the face link l sends
+    // across.
     SMD_HD SMD_INLINE int borders(double x) const {
         const double at = fraction(x) * length;
         const double lower = length * rank / ranks, upper = length * (rank + 1) / ranks;
