@@ -7,8 +7,9 @@
 // there are walls), 2D transforms of every z plane, the slab's Stokes solve per wave vector
 // (slab_stokes.hpp), the inverse transforms, and J = S^T the Gaussian's average of the velocity at
 // the particle, times the cell volume. Near a wall the Gaussian has its mirror images subtracted
-// (SlabAxisZ); the part of a Gaussian beyond the slab is left out (on both sides of the product,
-// so M stays symmetric). Only the group's particles take part; the product is 0 at the others.
+// (SlabAxisZ; the spreading and the average are gaussian_spreading.hpp's); the part of a Gaussian
+// beyond the slab is left out (on both sides of the product, so M stays symmetric). Only the
+// group's particles take part; the product is 0 at the others.
 //
 // The positions are placed once (place) and then any number of products taken (apply), as the
 // Lanczos square root and the random finite difference need.
@@ -20,7 +21,7 @@
 #include "core/fft_grid.hpp"
 #include "core/hd.hpp"
 #include "core/vec.hpp"
-#include "hydrodynamics/fcm_mesh.hpp"
+#include "hydrodynamics/gaussian_spreading.hpp"
 #include "hydrodynamics/slab_stokes.hpp"
 #include "neighbour/line_bins.hpp"
 
@@ -64,6 +65,12 @@ struct SlabAxisZ {
         const int centred = static_cast<int>(floor((z - bottom) / spacing - R(0.5) * R(support) + R(1)));
         return centred < 0 ? 0 : (centred > n - support ? n - support : centred);
     }
+    // As GaussianAxes' z axis (gaussian_spreading.hpp): nodes are planes, none below the bottom.
+    SMD_HD SMD_INLINE int first_node(R z) const { return first(z); }
+    SMD_HD SMD_INLINE R node_weight(int firstNode, int c, R z) const { return weight(firstNode + c, z); }
+    SMD_HD SMD_INLINE int plane(int i) const { return i; }
+    SMD_HD SMD_INLINE int plane_below(int plane, int c) const { return plane - c; }
+
     SMD_HD SMD_INLINE R weight(int node, R z) const {
         const R at = bottom + R(node) * spacing;
         R w = gaussian(at - z);
@@ -82,110 +89,7 @@ private:
 };
 
 template <class R>
-struct SlabAxes {
-    FcmAxis<R> x, y;
-    SlabAxisZ<R> z;
-    FftGrid grid;
-};
-
-// The grid line (y, z) a group member's kernel starts on, by which LineBins sorts the particles.
-template <class R>
-struct SlabKernelLine {
-    const Real4<R>* pos;
-    const uint8_t* group;
-    SlabAxes<R> axes;
-    SMD_HD int operator()(int64_t i) const {
-        if (group && !group[i]) return -1;
-        const Real4<R> r = pos[i];
-        return axes.z.first(r.z) * axes.grid.ny + axes.y.fold(axes.y.first(axes.y.coordinate(r.y)));
-    }
-};
-
-// One grid line along x of the three density grids, cleared and then summed: a particle whose
-// kernel starts on line (y - b, z - c) adds v g_x g_y[b] g_z along the line.
-template <class R>
-struct SlabSpreadLine {
-    const Real4<R>* pos;
-    const R* values;  // flat, three numbers a particle
-    const int* order;
-    const int* lineStart;
-    SlabAxes<R> axes;
-    R* density;
-
-    SMD_HD void operator()(int64_t line) const {
-        const FftGrid& g = axes.grid;
-        const int64_t points = g.points();
-        const int y = static_cast<int>(line % g.ny), z = static_cast<int>(line / g.ny);
-        R* rowX = density + g.index(0, y, z);
-        R* rowY = rowX + points;
-        R* rowZ = rowY + points;
-        for (int x = 0; x < g.nx; ++x) rowX[x] = rowY[x] = rowZ[x] = R(0);
-        const int support = axes.x.support;
-        for (int c = 0; c < axes.z.support && c <= z; ++c) {
-            for (int b = 0; b < support; ++b) {
-                const int bin = (z - c) * g.ny + axes.y.fold(y - b);
-                for (int s = lineStart[bin]; s < lineStart[bin + 1]; ++s) {
-                    const int i = order[s];
-                    const Real4<R> r = pos[i];
-                    const R uy = axes.y.coordinate(r.y);
-                    const R wyz = axes.y.weight(axes.y.first(uy), b, uy) * axes.z.weight(z, r.z);
-                    const Vec3<R> v{values[3 * i], values[3 * i + 1], values[3 * i + 2]};
-                    const R ux = axes.x.coordinate(r.x);
-                    const int firstX = axes.x.first(ux);
-                    for (int a = 0; a < support; ++a) {
-                        const R w = wyz * axes.x.weight(firstX, a, ux);
-                        const int at = axes.x.fold(firstX + a);
-                        rowX[at] += w * v.x;
-                        rowY[at] += w * v.y;
-                        rowZ[at] += w * v.z;
-                    }
-                }
-            }
-        }
-    }
-};
-
-// Each group member's velocity (flat): the grid's field averaged by its Gaussian, times the cell
-// volume; 0 for the others.
-template <class R>
-struct SlabInterpolate {
-    const Real4<R>* pos;
-    const uint8_t* group;
-    SlabAxes<R> axes;
-    const R* field;
-    R cellVolume;
-    R* out;
-
-    SMD_HD void operator()(int64_t i) const {
-        Vec3<R> sum{R(0), R(0), R(0)};
-        if (!group || group[i]) {
-            const FftGrid& g = axes.grid;
-            const int64_t points = g.points();
-            const Real4<R> r = pos[i];
-            const R ux = axes.x.coordinate(r.x), uy = axes.y.coordinate(r.y);
-            const int firstX = axes.x.first(ux), firstY = axes.y.first(uy), firstZ = axes.z.first(r.z);
-            const int support = axes.x.support;
-            for (int c = 0; c < axes.z.support; ++c) {
-                const R wz = axes.z.weight(firstZ + c, r.z);
-                for (int b = 0; b < support; ++b) {
-                    const R wyz = wz * axes.y.weight(firstY, b, uy);
-                    const R* line = field + g.index(0, axes.y.fold(firstY + b), firstZ + c);
-                    for (int a = 0; a < support; ++a) {
-                        const int at = axes.x.fold(firstX + a);
-                        const R w = wyz * axes.x.weight(firstX, a, ux);
-                        sum.x += w * line[at];
-                        sum.y += w * line[at + points];
-                        sum.z += w * line[at + 2 * points];
-                    }
-                }
-            }
-            sum = cellVolume * sum;
-        }
-        out[3 * i] = sum.x;
-        out[3 * i + 1] = sum.y;
-        out[3 * i + 2] = sum.z;
-    }
-};
+using SlabAxes = GaussianAxes<R, SlabAxisZ<R>>;
 
 #if SMD_HOST_CODE
 // The Gaussian reaches out to where it falls to 1e-8 of its peak: the truncation is far below the
@@ -244,7 +148,7 @@ public:
         count_ = count;
         pos_ = pos;
         group_ = group;
-        bins_.sort(count, SlabKernelLine<R>{pos, group, axes_});
+        bins_.sort(count, GaussianKernelLine<R, SlabAxisZ<R>>{pos, group, axes_});
     }
 
     // out = M v, both flat (three numbers a particle) in backend memory.
@@ -252,8 +156,8 @@ public:
         const FftGrid grid = plan_.grid;
         const int64_t planePoints = int64_t(grid.nx) * grid.ny;
         const int64_t planeSpectrum = int64_t(grid.half_x()) * grid.ny;
-        backend_.for_each(grid.ny * grid.nz,
-                          SlabSpreadLine<R>{pos_, v, bins_.order(), bins_.line_start(), axes_, field_.data()});
+        backend_.for_each(grid.ny * grid.nz, GaussianSpreadLine<R, SlabAxisZ<R>, FlatVectors<R>>{
+                                                 pos_, {v}, bins_.order(), bins_.line_start(), axes_, field_.data()});
         fft_.forward(field_.data(), spectrum_.data());
         const double spacing = plan_.height / (grid.nz - 1);
         backend_.for_each(planeSpectrum,
@@ -261,7 +165,8 @@ public:
                                              spacing, spacing / (double(planePoints) * viscosity), plan_.walls});
         fft_.inverse(solved_.data(), field_.data());
         const double cellVolume = plan_.box[0] * plan_.box[1] * spacing / double(planePoints);
-        backend_.for_each(count_, SlabInterpolate<R>{pos_, group_, axes_, field_.data(), R(cellVolume), out});
+        backend_.for_each(count_, GaussianInterpolate<R, SlabAxisZ<R>>{pos_, group_, axes_, field_.data(),
+                                                                       R(cellVolume), out});
     }
 
 private:
