@@ -3,7 +3,9 @@
 // cpu_fft.hpp on pocketfft, backends/cuda/cuda_fft.cuh on cuFFT): a real grid of nx * ny * nz points,
 // x fastest, and its half spectrum of (nx/2 + 1) * ny * nz complex numbers, x fastest. Neither
 // direction is normalised: inverse(forward(g)) = nx ny nz g. A grid with nz = 1 is a 2D transform (the
-// planar hydrodynamics). Long-range electrostatics and the spectral hydrodynamics use it.
+// planar hydrodynamics). Long-range electrostatics and the spectral hydrodynamics use it. Made with
+// FftAxes::xy, the transform is the 2D one of every z plane on its own, nz of them in one batched call
+// (the doubly periodic slab's), with the same layout; then inverse(forward(g)) = nx ny g.
 #include "core/hd.hpp"
 
 namespace structmd {
@@ -13,6 +15,9 @@ template <class R>
 struct Complex {
     R re, im;
 };
+
+// The axes a transform covers: all three, or x and y of each z plane.
+enum class FftAxes : int { xyz, xy };
 
 struct FftGrid {
     int nx = 0, ny = 0, nz = 0;

@@ -14,8 +14,7 @@
 // The Nyquist planes of the grid are left out of both parts: the projector there has no consistent
 // sign, and leaving them out keeps M symmetric and the noise its exact square root.
 //
-// Forces go onto the grid one line along x per thread from the particles sorted by the line their
-// kernel starts on (neighbour/line_bins.hpp, as the particle-mesh Ewald of electrostatics does).
+// The spreading and the average are gaussian_spreading.hpp's, periodic along z.
 //
 // The mesh is generic over the Gaussian's width and the Fourier multiplier G(k) that turns the force
 // density into velocity (u_k = G(k) P_k f_k): FcmGreen below is the Stokes solve of the force
@@ -31,6 +30,7 @@
 #include "core/hd.hpp"
 #include "core/random.hpp"
 #include "core/vec.hpp"
+#include "hydrodynamics/gaussian_spreading.hpp"
 #include "neighbour/line_bins.hpp"
 #include "state/particles.hpp"
 #include "state/step_clock.hpp"
@@ -45,35 +45,8 @@ struct FcmPlan {
     int support = 0;     // grid points the Gaussian covers along each axis
 };
 
-// The Gaussian's weights along one axis: a particle at grid coordinate u reaches the `support`
-// points first .. first + support - 1 (not folded), the ones closest to it.
 template <class R>
-struct FcmAxis {
-    R spacing;        // h = L / n
-    R inverseLength;  // 1 / L
-    int n;
-    int support;
-    R inverseTwoSigma2;  // 1 / (2 sigma^2)
-    R norm;              // (2 pi sigma^2)^{-1/2}
-
-    SMD_HD SMD_INLINE R coordinate(R x) const { return R(n) * (x * inverseLength + R(0.5)); }
-    SMD_HD SMD_INLINE int first(R u) const { return static_cast<int>(floor(u - R(0.5) * R(support) + R(1))); }
-    // The weight at point first + j (distance (first + j - u) h).
-    SMD_HD SMD_INLINE R weight(int first, int j, R u) const {
-        const R d = (R(first + j) - u) * spacing;
-        return norm * exp(-d * d * inverseTwoSigma2);
-    }
-    SMD_HD SMD_INLINE int fold(int i) const {
-        const int m = i % n;
-        return m < 0 ? m + n : m;
-    }
-};
-
-template <class R>
-struct FcmAxes {
-    FcmAxis<R> x, y, z;
-    FftGrid grid;
-};
+using FcmAxes = GaussianAxes<R, FcmAxis<R>>;
 
 #if SMD_HOST_CODE
 template <class R>
@@ -86,67 +59,6 @@ inline FcmAxes<R> fcm_axes(const FcmPlan& plan) {
     return {axis[0], axis[1], axis[2], plan.grid};
 }
 #endif
-
-// The grid line (y, z) a group member's kernel starts on, by which LineBins sorts the particles.
-template <class R>
-struct FcmKernelLine {
-    const Real4<R>* pos;
-    const uint8_t* group;
-    FcmAxes<R> axes;
-    SMD_HD int operator()(int64_t i) const {
-        if (group && !group[i]) return -1;
-        const Real4<R> r = pos[i];
-        const int y = axes.y.fold(axes.y.first(axes.y.coordinate(r.y)));
-        const int z = axes.z.fold(axes.z.first(axes.z.coordinate(r.z)));
-        return z * axes.grid.ny + y;
-    }
-};
-
-// One grid line along x of the three force-density grids (x, y, z components, one after the
-// other), cleared and then summed: a particle whose kernel starts on line (y - b, z - c) adds
-// F g_x g_y[b] g_z[c] along the line. Bins in (c, b) order and each in particle order.
-template <class R>
-struct FcmSpreadLine {
-    const Real4<R>* pos;
-    const Real4<R>* force;
-    const int* order;
-    const int* lineStart;
-    FcmAxes<R> axes;
-    R* density;
-
-    SMD_HD void operator()(int64_t line) const {
-        const FftGrid& g = axes.grid;
-        const int64_t points = g.points();
-        const int y = static_cast<int>(line % g.ny), z = static_cast<int>(line / g.ny);
-        R* rowX = density + g.index(0, y, z);
-        R* rowY = rowX + points;
-        R* rowZ = rowY + points;
-        for (int x = 0; x < g.nx; ++x) rowX[x] = rowY[x] = rowZ[x] = R(0);
-        const int support = axes.x.support;
-        for (int c = 0; c < support; ++c) {
-            const int binZ = axes.z.fold(z - c);
-            for (int b = 0; b < support; ++b) {
-                const int bin = binZ * g.ny + axes.y.fold(y - b);
-                for (int s = lineStart[bin]; s < lineStart[bin + 1]; ++s) {
-                    const int i = order[s];
-                    const Real4<R> r = pos[i];
-                    const R uy = axes.y.coordinate(r.y), uz = axes.z.coordinate(r.z);
-                    const R wyz = axes.y.weight(axes.y.first(uy), b, uy) * axes.z.weight(axes.z.first(uz), c, uz);
-                    const Real4<R> f = force[i];
-                    const R ux = axes.x.coordinate(r.x);
-                    const int firstX = axes.x.first(ux);
-                    for (int a = 0; a < support; ++a) {
-                        const R w = wyz * axes.x.weight(firstX, a, ux);
-                        const int at = axes.x.fold(firstX + a);
-                        rowX[at] += w * f.x;
-                        rowY[at] += w * f.y;
-                        rowZ[at] += w * f.z;
-                    }
-                }
-            }
-        }
-    }
-};
 
 // The Stokes solve of the force coupling method: G(k) = 1 / (eta k^2).
 template <class R>
@@ -219,47 +131,6 @@ struct FcmStokesSolve {
     }
 };
 
-// Each group member's displacement (flat: 3i, 3i+1, 3i+2): the grid's field averaged by its
-// Gaussian, times the cell volume.
-template <class R>
-struct FcmInterpolate {
-    const Real4<R>* pos;
-    const uint8_t* group;
-    FcmAxes<R> axes;
-    const R* field;  // three grids, x, y, z components
-    R cellVolume;
-    R* displacement;
-
-    SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
-        const FftGrid& g = axes.grid;
-        const int64_t points = g.points();
-        const Real4<R> r = pos[i];
-        const R ux = axes.x.coordinate(r.x), uy = axes.y.coordinate(r.y), uz = axes.z.coordinate(r.z);
-        const int firstX = axes.x.first(ux), firstY = axes.y.first(uy), firstZ = axes.z.first(uz);
-        const int support = axes.x.support;
-        Vec3<R> sum{R(0), R(0), R(0)};
-        for (int c = 0; c < support; ++c) {
-            const int z = axes.z.fold(firstZ + c);
-            const R wz = axes.z.weight(firstZ, c, uz);
-            for (int b = 0; b < support; ++b) {
-                const R wyz = wz * axes.y.weight(firstY, b, uy);
-                const R* line = field + g.index(0, axes.y.fold(firstY + b), z);
-                for (int a = 0; a < support; ++a) {
-                    const int at = axes.x.fold(firstX + a);
-                    const R w = wyz * axes.x.weight(firstX, a, ux);
-                    sum.x += w * line[at];
-                    sum.y += w * line[at + points];
-                    sum.z += w * line[at + 2 * points];
-                }
-            }
-        }
-        displacement[3 * i] = cellVolume * sum.x;
-        displacement[3 * i + 1] = cellVolume * sum.y;
-        displacement[3 * i + 2] = cellVolume * sum.z;
-    }
-};
-
 #if SMD_HOST_CODE
 // The smallest size >= n whose only prime factors are 2, 3 and 5, and even (FFT-friendly).
 inline int fft_friendly_size(int n) {
@@ -325,17 +196,18 @@ public:
                   uint64_t noiseStream, R* displacement) {
         const FftGrid grid = plan_.grid;
         const int64_t points = grid.points(), spectrumPoints = grid.spectrum_points();
-        bins_.sort(p.count, FcmKernelLine<R>{p.pos.data(), group, axes_});
-        backend_.for_each(grid.ny * grid.nz, FcmSpreadLine<R>{p.pos.data(), p.force.data(), bins_.order(),
-                                                              bins_.line_start(), axes_, field_.data()});
+        bins_.sort(p.count, GaussianKernelLine<R, FcmAxis<R>>{p.pos.data(), group, axes_});
+        backend_.for_each(grid.ny * grid.nz, GaussianSpreadLine<R, FcmAxis<R>, Real4Vectors<R>>{
+                                                 p.pos.data(), {p.force.data()}, bins_.order(), bins_.line_start(),
+                                                 axes_, field_.data()});
         for (int d = 0; d < 3; ++d) fft_.forward(field_.data() + d * points, spectrum_.data() + d * spectrumPoints);
         const double volume = plan_.box[0] * plan_.box[1] * plan_.box[2];
         backend_.for_each(spectrumPoints,
                           FcmStokesSolve<R, Green>{spectrum_.data(), grid, p.box.length, green, R(dt / double(points)),
                                                    R(2.0 * kT * dt / volume), p.noise.seed, noiseStream, p.now()});
         for (int d = 0; d < 3; ++d) fft_.inverse(spectrum_.data() + d * spectrumPoints, field_.data() + d * points);
-        backend_.for_each(p.count, FcmInterpolate<R>{p.pos.data(), group, axes_, field_.data(),
-                                                     R(volume / double(points)), displacement});
+        backend_.for_each(p.count, GaussianInterpolate<R, FcmAxis<R>>{p.pos.data(), group, axes_, field_.data(),
+                                                                      R(volume / double(points)), displacement});
     }
 
 private:

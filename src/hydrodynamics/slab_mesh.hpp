@@ -6,9 +6,10 @@
 // onto a grid periodic in x and y and of nz uniform nodes from z = -H/2 to H/2 (the walls, where
 // there are walls), 2D transforms of every z plane, the slab's Stokes solve per wave vector
 // (slab_stokes.hpp), the inverse transforms, and J = S^T the Gaussian's average of the velocity at
-// the particle, times the cell volume. Near a wall the Gaussian has its mirror image subtracted
-// (SlabAxisZ); the part of a Gaussian beyond the slab is left out (on both sides of the product,
-// so M stays symmetric). Only the group's particles take part; the product is 0 at the others.
+// the particle, times the cell volume. Near a wall the Gaussian has its mirror images subtracted
+// (SlabAxisZ; the spreading and the average are gaussian_spreading.hpp's); the part of a Gaussian
+// beyond the slab is left out (on both sides of the product, so M stays symmetric). Only the
+// group's particles take part; the product is 0 at the others.
 //
 // The positions are placed once (place) and then any number of products taken (apply), as the
 // Lanczos square root and the random finite difference need.
@@ -20,7 +21,7 @@
 #include "core/fft_grid.hpp"
 #include "core/hd.hpp"
 #include "core/vec.hpp"
-#include "hydrodynamics/fcm_mesh.hpp"
+#include "hydrodynamics/gaussian_spreading.hpp"
 #include "hydrodynamics/slab_stokes.hpp"
 #include "neighbour/line_bins.hpp"
 
@@ -35,13 +36,20 @@ struct SlabPlan {
     int support = 0;  // points the Gaussian covers along x and y
     int supportZ = 0;
     SlabWalls walls = SlabWalls::none;
+    int images = 0;  // SlabAxisZ's
 };
 
 // The Gaussian's weights along z: the `support` nodes first .. first + support - 1, first chosen
 // closest to centring them on the particle but kept inside the slab. Where there are walls, the
-// Gaussian of the particle's mirror image through the nearer wall is subtracted (as UAMMD does):
-// the force density is then odd about the wall, so it vanishes there smoothly (a particle on the
-// wall spreads nothing), and the sum over z nodes stays as accurate as in the open slab.
+// force density is made odd about each wall by subtracting the Gaussians of the particle's mirror
+// images (UAMMD subtracts an image too): above a bottom wall the one image through it; in a slit
+// the odd extension of period 2H the two walls' reflections generate, in orders m = 1, 2, ...
+// (centres +-m H + (-1)^m z, signs (-1)^m: the images through either wall at +-H - z, the
+// particle's copies at z +- 2H, ...), as many orders (`images`) as reach into the slab. The density
+// then vanishes at each wall smoothly (a particle on a wall spreads nothing), the weights change
+// smoothly with the particle's height everywhere in the slab (the image of the nearer wall alone
+// would jump as the particle crosses the mid-plane), and the sum over z nodes stays as accurate as
+// in the open slab.
 template <class R>
 struct SlabAxisZ {
     R bottom;  // -H/2
@@ -51,128 +59,37 @@ struct SlabAxisZ {
     R inverseTwoSigma2;
     R norm;
     SlabWalls walls;
+    int images;  // the slit's orders of images
 
     SMD_HD SMD_INLINE int first(R z) const {
         const int centred = static_cast<int>(floor((z - bottom) / spacing - R(0.5) * R(support) + R(1)));
         return centred < 0 ? 0 : (centred > n - support ? n - support : centred);
     }
+    // As GaussianAxes' z axis (gaussian_spreading.hpp): nodes are planes, none below the bottom.
+    SMD_HD SMD_INLINE int first_node(R z) const { return first(z); }
+    SMD_HD SMD_INLINE R node_weight(int firstNode, int c, R z) const { return weight(firstNode + c, z); }
+    SMD_HD SMD_INLINE int plane(int i) const { return i; }
+    SMD_HD SMD_INLINE int plane_below(int plane, int c) const { return plane - c; }
+
     SMD_HD SMD_INLINE R weight(int node, R z) const {
-        const R at = bottom + R(node) * spacing, d = at - z;
-        R w = norm * exp(-d * d * inverseTwoSigma2);
-        if (walls != SlabWalls::none) {
-            const R mirror = walls == SlabWalls::slit && z > R(0) ? R(-2) * bottom - z : R(2) * bottom - z;
-            const R e = at - mirror;
-            w -= norm * exp(-e * e * inverseTwoSigma2);
-        }
+        const R at = bottom + R(node) * spacing;
+        R w = gaussian(at - z);
+        if (walls == SlabWalls::bottom) w -= gaussian(at - (R(2) * bottom - z));
+        if (walls == SlabWalls::slit)
+            for (int m = 1; m <= images; ++m) {
+                const R centre = m % 2 ? -z : z, shift = R(-2 * m) * bottom;
+                const R pair = gaussian(at - centre - shift) + gaussian(at - centre + shift);
+                w += m % 2 ? -pair : pair;
+            }
         return w;
     }
+
+private:
+    SMD_HD SMD_INLINE R gaussian(R d) const { return norm * exp(-d * d * inverseTwoSigma2); }
 };
 
 template <class R>
-struct SlabAxes {
-    FcmAxis<R> x, y;
-    SlabAxisZ<R> z;
-    FftGrid grid;
-};
-
-// The grid line (y, z) a group member's kernel starts on, by which LineBins sorts the particles.
-template <class R>
-struct SlabKernelLine {
-    const Real4<R>* pos;
-    const uint8_t* group;
-    SlabAxes<R> axes;
-    SMD_HD int operator()(int64_t i) const {
-        if (group && !group[i]) return -1;
-        const Real4<R> r = pos[i];
-        return axes.z.first(r.z) * axes.grid.ny + axes.y.fold(axes.y.first(axes.y.coordinate(r.y)));
-    }
-};
-
-// One grid line along x of the three density grids, cleared and then summed: a particle whose
-// kernel starts on line (y - b, z - c) adds v g_x g_y[b] g_z along the line.
-template <class R>
-struct SlabSpreadLine {
-    const Real4<R>* pos;
-    const R* values;  // flat, three numbers a particle
-    const int* order;
-    const int* lineStart;
-    SlabAxes<R> axes;
-    R* density;
-
-    SMD_HD void operator()(int64_t line) const {
-        const FftGrid& g = axes.grid;
-        const int64_t points = g.points();
-        const int y = static_cast<int>(line % g.ny), z = static_cast<int>(line / g.ny);
-        R* rowX = density + g.index(0, y, z);
-        R* rowY = rowX + points;
-        R* rowZ = rowY + points;
-        for (int x = 0; x < g.nx; ++x) rowX[x] = rowY[x] = rowZ[x] = R(0);
-        const int support = axes.x.support;
-        for (int c = 0; c < axes.z.support && c <= z; ++c) {
-            for (int b = 0; b < support; ++b) {
-                const int bin = (z - c) * g.ny + axes.y.fold(y - b);
-                for (int s = lineStart[bin]; s < lineStart[bin + 1]; ++s) {
-                    const int i = order[s];
-                    const Real4<R> r = pos[i];
-                    const R uy = axes.y.coordinate(r.y);
-                    const R wyz = axes.y.weight(axes.y.first(uy), b, uy) * axes.z.weight(z, r.z);
-                    const Vec3<R> v{values[3 * i], values[3 * i + 1], values[3 * i + 2]};
-                    const R ux = axes.x.coordinate(r.x);
-                    const int firstX = axes.x.first(ux);
-                    for (int a = 0; a < support; ++a) {
-                        const R w = wyz * axes.x.weight(firstX, a, ux);
-                        const int at = axes.x.fold(firstX + a);
-                        rowX[at] += w * v.x;
-                        rowY[at] += w * v.y;
-                        rowZ[at] += w * v.z;
-                    }
-                }
-            }
-        }
-    }
-};
-
-// Each group member's velocity (flat): the grid's field averaged by its Gaussian, times the cell
-// volume; 0 for the others.
-template <class R>
-struct SlabInterpolate {
-    const Real4<R>* pos;
-    const uint8_t* group;
-    SlabAxes<R> axes;
-    const R* field;
-    R cellVolume;
-    R* out;
-
-    SMD_HD void operator()(int64_t i) const {
-        Vec3<R> sum{R(0), R(0), R(0)};
-        if (!group || group[i]) {
-            const FftGrid& g = axes.grid;
-            const int64_t points = g.points();
-            const Real4<R> r = pos[i];
-            const R ux = axes.x.coordinate(r.x), uy = axes.y.coordinate(r.y);
-            const int firstX = axes.x.first(ux), firstY = axes.y.first(uy), firstZ = axes.z.first(r.z);
-            const int support = axes.x.support;
-            for (int c = 0; c < axes.z.support; ++c) {
-                const R wz = axes.z.weight(firstZ + c, r.z);
-                for (int b = 0; b < support; ++b) {
-                    const R wyz = wz * axes.y.weight(firstY, b, uy);
-                    const R* line = field + g.index(0, axes.y.fold(firstY + b), firstZ + c);
-                    for (int a = 0; a < support; ++a) {
-                        const int at = axes.x.fold(firstX + a);
-                        const R w = wyz * axes.x.weight(firstX, a, ux);
-                        sum.x += w * line[at];
-                        sum.y += w * line[at + points];
-                        sum.z += w * line[at + 2 * points];
-                    }
-                }
-            }
-            sum = cellVolume * sum;
-        }
-        out[3 * i] = sum.x;
-        out[3 * i + 1] = sum.y;
-        out[3 * i + 2] = sum.z;
-    }
-};
+using SlabAxes = GaussianAxes<R, SlabAxisZ<R>>;
 
 #if SMD_HOST_CODE
 // The Gaussian reaches out to where it falls to 1e-8 of its peak: the truncation is far below the
@@ -191,6 +108,8 @@ inline SlabPlan make_slab_plan(const int sizes[3], const double box[2], double h
     const double finest = std::min(box[0] / sizes[0], box[1] / sizes[1]);
     plan.support = static_cast<int>(std::ceil(2.0 * reach / finest)) + 1;
     plan.supportZ = std::min(static_cast<int>(std::ceil(2.0 * reach / (height / (sizes[2] - 1)))) + 1, sizes[2]);
+    // The images of order m lie at least (m - 1) H from the slab.
+    plan.images = walls == SlabWalls::slit ? 1 + static_cast<int>(std::floor(reach / height)) : 0;
     return plan;
 }
 
@@ -198,7 +117,7 @@ template <class B, class R>
 class SlabMesh {
 public:
     SlabMesh(const B& backend, const SlabPlan& plan)
-        : backend_(backend), plan_(plan), fft_(backend, FftGrid{plan.grid.nx, plan.grid.ny, 1}),
+        : backend_(backend), plan_(plan), fft_(backend, FftGrid{plan.grid.nx, plan.grid.ny, 3 * plan.grid.nz}, FftAxes::xy),
           bins_(backend, plan.grid.ny * plan.grid.nz) {
         const int sizes[2] = {plan.grid.nx, plan.grid.ny};
         for (int d = 0; d < 2; ++d)
@@ -209,15 +128,16 @@ public:
         axes_ = SlabAxes<R>{axis_[0], axis_[1],
                             SlabAxisZ<R>{R(-0.5 * plan.height), R(spacing), plan.grid.nz, plan.supportZ,
                                          R(0.5 / (plan.sigma * plan.sigma)),
-                                         R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma)), plan.walls},
+                                         R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma)), plan.walls,
+                                         plan.images},
                             plan.grid};
         backend_.resize(field_, static_cast<size_t>(3 * plan.grid.points()));
         backend_.resize(spectrum_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
         backend_.resize(solved_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
         const int64_t waves = int64_t(plan.grid.half_x()) * plan.grid.ny;
         backend_.resize(kernel_, static_cast<size_t>(4 * waves * plan.grid.nz));
-        backend_.for_each(waves * plan.grid.nz, SlabKernelTable<R>{plan.grid, R(plan.box[0]), R(plan.box[1]), spacing,
-                                                                   kernel_.data()});
+        backend_.for_each(waves * plan.grid.nz,
+                          SlabKernelTable{plan.grid, plan.box[0], plan.box[1], spacing, kernel_.data()});
     }
 
     const SlabPlan& plan() const { return plan_; }
@@ -228,7 +148,7 @@ public:
         count_ = count;
         pos_ = pos;
         group_ = group;
-        bins_.sort(count, SlabKernelLine<R>{pos, group, axes_});
+        bins_.sort(count, GaussianKernelLine<R, SlabAxisZ<R>>{pos, group, axes_});
     }
 
     // out = M v, both flat (three numbers a particle) in backend memory.
@@ -236,18 +156,17 @@ public:
         const FftGrid grid = plan_.grid;
         const int64_t planePoints = int64_t(grid.nx) * grid.ny;
         const int64_t planeSpectrum = int64_t(grid.half_x()) * grid.ny;
-        backend_.for_each(grid.ny * grid.nz,
-                          SlabSpreadLine<R>{pos_, v, bins_.order(), bins_.line_start(), axes_, field_.data()});
-        for (int64_t plane = 0; plane < 3 * grid.nz; ++plane)
-            fft_.forward(field_.data() + plane * planePoints, spectrum_.data() + plane * planeSpectrum);
+        backend_.for_each(grid.ny * grid.nz, GaussianSpreadLine<R, SlabAxisZ<R>, FlatVectors<R>>{
+                                                 pos_, {v}, bins_.order(), bins_.line_start(), axes_, field_.data()});
+        fft_.forward(field_.data(), spectrum_.data());
         const double spacing = plan_.height / (grid.nz - 1);
         backend_.for_each(planeSpectrum,
-                          SlabStokesSolve<R>{spectrum_.data(), solved_.data(), kernel_.data(), grid, R(plan_.box[0]), R(plan_.box[1]),
-                                             R(spacing), R(spacing / (double(planePoints) * viscosity)), plan_.walls});
-        for (int64_t plane = 0; plane < 3 * grid.nz; ++plane)
-            fft_.inverse(solved_.data() + plane * planeSpectrum, field_.data() + plane * planePoints);
+                          SlabStokesSolve<R>{spectrum_.data(), solved_.data(), kernel_.data(), grid, plan_.box[0], plan_.box[1],
+                                             spacing, spacing / (double(planePoints) * viscosity), plan_.walls});
+        fft_.inverse(solved_.data(), field_.data());
         const double cellVolume = plan_.box[0] * plan_.box[1] * spacing / double(planePoints);
-        backend_.for_each(count_, SlabInterpolate<R>{pos_, group_, axes_, field_.data(), R(cellVolume), out});
+        backend_.for_each(count_, GaussianInterpolate<R, SlabAxisZ<R>>{pos_, group_, axes_, field_.data(),
+                                                                       R(cellVolume), out});
     }
 
 private:
@@ -255,14 +174,14 @@ private:
     SlabPlan plan_;
     FcmAxis<R> axis_[2];
     SlabAxes<R> axes_;
-    typename B::template Fft3d<R> fft_;  // one z plane (a 2D transform)
+    typename B::template Fft3d<R> fft_;  // the 2D transforms of every z plane of the three components
     LineBins<B> bins_;
     int64_t count_ = 0;
     const Real4<R>* pos_ = nullptr;
     const uint8_t* group_ = nullptr;
     typename B::template Buffer<R> field_;  // x, y, z grids: the density, then the velocity
     typename B::template Buffer<Complex<R>> spectrum_, solved_;
-    typename B::template Buffer<R> kernel_;  // SlabKernelTable's
+    typename B::template Buffer<double> kernel_;  // SlabKernelTable's
 };
 #endif
 

@@ -23,6 +23,11 @@
 // a slit, u = 0 at both walls. The mean vertical velocity is zero. Its kernels' kink -|z - z'|/2 is
 // band-limited as above.
 // The Nyquist lines of x and y are left out, as the other grid methods do.
+//
+// All of it runs in double whatever the working precision (only the spectra are in R): for small
+// kappa H the unbounded part is of order 1 / kappa and the walls' part cancels it down to the
+// slit's velocity, of order H (transverse) to kappa^2 H^3 (vertical), and the slit's 4 x 4 system
+// is nearly singular (its exponentials tend to 1); single precision would lose the result.
 #include <cmath>
 #include <cstdint>
 
@@ -34,103 +39,105 @@ namespace structmd {
 // The walls, in the order of the "mode" text option.
 enum class SlabWalls : int { none = 0, bottom = 1, slit = 2 };
 
-template <class R>
+using Complex64 = Complex<double>;
+
 struct SlabColumn {
-    Complex<R> l, t, z;  // along k, across k, vertical
+    Complex64 l, t, z;  // along k, across k, vertical
 };
 
-template <class R>
-SMD_HD SMD_INLINE Complex<R> operator*(R c, Complex<R> a) {
-    return {c * a.re, c * a.im};
-}
-template <class R>
-SMD_HD SMD_INLINE Complex<R> operator+(Complex<R> a, Complex<R> b) {
-    return {a.re + b.re, a.im + b.im};
-}
-template <class R>
-SMD_HD SMD_INLINE Complex<R> times_i(Complex<R> a) {
-    return {-a.im, a.re};
-}
+SMD_HD SMD_INLINE Complex64 operator*(double c, Complex64 a) { return {c * a.re, c * a.im}; }
+SMD_HD SMD_INLINE Complex64 operator+(Complex64 a, Complex64 b) { return {a.re + b.re, a.im + b.im}; }
+SMD_HD SMD_INLINE Complex64 times_i(Complex64 a) { return {-a.im, a.re}; }
 
 // Solves the 4 x 4 system m x = b (real matrix, complex right side) by Gaussian elimination with
 // partial pivoting; m and b are overwritten.
-template <class R>
-SMD_HD SMD_INLINE void solve4(R m[4][4], Complex<R> b[4], Complex<R> x[4]) {
+SMD_HD SMD_INLINE void solve4(double m[4][4], Complex64 b[4], Complex64 x[4]) {
     for (int c = 0; c < 4; ++c) {
         int pivot = c;
         for (int r = c + 1; r < 4; ++r)
             if (fabs(m[r][c]) > fabs(m[pivot][c])) pivot = r;
         for (int k = 0; k < 4; ++k) {
-            const R swap = m[c][k];
+            const double swap = m[c][k];
             m[c][k] = m[pivot][k];
             m[pivot][k] = swap;
         }
-        const Complex<R> swap = b[c];
+        const Complex64 swap = b[c];
         b[c] = b[pivot];
         b[pivot] = swap;
         for (int r = c + 1; r < 4; ++r) {
-            const R factor = m[r][c] / m[c][c];
+            const double factor = m[r][c] / m[c][c];
             for (int k = c; k < 4; ++k) m[r][k] -= factor * m[c][k];
             b[r] = b[r] + (-factor) * b[c];
         }
     }
     for (int r = 3; r >= 0; --r) {
-        Complex<R> sum = b[r];
+        Complex64 sum = b[r];
         for (int k = r + 1; k < 4; ++k) sum = sum + (-m[r][k]) * x[k];
-        x[r] = (R(1) / m[r][r]) * sum;
+        x[r] = (1.0 / m[r][r]) * sum;
     }
 }
 
 // The wave vector of index `at` of the half spectrum (x fastest, then y); false on the Nyquist
 // lines and at k = 0.
-template <class R>
-SMD_HD SMD_INLINE bool slab_wave_vector(const FftGrid& grid, int64_t at, R lengthX, R lengthY, R& kx, R& ky) {
+SMD_HD SMD_INLINE bool slab_wave_vector(const FftGrid& grid, int64_t at, double lengthX, double lengthY, double& kx,
+                                        double& ky) {
     const int hx = grid.half_x();
     const int x = static_cast<int>(at % hx), y = static_cast<int>(at / hx);
     if (2 * x == grid.nx || 2 * y == grid.ny || at == 0) return false;
-    const R twoPi = R(6.283185307179586);
-    kx = twoPi * R(x) / lengthX;
-    ky = twoPi * R(2 * y < grid.ny ? y : y - grid.ny) / lengthY;
+    const double twoPi = 6.283185307179586;
+    kx = twoPi * x / lengthX;
+    ky = twoPi * (2 * y < grid.ny ? y : y - grid.ny) / lengthY;
     return true;
 }
 
 // The unbounded kernel band-limited to |q_z| < pi / hz at s = n hz, times eta, for every wave
 // vector and n: (G_tt, G_ll, G_zz, G_lz / -i), each (1/pi) int_0^Q of
 //   cos(q s) / d,  cos(q s) q^2 / d^2,  cos(q s) kappa^2 / d^2,  kappa q sin(q s) / d^2   (d = kappa^2 + q^2)
-// by Simpson's rule (the integrands are smooth; 1024 intervals resolve s up to 160 hz to 1e-6).
-// Computed once per grid.
-template <class R>
+// by Simpson's rule on as many intervals as the entry needs: cos(q s) turns n / 2 times over the
+// band and 1 / d is kappa wide, so kIntervalsPerTurn intervals per half turn and per width, and two
+// more, keep every entry within 6e-7 of the kernel's size at s = 0 (measured against 2^20
+// intervals, for Q / kappa from 1 to 512 and n to 3000); a fixed count would alias the tall grids'
+// large n. cos(q s) and sin(q s) advance by one rotation a step. An entry costs O(n + Q / kappa),
+// the table about as much as a few products of the mesh (whose solve also costs nz^2 a wave
+// vector). Computed once per grid.
 struct SlabKernelTable {
     FftGrid grid;
-    R lengthX, lengthY;
+    double lengthX, lengthY;
     double zSpacing;
-    R* table;  // four numbers per (wave vector, n), n fastest
+    double* table;  // four numbers per (wave vector, n), n fastest
 
-    static constexpr int kIntervals = 1024;
+    static constexpr double kIntervalsPerTurn = 8.0;
 
     SMD_HD void operator()(int64_t index) const {
-        const int64_t at = index / grid.nz;
-        const double s = zSpacing * double(index % grid.nz);
-        R* out = table + 4 * index;
-        for (int c = 0; c < 4; ++c) out[c] = R(0);
+        const int64_t at = index / grid.nz, n = index % grid.nz;
+        const double s = zSpacing * double(n);
+        double* out = table + 4 * index;
+        for (int c = 0; c < 4; ++c) out[c] = 0.0;
         if (at == 0) {
-            out[0] = R(band_limited_kink(index % grid.nz));
+            out[0] = band_limited_kink(n);
             return;
         }
-        R kx, ky;
+        double kx, ky;
         if (!slab_wave_vector(grid, at, lengthX, lengthY, kx, ky)) return;
-        const double k2 = double(kx) * double(kx) + double(ky) * double(ky), kappa = sqrt(k2);
-        const double step = 3.141592653589793 / zSpacing / kIntervals;
+        const double k2 = kx * kx + ky * ky, kappa = sqrt(k2);
+        const double band = 3.141592653589793 / zSpacing;
+        const int64_t intervals = 2 * static_cast<int64_t>(ceil(0.5 * kIntervalsPerTurn * (double(n) + band / kappa + 2.0)));
+        const double step = band / double(intervals);
+        const double turnCos = cos(step * s), turnSin = sin(step * s);
+        double c = 1.0, sn = 0.0;  // cos(q s), sin(q s)
         double sum[4] = {0, 0, 0, 0};
-        for (int m = 0; m <= kIntervals; ++m) {
-            const double q = step * m, d = k2 + q * q, c = cos(q * s), sn = sin(q * s);
-            const double weight = (m == 0 || m == kIntervals) ? 1.0 : (m % 2 ? 4.0 : 2.0);
+        for (int64_t m = 0; m <= intervals; ++m) {
+            const double q = step * double(m), d = k2 + q * q;
+            const double weight = (m == 0 || m == intervals) ? 1.0 : (m % 2 ? 4.0 : 2.0);
             sum[0] += weight * c / d;
             sum[1] += weight * c * q * q / (d * d);
             sum[2] += weight * c * k2 / (d * d);
             sum[3] += weight * kappa * q * sn / (d * d);
+            const double next = c * turnCos - sn * turnSin;
+            sn = sn * turnCos + c * turnSin;
+            c = next;
         }
-        for (int c = 0; c < 4; ++c) out[c] = R(sum[c] * step / 3.0 / 3.141592653589793);
+        for (int k = 0; k < 4; ++k) out[k] = sum[k] * step / 3.0 / 3.141592653589793;
     }
 
     // The kink -|s|/2 of the mean flow's kernel band-limited likewise, at s = n hz:
@@ -149,17 +156,57 @@ struct SlabKernelTable {
     }
 };
 
+// The homogeneous Stokes solution of one wave vector that cancels the unbounded fluid's velocity
+// at the walls: transverse p exp(-kappa s_a) + r exp(-kappa s_b); along k and z
+// u_z = (A + B s_a) exp(-kappa s_a) + (C + D s_b) exp(-kappa s_b), s_a = z - a and s_b = b - z the
+// heights above the bottom wall a and below the top one b, u_l = i u_z' / kappa.
+struct SlabWallSolution {
+    SlabWalls walls;
+    double kappa, height;
+    Complex64 p{0, 0}, r{0, 0}, coefficient[4] = {};
+
+    // bottom and top: the unbounded fluid's velocity at the walls (top unused without a top wall).
+    SMD_HD SlabWallSolution(SlabWalls walls, double kappa, double height, const SlabColumn& bottom, const SlabColumn& top)
+        : walls(walls), kappa(kappa), height(height) {
+        if (walls == SlabWalls::bottom) {
+            p = -1.0 * bottom.t;
+            coefficient[0] = -1.0 * bottom.z;
+            coefficient[1] = kappa * coefficient[0] + kappa * times_i(bottom.l);
+        } else if (walls == SlabWalls::slit) {
+            const double e = exp(-kappa * height), kh = kappa * height;
+            const double d = 1.0 / (-expm1(-2.0 * kh));  // 1 / (1 - e^2) without the cancellation
+            p = d * (-1.0 * bottom.t + e * top.t);
+            r = d * (-1.0 * top.t + e * bottom.t);
+            double m[4][4] = {{1.0, 0.0, e, height * e},
+                              {-kappa, 1.0, kappa * e, (kh - 1.0) * e},
+                              {e, height * e, 1.0, 0.0},
+                              {-kappa * e, (1.0 - kh) * e, kappa, -1.0}};
+            Complex64 rhs[4] = {-1.0 * bottom.z, kappa * times_i(bottom.l), -1.0 * top.z, kappa * times_i(top.l)};
+            solve4(m, rhs, coefficient);
+        }
+    }
+
+    // Its velocity at height sa above the bottom wall.
+    SMD_HD SlabColumn at(double sa) const {
+        const double sb = height - sa;
+        const double ea = exp(-kappa * sa), eb = walls == SlabWalls::slit ? exp(-kappa * sb) : 0.0;
+        const Complex64 A = coefficient[0], B = coefficient[1], C = coefficient[2], D = coefficient[3];
+        const Complex64 slope = ea * (B + (-kappa) * (A + sa * B)) + eb * (-1.0 * D + kappa * (C + sb * D));
+        return {(1.0 / kappa) * times_i(slope), ea * p + eb * r, ea * (A + sa * B) + eb * (C + sb * D)};
+    }
+};
+
 // One wave vector of the half spectrum (x fastest, then y), all its z nodes. The spectra hold the
 // three components one after the other, each nz planes of (nx/2 + 1) ny numbers.
 template <class R>
 struct SlabStokesSolve {
     const Complex<R>* force;
     Complex<R>* velocity;
-    const R* kernel;     // SlabKernelTable's
-    FftGrid grid;        // nz: the z nodes
-    R lengthX, lengthY;  // the periodic box
-    R zSpacing;          // hz = H / (nz - 1)
-    R scale;             // hz / (nx ny eta): the quadrature weight, the transforms' norm, the viscosity
+    const double* kernel;      // SlabKernelTable's
+    FftGrid grid;              // nz: the z nodes
+    double lengthX, lengthY;   // the periodic box
+    double zSpacing;           // hz = H / (nz - 1)
+    double scale;              // hz / (nx ny eta): the quadrature weight, the transforms' norm, the viscosity
     SlabWalls walls;
 
     SMD_HD void operator()(int64_t at) const {
@@ -175,118 +222,91 @@ struct SlabStokesSolve {
             mean_flow(plane, component);
             return;
         }
-        R kx, ky;
+        double kx, ky;
         slab_wave_vector(grid, at, lengthX, lengthY, kx, ky);
-        const R kappa = sqrt(kx * kx + ky * ky);
-        const R ux = kx / kappa, uy = ky / kappa;
-        const R q = exp(-kappa * zSpacing);  // exp(-kappa |s|) = q^|i - j|
-        SlabColumn<R> bottom{}, top{};
+        const double kappa = sqrt(kx * kx + ky * ky);
+        const double ux = kx / kappa, uy = ky / kappa;
+        const double q = exp(-kappa * zSpacing);  // exp(-kappa |s|) = q^|i - j|
+        SlabColumn bottom{}, top{};
         if (walls != SlabWalls::none) bottom = wall_velocity(at, 0, plane, component, kappa, ux, uy, q);
         if (walls == SlabWalls::slit) top = wall_velocity(at, grid.nz - 1, plane, component, kappa, ux, uy, q);
-        const R height = zSpacing * R(grid.nz - 1);
-        const R across = exp(-kappa * height);
-        // The wall solution's coefficients: transverse p exp(-kappa s_a) + r exp(-kappa s_b), along
-        // k and z u_z = (A + B s_a) exp(-kappa s_a) + (C + D s_b) exp(-kappa s_b), s_a = z - a and
-        // s_b = b - z the heights above the bottom wall a and below the top one b.
-        Complex<R> p{R(0), R(0)}, r{R(0), R(0)}, coefficient[4] = {};
-        if (walls == SlabWalls::bottom) {
-            p = R(-1) * bottom.t;
-            coefficient[0] = R(-1) * bottom.z;
-            coefficient[1] = kappa * coefficient[0] + kappa * times_i(bottom.l);
-        } else if (walls == SlabWalls::slit) {
-            const R d = R(1) / (R(1) - across * across);
-            p = d * (R(-1) * bottom.t + across * top.t);
-            r = d * (R(-1) * top.t + across * bottom.t);
-            const R e = across, kh = kappa * height;
-            R m[4][4] = {{R(1), R(0), e, height * e},
-                         {-kappa, R(1), kappa * e, (kh - R(1)) * e},
-                         {e, height * e, R(1), R(0)},
-                         {-kappa * e, (R(1) - kh) * e, kappa, R(-1)}};
-            Complex<R> rhs[4] = {R(-1) * bottom.z, kappa * times_i(bottom.l), R(-1) * top.z, kappa * times_i(top.l)};
-            solve4(m, rhs, coefficient);
-        }
+        const SlabWallSolution wall(walls, kappa, zSpacing * (grid.nz - 1), bottom, top);
         for (int i = 0; i < grid.nz; ++i) {
-            SlabColumn<R> u = banded_velocity(at, i, plane, component, ux, uy);
+            SlabColumn u = banded_velocity(at, i, plane, component, ux, uy);
             if (walls != SlabWalls::none) {
-                const R sa = zSpacing * R(i), sb = height - sa;
-                const R ea = exp(-kappa * sa), eb = walls == SlabWalls::slit ? exp(-kappa * sb) : R(0);
-                const Complex<R> A = coefficient[0], B = coefficient[1], C = coefficient[2], D = coefficient[3];
-                u.t = u.t + ea * p + eb * r;
-                u.z = u.z + ea * (A + sa * B) + eb * (C + sb * D);
-                const Complex<R> slope = ea * (B + (-kappa) * (A + sa * B)) + eb * (R(-1) * D + kappa * (C + sb * D));
-                u.l = u.l + (R(1) / kappa) * times_i(slope);
+                const SlabColumn w = wall.at(zSpacing * i);
+                u = {u.l + w.l, u.t + w.t, u.z + w.z};
             }
             const int64_t node = at + i * plane;
-            velocity[node] = ux * u.l + (-uy) * u.t;
-            velocity[node + component] = uy * u.l + ux * u.t;
-            velocity[node + 2 * component] = u.z;
+            velocity[node] = narrowed(ux * u.l + (-uy) * u.t);
+            velocity[node + component] = narrowed(uy * u.l + ux * u.t);
+            velocity[node + 2 * component] = narrowed(u.z);
         }
     }
 
 private:
+    SMD_HD static Complex64 widened(Complex<R> a) { return {double(a.re), double(a.im)}; }
+    SMD_HD static Complex<R> narrowed(Complex64 a) { return {R(a.re), R(a.im)}; }
+
+    // The force at node j in the (l, t, z) frame.
+    SMD_HD SlabColumn force_at(int64_t node, int64_t component, double ux, double uy) const {
+        const Complex64 fx = widened(force[node]), fy = widened(force[node + component]);
+        return {ux * fx + uy * fy, (-uy) * fx + ux * fy, widened(force[node + 2 * component])};
+    }
+
     // The unbounded fluid's velocity at node i (l, t, z components) by the band-limited kernel, scaled.
-    SMD_HD SlabColumn<R> banded_velocity(int64_t at, int i, int64_t plane, int64_t component, R ux, R uy) const {
-        SlabColumn<R> u{};
-        const R* row = kernel + 4 * at * grid.nz;
+    SMD_HD SlabColumn banded_velocity(int64_t at, int i, int64_t plane, int64_t component, double ux, double uy) const {
+        SlabColumn u{};
+        const double* row = kernel + 4 * at * grid.nz;
         for (int j = 0; j < grid.nz; ++j) {
-            const int64_t node = at + j * plane;
-            const Complex<R> fx = force[node], fy = force[node + component], fz = force[node + 2 * component];
-            const Complex<R> fl = ux * fx + uy * fy, ft = (-uy) * fx + ux * fy;
-            const R* g = row + 4 * (i < j ? j - i : i - j);
-            const R lz = i < j ? g[3] : -g[3];  // G_lz / i = -g[3] sign(s), s = z_i - z_j
-            u.t = u.t + g[0] * ft;
-            u.l = u.l + g[1] * fl + lz * times_i(fz);
-            u.z = u.z + g[2] * fz + lz * times_i(fl);
+            const SlabColumn f = force_at(at + j * plane, component, ux, uy);
+            const double* g = row + 4 * (i < j ? j - i : i - j);
+            const double lz = i < j ? g[3] : -g[3];  // G_lz / i = -g[3] sign(s), s = z_i - z_j
+            u.t = u.t + g[0] * f.t;
+            u.l = u.l + g[1] * f.l + lz * times_i(f.z);
+            u.z = u.z + g[2] * f.z + lz * times_i(f.l);
         }
-        u.l = scale * u.l;
-        u.t = scale * u.t;
-        u.z = scale * u.z;
-        return u;
+        return {scale * u.l, scale * u.t, scale * u.z};
     }
 
     // The unbounded fluid's velocity at a wall (node 0 or nz - 1) by the exact kernel, scaled: the
     // forces lie on one side of it, where the exact kernel is smooth and what the wall solution
     // cancels. exp(-kappa |s|) = q^|i - j| is carried along from the wall inwards.
-    SMD_HD SlabColumn<R> wall_velocity(int64_t at, int wall, int64_t plane, int64_t component, R kappa, R ux, R uy,
-                                       R q) const {
-        SlabColumn<R> u{};
-        const R inverseKappa = R(1) / kappa;
-        R e = R(1);
+    SMD_HD SlabColumn wall_velocity(int64_t at, int wall, int64_t plane, int64_t component, double kappa, double ux,
+                                    double uy, double q) const {
+        SlabColumn u{};
+        const double inverseKappa = 1.0 / kappa;
+        double e = 1.0;
         for (int distance = 0; distance < grid.nz; ++distance, e *= q) {
             const int j = wall == 0 ? distance : wall - distance;
-            const int64_t node = at + j * plane;
-            const Complex<R> fx = force[node], fy = force[node + component], fz = force[node + 2 * component];
-            const Complex<R> fl = ux * fx + uy * fy, ft = (-uy) * fx + ux * fy;
-            const R s = zSpacing * R(wall - j), ks = kappa * fabs(s);
-            const R ll = e * (R(1) - ks) * inverseKappa * R(0.25), zz = e * (R(1) + ks) * inverseKappa * R(0.25);
-            const R lz = R(-0.25) * s * e;  // G_lz / i
-            u.l = u.l + ll * fl + lz * times_i(fz);
-            u.z = u.z + zz * fz + lz * times_i(fl);
-            u.t = u.t + (R(0.5) * e * inverseKappa) * ft;
+            const SlabColumn f = force_at(at + j * plane, component, ux, uy);
+            const double s = zSpacing * (wall - j), ks = kappa * fabs(s);
+            const double ll = e * (1.0 - ks) * inverseKappa * 0.25, zz = e * (1.0 + ks) * inverseKappa * 0.25;
+            const double lz = -0.25 * s * e;  // G_lz / i
+            u.l = u.l + ll * f.l + lz * times_i(f.z);
+            u.z = u.z + zz * f.z + lz * times_i(f.l);
+            u.t = u.t + (0.5 * e * inverseKappa) * f.t;
         }
-        u.l = scale * u.l;
-        u.t = scale * u.t;
-        u.z = scale * u.z;
-        return u;
+        return {scale * u.l, scale * u.t, scale * u.z};
     }
 
     // k = 0: the mean flow of the plane at every height (see the header).
     SMD_HD void mean_flow(int64_t plane, int64_t component) const {
-        const R height = zSpacing * R(grid.nz - 1);
+        const double height = zSpacing * (grid.nz - 1);
         for (int i = 0; i < grid.nz; ++i) {
-            Complex<R> ux{R(0), R(0)}, uy{R(0), R(0)};
+            Complex64 ux{0, 0}, uy{0, 0};
             if (walls != SlabWalls::none)
                 for (int j = 0; j < grid.nz; ++j) {
                     // min(z, z') (bottom) and min (H - max) / H (slit), heights from the bottom
                     // wall, as their smooth parts plus the band-limited kink -|s|/2.
-                    const R middle = R(0.5) * zSpacing * R(i + j), s = zSpacing * R(i - j);
-                    const R smooth = walls == SlabWalls::bottom ? middle : (middle * (height - middle) + R(0.25) * s * s) / height;
-                    const R g = smooth + kernel[4 * (i < j ? j - i : i - j)];
-                    ux = ux + (scale * g) * force[j * plane];
-                    uy = uy + (scale * g) * force[j * plane + component];
+                    const double middle = 0.5 * zSpacing * (i + j), s = zSpacing * (i - j);
+                    const double smooth = walls == SlabWalls::bottom ? middle : (middle * (height - middle) + 0.25 * s * s) / height;
+                    const double g = smooth + kernel[4 * (i < j ? j - i : i - j)];
+                    ux = ux + (scale * g) * widened(force[j * plane]);
+                    uy = uy + (scale * g) * widened(force[j * plane + component]);
                 }
-            velocity[i * plane] = ux;
-            velocity[i * plane + component] = uy;
+            velocity[i * plane] = narrowed(ux);
+            velocity[i * plane + component] = narrowed(uy);
             velocity[i * plane + 2 * component] = Complex<R>{R(0), R(0)};
         }
     }

@@ -91,22 +91,6 @@ struct BdhiDPStokesInputs : IntegratorInputs {
     }
 };
 
-// W' of the random finite difference, keyed by global id, 0 outside the group.
-template <class R>
-struct DrawFiniteDifferenceNoise {
-    const uint8_t* group;
-    NoiseKey noise;
-    ClockView now;
-    R* w;
-    SMD_HD void operator()(int64_t i) const {
-        Vec3<R> xi{R(0), R(0), R(0)};
-        if (!group || group[i]) xi = gaussian3<R>(noise, NoisePurpose::randomFiniteDifference, i, now.step());
-        w[3 * i] = xi.x;
-        w[3 * i + 1] = xi.y;
-        w[3 * i + 2] = xi.z;
-    }
-};
-
 // shifted = pos + c W'
 template <class R>
 struct ShiftPositions {
@@ -180,7 +164,8 @@ private:
         const IntegratorScope& s = this->scope();
         const int64_t n = p.count;
         const double delta = radius_ * std::sqrt(double(std::numeric_limits<R>::epsilon()));
-        backend_.for_each(n, DrawFiniteDifferenceNoise<R>{s.group, p.noise, p.now(), rfdNoise_.data()});
+        backend_.for_each(n, DrawHydrodynamicNoise<R>{s.group, p.noise, p.now(), rfdNoise_.data(),
+                                                            NoisePurpose::randomFiniteDifference});
         backend_.for_each(n, ShiftPositions<R>{p.pos.data(), rfdNoise_.data(), R(0.5 * delta), shifted_.data()});
         mesh_->place(n, shifted_.data(), s.group);
         mesh_->apply(rfdNoise_.data(), plus_.data(), viscosity_);

@@ -36,16 +36,18 @@ struct FlattenForces {
 };
 
 // W ~ N(0, I) for the group's particles, keyed by their global id, 0 for the others (so that no
-// noise reaches them).
+// noise reaches them). `purpose` keeps apart the draws of one step that must be independent (the
+// noise and the random finite difference's W').
 template <class R>
 struct DrawHydrodynamicNoise {
     const uint8_t* group;
     NoiseKey noise;
     ClockView now;
     R* w;
+    NoisePurpose purpose = NoisePurpose::integrator;
     SMD_HD void operator()(int64_t i) const {
         Vec3<R> xi{R(0), R(0), R(0)};
-        if (!group || group[i]) xi = gaussian3<R>(noise, NoisePurpose::integrator, i, now.step());
+        if (!group || group[i]) xi = gaussian3<R>(noise, purpose, i, now.step());
         w[3 * i] = xi.x;
         w[3 * i + 1] = xi.y;
         w[3 * i + 2] = xi.z;

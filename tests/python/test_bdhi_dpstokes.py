@@ -176,6 +176,15 @@ def test_the_slit_is_symmetric_about_its_midplane(options):
     assert abs(upper[2, 5]) > 0.05 * MU0, "the pair is coupled along z"
 
 
+def test_the_slit_mobility_is_continuous_across_the_midplane(options):
+    """A slit 2.5 a high and a pair, one of them at z = +-1e-6: M agrees on either side to 1e-5 mu0
+    (its slope there is about 0.1 mu0 / a). Subtracting only the image through the nearer wall made
+    the kernel jump at z = 0 and M with it (by 3e-4 mu0 here: 1 / 1000 of M's largest element)."""
+    eps = 1e-6
+    sides = [mobility(options, [[0.0, 0.0, sign * eps], [1.5, 0.5, 0.5]], 8.0, 2.5, 16, "slit") for sign in (1, -1)]
+    assert np.max(np.abs(sides[0] - sides[1])) < 1e-5 * MU0, np.max(np.abs(sides[0] - sides[1])) / MU0
+
+
 def test_the_slit_midplane_mobility_is_faxens(options):
     """A particle midway between walls 8 a apart: M_xx extrapolated from boxes of 24 and 32 (the
     slit's images fall as 1/L^2) within 3e-3 mu0 of Faxen's 1 - 1.004 l + 0.418 l^3 + 0.21 l^4 -

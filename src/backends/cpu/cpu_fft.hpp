@@ -14,12 +14,13 @@ namespace structmd {
 template <class R>
 class CpuFft3d {
 public:
-    CpuFft3d(const CpuBackend& backend, FftGrid grid)
+    CpuFft3d(const CpuBackend& backend, FftGrid grid, FftAxes axes = FftAxes::xyz)
         : threads_(static_cast<size_t>(backend.threads())),
           shape_{size_t(grid.nz), size_t(grid.ny), size_t(grid.nx)},
           realStrides_{ptrdiff_t(sizeof(R)) * grid.nx * grid.ny, ptrdiff_t(sizeof(R)) * grid.nx, ptrdiff_t(sizeof(R))},
           spectrumStrides_{ptrdiff_t(sizeof(Complex<R>)) * grid.half_x() * grid.ny,
-                           ptrdiff_t(sizeof(Complex<R>)) * grid.half_x(), ptrdiff_t(sizeof(Complex<R>))} {}
+                           ptrdiff_t(sizeof(Complex<R>)) * grid.half_x(), ptrdiff_t(sizeof(Complex<R>))},
+          axes_(axes == FftAxes::xyz ? pocketfft::shape_t{0, 1, 2} : pocketfft::shape_t{1, 2}) {}
 
     void forward(const R* real, Complex<R>* spectrum) const {
         pocketfft::r2c(shape_, realStrides_, spectrumStrides_, axes_, pocketfft::FORWARD, real,
@@ -34,7 +35,7 @@ private:
     size_t threads_;
     pocketfft::shape_t shape_;
     pocketfft::stride_t realStrides_, spectrumStrides_;
-    pocketfft::shape_t axes_{0, 1, 2};
+    pocketfft::shape_t axes_;  // the transformed ones; pocketfft batches over the others
 };
 
 }  // namespace structmd

@@ -24,10 +24,20 @@ class CudaFft3d {
     static constexpr bool kDouble = std::is_same<R, double>::value;
 
 public:
-    CudaFft3d(const CudaBackend& backend, FftGrid grid) : backend_(backend) {
+    CudaFft3d(const CudaBackend& backend, FftGrid grid, FftAxes axes = FftAxes::xyz) : backend_(backend) {
         // cuFFT's dimensions go slowest first; a grid one point thick is planned as the 2D transform it is.
         const cufftType forward = kDouble ? CUFFT_D2Z : CUFFT_R2C, inverse = kDouble ? CUFFT_Z2D : CUFFT_C2R;
-        if (grid.nz == 1) {
+        if (axes == FftAxes::xy) {
+            // nz 2D transforms in one batch, planes packed one after the other in either layout.
+            int sizes[2] = {grid.ny, grid.nx}, real[2] = {grid.ny, grid.nx}, spectrum[2] = {grid.ny, grid.half_x()};
+            const int realPlane = grid.nx * grid.ny, spectrumPlane = grid.half_x() * grid.ny;
+            cufft_check(cufftPlanMany(&forward_, 2, sizes, real, 1, realPlane, spectrum, 1, spectrumPlane, forward,
+                                      grid.nz),
+                        "planning a batch of forward FFTs");
+            cufft_check(cufftPlanMany(&inverse_, 2, sizes, spectrum, 1, spectrumPlane, real, 1, realPlane, inverse,
+                                      grid.nz),
+                        "planning a batch of inverse FFTs");
+        } else if (grid.nz == 1) {
             cufft_check(cufftPlan2d(&forward_, grid.ny, grid.nx, forward), "planning a forward FFT");
             cufft_check(cufftPlan2d(&inverse_, grid.ny, grid.nx, inverse), "planning an inverse FFT");
         } else {
