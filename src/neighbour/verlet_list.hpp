@@ -166,14 +166,16 @@ private:
         const int cells = grid_.count();
         chunkCells_ = 32 * static_cast<int>(std::ceil(std::sqrt(static_cast<double>(cells)) / 32));
         chunks_ = (cells + chunkCells_ - 1) / chunkCells_;
-        backend_.resize(list_, static_cast<size_t>(capacity_) * n);
-        backend_.resize(count_, n);
-        backend_.resize(order_, n);
-        backend_.resize(slotOf_, n);
-        backend_.resize(positions_, n);
-        backend_.resize(binned_, n);
-        backend_.resize(cellOf_, n);
-        backend_.resize(rankInCell_, n);
+        // Kept allocations while they have room: a spatial domain's slot count changes at every
+        // rebuild of its domains, by a little.
+        backend_.fit(list_, static_cast<size_t>(capacity_) * n);
+        backend_.fit(count_, n);
+        backend_.fit(order_, n);
+        backend_.fit(slotOf_, n);
+        backend_.fit(positions_, n);
+        backend_.fit(binned_, n);
+        backend_.fit(cellOf_, n);
+        backend_.fit(rankInCell_, n);
         backend_.resize(cellCount_, cells);
         backend_.fill(cellCount_, 0);
         backend_.resize(cellStart_, cells + 1);

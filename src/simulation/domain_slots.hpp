@@ -4,7 +4,9 @@
 // positions at the last layout (the move check), and a rebuild's renumbering. A rebuild touches
 // the host only for the particles that cross between ranks and the ghosts' ids and attributes: which
 // owned slots stay, leave or border a face is decided on the backend (SlabGeometry, the view's
-// own rule), and the slots are renumbered there.
+// own rule), and the slots are renumbered there, in buffers that keep their allocation while it
+// has room (B::fit): a rebuild allocates nothing in the steady state, and the particles' arrays
+// keep their addresses, so what holds them (the neighbour lists) stays valid.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -120,7 +122,7 @@ public:
     // Which owned slots stay (their order kept for place_owned) and the particles that leave.
     SlabSort sort_owned(const Particles<B, R>& p, const SlabGeometry& geometry) {
         geometry_ = geometry;
-        backend_.resize(order_, static_cast<size_t>(owned_));
+        backend_.fit(order_, static_cast<size_t>(owned_));
         SlabSort sorted;
         stay_ = backend_.select(owned_, BoundFor<R>{p.pos.data(), geometry, SlabGeometry::kStays}, order_.data());
         sorted.stay = stay_;
@@ -148,21 +150,23 @@ public:
             positions[k] = {R(m.position[0]), R(m.position[1]), R(m.position[2]), R(attributes.typeIndex[k])};
             ids[k] = m.id;
         }
+        backend_.fit(arrivedPositions_, positions.size());
         backend_.upload(arrivedPositions_, positions.data(), positions.size());
         const int64_t owned = stay_ + n;
         std::vector<std::vector<int64_t>> sent(static_cast<size_t>(geometry_.links()));
-        backend_.resize(border_, static_cast<size_t>(geometry_.links() * owned));
+        backend_.fit(border_, static_cast<size_t>(geometry_.links() * owned));
         int64_t border = 0;
         // The new owned slots' global ids, to name the ghosts to the neighbours.
-        Buffer<int64_t> staged, newIds;
-        backend_.upload(staged, ids.data(), ids.size());
-        backend_.resize(newIds, static_cast<size_t>(owned));
-        backend_.for_each(owned, Renumbered<int64_t>{globalIds_.data(), order_.data(), stay_, staged.data(), newIds.data()});
+        backend_.fit(stagedIds_, ids.size());
+        backend_.upload(stagedIds_, ids.data(), ids.size());
+        backend_.fit(newIds_, static_cast<size_t>(owned));
+        backend_.for_each(owned,
+                          Renumbered<int64_t>{globalIds_.data(), order_.data(), stay_, stagedIds_.data(), newIds_.data()});
         for (int link = 0; link < geometry_.links(); ++link) {
             const int64_t count = backend_.select(
                 owned, BordersFace<R>{p.pos.data(), order_.data(), stay_, arrivedPositions_.data(), geometry_, link},
                 border_.data() + border);
-            sent[static_cast<size_t>(link)] = download_at(newIds, border_, border, count);
+            sent[static_cast<size_t>(link)] = download_at(newIds_, border_, border, count);
             border += count;
         }
         borderCount_ = border;
@@ -207,9 +211,9 @@ public:
         if (!p.charge.empty()) renumber(p.charge, count, charge);
         if (!p.model.empty()) renumber(p.model, count, model);
         renumber(globalIds_, count, ids);
-        backend_.resize(p.force, static_cast<size_t>(count));
-        if (!p.energy.empty()) backend_.resize(p.energy, static_cast<size_t>(count));
-        if (!p.virial.empty()) backend_.resize(p.virial, static_cast<size_t>(count));
+        backend_.fit(p.force, static_cast<size_t>(count));
+        if (!p.energy.empty()) backend_.fit(p.energy, static_cast<size_t>(count));
+        if (!p.virial.empty()) backend_.fit(p.virial, static_cast<size_t>(count));
         owned_ = owned;
         p.count = count;
         arrivals_.clear();
@@ -226,7 +230,7 @@ private:
     // The particles at the owned slots `bound` selects, with their ids, velocities and images.
     template <class Bound>
     std::vector<Migrant> leaving(const Particles<B, R>& p, const Bound& bound) {
-        backend_.resize(leavingSlots_, static_cast<size_t>(owned_));
+        backend_.fit(leavingSlots_, static_cast<size_t>(owned_));
         const int64_t m = backend_.select(owned_, bound, leavingSlots_.data());
         std::vector<Migrant> out(static_cast<size_t>(m));
         if (m == 0) return out;
@@ -245,28 +249,47 @@ private:
 
     // from[slots[first + k]] for k < m, on the host.
     template <class T>
-    std::vector<T> download_at(const Buffer<T>& from, const Buffer<int64_t>& slots, int64_t first, int64_t m) const {
+    std::vector<T> download_at(const Buffer<T>& from, const Buffer<int64_t>& slots, int64_t first, int64_t m) {
         std::vector<T> values(static_cast<size_t>(m));
         if (m == 0) return values;
-        Buffer<T> gathered;
-        backend_.resize(gathered, static_cast<size_t>(m));
+        Buffer<T>& gathered = scratch(T{});
+        backend_.fit(gathered, static_cast<size_t>(m));
         backend_.for_each(m, GatherById<T>{from.data(), slots.data() + first, gathered.data()});
         backend_.download(gathered, values.data(), values.size());
         return values;
     }
 
-    // `array` renumbered: the slots that stay (order_), then `added`, count in all.
+    // `array` renumbered in place: the slots that stay (order_), then `added`, count in all.
     template <class T>
     void renumber(Buffer<T>& array, int64_t count, const std::vector<T>& added) {
-        Buffer<T> renumbered, staged;
+        Buffer<T>& renumbered = scratch(T{});
+        Buffer<T>& staged = staging(T{});
+        backend_.fit(staged, added.size());
         backend_.upload(staged, added.data(), added.size());
-        backend_.resize(renumbered, static_cast<size_t>(count));
+        backend_.fit(renumbered, static_cast<size_t>(count));
         backend_.for_each(count, Renumbered<T>{array.data(), order_.data(), stay_, staged.data(), renumbered.data()});
-        std::swap(array, renumbered);
+        backend_.fit(array, static_cast<size_t>(count));
+        backend_.for_each(count, CopyArray<T>{renumbered.data(), array.data()});
     }
 
+    // Working buffers by value type, kept from one rebuild to the next.
+    template <class T>
+    struct Spare {
+        Buffer<T> scratch, staged;
+    };
+    Buffer<int64_t>& scratch(int64_t) { return spareIds_.scratch; }
+    Buffer<Real4<R>>& scratch(Real4<R>) { return spareVectors_.scratch; }
+    Buffer<Image>& scratch(Image) { return spareImages_.scratch; }
+    Buffer<R>& scratch(R) { return spareReals_.scratch; }
+    Buffer<int>& scratch(int) { return spareInts_.scratch; }
+    Buffer<int64_t>& staging(int64_t) { return spareIds_.staged; }
+    Buffer<Real4<R>>& staging(Real4<R>) { return spareVectors_.staged; }
+    Buffer<Image>& staging(Image) { return spareImages_.staged; }
+    Buffer<R>& staging(R) { return spareReals_.staged; }
+    Buffer<int>& staging(int) { return spareInts_.staged; }
+
     void remember_positions(const Particles<B, R>& p) {
-        backend_.resize(heldPositions_, static_cast<size_t>(p.count));
+        backend_.fit(heldPositions_, static_cast<size_t>(p.count));
         backend_.for_each(p.count, CopyArray<Real4<R>>{p.pos.data(), heldPositions_.data()});
     }
 
@@ -279,8 +302,13 @@ private:
     // A rebuild in progress: the geometry, the old owned slots that stay in their new order, the
     // arrivals, the border slots chosen and the new owned slots' ids.
     SlabGeometry geometry_;
-    Buffer<int64_t> order_, leavingSlots_;
+    Buffer<int64_t> order_, leavingSlots_, stagedIds_, newIds_;
     Buffer<Real4<R>> arrivedPositions_;
+    Spare<int64_t> spareIds_;
+    Spare<Real4<R>> spareVectors_;
+    Spare<Image> spareImages_;
+    Spare<R> spareReals_;
+    Spare<int> spareInts_;
     int64_t stay_ = 0, borderCount_ = 0;
     std::vector<Migrant> arrivals_;
     SlotAttributes arrivalAttributes_;

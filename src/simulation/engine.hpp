@@ -248,6 +248,7 @@ public:
     void place_ghosts(const std::vector<int64_t>& ghostIds, const SlotAttributes& attributes,
                       const DomainTerms& terms) override {
         backend_.activate();
+        const int* model = p_.model.data();
         domain_.place_ghosts(p_, ghostIds, attributes);
         p_.noise.ids = domain_.global_ids();
         p_.drift = {};
@@ -258,14 +259,18 @@ public:
         masses_.clear();
         radii_.clear();
         batchId_.assign(static_cast<size_t>(p_.count), 0);
-        // The terms and integrators again, over the new slots (their lists hold the old buffers),
-        // the lists as large as they had grown.
-        ForceField<B, R> forceField = make_force_field(*terms.forceField, *terms.components, &forceField_);
-        forceField.reserve_lists_like(forceField_);
-        std::vector<std::unique_ptr<Integrator<B, R>>> integrators = make_integrators(*terms.integrators, forceField);
+        // The terms read the particles' arrays where they are when they run, and their lists lay
+        // themselves out again for the new count; only a list's filter holds an array's address
+        // (the models'), so the force field is made again, its lists as large as they had grown,
+        // only when that array moved. The integrators are made again over the new slots.
+        if (p_.model.data() != model) {
+            ForceField<B, R> forceField = make_force_field(*terms.forceField, *terms.components, &forceField_);
+            forceField.reserve_lists_like(forceField_);
+            retiredListBuilds_ += forceField_.builds();
+            forceField_ = std::move(forceField);
+        }
+        std::vector<std::unique_ptr<Integrator<B, R>>> integrators = make_integrators(*terms.integrators, forceField_);
         for (size_t k = 0; k < integrators.size(); ++k) integrators[k]->restore(integrators_[k]->state());
-        retiredListBuilds_ += forceField_.builds();
-        forceField_ = std::move(forceField);
         integrators_ = std::move(integrators);
         cache_.invalidate();
         ghostsAt_ = -1;  // the ghost slots hold no positions yet: refreshed before the next evaluation

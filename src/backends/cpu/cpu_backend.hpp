@@ -28,12 +28,18 @@ public:
     void resize(size_t n, MemoryAccount& account) {
         release();
         data_.resize(n);
+        held_ = n;
         account_ = &account;
         account_->bytes += static_cast<int64_t>(n * sizeof(T));
     }
+    // How many values the allocation has room for; set_size(n <= capacity()) keeps it and the
+    // first n values.
+    size_t capacity() const { return held_; }
+    void set_size(size_t n) { data_.resize(n); }
     void release() {
-        if (account_) account_->bytes -= static_cast<int64_t>(data_.size() * sizeof(T));
+        if (account_) account_->bytes -= static_cast<int64_t>(held_ * sizeof(T));
         std::vector<T>().swap(data_);
+        held_ = 0;
     }
     HostBuffer(const HostBuffer&) = delete;
     HostBuffer& operator=(const HostBuffer&) = delete;
@@ -44,9 +50,11 @@ public:
 private:
     void swap(HostBuffer& other) noexcept {
         data_.swap(other.data_);
+        std::swap(held_, other.held_);
         std::swap(account_, other.account_);
     }
     std::vector<T> data_;
+    size_t held_ = 0;  // the allocation's room, as resize made it
     MemoryAccount* account_ = nullptr;
 };
 
@@ -158,6 +166,16 @@ public:
     template <class T>
     void resize(Buffer<T>& buffer, size_t n) const {
         if (n != buffer.size()) buffer.resize(n, memory_);
+    }
+
+    // Sizes a buffer for n values in the allocation it has while that has room, keeping the
+    // values; otherwise allocates n, or an eighth more when it grows a buffer that had values
+    // (values unspecified). For arrays whose length changes a little and often (a spatial domain's
+    // slots), at no cost to one whose length is set once.
+    template <class T>
+    void fit(Buffer<T>& buffer, size_t n) const {
+        if (n > buffer.capacity()) buffer.resize(buffer.capacity() == 0 ? n : n + n / 8, memory_);
+        buffer.set_size(n);
     }
 
     template <class T>

@@ -49,23 +49,31 @@ public:
             }
         }
         size_ = n;
+        capacity_ = n;
         account_ = &account;
         account_->bytes += static_cast<int64_t>(n * sizeof(T));
     }
+    // How many values the allocation has room for; set_size(n <= capacity()) keeps it and the
+    // first n values.
+    size_t capacity() const { return capacity_; }
+    void set_size(size_t n) { size_ = n; }
     void release() {
         if (data_) cudaFree(data_);
-        if (account_) account_->bytes -= static_cast<int64_t>(size_ * sizeof(T));
+        if (account_) account_->bytes -= static_cast<int64_t>(capacity_ * sizeof(T));
         data_ = nullptr;
         size_ = 0;
+        capacity_ = 0;
     }
 private:
     void swap(DeviceBuffer& other) noexcept {
         std::swap(data_, other.data_);
         std::swap(size_, other.size_);
+        std::swap(capacity_, other.capacity_);
         std::swap(account_, other.account_);
     }
     T* data_ = nullptr;
     size_t size_ = 0;
+    size_t capacity_ = 0;
     MemoryAccount* account_ = nullptr;
 };
 
@@ -274,6 +282,19 @@ public:
         if (n == buffer.size()) return;
         issue_recorded();  // recorded kernels may still use the old allocation
         buffer.resize(n, memory_);
+    }
+
+    // Sizes a buffer for n values in the allocation it has while that has room, keeping the
+    // values; otherwise allocates n, or an eighth more when it grows a buffer that had values
+    // (values unspecified). For arrays whose length changes a little and often (a spatial domain's
+    // slots), at no cost to one whose length is set once.
+    template <class T>
+    void fit(Buffer<T>& buffer, size_t n) const {
+        if (n > buffer.capacity()) {
+            issue_recorded();  // recorded kernels may still use the old allocation
+            buffer.resize(buffer.capacity() == 0 ? n : n + n / 8, memory_);
+        }
+        buffer.set_size(n);
     }
 
     template <class T>
