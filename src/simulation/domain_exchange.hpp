@@ -57,8 +57,8 @@ struct SlabSort {
     int64_t astray = -1;
 };
 
-// What a rebuild makes again over the new slots: the force field and integrators (their terms hold
-// nothing by slot: DomainSpec::renumbers_in_place).
+// What a rebuild makes again over the new slots: the integrators, and the force field where an array
+// it holds had to move (its terms hold nothing by slot: DomainSpec::renumbers_in_place).
 struct DomainTerms {
     const ForceFieldSpec* forceField = nullptr;
     const std::vector<IntegratorSpec>* integrators = nullptr;

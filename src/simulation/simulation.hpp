@@ -89,7 +89,8 @@ public:
     // between): sort_owned finds where each owned particle goes; place_owned makes the slots that
     // stay and the arrivals (with their attributes) the owned ones and returns, by link, the
     // global ids of those it sends as ghosts; place_ghosts takes the ghosts' ids and attributes,
-    // makes `terms` again over the new slots, and refreshes the ghosts before the next evaluation.
+    // makes the integrators of `terms` again over the new slots (and its force field, where an
+    // array the force field holds had to move), and refreshes the ghosts before the next evaluation.
     virtual SlabSort sort_owned(const SlabGeometry& /*geometry*/) { domain_only(); }
     virtual std::vector<std::vector<int64_t>> place_owned(const std::vector<Migrant>& /*arrivals*/,
                                                           const SlotAttributes& /*attributes*/) {
