@@ -17,8 +17,6 @@
 namespace structmd {
 
 struct RuntimeSpec;           // simulation/read_simulation.hpp
-struct ForceFieldSpec;        // forcefield/forcefield_spec.hpp
-struct IntegratorSpec;        // integrators/integrator_spec.hpp
 class ForceFieldComponents;  // forcefield/component_set.hpp
 class SimulationStep;        // steps/simulation_step.hpp
 
