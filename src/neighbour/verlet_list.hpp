@@ -90,9 +90,11 @@ public:
 
     // What a drift kernel moving the n positions in `pos` needs to keep this list's copy and
     // displacement check (state/drift_bookkeeping.hpp): null slots unless the list is laid out for
-    // exactly those positions (not, say, for sites placed from them).
+    // exactly those positions (not, say, for sites placed from them) and is not to be built again
+    // anyway (its copy may belong to other particles: a spatial domain's slots renumbered in place).
     const int* slot_of(const Real4<R>* pos, int64_t n) const {
-        return particles_ == n && n > 0 && source_ == pos && !needsLayout_ ? slotOf_.data() : nullptr;
+        return particles_ == n && n > 0 && source_ == pos && !needsLayout_ && !forceRebuild_ ? slotOf_.data()
+                                                                                               : nullptr;
     }
     SlotMirror<R> mirror() {
         const R halfSkin = R(0.5 * (listRadius_ - cutoff_));

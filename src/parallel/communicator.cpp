@@ -55,6 +55,17 @@ private:
 
 std::shared_ptr<const Communicator> single_process() { return std::make_shared<SingleProcess>(); }
 
+void raise_first_failure(const Communicator& comm, int64_t first, structmd_status status, const std::string& message) {
+    if (first == comm.size()) return;
+    std::string report = std::to_string(static_cast<int>(status)) + " " + message;
+    comm.broadcast(report, static_cast<int>(first));
+    const size_t space = report.find(' ');
+    const auto code = static_cast<structmd_status>(std::stoi(report.substr(0, space)));
+    std::string text = report.substr(space + 1);
+    if (comm.rank() != first) text += " (on MPI rank " + std::to_string(first) + ")";
+    throw Error(code, text);
+}
+
 #ifdef STRUCTMD_HAVE_MPI
 
 namespace {

@@ -2,11 +2,13 @@
 // The MPI communicator a handle works over (its "mpi_comm" option), behind an interface free of
 // mpi.h so that the rest of the library builds the same with or without MPI. Every call is
 // collective: all ranks of the communicator make it, in the same order.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -42,34 +44,52 @@ public:
                        int from) const = 0;
 };
 
+// `local`, with what it threw turned into a status and a message (STRUCTMD_OK if nothing).
+template <class F>
+std::pair<structmd_status, std::string> attempt(F&& local) {
+    try {
+        local();
+    } catch (const Error& e) {
+        return {e.status(), e.what()};
+    } catch (const std::bad_alloc&) {
+        return {STRUCTMD_ERR_MEMORY, "out of host memory"};
+    } catch (const std::exception& e) {
+        return {STRUCTMD_ERR_INTERNAL, std::string("internal error, please report: ") + e.what()};
+    }
+    return {STRUCTMD_OK, {}};
+}
+
+// Every rank throws the error of rank `first`, the first that failed (its status and message, as
+// that rank passes them), unless `first` is the communicator's size: none failed. Collective.
+void raise_first_failure(const Communicator& comm, int64_t first, structmd_status status, const std::string& message);
+
 // Runs `local` on every rank of `comm`; when it throws on any, every rank throws the error of the
 // first rank it failed on (its status and message), so that no rank goes on to a collective call
 // the others never make.
 template <class F>
 void run_together(const Communicator& comm, F&& local) {
-    structmd_status status = STRUCTMD_OK;
-    std::string message;
-    try {
-        local();
-    } catch (const Error& e) {
-        status = e.status();
-        message = e.what();
-    } catch (const std::bad_alloc&) {
-        status = STRUCTMD_ERR_MEMORY;
-        message = "out of host memory";
-    } catch (const std::exception& e) {
-        status = STRUCTMD_ERR_INTERNAL;
-        message = std::string("internal error, please report: ") + e.what();
+    const auto [status, message] = attempt(local);
+    raise_first_failure(comm, comm.all_min(status != STRUCTMD_OK ? comm.rank() : comm.size()), status, message);
+}
+
+// The same for a `local` that returns a number: returns its largest value over the ranks, found in
+// the same collective call that shares the failures (a step loop's one call a step).
+template <class F>
+double run_together_max(const Communicator& comm, F&& local) {
+    double value = 0.0;
+    const auto [status, message] = attempt([&] { value = local(); });
+    const int ranks = comm.size();
+    const double mine[2] = {static_cast<double>(status != STRUCTMD_OK ? comm.rank() : ranks), value};
+    std::vector<double> all(2 * static_cast<size_t>(ranks));
+    comm.all_gather(mine, all.data(), std::vector<int64_t>(static_cast<size_t>(ranks), 2));
+    int64_t first = ranks;
+    double largest = value;
+    for (int r = 0; r < ranks; ++r) {
+        first = std::min(first, static_cast<int64_t>(all[2 * static_cast<size_t>(r)]));
+        largest = std::max(largest, all[2 * static_cast<size_t>(r) + 1]);
     }
-    const int64_t first = comm.all_min(status != STRUCTMD_OK ? comm.rank() : comm.size());
-    if (first == comm.size()) return;
-    std::string report = std::to_string(static_cast<int>(status)) + " " + message;
-    comm.broadcast(report, static_cast<int>(first));
-    const size_t space = report.find(' ');
-    const auto code = static_cast<structmd_status>(std::stoi(report.substr(0, space)));
-    std::string text = report.substr(space + 1);
-    if (comm.rank() != first) text += " (on MPI rank " + std::to_string(first) + ")";
-    throw Error(code, text);
+    raise_first_failure(comm, first, status, message);
+    return largest;
 }
 
 // Whether this library was built with MPI (CMake option STRUCTMD_MPI).

@@ -14,7 +14,7 @@ namespace structmd {
 
 namespace {
 
-constexpr int kHeldValues = 10;  // id, position, velocity, image
+constexpr int kMigrantValues = 13;  // id, position, velocity, force, image
 constexpr int kGhostValues = 7;  // id, position, velocity (a new engine's ghosts)
 
 std::string number(double x) {
@@ -33,6 +33,9 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec
       spec_(std::move(spec)),
       components_(&components),
       log_(log) {
+    onDevice_ = options.ghostExchange == EngineOptions::GhostExchange::nccl ||
+                (options.ghostExchange == EngineOptions::GhostExchange::automatic && nccl_compiled() &&
+                 options.backend == BackendKind::cuda);
     total_ = whole->particle_count();
     massive_ = whole->massive_count();
     const auto n = static_cast<size_t>(total_);
@@ -83,11 +86,11 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec
     whole->take_steps(steps_);
     inPlace_ = spec_.renumbers_in_place();
 
-    std::vector<Held> owned;
+    std::vector<Migrant> owned;
     const SlabGeometry slabs = geometry();
     for (int64_t i = 0; i < total_; ++i) {
         if (slabs.slab_of(x[3 * i + axis_]) != comm_->rank()) continue;
-        Held h;
+        Migrant h;
         h.id = i;
         for (int d = 0; d < 3; ++d) {
             h.position[d] = x[3 * i + d];
@@ -102,15 +105,18 @@ DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec
     adopt(std::move(first));
     log_.info("MPI rank " + std::to_string(comm_->rank()) + " of " + std::to_string(comm_->size()) +
               ": spatial domain along axis " + std::to_string(axis_) + ", " + std::to_string(owned_) + " particles and " +
-              std::to_string(local_->particle_count() - owned_) + " ghosts (ghost width " + number(width_) + ")");
+              std::to_string(local_->particle_count() - owned_) + " ghosts (ghost width " + number(width_) +
+              "; ghosts exchanged " + (onDevice_ ? "from GPU to GPU through NCCL)" : "through the host's memory by MPI)"));
 }
 
 DomainsOverRanks::~DomainsOverRanks() {
     if (comm_->rank() == 0)
         log_.info("spatial domains rebuilt " + std::to_string(rebuilds_) + " times (ghost width " + number(width_) +
                   ", rebuilt past a move of " + number(0.5 * moveLimit_) + "); rank 0 spent " +
-                  number(rebuildSeconds_) + " s rebuilding and " + number(exchangeSeconds_) +
-                  " s in the ghosts' MPI exchange");
+                  number(rebuildSeconds_) + " s rebuilding (in place: " + number(rebuildPhases_[0]) +
+                  " s sorting the owned slots, " + number(rebuildPhases_[1]) + " s migrating, " +
+                  number(rebuildPhases_[2]) + " s naming the ghosts, " + number(rebuildPhases_[3]) +
+                  " s renumbering) and " + number(exchangeSeconds_) + " s in the ghosts' MPI exchange");
 }
 
 void DomainsOverRanks::set_step_firing(StepFiring*) {
@@ -169,15 +175,19 @@ void DomainsOverRanks::advance(int64_t n) {
         // A rank whose step fails (a blow-up) rolls its engine back by that step and the others
         // do not: the ranks would no longer agree on the step, so the domains go no further.
         broken_ = true;
-        run_together(*comm_, [&] { local_->advance(1); });
+        // One collective a step: the failures and the largest move since the last rebuild together.
+        const double move = run_together_max(*comm_, [&] {
+            local_->advance(1);
+            return std::isinf(moveLimit_) ? 0.0 : local_->largest_owned_move();
+        });
         broken_ = false;
         begun_ = true;
-        check_moves();
+        check_moves(move);
     }
     if (current_step() == last) fire_due(true);
 }
 
-std::vector<DomainsOverRanks::Held> DomainsOverRanks::owned_now() {
+std::vector<Migrant> DomainsOverRanks::owned_now() {
     const auto slots = static_cast<size_t>(local_->particle_count());
     std::vector<double> x(3 * slots), v(3 * slots);
     std::vector<int32_t> images(3 * slots);
@@ -187,7 +197,7 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::owned_now() {
         local_->get_velocities(v.data());
         local_->get_images(images.data());
     });
-    std::vector<Held> held(static_cast<size_t>(owned_));
+    std::vector<Migrant> held(static_cast<size_t>(owned_));
     for (size_t s = 0; s < held.size(); ++s) {
         held[s].id = ids_[s];
         for (int d = 0; d < 3; ++d) {
@@ -207,13 +217,7 @@ std::vector<double> DomainsOverRanks::shift_values(const std::vector<double>& ou
     return in;
 }
 
-void DomainsOverRanks::check_moves() {
-    if (std::isinf(moveLimit_)) return;
-    double largest = 0.0;
-    run_together(*comm_, [&] { largest = local_->largest_owned_move(); });
-    std::vector<double> all(static_cast<size_t>(comm_->size()));
-    comm_->all_gather(&largest, all.data(), std::vector<int64_t>(all.size(), 1));
-    const double move = *std::max_element(all.begin(), all.end());
+void DomainsOverRanks::check_moves(double move) {
     if (move > moveLimit_)
         throw Error(STRUCTMD_ERR_NUMERICAL,
                     "step " + std::to_string(current_step()) + ": a particle moved " + number(move) +
@@ -224,7 +228,7 @@ void DomainsOverRanks::check_moves() {
     if (inPlace_) {
         rebuild_in_place();
     } else {
-        std::vector<Held> held = owned_now();
+        std::vector<Migrant> held = owned_now();
         Domain next;
         run_together(*comm_, [&] { next = build(migrate(std::move(held))); });
         adopt(std::move(next));
@@ -233,22 +237,22 @@ void DomainsOverRanks::check_moves() {
     rebuildSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::vector<DomainsOverRanks::Held> DomainsOverRanks::migrate(std::vector<Held> held) {
+std::vector<Migrant> DomainsOverRanks::migrate(std::vector<Migrant> held) {
     const SlabGeometry slabs = geometry();
-    std::vector<Held> kept, up, down;
+    std::vector<Migrant> kept, up, down;
     int64_t astray = -1;
-    for (const Held& h : held) switch (slabs.destination(h.position[axis_])) {
+    for (const Migrant& h : held) switch (slabs.destination(h.position[axis_])) {
             case SlabGeometry::kStays: kept.push_back(h); break;
             case SlabGeometry::kUp: up.push_back(h); break;
             case SlabGeometry::kDown: down.push_back(h); break;
             default: astray = std::max(astray, h.id);
         }
-    std::vector<Held> arrived = cross(up, down, astray);
+    std::vector<Migrant> arrived = cross(up, down, astray);
     kept.insert(kept.end(), arrived.begin(), arrived.end());
     return kept;
 }
 
-std::vector<DomainsOverRanks::Held> DomainsOverRanks::cross(const std::vector<Held>& up, const std::vector<Held>& down,
+std::vector<Migrant> DomainsOverRanks::cross(const std::vector<Migrant>& up, const std::vector<Migrant>& down,
                                                             int64_t astray) const {
     // Every rank learns of a particle that went too far before any waits on the shifts below.
     astray = comm_->all_max(astray);
@@ -257,26 +261,28 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::cross(const std::vector<He
                                             "between two rebuilds of the spatial domains");
     const int me = comm_->rank(), ranks = comm_->size();
     const int above = (me + 1) % ranks, below = (me + ranks - 1) % ranks;
-    std::vector<Held> arrived;
+    std::vector<Migrant> arrived;
     // Two shifts along the ring: up (from below), then down (from above).
-    for (const auto& [leaving, to, from] : {std::tuple<const std::vector<Held>&, int, int>{up, above, below},
-                                            std::tuple<const std::vector<Held>&, int, int>{down, below, above}}) {
+    for (const auto& [leaving, to, from] : {std::tuple<const std::vector<Migrant>&, int, int>{up, above, below},
+                                            std::tuple<const std::vector<Migrant>&, int, int>{down, below, above}}) {
         std::vector<double> out;
-        out.reserve(kHeldValues * leaving.size());
-        for (const Held& h : leaving) {
+        out.reserve(kMigrantValues * leaving.size());
+        for (const Migrant& h : leaving) {
             out.push_back(static_cast<double>(h.id));
             out.insert(out.end(), h.position.begin(), h.position.end());
             out.insert(out.end(), h.velocity.begin(), h.velocity.end());
+            out.insert(out.end(), h.force.begin(), h.force.end());
             for (int d = 0; d < 3; ++d) out.push_back(h.image[d]);
         }
         const std::vector<double> in = shift_values(out, to, from);
-        for (size_t k = 0; k < in.size(); k += kHeldValues) {
-            Held h;
+        for (size_t k = 0; k < in.size(); k += kMigrantValues) {
+            Migrant h;
             h.id = static_cast<int64_t>(in[k]);
             for (int d = 0; d < 3; ++d) {
                 h.position[d] = in[k + 1 + d];
                 h.velocity[d] = in[k + 4 + d];
-                h.image[d] = static_cast<int32_t>(in[k + 7 + d]);
+                h.force[d] = in[k + 7 + d];
+                h.image[d] = static_cast<int32_t>(in[k + 10 + d]);
             }
             arrived.push_back(h);
         }
@@ -284,13 +290,13 @@ std::vector<DomainsOverRanks::Held> DomainsOverRanks::cross(const std::vector<He
     return arrived;
 }
 
-DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const {
-    std::sort(owned.begin(), owned.end(), [](const Held& a, const Held& b) { return a.id < b.id; });
+DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Migrant> owned) const {
+    std::sort(owned.begin(), owned.end(), [](const Migrant& a, const Migrant& b) { return a.id < b.id; });
     Domain d;
     DomainLayout& layout = d.layout;
     layout.owned = static_cast<int64_t>(owned.size());
     std::vector<double> positions, velocities;
-    for (const Held& h : owned) {
+    for (const Migrant& h : owned) {
         layout.globalIds.push_back(h.id);
         positions.insert(positions.end(), h.position.begin(), h.position.end());
         velocities.insert(velocities.end(), h.velocity.begin(), h.velocity.end());
@@ -303,7 +309,7 @@ DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Held> owned) const 
         Link& link = d.links[l];
         std::vector<double> out;
         for (size_t s = 0; s < owned.size(); ++s) {
-            const Held& h = owned[s];
+            const Migrant& h = owned[s];
             if (!((slabs.borders(h.position[axis_]) >> l) & 1)) continue;
             layout.borderSlots.push_back(static_cast<int64_t>(s));
             ++link.sent;
@@ -355,10 +361,17 @@ Counters DomainsOverRanks::counters() {
 }
 
 void DomainsOverRanks::rebuild_in_place() {
+    auto lap = [this, start = std::chrono::steady_clock::now()](int phase) mutable {
+        const auto now = std::chrono::steady_clock::now();
+        rebuildPhases_[static_cast<size_t>(phase)] += std::chrono::duration<double>(now - start).count();
+        start = now;
+    };
     // Which owned particles stay, and those that leave, found where they live.
     SlabSort sorted;
     run_together(*comm_, [&] { sorted = local_->sort_owned(geometry()); });
-    const std::vector<Held> arrived = cross(sorted.up, sorted.down, sorted.astray);
+    lap(0);
+    const std::vector<Migrant> arrived = cross(sorted.up, sorted.down, sorted.astray);
+    lap(1);
     std::vector<int64_t> arrivedIds(arrived.size());
     for (size_t k = 0; k < arrived.size(); ++k) arrivedIds[k] = arrived[k].id;
     std::vector<std::vector<int64_t>> borders;
@@ -376,6 +389,7 @@ void DomainsOverRanks::rebuild_in_place() {
     }
     owned_ = sorted.stay + static_cast<int64_t>(arrived.size());
     links_ = std::move(links);
+    lap(2);
     idsKnown_ = false;
     const SystemSpec& whole = spec_.whole();
     const DomainTerms terms{&whole.forceField, &whole.integrators, components_};
@@ -384,6 +398,7 @@ void DomainsOverRanks::rebuild_in_place() {
     broken_ = true;
     run_together(*comm_, [&] { local_->place_ghosts(ghostIds, attributes_of(ghostIds), terms); });
     broken_ = false;
+    lap(3);
 }
 
 SlotAttributes DomainsOverRanks::attributes_of(const std::vector<int64_t>& ids) const {
@@ -431,6 +446,29 @@ void DomainsOverRanks::exchange(const void* border, void* ghosts, size_t bytes) 
         in += link.received * bytes;
     }
     exchangeSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void DomainsOverRanks::exchange_on_device(const void* border, void* ghosts, size_t bytes, void* stream) {
+#ifdef STRUCTMD_HAVE_NCCL
+    const auto start = std::chrono::steady_clock::now();
+    // Every rank's engine refreshes its ghosts at the same point of the same step: the channel is
+    // made collectively there, on the engine's GPU.
+    if (!channel_) channel_ = std::make_unique<NcclChannel>(*comm_);
+    std::vector<NcclChannel::Shift> shifts;
+    const auto* out = static_cast<const unsigned char*>(border);
+    auto* in = static_cast<unsigned char*>(ghosts);
+    for (const Link& link : links_) {
+        const size_t sent = static_cast<size_t>(link.sent) * bytes, received = static_cast<size_t>(link.received) * bytes;
+        shifts.push_back({out, sent, link.to, in, received, link.from});
+        out += sent;
+        in += received;
+    }
+    channel_->shift(shifts, stream);
+    exchangeSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+#else
+    (void)border, (void)ghosts, (void)bytes, (void)stream;
+    throw Error(STRUCTMD_ERR_INTERNAL, "ghosts exchanged between GPUs in a build without NCCL");
+#endif
 }
 
 // ---- gathers and sums ----

@@ -14,8 +14,9 @@
 //   on any rank, and Langevin trajectories are those of one rank to rounding.
 // - Ghosts: before every force evaluation at new positions the engine refreshes them
 //   (GhostExchange, simulation/domain_exchange.hpp): the positions of its border slots, in the
-//   engine's own precision, go to the neighbours and theirs come back into the ghost slots, staged
-//   through pinned host memory, MPI point to point (two shifts along the ring of ranks). Ghosts
+//   engine's own precision, go to the neighbours and theirs come back into the ghost slots: from GPU
+//   to GPU through NCCL, queued on the engine's stream (option "ghost_exchange", nccl_channel.hpp),
+//   or staged through pinned host memory, MPI point to point (two shifts along the ring of ranks). Ghosts
 //   are integrated locally like any particle but with incomplete forces; the refresh overwrites
 //   their positions and clears their velocities (no term under domains reads a velocity), so only
 //   owned particles' motion counts.
@@ -61,6 +62,9 @@
 #include "forcefield/component_set.hpp"
 #include "parallel/communicator.hpp"
 #include "parallel/domain_spec.hpp"
+#ifdef STRUCTMD_HAVE_NCCL
+#include "parallel/nccl_channel.hpp"
+#endif
 #include "parallel/steps_on_rank_zero.hpp"
 #include "steps/simulation_step.hpp"
 
@@ -151,7 +155,6 @@ public:
     std::optional<double> overdamped_kT() const override { return local_->overdamped_kT(); }
 
 private:
-    using Held = Migrant;
     // One neighbour the ghosts are exchanged with: this rank sends `sent` particles to `to` and
     // receives `received` from `from`.
     struct Link {
@@ -161,20 +164,23 @@ private:
 
     // GhostExchange
     void exchange(const void* border, void* ghosts, size_t bytes) override;
+    bool exchanges_on_device() const override { return onDevice_; }
+    void exchange_on_device(const void* border, void* ghosts, size_t bytes, void* stream) override;
 
     void fire_due(bool final);
     // The owned particles as they are now: positions, velocities and images (whole, since load).
-    std::vector<Held> owned_now();
+    std::vector<Migrant> owned_now();
     // `out` to rank `to`, and whatever rank `from` sends in the same shift (its count first).
     std::vector<double> shift_values(const std::vector<double>& out, int to, int from) const;
-    // After a step: the largest move since the rebuild over all ranks; rebuilds past half the limit.
-    void check_moves();
+    // After a step, given the largest move since the rebuild over all ranks: fails past the ghost
+    // layer's limit, rebuilds past half of it.
+    void check_moves(double move);
     // Owned particles that left the slab go to their new owner; returns what this rank owns now.
-    std::vector<Held> migrate(std::vector<Held> held);
+    std::vector<Migrant> migrate(std::vector<Migrant> held);
     // The particles leaving for the ranks above and below go there, once every rank knows that none
     // strayed farther (`astray`: the largest id of one that did, -1 for none); returns those that
     // arrived here.
-    std::vector<Held> cross(const std::vector<Held>& up, const std::vector<Held>& down, int64_t astray) const;
+    std::vector<Migrant> cross(const std::vector<Migrant>& up, const std::vector<Migrant>& down, int64_t astray) const;
     // A rebuild that renumbers the present engine's slots where they live
     // (DomainSpec::renumbers_in_place): only the migrants and the new ghosts' ids cross the host.
     // Collective.
@@ -191,7 +197,7 @@ private:
     };
     // Picks the ghosts of `owned` and loads the domain's engine, leaving the present one untouched
     // (collective: the ghosts are exchanged).
-    Domain build(std::vector<Held> owned) const;
+    Domain build(std::vector<Migrant> owned) const;
     // Makes `next` this rank's domain. Called by every rank once all have built theirs, so that a
     // build that fails on one rank leaves every rank with the domains it had.
     void adopt(Domain next);
@@ -239,7 +245,15 @@ private:
     bool broken_ = false;   // a step or a rebuild in place failed part way: the ranks disagree
     int64_t rebuilds_ = 0;  // since load, logged at the end: how often the ghost layer ran out
     Counters retired_;      // of the engines this domain had before the present one
+    // Whether the ghosts go from GPU to GPU (NCCL), and its channel, made at the first refresh.
+    bool onDevice_ = false;
+#ifdef STRUCTMD_HAVE_NCCL
+    std::unique_ptr<NcclChannel> channel_;
+#endif
     double rebuildSeconds_ = 0.0, exchangeSeconds_ = 0.0;  // wall time, logged at the end
+    // A rebuild in place's wall time by phase: sorting the owned slots, migrating, naming the
+    // ghosts (the border slots and the ids exchanged), renumbering the slots.
+    std::array<double, 4> rebuildPhases_{};
 };
 
 }  // namespace structmd

@@ -17,18 +17,23 @@ class ForceFieldComponents;  // forcefield/component_set.hpp
 
 // Refreshes the ghosts before every force evaluation at new positions: the engine hands the
 // positions of its border slots (`bytes` each, in the order the view's links send them) to
-// exchange(), which fills its ghost slots' (in slot order) with their owners'.
+// exchange(), which fills its ghost slots' (in slot order) with their owners'. Where the view can
+// move them between GPUs directly (NCCL), the engine hands device memory to exchange_on_device()
+// instead, with the stream its kernels run on.
 class GhostExchange {
 public:
     virtual ~GhostExchange() = default;
     virtual void exchange(const void* border, void* ghosts, size_t bytes) = 0;
+    virtual bool exchanges_on_device() const { return false; }
+    virtual void exchange_on_device(const void* /*border*/, void* /*ghosts*/, size_t /*bytes*/, void* /*stream*/) {}
 };
 
-// A particle as it crosses to another domain: its global id, where it is, how fast, and its box
-// crossings since load.
+// A particle as it crosses to another domain: its global id, where it is, how fast, its box
+// crossings since load, and the force on it at these positions (a rebuild in place keeps the
+// forces, so the step after it evaluates them only once the particles moved).
 struct Migrant {
     int64_t id = 0;
-    std::array<double, 3> position{}, velocity{};
+    std::array<double, 3> position{}, velocity{}, force{};
     std::array<int32_t, 3> image{};
 };
 

@@ -103,6 +103,15 @@ public:
     void refresh(Particles<B, R>& p, typename B::template Staging<Real4<R>>& host) {
         const int64_t border = borderCount_;
         const int64_t ghosts = p.count - owned_;
+        if (exchange_->exchanges_on_device() && backend_.host_launch_stream()) {
+            backend_.fit(exchanged_, static_cast<size_t>(border + ghosts));
+            Real4<R>* values = exchanged_.data();
+            if (border > 0) backend_.for_each(border, GatherById<Real4<R>>{p.pos.data(), border_.data(), values});
+            exchange_->exchange_on_device(values, values + border, sizeof(Real4<R>), backend_.host_launch_stream());
+            if (ghosts > 0)
+                backend_.for_each(ghosts, PlaceGhosts<R>{values + border, owned_, p.pos.data(), p.vel.data()});
+            return;
+        }
         Real4<R>* values = host.reserve(static_cast<size_t>(border + ghosts));
         if (border > 0) {
             backend_.for_each(border, GatherById<Real4<R>>{p.pos.data(), border_.data(), values});
@@ -179,7 +188,7 @@ public:
         const int64_t arrived = static_cast<int64_t>(arrivals_.size());
         const int64_t owned = stay_ + arrived, count = owned + static_cast<int64_t>(ghostIds.size());
         const size_t added = static_cast<size_t>(count - stay_);
-        std::vector<Real4<R>> pos(added), vel(added);
+        std::vector<Real4<R>> pos(added), vel(added), force(added, Real4<R>{R(0), R(0), R(0), R(0)});
         std::vector<Image> images(added, Image{0, 0, 0});
         std::vector<R> radius(added), charge(added);
         std::vector<int> model(added);
@@ -200,18 +209,20 @@ public:
             const Migrant& m = arrivals_[j];
             pos[k] = {R(m.position[0]), R(m.position[1]), R(m.position[2]), pos[k].w};
             vel[k] = {R(m.velocity[0]), R(m.velocity[1]), R(m.velocity[2]), vel[k].w};
+            force[k] = {R(m.force[0]), R(m.force[1]), R(m.force[2]), R(0)};
             images[k] = Image{m.image[0], m.image[1], m.image[2]};
             ids[k] = m.id;
         }
         renumber(p.pos, count, pos);
         renumber(p.vel, count, vel);
+        // The owned slots' forces stay those of their positions (a ghost's is never read).
+        renumber(p.force, count, force);
         renumber(p.image, count, images);
         // Arrays the input left empty stay empty.
         if (!p.radius.empty()) renumber(p.radius, count, radius);
         if (!p.charge.empty()) renumber(p.charge, count, charge);
         if (!p.model.empty()) renumber(p.model, count, model);
         renumber(globalIds_, count, ids);
-        backend_.fit(p.force, static_cast<size_t>(count));
         if (!p.energy.empty()) backend_.fit(p.energy, static_cast<size_t>(count));
         if (!p.virial.empty()) backend_.fit(p.virial, static_cast<size_t>(count));
         owned_ = owned;
@@ -227,7 +238,7 @@ public:
     }
 
 private:
-    // The particles at the owned slots `bound` selects, with their ids, velocities and images.
+    // The particles at the owned slots `bound` selects, with their ids, velocities, images and forces.
     template <class Bound>
     std::vector<Migrant> leaving(const Particles<B, R>& p, const Bound& bound) {
         backend_.fit(leavingSlots_, static_cast<size_t>(owned_));
@@ -236,12 +247,14 @@ private:
         if (m == 0) return out;
         const std::vector<Real4<R>> x = download_at(p.pos, leavingSlots_, 0, m);
         const std::vector<Real4<R>> v = download_at(p.vel, leavingSlots_, 0, m);
+        const std::vector<Real4<R>> f = download_at(p.force, leavingSlots_, 0, m);
         const std::vector<Image> images = download_at(p.image, leavingSlots_, 0, m);
         const std::vector<int64_t> ids = download_at(globalIds_, leavingSlots_, 0, m);
         for (size_t k = 0; k < out.size(); ++k) {
             out[k].id = ids[k];
             out[k].position = {double(x[k].x), double(x[k].y), double(x[k].z)};
             out[k].velocity = {double(v[k].x), double(v[k].y), double(v[k].z)};
+            out[k].force = {double(f[k].x), double(f[k].y), double(f[k].z)};
             out[k].image = {images[k].x, images[k].y, images[k].z};
         }
         return out;
@@ -299,6 +312,7 @@ private:
     Buffer<int64_t> globalIds_;
     Buffer<int64_t> border_;  // owned slots each link sends, concatenated in link order (borderCount_)
     Buffer<Real4<R>> heldPositions_;
+    Buffer<Real4<R>> exchanged_;  // the border's positions, then the ghosts', where GPUs exchange directly
     // A rebuild in progress: the geometry, the old owned slots that stay in their new order, the
     // arrivals, the border slots chosen and the new owned slots' ids.
     SlabGeometry geometry_;

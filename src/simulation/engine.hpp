@@ -272,9 +272,14 @@ public:
         std::vector<std::unique_ptr<Integrator<B, R>>> integrators = make_integrators(*terms.integrators, forceField_);
         for (size_t k = 0; k < integrators.size(); ++k) integrators[k]->restore(integrators_[k]->state());
         integrators_ = std::move(integrators);
-        cache_.invalidate();
-        ghostsAt_ = -1;  // the ghost slots hold no positions yet: refreshed before the next evaluation
-        positions_changed();
+        // The slots were renumbered, not moved: the owned slots' forces, renumbered with them, stay
+        // current if they were, so the next step of velocity Verlet evaluates forces (and builds the
+        // lists) only once it has moved the particles. The ghost slots hold no positions yet:
+        // refreshed before the next evaluation.
+        ++p_.version;
+        forceField_.invalidate_lists();
+        cache_.renumbered(p_.version - 1, p_.version);
+        ghostsAt_ = -1;
     }
     std::vector<int64_t> global_ids() override {
         backend_.activate();
@@ -783,7 +788,7 @@ private:
 
     // ForceSource
     void update_forces() override {
-        refresh_ghosts();
+        if (!cache_.forces_current(p_.version)) refresh_ghosts();
         cache_.evaluate(kForces, backend_, p_, forceField_, callbacks_, evaluations_);
         arm_drift();
     }

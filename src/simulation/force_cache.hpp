@@ -67,6 +67,15 @@ public:
     // The external forces changed: forces must be computed again at the same positions.
     void forces_changed() { forces_ = cleared_ = kStale; }
     void invalidate() { forces_ = energy_ = virial_ = cleared_ = kStale; }
+    // The slots were renumbered with the forces (a spatial domain's rebuild in place) and the
+    // positions, as they were at `before`, are now `after`: forces current before stay current
+    // (an integrator that moved the particles after its last evaluation left them stale); energies
+    // and virials, not renumbered, are stale.
+    void renumbered(int64_t before, int64_t after) {
+        const bool current = forces_ == before;
+        invalidate();
+        if (current) forces_ = after;
+    }
 
     static void count(const ForceOutputs<R>& out, Counters& counters) {
         counters.forceEvaluations += out.force != nullptr;

@@ -157,6 +157,17 @@ static double largest_difference(const double* a, const double* b, int64_t n, co
 
 static char world_options[256];
 
+/* A counter of structmd_get_counters by name (-1 when missing). */
+static long long counter(structmd_sim* sim, const char* name) {
+    char counters[1024], key[128];
+    check(structmd_get_counters(sim, counters, sizeof counters), sim, "structmd_get_counters");
+    snprintf(key, sizeof key, "\"%s\":", name);
+    const char* at = strstr(counters, key);
+    long long value = -1;
+    if (at) sscanf(at + strlen(key), "%lld", &value);
+    return value;
+}
+
 /* Runs the case split and alone, comparing them at every output. */
 static void run_case(const Case* c, double position_tolerance, double energy_tolerance, int conserves) {
     char* input = make_input(c);
@@ -217,14 +228,23 @@ static void run_case(const Case* c, double position_tolerance, double energy_tol
     }
     /* The particles moved far enough that the domains were rebuilt (so what was compared includes
      * rebuilds), except where nothing reaches across a face. */
-    char counters[1024];
-    check(structmd_get_counters(split, counters, sizeof counters), split, "structmd_get_counters");
-    const char* key = strstr(counters, "\"domain_rebuilds\":");
-    long long rebuilds = -1;
-    if (key) sscanf(key + strlen("\"domain_rebuilds\":"), "%lld", &rebuilds);
+    const long long rebuilds = counter(split, "domain_rebuilds");
     const int none = strcmp(c->pair, "none") == 0;
     snprintf(what, sizeof what, "%s: %lld domain rebuilds, expected %s", c->name, rebuilds, none ? "none" : "some");
     expect(none ? rebuilds == 0 : rebuilds > 0, what);
+    /* A rebuild in place (no bonds) renumbers the slots with their forces: the step after it
+     * evaluates forces no more often than one rank does. An output may evaluate them once more
+     * (the energy of one term over the ranks computes its forces; its ghosts may be refreshed right
+     * after a rebuild), never once per rebuild. */
+    const long long evaluations_split = counter(split, "force_evaluations");
+    const long long evaluations_alone = counter(alone, "force_evaluations");
+    const int outputs = c->steps / c->interval + 1;
+    if (world_rank == 0)
+        printf("%-8s %lld domain rebuilds; force evaluations %lld split, %lld alone\n", c->name, rebuilds,
+               evaluations_split, evaluations_alone);
+    snprintf(what, sizeof what, "%s: %lld force evaluations over the ranks against %lld on one rank (%d outputs)",
+             c->name, evaluations_split, evaluations_alone, outputs);
+    expect(c->chain > 0 || evaluations_split <= evaluations_alone + 2 * outputs, what);
     free(a);
     free(b);
     structmd_destroy(split);
