@@ -122,7 +122,11 @@ STRUCTMD_API const char* structmd_version(void);
  *                      whose ranks share the batches of every input the handle loads; every call
  *                      on the handle, this one included, is then collective over it
  *                      (docs/c-api.md, MPI). The host
- *                      initialises and finalises MPI; the library never does.
+ *                      initialises and finalises MPI; the library never does;
+ *                      "ghost_exchange": how the ghosts of spatial domains travel between ranks:
+ *                      "auto" (default: "nccl" where the build has NCCL and the backend is CUDA,
+ *                      else "host") | "host" (MPI through pinned host memory) | "nccl" (from GPU
+ *                      to GPU on the engine's stream).
  *                      Read during the call only.
  * @param[out] out      receives the new handle, owned by the caller until structmd_destroy; set to
  *                      NULL on failure.
@@ -132,6 +136,8 @@ STRUCTMD_API const char* structmd_version(void);
  *         build; STRUCTMD_ERR_IO when "log_file" cannot be opened; for "plugins", the statuses of
  *         structmd_load_plugin, the message naming the option; for "mpi_comm",
  *         STRUCTMD_ERR_UNSUPPORTED from a build without MPI and STRUCTMD_ERR_STATE before MPI_Init;
+ *         for "ghost_exchange": "nccl", STRUCTMD_ERR_UNSUPPORTED from a build without NCCL and
+ *         STRUCTMD_ERR_ARGUMENT on the CPU backend;
  *         STRUCTMD_ERR_MEMORY. On failure
  *         structmd_last_error(NULL) says why, on this thread.
  */
@@ -830,7 +836,9 @@ STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const c
  * "threads": CPU threads of the CPU backend (0 on CUDA), "loaded": bool, "particles": n (0 before
  * a load), "final_step": step at which the schedule ends (-1 before a load), "stopped_by": the
  * simulationStep entry that ended the last step call early, or null, "mpi": {"compiled": bool,
- * "ranks": ranks of the "mpi_comm" communicator (1 without), "rank": this one's (0 without)},
+ * "ranks": ranks of the "mpi_comm" communicator (1 without), "rank": this one's (0 without),
+ * "node_rank": its place among the ranks of its node, "nccl": whether the build sends spatial
+ * domains' ghosts from GPU to GPU},
  * and under parallel tempering "replica_exchange": {"temperatures", and per pair of neighbouring
  * temperatures "attempts", "accepted", "acceptance"} (docs/input-format.md)}. Keys may be added in
  * later versions.

@@ -22,7 +22,8 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
         info["mpi"] = {{"compiled", mpi_compiled()},
                        {"ranks", s.communicator ? s.communicator->size() : 1},
                        {"rank", s.communicator ? s.communicator->rank() : 0},
-                       {"node_rank", s.communicator ? s.communicator->node_rank() : 0}};
+                       {"node_rank", s.communicator ? s.communicator->node_rank() : 0},
+                       {"nccl", nccl_compiled()}};
         if (s.simulation) {
             info["particles"] = s.simulation->particle_count();
             info["final_step"] = s.simulation->final_step();

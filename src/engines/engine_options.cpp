@@ -78,9 +78,15 @@ EngineOptions parse_engine_options(const char* text) {
                     throw option_error(key, "expected an integer (a Fortran communicator handle, MPI_Comm_c2f), got " +
                                                 value.dump());
                 options.mpiComm = value.get<int64_t>();
+            } else if (key == "ghost_exchange") {
+                const std::string how = string_option(value, key);
+                if (how == "auto") options.ghostExchange = EngineOptions::GhostExchange::automatic;
+                else if (how == "host") options.ghostExchange = EngineOptions::GhostExchange::host;
+                else if (how == "nccl") options.ghostExchange = EngineOptions::GhostExchange::nccl;
+                else throw option_error(key, "expected \"auto\", \"host\" or \"nccl\", got \"" + how + "\"");
             } else {
                 throw option_error(key, "unknown option (known: backend, device, precision, threads, log, log_file, "
-                                        "plugins, mpi_comm)");
+                                        "plugins, mpi_comm, ghost_exchange)");
             }
         }
     }
@@ -97,6 +103,13 @@ EngineOptions parse_engine_options(const char* text) {
         options.backend = BackendKind::cuda;
     } else {
         options.backend = BackendKind::cpu;
+    }
+    if (options.ghostExchange == EngineOptions::GhostExchange::nccl) {
+        if (!nccl_compiled())
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, "option \"ghost_exchange\": this build of structmd has no NCCL "
+                                                  "(it needs CUDA, MPI and NCCL when it is built)");
+        if (options.backend != BackendKind::cuda)
+            throw option_error("ghost_exchange", "\"nccl\" sends ghosts between GPUs, and the backend is the CPU");
     }
     return options;
 }

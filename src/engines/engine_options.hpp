@@ -24,12 +24,24 @@ struct EngineOptions {
     // The host's MPI communicator as a Fortran handle (MPI_Comm_c2f), over whose ranks the handle
     // spreads the batches of its inputs (parallel/); empty: no MPI.
     std::optional<int64_t> mpiComm;
+    // How spatial domains send their ghosts: "auto" (from GPU to GPU where NCCL is compiled in and the
+    // backend is CUDA, else through the host), "host" (MPI over host memory) or "nccl".
+    enum class GhostExchange { automatic, host, nccl } ghostExchange = GhostExchange::automatic;
 };
 
 // Parses the options JSON (NULL or "" for defaults) and resolves "auto". Throws Error(ERR_ARGUMENT)
 // for unknown keys or bad values, ERR_DEVICE / ERR_UNSUPPORTED when "cuda" cannot be had.
 EngineOptions parse_engine_options(const char* json);
 
+
+// Whether this build sends spatial domains' ghosts between GPUs through NCCL (CMake STRUCTMD_NCCL).
+constexpr bool nccl_compiled() {
+#ifdef STRUCTMD_HAVE_NCCL
+    return true;
+#else
+    return false;
+#endif
+}
 
 // What the options run on, before any simulation is loaded.
 std::string device_description(const EngineOptions& options);

@@ -35,8 +35,9 @@ LJ_COLUMNS = ["n", "backend", "precision", "steps_per_call", "steps_per_second",
 ACCURACY_COLUMNS = ["precision", "dt", "skin", "n", "backend", "steps", "steps_per_second", "seconds_per_tau",
                     "energy_drift", "relative_force_error", "list_builds_per_1000_steps"]
 HYDRODYNAMICS_COLUMNS = ["method", "n", "backend", "precision", "tolerance", "steps_per_second", "error"]
-DOMAINS_COLUMNS = ["n", "ranks", "backend", "precision", "steps_per_second", "particle_steps_per_second",
-                   "domain_rebuilds_per_1000_steps", "list_builds_per_1000_steps", "setup_seconds", "energy_drift"]
+DOMAINS_COLUMNS = ["n", "ranks", "backend", "precision", "ghost_exchange", "steps_per_second",
+                   "particle_steps_per_second", "domain_rebuilds_per_1000_steps", "list_builds_per_1000_steps",
+                   "force_evaluations_per_1000_steps", "setup_seconds", "energy_drift"]
 COUPLING_COLUMNS = ["n", "backend", "precision", "region", "iterations", "step_us", "exchange_us", "extra_us",
                     "extra_fraction", "bytes_per_exchange", "get_us", "set_us"]
 # Force-error bounds per precision (the forces' arithmetic), see the docstring.

@@ -4,15 +4,16 @@
 // run over every rank of MPI_COMM_WORLD, one GPU each (a rank takes its node rank's GPU).
 //
 //   mpirun -np K structmd_domains_benchmark [--n N]... [--backend B] [--precision P] [--steps S]
-//                                            [--repeats R] [--warmup W] [--csv PATH]
+//                                            [--repeats R] [--warmup W] [--exchange E] [--csv PATH]
 //
 // With K = 1 the handle is an ordinary engine: the baseline of the same binary, MPI and input.
 // For each N: build the input, load it (collective; timed as setup), take W untimed steps, then
 // R timed calls of S steps with a barrier before and after each; the median call gives the rate.
 // Rank 0 prints one row per N (and appends it to --csv, with a header when the file is new): n,
-// ranks, steps/s, particle-steps/s, domain rebuilds and neighbour-list builds per 1000 steps (rank
-// 0's), setup seconds, and the relative drift of the total energy over the timed steps (an NVE run:
-// a wrong ghost shows there).
+// ranks, how the ghosts travel (--exchange: the option "ghost_exchange", auto, host or nccl),
+// steps/s, particle-steps/s, domain rebuilds, neighbour-list builds and force evaluations per 1000
+// steps (rank 0's), setup seconds, and the relative drift of the total energy over the timed steps
+// (an NVE run: a wrong ghost shows there).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
 
     CLI::App app{"structmd spatial-domain scaling benchmark (LJ liquid over MPI ranks)"};
     std::vector<int64_t> sizes;
-    std::string backend = "cuda", precision = "single", csvPath;
+    std::string backend = "cuda", precision = "single", exchange = "auto", csvPath;
     int64_t steps = 200;
     int repeats = 3, warmup = 100;
     app.add_option("--n", sizes, "particles (rounded to an fcc lattice)")->required();
@@ -60,6 +61,7 @@ int main(int argc, char** argv) {
     app.add_option("--steps", steps, "steps per timed call");
     app.add_option("--repeats", repeats);
     app.add_option("--warmup", warmup, "untimed steps after the load");
+    app.add_option("--exchange", exchange, "how ghosts travel between ranks: auto, host or nccl");
     app.add_option("--csv", csvPath);
     try {
         app.parse(argc, argv);
@@ -72,10 +74,12 @@ int main(int argc, char** argv) {
     nlohmann::json options = nlohmann::json::parse(create_options(backend, precision, 0));
     options["log"] = "info";  // the domains' timing: rebuilds and the ghosts' exchange
     options["mpi_comm"] = static_cast<long long>(MPI_Comm_c2f(MPI_COMM_WORLD));
+    options["ghost_exchange"] = exchange;
     const std::string optionText = options.dump();
     if (rank == 0)
-        std::printf("%10s %5s %10s %12s %16s %18s %12s %10s\n", "n", "ranks", "steps/s", "particle-st/s",
-                    "rebuilds/1000st", "list builds/1000st", "setup s", "drift");
+        std::printf("%10s %5s %8s %10s %12s %16s %18s %18s %10s %10s\n", "n", "ranks", "exchange", "steps/s",
+                    "particle-st/s", "rebuilds/1000st", "list builds/1000st", "force evals/1000st", "setup s",
+                    "drift");
     int failed = 0;
     for (int64_t requested : sizes) {
         LjLiquid liquid;
@@ -112,18 +116,22 @@ int main(int argc, char** argv) {
                 perThousand * (after["domain_rebuilds"].get<double>() - before["domain_rebuilds"].get<double>());
             const double lists = perThousand * (after["neighbour_list_builds"].get<double>() -
                                                 before["neighbour_list_builds"].get<double>());
+            const double forces = perThousand * (after["force_evaluations"].get<double>() -
+                                                 before["force_evaluations"].get<double>());
             if (rank == 0) {
-                std::printf("%10lld %5d %10.2f %12.4g %16.1f %18.1f %12.1f %10.2e\n", static_cast<long long>(n), ranks,
-                            rate, rate * static_cast<double>(n), rebuilds, lists, setup, drift);
+                std::printf("%10lld %5d %8s %10.2f %12.4g %16.1f %18.1f %18.1f %10.1f %10.2e\n",
+                            static_cast<long long>(n), ranks, exchange.c_str(), rate, rate * static_cast<double>(n),
+                            rebuilds, lists, forces, setup, drift);
                 std::fflush(stdout);
                 if (!csvPath.empty()) {
                     std::ofstream csv(csvPath, std::ios::app);
                     if (csv.tellp() == 0)
-                        csv << "n,ranks,backend,precision,steps_per_second,particle_steps_per_second,"
-                               "domain_rebuilds_per_1000_steps,list_builds_per_1000_steps,setup_seconds,energy_drift\n";
-                    csv << n << ',' << ranks << ',' << backend << ',' << precision << ',' << rate << ','
-                        << rate * static_cast<double>(n) << ',' << rebuilds << ',' << lists << ',' << setup << ','
-                        << drift << '\n';
+                        csv << "n,ranks,backend,precision,ghost_exchange,steps_per_second,particle_steps_per_second,"
+                               "domain_rebuilds_per_1000_steps,list_builds_per_1000_steps,"
+                               "force_evaluations_per_1000_steps,setup_seconds,energy_drift\n";
+                    csv << n << ',' << ranks << ',' << backend << ',' << precision << ',' << exchange << ',' << rate
+                        << ',' << rate * static_cast<double>(n) << ',' << rebuilds << ',' << lists << ',' << forces
+                        << ',' << setup << ',' << drift << '\n';
                 }
             }
         } catch (const std::exception& e) {

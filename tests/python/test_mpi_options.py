@@ -32,3 +32,34 @@ def test_mpi_comm_without_mpi_init_or_without_mpi():
     else:
         with pytest.raises(structmd.UnsupportedError, match="MPI is not compiled in"):
             structmd.Simulation({"backend": "cpu", "mpi_comm": 0})
+
+
+def test_info_says_whether_nccl_is_compiled_in():
+    with structmd.Simulation({"backend": "cpu"}) as sim:
+        mpi = sim.info["mpi"]
+    assert isinstance(mpi["nccl"], bool)
+    # NCCL is only built with MPI (and CUDA).
+    assert mpi["compiled"] or not mpi["nccl"]
+
+
+@pytest.mark.parametrize("value", ["gpu", "", 1, None])
+def test_ghost_exchange_takes_auto_host_or_nccl(value):
+    with pytest.raises(structmd.ArgumentError, match='option "ghost_exchange": expected'):
+        structmd.Simulation({"backend": "cpu", "ghost_exchange": value})
+
+
+@pytest.mark.parametrize("value", ["auto", "host"])
+def test_ghost_exchange_through_the_host_suits_any_backend(value):
+    with structmd.Simulation({"backend": "cpu", "ghost_exchange": value}) as sim:
+        assert sim.info["backend"] == "cpu"
+
+
+def test_nccl_ghost_exchange_needs_nccl_and_gpus():
+    with structmd.Simulation({"backend": "cpu"}) as sim:
+        nccl = sim.info["mpi"]["nccl"]
+    if nccl:
+        with pytest.raises(structmd.ArgumentError, match='"nccl" sends ghosts between GPUs'):
+            structmd.Simulation({"backend": "cpu", "ghost_exchange": "nccl"})
+    else:
+        with pytest.raises(structmd.UnsupportedError, match="this build of structmd has no NCCL"):
+            structmd.Simulation({"backend": "cpu", "ghost_exchange": "nccl"})
