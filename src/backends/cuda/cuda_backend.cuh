@@ -5,6 +5,10 @@
 #include <thrust/copy.h>
 #include <thrust/execution_policy.h>
 #include <thrust/iterator/counting_iterator.h>
+#include <thrust/mr/allocator.h>
+#include <thrust/mr/disjoint_pool.h>
+#include <thrust/mr/new.h>
+#include <thrust/system/cuda/memory_resource.h>
 #include <thrust/transform_reduce.h>
 
 #include <cstddef>
@@ -252,7 +256,8 @@ public:
         if (n <= 0) return zero;
         issue_recorded();
         transfers_.deviceToHost += sizeof(T);
-        return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
+        return thrust::transform_reduce(thrust::cuda::par(temporaryAllocator_).on(stream_),
+                                        thrust::counting_iterator<int64_t>(0),
                                         thrust::counting_iterator<int64_t>(n), f, zero, ReducePlus<T>());
     }
 
@@ -262,7 +267,8 @@ public:
         if (n <= 0) return 0.0;
         issue_recorded();
         transfers_.deviceToHost += sizeof(double);
-        return thrust::transform_reduce(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
+        return thrust::transform_reduce(thrust::cuda::par(temporaryAllocator_).on(stream_),
+                                        thrust::counting_iterator<int64_t>(0),
                                         thrust::counting_iterator<int64_t>(n), f, 0.0, ReduceMax());
     }
 
@@ -272,7 +278,8 @@ public:
         if (n <= 0) return 0;
         issue_recorded();
         transfers_.deviceToHost += sizeof(int64_t);
-        return thrust::copy_if(thrust::cuda::par.on(stream_), thrust::counting_iterator<int64_t>(0),
+        return thrust::copy_if(thrust::cuda::par(temporaryAllocator_).on(stream_),
+                               thrust::counting_iterator<int64_t>(0),
                                thrust::counting_iterator<int64_t>(n), out, keep) - out;
     }
 
@@ -446,6 +453,15 @@ private:
     int64_t residentThreads_ = 0;  // threads the device holds at once
     std::string deviceName_;
     cudaStream_t stream_ = nullptr;
+    // Temporary storage of thrust's reductions and selections, kept from one call to the next:
+    // thrust would otherwise allocate and free it in every call (cudaFree waits for the whole GPU),
+    // as a spatial domain does every step (its move check) and at every rebuild (the selections).
+    using TemporaryPool = thrust::mr::disjoint_unsynchronized_pool_resource<thrust::system::cuda::memory_resource,
+                                                                             thrust::mr::new_delete_resource>;
+    mutable thrust::system::cuda::memory_resource deviceMemory_;
+    mutable thrust::mr::new_delete_resource bookkeeping_;
+    mutable TemporaryPool temporaries_{&deviceMemory_, &bookkeeping_};
+    mutable thrust::mr::allocator<char, TemporaryPool> temporaryAllocator_{&temporaries_};
 };
 
 }  // namespace structmd
