@@ -116,7 +116,8 @@ DomainsOverRanks::~DomainsOverRanks() {
                   number(rebuildSeconds_) + " s rebuilding (in place: " + number(rebuildPhases_[0]) +
                   " s sorting the owned slots, " + number(rebuildPhases_[1]) + " s migrating, " +
                   number(rebuildPhases_[2]) + " s naming the ghosts, " + number(rebuildPhases_[3]) +
-                  " s renumbering) and " + number(exchangeSeconds_) + " s in the ghosts' MPI exchange");
+                  " s renumbering) and " + number(exchangeSeconds_) + " s exchanging the ghosts" +
+                  (onDevice_ ? " (queueing NCCL's transfers, which run on the GPU's stream)" : ""));
 }
 
 void DomainsOverRanks::set_step_firing(StepFiring*) {
@@ -253,7 +254,7 @@ std::vector<Migrant> DomainsOverRanks::migrate(std::vector<Migrant> held) {
 }
 
 std::vector<Migrant> DomainsOverRanks::cross(const std::vector<Migrant>& up, const std::vector<Migrant>& down,
-                                                            int64_t astray) const {
+                                             int64_t astray) const {
     // Every rank learns of a particle that went too far before any waits on the shifts below.
     astray = comm_->all_max(astray);
     if (astray >= 0)
