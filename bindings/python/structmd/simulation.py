@@ -48,7 +48,8 @@ class Simulation:
 
     options: None (all defaults), a dict or a JSON string with the keys of structmd_create
     ("backend", "device", "precision", "threads", "log", "log_file", "plugins", "mpi_comm": a
-    communicator as a Fortran handle, e.g. mpi4py's comm.py2f(), under which every call is collective).
+    communicator as a Fortran handle, e.g. mpi4py's comm.py2f(), under which every call is collective;
+    "ghost_exchange": "auto", "host" or "nccl", how spatial domains' ghosts travel between ranks).
     """
 
     def __init__(self, options=None):
