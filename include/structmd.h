@@ -112,7 +112,9 @@ STRUCTMD_API const char* structmd_version(void);
  *                      "device": GPU ordinal (default 0; under "mpi_comm", the rank's place among
  *                      the communicator's ranks on its node, modulo the node's GPUs);
  *                      "precision": "single" (default) | "mixed" | "double"
- *                      (mixed: state, forces and sums in double, pair potentials in single);
+ *                      (mixed: state, forces and sums in double, pair potentials in single;
+ *                      one the build lacks, CMake STRUCTMD_PRECISIONS, is STRUCTMD_ERR_UNSUPPORTED,
+ *                      and the default is then the first of single, mixed and double it has);
  *                      "threads": CPU threads, >= 1 (default: all the OpenMP runtime offers);
  *                      "log": "quiet" | "warning" (default) | "info" | "debug";
  *                      "log_file": path, appended to (default: standard error);
@@ -832,7 +834,8 @@ STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const c
 /**
  * Describes the handle as a JSON object written into buffer (NUL-terminated), with or without a
  * load: {"version": as structmd_version, "backend": "cpu" | "cuda" (the one chosen, also under
- * "auto"), "precision": "single" | "mixed" | "double", "device": the GPU's name or "host CPU",
+ * "auto"), "precision": "single" | "mixed" | "double", "precisions_compiled": those the build has
+ * (single to double), "device": the GPU's name or "host CPU",
  * "threads": CPU threads of the CPU backend (0 on CUDA), "loaded": bool, "particles": n (0 before
  * a load), "final_step": step at which the schedule ends (-1 before a load), "stopped_by": the
  * simulationStep entry that ended the last step call early, or null, "mpi": {"compiled": bool,

@@ -16,6 +16,7 @@ structmd_status structmd_get_info(const structmd_sim* sim, char* buffer, size_t 
         info["version"] = STRUCTMD_VERSION_STRING;
         info["backend"] = name_of(s.options.backend);
         info["precision"] = name_of(s.options.precision);
+        info["precisions_compiled"] = compiled_precisions();
         info["loaded"] = static_cast<bool>(s.simulation);
         info["device"] = device_description(s.options);
         info["threads"] = s.options.backend == BackendKind::cpu ? cpu_thread_count(s.options) : 0;

@@ -1,6 +1,7 @@
 #pragma once
 // One factory per (backend, precision), each defined in a translation unit of its own
 // (cpu_engine_*.cpp, cuda_engine_*.cu) so the six compile in parallel; make_engine.cpp picks one.
+// A build limited by STRUCTMD_PRECISIONS compiles, and make_engine.cpp calls, only its precisions'.
 #include <memory>
 
 #include "core/logger.hpp"

@@ -26,6 +26,12 @@ std::string string_option(const nlohmann::json& value, const std::string& key) {
     return value.get<std::string>();
 }
 
+std::string compiled_precision_names() {
+    std::string names;
+    for (const std::string& name : compiled_precisions()) names += (names.empty() ? "" : ", ") + name;
+    return names;
+}
+
 int int_option(const nlohmann::json& value, const std::string& key, int minimum) {
     if (!value.is_number_integer() || value.get<long long>() < minimum)
         throw option_error(key, "expected an integer >= " + std::to_string(minimum) + ", got " + value.dump());
@@ -59,6 +65,10 @@ EngineOptions parse_engine_options(const char* text) {
                 else if (precision == "mixed") options.precision = Precision::mixed;
                 else if (precision == "double") options.precision = Precision::double_;
                 else throw option_error(key, "expected \"single\", \"mixed\" or \"double\", got \"" + precision + "\"");
+                if (!precision_compiled(options.precision))
+                    throw Error(STRUCTMD_ERR_UNSUPPORTED, "option \"precision\": this build of structmd has no " + precision +
+                                                              " precision engines (built: " + compiled_precision_names() +
+                                                              "; CMake option STRUCTMD_PRECISIONS)");
             } else if (key == "threads") {
                 options.threads = int_option(value, key, 1);
             } else if (key == "log") {

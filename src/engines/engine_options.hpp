@@ -16,7 +16,7 @@ struct EngineOptions {
     BackendKind backend = BackendKind::cpu;  // "auto" resolved
     int device = 0;
     bool deviceGiven = false;  // "device" was given: under "mpi_comm" the ranks do not choose their own
-    Precision precision = Precision::single;
+    Precision precision = default_precision();
     int threads = 0;  // 0: all the OpenMP runtime offers
     LogLevel logLevel = LogLevel::warning;
     std::string logFile;  // empty: standard error

@@ -16,19 +16,25 @@ std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const 
 
 std::unique_ptr<Simulation> make_simulation(const EngineOptions& options, SimulationSpec spec,
                                             const ForceFieldComponents& components, const Logger& log) {
-    if (options.backend == BackendKind::cuda) {
-        switch (options.precision) {
-            case Precision::single: return make_cuda_engine_single(options.device, std::move(spec), components, log);
-            case Precision::mixed: return make_cuda_engine_mixed(options.device, std::move(spec), components, log);
-            case Precision::double_: return make_cuda_engine_double(options.device, std::move(spec), components, log);
-        }
-    }
-    switch (options.precision) {
-        case Precision::single: return make_cpu_engine_single(options.threads, std::move(spec), components, log);
-        case Precision::mixed: return make_cpu_engine_mixed(options.threads, std::move(spec), components, log);
-        case Precision::double_: return make_cpu_engine_double(options.threads, std::move(spec), components, log);
-    }
-    throw Error(STRUCTMD_ERR_INTERNAL, "no engine for the options given");
+    const bool cuda = options.backend == BackendKind::cuda;
+#ifdef STRUCTMD_WITH_SINGLE
+    if (options.precision == Precision::single)
+        return cuda ? make_cuda_engine_single(options.device, std::move(spec), components, log)
+                    : make_cpu_engine_single(options.threads, std::move(spec), components, log);
+#endif
+#ifdef STRUCTMD_WITH_MIXED
+    if (options.precision == Precision::mixed)
+        return cuda ? make_cuda_engine_mixed(options.device, std::move(spec), components, log)
+                    : make_cpu_engine_mixed(options.threads, std::move(spec), components, log);
+#endif
+#ifdef STRUCTMD_WITH_DOUBLE
+    if (options.precision == Precision::double_)
+        return cuda ? make_cuda_engine_double(options.device, std::move(spec), components, log)
+                    : make_cpu_engine_double(options.threads, std::move(spec), components, log);
+#endif
+    // parse_engine_options refuses a precision the build lacks; options made otherwise land here.
+    throw Error(STRUCTMD_ERR_UNSUPPORTED, std::string("this build of structmd has no ") + name_of(options.precision) +
+                                              " precision engines (CMake option STRUCTMD_PRECISIONS)");
 }
 
 }  // namespace structmd

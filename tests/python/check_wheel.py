@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""pip install . as a user does it: builds a wheel of the repository (CPU-only, to keep it short),
+"""pip install . as a user does it: builds a wheel of the repository (CPU-only and double precision only,
+to keep it short; the precision a handle then gets by default and the refusal of the others are checked),
 installs it into a fresh virtual environment with numpy from pip, and there, away from the source tree
 and without STRUCTMD_LIBRARY or PYTHONPATH, imports structmd, loads an example, steps and reads
 forces, then runs tests/python/test_binding.py against the installed package. The installed package
@@ -32,6 +33,16 @@ print("structmd", structmd.version(), "from", package, "library", library)
 assert venv in package.parents, f"structmd imported from {package}, not from the venv {venv}"
 assert library.parent == package, f"the library {library} is not the one bundled in {package}"
 assert (package / "py.typed").is_file(), "py.typed is missing from the installed package"
+with structmd.Simulation({"backend": "cpu"}) as sim:
+    assert sim.info["precisions_compiled"] == ["double"], sim.info
+    assert sim.info["precision"] == "double", "the default precision is not the one built"
+for missing in ("single", "mixed"):
+    try:
+        structmd.Simulation({"backend": "cpu", "precision": missing})
+    except structmd.UnsupportedError as error:
+        assert "STRUCTMD_PRECISIONS" in str(error) and missing in str(error), error
+    else:
+        raise AssertionError(f"a build of double precision only made a {missing} precision handle")
 with structmd.Simulation({"backend": "cpu", "precision": "double"}) as sim:
     sim.load(sys.argv[1])
     sim.step(10)
@@ -68,7 +79,8 @@ def main(source, build, example):
             return SKIPPED
         wheelhouse = work / "wheels"
         built = run([python, "-m", "pip", "wheel", source, "--no-deps", "--no-build-isolation", "-w", wheelhouse,
-                     "-C", "cmake.define.STRUCTMD_CUDA=OFF", "-C", f"build-dir={build}"], env=clean_env)
+                     "-C", "cmake.define.STRUCTMD_CUDA=OFF",
+                     "-C", "cmake.define.STRUCTMD_PRECISIONS=double", "-C", f"build-dir={build}"], env=clean_env)
         wheels = list(wheelhouse.glob("structmd-*.whl"))
         if built.returncode != 0 or len(wheels) != 1:
             print(f"FAILED: pip wheel exited {built.returncode}, wheels: {wheels}")

@@ -142,6 +142,7 @@ def test_options_as_dict_or_json_string(options, form):
 def test_default_options():
     with structmd.Simulation() as sim:
         assert sim.info["backend"] in ("cpu", "cuda")
+        assert sim.info["precision"] == sim.info["precisions_compiled"][0]
 
 
 def test_bad_options_raise_argument_error_with_the_librarys_message():
