@@ -290,7 +290,9 @@ int main(int argc, char** argv) {
     if (CHECKED(sim, structmd_load_file(sim, input_path))) info = handle_info(sim);
     if (info != NULL) {
         printf("%s\n", info);
-        int double_precision = strstr(info, "\"double\"") != NULL;
+        /* The key with its value, as the library writes it (no spaces): "double" alone also
+         * appears in the list of precisions compiled. */
+        int double_precision = strstr(info, "\"precision\":\"double\"") != NULL;
         double tolerance = double_precision ? DOUBLE_PRECISION_TOLERANCE : SINGLE_PRECISION_TOLERANCE;
         int failures = couple(sim, tolerance);
         if (failures >= 0) {

@@ -103,7 +103,7 @@ program coupling
   if (succeeded(structmd_load_file_f(sim, input_path), 'structmd_load_file_f')) then
     if (succeeded(structmd_get_info_f(sim, info), 'structmd_get_info_f')) then
       write (*, '(a)') info
-      if (index(info, '"double"') > 0) then
+      if (index(info, '"precision":"double"') > 0) then
         failures = couple(double_precision_tolerance)
       else
         failures = couple(single_precision_tolerance)
