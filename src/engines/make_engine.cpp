@@ -32,9 +32,8 @@ std::unique_ptr<Simulation> make_simulation(const EngineOptions& options, Simula
         return cuda ? make_cuda_engine_double(options.device, std::move(spec), components, log)
                     : make_cpu_engine_double(options.threads, std::move(spec), components, log);
 #endif
-    // parse_engine_options refuses a precision the build lacks; options made otherwise land here.
-    throw Error(STRUCTMD_ERR_UNSUPPORTED, std::string("this build of structmd has no ") + name_of(options.precision) +
-                                              " precision engines (CMake option STRUCTMD_PRECISIONS)");
+    // parse_engine_options already refused a precision the build lacks.
+    throw Error(STRUCTMD_ERR_INTERNAL, "no engine for the options given");
 }
 
 }  // namespace structmd

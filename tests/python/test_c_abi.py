@@ -27,7 +27,7 @@ IO = DEFINES["STRUCTMD_ERR_IO"]
 DEVICE = DEFINES["STRUCTMD_ERR_DEVICE"]
 UNSUPPORTED = DEFINES["STRUCTMD_ERR_UNSUPPORTED"]
 ALL_FLAGS = DEFINES["STRUCTMD_FORCES"] | DEFINES["STRUCTMD_ENERGY"] | DEFINES["STRUCTMD_VIRIAL"]
-INFO_KEYS = {"backend", "precision", "device", "threads", "loaded", "particles", "final_step"}
+INFO_KEYS = {"backend", "precision", "precisions_compiled", "device", "threads", "loaded", "particles", "final_step"}
 NAMES = {value: name for name, value in DEFINES.items() if name.startswith(("STRUCTMD_OK", "STRUCTMD_ERR_"))}
 
 ffi = cffi.FFI()
@@ -354,6 +354,7 @@ def test_fresh_handle_has_no_error_and_is_not_loaded(sim):
     assert description["particles"] == 0
     assert description["final_step"] == -1
     assert description["backend"] in ("cpu", "cuda")
+    assert description["precision"] in description["precisions_compiled"]
 
 
 # ---- argument errors ---------------------------------------------------------------------------

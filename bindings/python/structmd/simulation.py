@@ -534,8 +534,9 @@ class Simulation:
 
     @property
     def info(self):
-        """A dict describing the handle: backend, precision, device, threads, loaded, particles,
-        final_step, stopped_by, mpi (compiled, ranks, rank)."""
+        """A dict describing the handle: backend, precision, precisions_compiled (those the build
+        has), device, threads, loaded, particles, final_step, stopped_by, mpi (compiled, ranks, rank,
+        node_rank, nccl)."""
         size = _INFO_FIRST_GUESS
         while True:
             buffer = create_string_buffer(size)
