@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev libdlpack-dev libeigen3-dev googletest
-          lammps python3 python3-pip curl
+          lammps python3 python3-pip ccache
           doxygen  # the API reference rendered from include/structmd.h: test api_reference
           libopenmpi-dev openmpi-bin  # MPI (optional to the build): batches over ranks, tests/mpi
           clang libclang-rt-dev libomp-dev)  # clang, libFuzzer and clang's OpenMP: scripts/fuzz.sh
@@ -26,24 +26,24 @@ if ! python3 -c "import numpy, cffi, pytest, ase" >/dev/null 2>&1; then
 fi
 
 # pocketfft (the CPU backend's FFT, header only) into .deps/include, the git-ignored folder the build
-# searches first, so that it travels with a copy of the working tree to machines without Debian's
-# package. Debian 12 has no libpocketfft-dev, and only Debian and PyPI are reachable from CI, so where
-# the package is missing the header comes from SciPy's source distribution on PyPI, which vendors it
-# (BSD licence), at a fixed version and checked against its SHA-256.
+# searches first, so that it travels with a copy of the working tree to machines without it.
+# Debian 13 packages it as libpocketfft-dev; Debian 12 does not, but its gemmi-dev ships the same
+# header-only C++ pocketfft (BSD licence) under gemmi/third_party. Both come through apt-get.
 deps_include="$(cd "$(dirname "$0")/.." && pwd)/.deps/include"
-pocketfft_sha256=50f4ddbe60432325f560c706b6f1c49f9e0949fc7f20ae6499f2299e37d9790c
 if [ ! -f "$deps_include/pocketfft_hdronly.h" ]; then
   mkdir -p "$deps_include"
   SUDO=""
   [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  if DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq libpocketfft-dev >/dev/null 2>&1 \
-      && [ -f /usr/include/pocketfft_hdronly.h ]; then
-    cp /usr/include/pocketfft_hdronly.h "$deps_include/"
-  else
-    sdist=$(curl -fsSL https://pypi.org/simple/scipy/ | grep -oE 'https://files.pythonhosted.org/[^"#]*/scipy-1\.14\.1\.tar\.gz' | head -1)
-    curl -fsSL "$sdist" | tar xzf - -O scipy-1.14.1/scipy/_lib/pocketfft/pocketfft_hdronly.h > "$deps_include/pocketfft_hdronly.h.part"
-    echo "$pocketfft_sha256  $deps_include/pocketfft_hdronly.h.part" | sha256sum -c --quiet
-    mv "$deps_include/pocketfft_hdronly.h.part" "$deps_include/pocketfft_hdronly.h"
+  for source in libpocketfft-dev:/usr/include/pocketfft_hdronly.h \
+                gemmi-dev:/usr/include/gemmi/third_party/pocketfft_hdronly.h; do
+    package=${source%%:*} header=${source#*:}
+    if [ -f "$header" ] || DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "$package" >/dev/null 2>&1; then
+      [ -f "$header" ] && cp "$header" "$deps_include/pocketfft_hdronly.h" && break
+    fi
+  done
+  if [ ! -f "$deps_include/pocketfft_hdronly.h" ]; then
+    echo "install-deps: no Debian package gave pocketfft_hdronly.h (libpocketfft-dev or gemmi-dev)" >&2
+    exit 1
   fi
 fi
 
