@@ -1,7 +1,5 @@
 // Engine<CpuBackend, double, float> (mixed precision), in a translation unit of its own.
-#include "backends/cpu/cpu_backend.hpp"
-#include "backends/cpu/cpu_cholesky.hpp"
-#include "backends/cpu/cpu_fft.hpp"
+#include "engines/cpu_backend_unit.hpp"
 #include "engines/engine_instances.hpp"
 #include "simulation/engine.hpp"
 

@@ -1,7 +1,5 @@
 // Engine<CudaBackend, float> (single precision), in a translation unit of its own.
-#include "backends/cuda/cuda_backend.cuh"
-#include "backends/cuda/cuda_cholesky.cuh"
-#include "backends/cuda/cuda_fft.cuh"
+#include "engines/cuda_backend_unit.cuh"
 #include "engines/engine_instances.hpp"
 #include "simulation/engine.hpp"
 

@@ -27,7 +27,7 @@
 #include "core/registry.hpp"
 #include "engines/plugin_abi.hpp"
 #include "forcefield/component_set.hpp"
-#include "forcefield/make_interactors.hpp"
+#include "forcefield/factory_entries.hpp"
 #include "forcefield/reader_entries.hpp"
 // STRUCTMD_PLUGIN_NO_CUDA: register no CUDA factories even from nvcc (tests the refusal on CUDA).
 #if defined(__CUDACC__) && defined(STRUCTMD_HAVE_CUDA) && !defined(STRUCTMD_PLUGIN_NO_CUDA)

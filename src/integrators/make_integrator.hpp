@@ -1,13 +1,14 @@
 #pragma once
-// Each engine's integrator factories, made once per engine type from the built-in list
-// (integrators.hpp): an IntegratorSpec names its integrator by key, and nothing here knows one by name.
+// Makes an engine's integrators with the factories it is given: an IntegratorSpec names its
+// integrator by key, and nothing here knows one by name.
 #include <functional>
 #include <memory>
 
 #include "core/error.hpp"
 #include "core/registry.hpp"
+#include "core/logger.hpp"
+#include "integrators/integrator.hpp"
 #include "integrators/integrator_spec.hpp"
-#include "integrators/integrators.hpp"
 
 namespace structmd {
 
@@ -17,27 +18,10 @@ struct IntegratorFactory {
     std::function<std::unique_ptr<Integrator<B, R>>(const B&, const IntegratorScope&, const ParameterValues&)> make;
 };
 
+// The built-in integrators' factories of engine type <B, R>, made once per process; defined in
+// builtin_integrator_factories.hpp and built in a unit of their own per engine type (src/engines/).
 template <class B, class R>
-struct IntegratorFactoryEntries {
-    Registry<IntegratorFactory<B, R>> registry;
-
-    template <template <class, class> class Kind, class Inputs>
-    void integrator(ComponentKey key) {
-        registry.add({std::move(key), [](const B& backend, const IntegratorScope& scope, const ParameterValues& v) {
-                          return std::unique_ptr<Integrator<B, R>>(std::make_unique<Kind<B, R>>(backend, scope, v));
-                      }});
-    }
-};
-
-template <class B, class R>
-const Registry<IntegratorFactory<B, R>>& builtin_integrator_factories() {
-    static const Registry<IntegratorFactory<B, R>> builtin = [] {
-        IntegratorFactoryEntries<B, R> entries;
-        visit_builtin_integrators(entries);
-        return std::move(entries.registry);
-    }();
-    return builtin;
-}
+const Registry<IntegratorFactory<B, R>>& builtin_integrator_factories();
 
 template <class B, class R>
 std::unique_ptr<Integrator<B, R>> make_integrator(const B& backend, const IntegratorSpec& spec, const uint8_t* group,

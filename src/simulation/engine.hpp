@@ -19,6 +19,7 @@
 #include "core/logger.hpp"
 #include "forcefield/component_set.hpp"
 #include "forcefield/magnetic_moment.hpp"
+#include "forcefield/builtin_factories.hpp"
 #include "forcefield/make_interactors.hpp"
 #include "integrators/make_integrator.hpp"
 #include "simulation/callback_term.hpp"
