@@ -1,5 +1,6 @@
 // Reading ["AFM","SphericalTip"] (afm_tip.hpp) and ["AFM","SphericallyBluntedConicTip"] (afm_conic_tip.hpp): its table (idSet_i: the tip, one particle; idSet_j:
 // the sample; the tip's and the chip's values per row) and the time step that moves the chip.
+#include <optional>
 #include <string>
 #include <type_traits>
 
@@ -9,6 +10,7 @@
 #include "forcefield/afm_tip.hpp"
 #include "forcefield/component_registry.hpp"
 #include "forcefield/set_table_read.hpp"
+#include "input/time_step.hpp"
 
 namespace structmd {
 
@@ -17,22 +19,12 @@ using input::SystemDescription;
 
 namespace {
 
-// UAMMD-structured moves the chip by the fundamental time step, which its integrators set: here
-// global.fundamental's timeStep, else that of the integrator scheduled first.
-double time_step_of(const SystemDescription& system, const std::string& path) {
-    if (system.timeStep) return *system.timeStep;
-    if (!system.schedule.empty())
-        for (const ComponentEntry& integrator : system.integrators)
-            if (integrator.name == system.schedule.front().integrator) {
-                const nlohmann::json& entry = integrator.node.json();
-                const auto parameters = entry.find("parameters");
-                if (parameters != entry.end() && parameters->is_object()) {
-                    const auto dt = parameters->find("timeStep");
-                    if (dt != parameters->end() && dt->is_number()) return dt->get<double>();
-                }
-            }
-    throw input_error(path, "the chip moves by the time step, and the input gives none (global.fundamental's "
-                            "timeStep or the first scheduled integrator's)");
+// UAMMD-structured moves the chip by the fundamental time step, which its integrators set: that of
+// the integrator that runs first.
+double chip_time_step(const SystemDescription& system, const std::string& path) {
+    if (const std::optional<double> timeStep = input::first_time_step(system)) return *timeStep;
+    throw input_error(path, "the chip moves by the time step, and the input gives none (the first scheduled "
+                            "integrator's timeStep or global.fundamental's)");
 }
 
 // A tip whose values have rules beyond their parameters' declares `static std::string check(const
@@ -82,7 +74,7 @@ ForceFieldComponent AfmComponent<Tip>::reader_entry(ComponentKey key) {
             if constexpr (has_row_check<Tip>::value)
                 if (const std::string problem = Tip::check(v); !problem.empty()) throw input_error(rowPath, problem);
         }
-        config->timeStep = time_step_of(system, entry.node.path());
+        config->timeStep = chip_time_step(system, entry.node.path());
         ForceFieldComponent configured = c;
         configured.config = config;
         return configured;

@@ -1,11 +1,11 @@
 #include "integrators/read_integrators.hpp"
 
-#include <cmath>
 #include <optional>
 #include <set>
 
 #include "core/error.hpp"
 #include "input/read_parameters.hpp"
+#include "input/time_step.hpp"
 #include "integrators/integrators.hpp"
 
 namespace structmd {
@@ -77,13 +77,9 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         spec.rotates = component.rotates;
         const input::TrackedNode params = input::parameters_of(entry.node);
 
-        std::optional<double> dt = system.timeStep;
-        if (params.valid())
-            if (auto own = params.find("timeStep")) dt = own->as<double>();
+        const std::optional<double> dt = input::time_step_of(entry, system);
         if (!dt && !component.minimiser)
             throw input_error(spec.path + ".parameters.timeStep", "missing time step (give it here or in global.fundamental)");
-        if (dt && (!(*dt > 0.0) || !std::isfinite(*dt)))
-            throw input_error(spec.path + ".parameters.timeStep", "expected a positive time step");
         spec.timeStep = dt.value_or(0.0);
         const double temperature = params.valid() ? params.get_or<double>("temperature", system.temperature)
                                                   : system.temperature;

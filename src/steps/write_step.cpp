@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "input/time_step.hpp"
 
 namespace structmd {
 
@@ -69,22 +70,6 @@ void WriteStep::append(Simulation&, const std::vector<double>&, TrajectoryFrame&
 
 namespace {
 
-// The time step of the integrator the schedule starts with (its own, else global.fundamental's);
-// 0 when neither gives one. Only DCD records it.
-double first_time_step(const input::SystemDescription& system) {
-    double timeStep = system.timeStep.value_or(0.0);
-    for (const input::ScheduleRow& row : system.schedule) {
-        if (row.steps <= 0) continue;
-        for (const input::ComponentEntry& integrator : system.integrators) {
-            if (integrator.name != row.integrator) continue;
-            if (const auto params = integrator.node.find("parameters"))
-                timeStep = params->get_or<double>("timeStep", timeStep);
-        }
-        break;
-    }
-    return timeStep;
-}
-
 // Chains, residues and the distinct two-particle bonds of the input, for the PDB format.
 MoleculeLayout molecule_layout(const StepInput& in) {
     MoleculeLayout layout;
@@ -123,7 +108,7 @@ std::unique_ptr<TrajectoryWriter> trajectory_writer_of(const StepInput& in) {
     options.owner = in.path;
     options.append = in.parameters.flag("append");
     options.interval = in.interval();
-    options.timeStep = first_time_step(in.system);
+    options.timeStep = input::first_time_step(in.system).value_or(0.0);  // 0: DCD's unknown
     if (format == "pdb") options.molecules = molecule_layout(in);
 
     std::unique_ptr<TrajectoryWriter> writer = make_trajectory_writer(format, std::move(options));

@@ -114,6 +114,26 @@ def test_the_chip_waits_indents_and_withdraws(options):
             sim.step(1)
 
 
+@pytest.mark.parametrize("other_time_step", ["global", "unscheduled integrator first"])
+def test_the_chip_moves_by_the_time_step_the_integrator_steps_with(options, other_time_step):
+    """A time step the integrator does not step with must not move the chip: global.fundamental's when
+    the integrator gives its own, or that of an integrator scheduled first for no steps."""
+    positions = configuration(seed=2)
+    doc = document(positions, -1.0, velocity=-3.0, start=1, steps=6)
+    if other_time_step == "global":
+        doc["global"]["fundamental"] = {"type": ["Fundamental", "Time"], "parameters": {"timeStep": 5 * DT}}
+    else:
+        doc["integrator"]["idle"] = {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 5 * DT}}
+        doc["integrator"]["schedule"]["data"] = [[1, "idle", 0], [2, "vv", 6]]
+    with structmd.Simulation(dict(options, precision="double")) as sim:
+        sim.load(doc)
+        for _ in range(6):
+            sim.step(1)
+            assert sim.time == pytest.approx(sim.step_number * DT, rel=1e-12)
+            expected = expected_energy(sim.positions, -1.0, sim.step_number, velocity=-3.0, start=1)
+            assert sim.energy("AFM") == pytest.approx(expected, rel=1e-10), sim.step_number
+
+
 @pytest.mark.parametrize("change, path, message", [
     (lambda row: row.__setitem__(0, [0, 8]), r"AFM\.data\[0\]", "one particle"),
     (lambda row: row.__setitem__(1, [1, 2, 0]), r"AFM\.data\[0\]\[1\]\[2\]", "already in a set"),

@@ -431,6 +431,25 @@ def test_dcd(sim, tmp_path, pbc):
             assert_positions(frame["xyz"], positions, pbc, atol=1e-6)
 
 
+@pytest.mark.parametrize("other_time_step", ["global", "unscheduled integrator first"])
+def test_the_time_step_written_is_the_one_the_integrator_steps_with(sim, tmp_path, other_time_step):
+    """DCD's DELTA and xyz's time follow the integrator's own timeStep, not global.fundamental's nor
+    that of an integrator scheduled first for no steps."""
+    doc = document({"dcd": writer(tmp_path / "traj", "dcd"), "xyz": writer(tmp_path / "traj", "xyz")})
+    if other_time_step == "global":
+        doc["global"]["fundamental"]["parameters"]["timeStep"] = 3 * TIME_STEP
+    else:
+        doc["integrator"]["idle"] = {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": 3 * TIME_STEP}}
+        doc["integrator"]["schedule"]["data"] = [[1, "idle", 0], [2, "vv", STEPS]]
+    run_and_record(sim, doc)
+    assert sim.time == pytest.approx(STEPS * TIME_STEP, rel=1e-12)
+    header, _ = read_dcd(tmp_path / "traj.dcd")
+    assert header["delta"] == np.float32(TIME_STEP)
+    for frame in read_xyz(tmp_path / "traj.xyz"):
+        time = float(frame["comment"].split("time=")[1].split()[0])
+        assert time == pytest.approx(frame["step"] * TIME_STEP, rel=1e-7)
+
+
 @pytest.mark.parametrize("output_format", FORMATS)
 def test_append_keeps_the_earlier_frames(options, tmp_path, output_format):
     path = tmp_path / f"traj.{output_format}"
