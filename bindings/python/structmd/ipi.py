@@ -105,7 +105,8 @@ class _Channel:
 
     def header(self) -> Optional[str]:
         raw = self.receive(HEADER_SIZE, at_boundary=True)
-        return raw.decode("ascii", errors="replace").strip() if raw else None
+        # Only the padding on the right is stripped: "  STATUS" is no header of the protocol.
+        return raw.decode("ascii", errors="replace").rstrip(" ") if raw else None
 
     def doubles(self, count: int) -> np.ndarray:
         return np.frombuffer(self.receive(8 * count), dtype=np.float64).copy()
@@ -154,14 +155,19 @@ def _serve(sim: Simulation, channel: _Channel, bohr: float, hartree: float, log:
             channel.send(_header(state))
         elif message == "INIT":
             channel.int32()  # the bead index
-            channel.receive(channel.int32())  # the initialisation string
+            length = channel.int32()
+            if length < 0:
+                raise ProtocolError("INIT with a negative length")
+            channel.receive(length)  # the initialisation string
             initialised = True
         elif message == "POSDATA":
             cell = channel.doubles(9).reshape(3, 3).T  # rows: lattice vectors
             channel.doubles(9)  # the inverse cell
             count = channel.int32()
-            if count < 0:
-                raise ProtocolError(f"POSDATA with {count} atoms")
+            # Refused before the positions are read: a wrong count would have us wait for them.
+            if count != sim.num_particles:
+                raise ArgumentError(STATUS["STRUCTMD_ERR_ARGUMENT"], f"the input has {sim.num_particles} "
+                                    f"particles, but the server sent {count} atoms")
             positions = channel.doubles(3 * count).reshape(count, 3)
             result = evaluate(sim, positions * bohr, orthorhombic_box(cell) * bohr)
             evaluations += 1
