@@ -18,6 +18,9 @@ are converted to atomic units with the constants of ase.units (CODATA 2014), BOH
 HARTREE_IN_EV below, so that an ASE server and this client convert alike. The virial sent is W of
 structmd_get_virial (docs/c-api.md), whose sign is i-PI's: the server's stress is -W / volume.
 Atom k of the server is the particle of id k; the cell must be rectangular.
+
+The launcher's `structmd client --ipi` (src/launcher/ipi_client.cpp) implements the same protocol;
+tests/python/test_ipi_conformance.py holds both clients to the same answers and refusals.
 """
 
 import socket
