@@ -1,6 +1,7 @@
 // The i-PI client of the launcher over POSIX sockets. Messages: 12-byte space-padded ASCII headers,
 // then int32 and float64 values in the machine's byte order (bindings/python/structmd/ipi.py has the
-// protocol in prose; both clients implement the same one).
+// protocol in prose; both clients implement the same one, and tests/python/test_ipi_conformance.py
+// holds both to it, message by message).
 #include "ipi_client.hpp"
 
 #include <netdb.h>
@@ -256,6 +257,9 @@ private:
         std::vector<double> positions = server.read_doubles(3 * static_cast<size_t>(count));
         for (double& x : positions) x *= bohr_;
 
+        // A NaN would pass the tilt test below, since no comparison with it holds.
+        if (!std::all_of(cell.begin(), cell.end(), [](double x) { return std::isfinite(x); }))
+            throw Failure("POSDATA", STRUCTMD_ERR_ARGUMENT, "the cell must have finite entries");
         double box[3] = {cell[0] * bohr_, cell[4] * bohr_, cell[8] * bohr_};
         const double largest = std::max({box[0], box[1], box[2]});
         for (int k : {1, 2, 3, 5, 6, 7})

@@ -18,6 +18,9 @@ are converted to atomic units with the constants of ase.units (CODATA 2014), BOH
 HARTREE_IN_EV below, so that an ASE server and this client convert alike. The virial sent is W of
 structmd_get_virial (docs/c-api.md), whose sign is i-PI's: the server's stress is -W / volume.
 Atom k of the server is the particle of id k; the cell must be rectangular.
+
+The launcher's `structmd client --ipi` (src/launcher/ipi_client.cpp) implements the same protocol;
+tests/python/test_ipi_conformance.py holds both clients to the same answers and refusals.
 """
 
 import socket
@@ -105,7 +108,8 @@ class _Channel:
 
     def header(self) -> Optional[str]:
         raw = self.receive(HEADER_SIZE, at_boundary=True)
-        return raw.decode("ascii", errors="replace").strip() if raw else None
+        # Only the padding on the right is stripped: "  STATUS" is no header of the protocol.
+        return raw.decode("ascii", errors="replace").rstrip(" ") if raw else None
 
     def doubles(self, count: int) -> np.ndarray:
         return np.frombuffer(self.receive(8 * count), dtype=np.float64).copy()
@@ -154,14 +158,19 @@ def _serve(sim: Simulation, channel: _Channel, bohr: float, hartree: float, log:
             channel.send(_header(state))
         elif message == "INIT":
             channel.int32()  # the bead index
-            channel.receive(channel.int32())  # the initialisation string
+            length = channel.int32()
+            if length < 0:
+                raise ProtocolError("INIT with a negative length")
+            channel.receive(length)  # the initialisation string
             initialised = True
         elif message == "POSDATA":
             cell = channel.doubles(9).reshape(3, 3).T  # rows: lattice vectors
             channel.doubles(9)  # the inverse cell
             count = channel.int32()
-            if count < 0:
-                raise ProtocolError(f"POSDATA with {count} atoms")
+            # Refused before the positions are read: a wrong count would have us wait for them.
+            if count != sim.num_particles:
+                raise ArgumentError(STATUS["STRUCTMD_ERR_ARGUMENT"], f"the input has {sim.num_particles} "
+                                    f"particles, but the server sent {count} atoms")
             positions = channel.doubles(3 * count).reshape(count, 3)
             result = evaluate(sim, positions * bohr, orthorhombic_box(cell) * bohr)
             evaluations += 1
