@@ -12,6 +12,8 @@
 // each of the N particles and returns the energy. A geometry where the term has no finite energy
 // (an over-stretched FENE bond) returns NaN energy and NaN forces: the engine reports it as a
 // numerical error naming the step and particle.
+// A bond that runs under spatial domains (parallel/domains_over_ranks.hpp: a domain evaluates every
+// bond of a particle it owns, its partners held as ghosts) has `static constexpr bool under_domains = true`.
 #include "core/box.hpp"
 #include "core/hd.hpp"
 #include "core/vec.hpp"
@@ -23,6 +25,7 @@ namespace structmd {
 template <class Radial>
 struct RadialBond {
     static constexpr int arity = 2;
+    static constexpr bool under_domains = true;  // reader_entries.hpp: runs_under_domains
     template <class R>
     using Params = typename Radial::template Params<R>;
 

@@ -35,6 +35,9 @@ struct ForceFieldComponent {
     std::string units;
     // Reads the particles' magnetic moments: the state must give their magnetization.
     bool needsMagnetization = false;
+    // Runs under spatial domains (parallel/domains_over_ranks.hpp): reads of a particle only what a
+    // domain's ghosts carry. Declared by the functor (`under_domains`) or the configurable's entry.
+    bool underDomains = false;
     // Pairs: the largest distance at which the term acts with these values (shared and one row's).
     std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
     bool readsCutOffFactor = true;  // pairs: the entry gives "cutOffFactor" (else its own cut-off parameter)

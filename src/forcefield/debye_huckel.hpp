@@ -15,7 +15,8 @@ inline std::vector<Parameter> contact_and_screening_parameters() {
 }
 
 struct DebyeHuckel {
-    static constexpr bool uses_charges = true;
+    static constexpr bool uses_charges = true;  // a domain's ghosts carry their charges
+    static constexpr bool under_domains = true;  // reader_entries.hpp: runs_under_domains
 
     template <class R>
     struct Params {

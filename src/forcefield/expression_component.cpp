@@ -145,6 +145,7 @@ ForceFieldComponent expression_reader_entry(ComponentKey key, InteractionKind ki
     c.key = std::move(key);
     c.kind = kind;
     c.arity = arity;
+    c.underDomains = kind == InteractionKind::bond && arity == 2;  // an expression of r reads two positions
     if (kind == InteractionKind::pair) {
         c.entryParameters = {number("cutOff", "length", Must::be_positive)};
         c.readsCutOffFactor = false;

@@ -55,6 +55,7 @@ Params<R> make_params(const ParameterValues& v) {
 // images of each other); F_j = -dU/dd, F_i = +dU/dd.
 struct HarmonicAnisotropicBond {
     static constexpr int arity = 2;
+    static constexpr bool under_domains = true;  // reader_entries.hpp: runs_under_domains
 
     template <class R>
     using Params = anisotropic_spring::Params<R>;

@@ -103,6 +103,7 @@ LennardJonesParams<R> make_cut_lennard_jones(double epsilon, double sigma, doubl
 
 template <class Shape>
 struct LennardJones : EpsilonSigmaPair<LennardJones<Shape>> {
+    static constexpr bool under_domains = true;  // reader_entries.hpp: runs_under_domains
     template <class R>
     using Params = LennardJonesParams<R>;
     using EpsilonSigmaPair<LennardJones<Shape>>::make_pair_params;

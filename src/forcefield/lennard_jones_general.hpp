@@ -11,6 +11,7 @@ namespace structmd {
 
 template <class Shape>
 struct GeneralLennardJones : EpsilonSigmaPair<GeneralLennardJones<Shape>> {
+    static constexpr bool under_domains = true;  // reader_entries.hpp: runs_under_domains
     template <class R>
     using Params = LennardJonesParams<R>;
     using EpsilonSigmaPair<GeneralLennardJones<Shape>>::make_pair_params;

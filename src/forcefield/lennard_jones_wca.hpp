@@ -13,6 +13,7 @@ namespace structmd {
 
 template <class Shape>
 struct WeeksChandlerAndersen : EpsilonSigmaPair<WeeksChandlerAndersen<Shape>> {
+    static constexpr bool under_domains = true;  // reader_entries.hpp: runs_under_domains
     template <class R>
     using Params = LennardJonesParams<R>;
     using EpsilonSigmaPair<WeeksChandlerAndersen<Shape>>::make_pair_params;

@@ -19,6 +19,8 @@
 // evaluate(r2, p, a_i, a_j); one of both, evaluate(r2, p, q_i q_j, a_i, a_j). Optionally:
 //   static constexpr const char* cutoff_key;  // the entry reads no cutOffFactor; its range is set by
 //                                             // this member of the entry ("parameters.gamma", "data")
+//   static constexpr bool under_domains = true;  // it runs under spatial domains: it reads of a
+//                                                // neighbour only what a domain's ghosts carry
 //   template <class R> static Params<R> make_unlisted_pair_params(const ParameterValues& shared,
 //                                                                 const Constants& c, double cutOffFactor,
 //                                                                 bool shift);

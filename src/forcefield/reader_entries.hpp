@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,14 @@
 #include "forcefield/external_potential.hpp"
 
 namespace structmd {
+
+// Whether a functor declares `static constexpr bool under_domains = true` (pair_potential.hpp,
+// bond_potential.hpp); the domain check asks the registry, never a list of names.
+template <class Potential, class = void>
+struct runs_under_domains : std::false_type {};
+template <class Potential>
+struct runs_under_domains<Potential, std::void_t<decltype(Potential::under_domains)>>
+    : std::bool_constant<Potential::under_domains> {};
 
 struct ReaderEntries {
     Registry<ForceFieldComponent>& registry;
@@ -24,6 +33,7 @@ struct ReaderEntries {
         c.entryParameters = Potential::entry_parameters();
         if constexpr (has_text_options<Potential>::value) c.textOptions = Potential::text_options();
         c.units = required_units_of<Potential>();
+        c.underDomains = runs_under_domains<Potential>::value;
         c.actingCutoff = [](const ParameterValues& v, const Constants& constants, double cutOffFactor, bool shift) {
             return std::sqrt(static_cast<double>(
                 Potential::template make_pair_params<double>(v, constants, cutOffFactor, shift).cutoff2));
@@ -45,6 +55,7 @@ struct ReaderEntries {
         ForceFieldComponent c = component(std::move(key), InteractionKind::bond, Potential::parameters());
         c.arity = Potential::arity;
         c.units = required_units_of<Potential>();
+        c.underDomains = runs_under_domains<Potential>::value;
         for (const std::string& name : common)
             if (std::none_of(c.parameters.begin(), c.parameters.end(),
                              [&](const Parameter& p) { return name == p.name; }))

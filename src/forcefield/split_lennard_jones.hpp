@@ -13,6 +13,7 @@
 namespace structmd {
 
 struct SplitLennardJones {
+    static constexpr bool under_domains = true;  // reader_entries.hpp: runs_under_domains
     template <class R>
     struct Params {
         R repulsive_epsilon;   // eps_r

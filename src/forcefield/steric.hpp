@@ -9,6 +9,7 @@ namespace structmd {
 
 template <int Exponent>
 struct Steric : EpsilonSigmaPair<Steric<Exponent>> {
+    static constexpr bool under_domains = true;  // reader_entries.hpp: runs_under_domains
     using EpsilonSigmaPair<Steric<Exponent>>::make_pair_params;
     static_assert(Exponent > 0 && Exponent % 2 == 0, "the power is taken of (s/r)^2");
 

@@ -285,6 +285,7 @@ ForceFieldComponent bond_entry(ComponentKey key, int arity, const BondTableKind&
     c.key = std::move(key);
     c.kind = InteractionKind::bond;
     c.arity = arity;
+    c.underDomains = arity == 2;  // a tabulated Bond2 reads two positions, which a domain holds
     c.entryParameters = {table_length_parameter()};  // read by configure (bonds read no entry parameters)
     c.configure = [c, &kind](const ComponentEntry& entry, const SystemDescription&) {
         return configure_bond(c, kind, entry);

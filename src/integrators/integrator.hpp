@@ -74,6 +74,13 @@ struct IntegratorInputs {
     // Couples every particle of its group through one fluid: batches, independent systems, would
     // share it, so an input of several is refused.
     static constexpr bool oneFluid = false;
+    // Runs under spatial domains (parallel/domains_over_ranks.hpp): moves each particle by its own
+    // force and noise alone, so a domain moves the particles it owns as the whole system would.
+    static constexpr bool underDomains = false;
+    // A parameter that, non-zero, couples every particle of the group (removing its net motion), and
+    // what it does: refused under spatial domains, which see only their own particles.
+    static constexpr const char* wholeSystemParameter = nullptr;
+    static constexpr const char* wholeSystemEffect = nullptr;
     // A parameter that may be left out when the state gives each particle's value in a column
     // (UAMMD-structured's particle data): its default 0 then means "from the column".
     static constexpr const char* fallbackParameter = nullptr;

@@ -43,6 +43,9 @@ struct IntegratorComponent {
     bool magnetic = false;
     const char* radiusParameter = nullptr;  // IntegratorInputs::radiusParameter
     bool oneFluid = false;                  // IntegratorInputs::oneFluid
+    bool underDomains = false;              // IntegratorInputs::underDomains
+    const char* wholeSystemParameter = nullptr;  // IntegratorInputs::wholeSystemParameter and wholeSystemEffect
+    const char* wholeSystemEffect = nullptr;
 };
 
 const Registry<IntegratorComponent>& integrator_registry();

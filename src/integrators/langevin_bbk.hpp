@@ -16,6 +16,9 @@
 namespace structmd {
 
 struct LangevinBBKInputs : LangevinInputs {
+    static constexpr bool underDomains = true;  // its noise is keyed by the particle's global id
+    static constexpr const char* wholeSystemParameter = "stopTransRotSteps";
+    static constexpr const char* wholeSystemEffect = "removing the whole system's motion";
     static std::vector<Parameter> parameters() {
         std::vector<Parameter> all = LangevinInputs::parameters();
         all.push_back(with_default(number("stopTransRotSteps", "step", Must::be_integer), 0.0));

@@ -19,7 +19,8 @@ struct ReaderEntries {
     void integrator(ComponentKey key) {
         registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate,
                       Inputs::overdamped, Inputs::fallbackParameter, Inputs::fallbackColumn, Inputs::rotates,
-                      Inputs::text_options(), Inputs::magnetic, Inputs::radiusParameter, Inputs::oneFluid});
+                      Inputs::text_options(), Inputs::magnetic, Inputs::radiusParameter, Inputs::oneFluid,
+                      Inputs::underDomains, Inputs::wholeSystemParameter, Inputs::wholeSystemEffect});
     }
 };
 

@@ -4,7 +4,9 @@
 
 namespace structmd {
 
-struct VelocityVerletInputs : IntegratorInputs {};
+struct VelocityVerletInputs : IntegratorInputs {
+    static constexpr bool underDomains = true;
+};
 
 // Also does the engine's bookkeeping for the evaluation at the new positions, for every particle,
 // moved or not.

@@ -1,118 +1,109 @@
 #include "parallel/domain_support.hpp"
 
+#include <algorithm>
 #include <set>
 #include <string>
 
 #include "core/error.hpp"
+#include "input/read_parameters.hpp"
+#include "integrators/integrator_spec.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
 namespace {
 
-using json = nlohmann::json;
+using input::ComponentEntry;
+using input::TrackedNode;
 
 Error unsupported(const std::string& path, const std::string& what) {
     return Error(STRUCTMD_ERR_UNSUPPORTED, path + ": " + what + " is not available under domain decomposition");
 }
 
-std::string type_text(const json& entry) { return entry.contains("type") ? entry["type"].dump() : "(no type)"; }
+// As the input writes it: ["Class","SubClass"].
+std::string type_text(const std::string& cls, const std::string& subclass) {
+    return "[\"" + cls + "\",\"" + subclass + "\"]";
+}
+std::string type_text(const ComponentEntry& entry) { return type_text(entry.cls, entry.subclass); }
 
-bool has_type(const json& entry, const std::string& cls, const std::string& sub = std::string()) {
-    if (!entry.is_object() || !entry.contains("type") || !entry["type"].is_array() || entry["type"].size() != 2) return false;
-    const json& type = entry["type"];
-    return type[0] == cls && (sub.empty() || type[1] == sub);
+// The labels of a table the reader has already checked.
+void only_labels(const TrackedNode& table, const std::set<std::string>& allowed) {
+    const TrackedNode labels = table.at("labels");
+    for (size_t k = 0; k < labels.size(); ++k) {
+        const std::string label = labels.at(k).as<std::string>();
+        if (!allowed.count(label)) throw unsupported(labels.path(), "column \"" + label + "\"");
+    }
 }
 
-const json& labels_of(const json& table, const std::string& path) {
-    if (!table.is_object() || !table.contains("labels") || !table["labels"].is_array() || !table.contains("data") ||
-        !table["data"].is_array())
-        throw input_error(path, "expected a table with labels and data");
-    return table["labels"];
-}
-
-void only_labels(const json& labels, const std::set<std::string>& allowed, const std::string& path) {
-    for (const json& label : labels)
-        if (!label.is_string() || !allowed.count(label.get<std::string>()))
-            throw unsupported(path + ".labels", "column " + label.dump());
-}
-
-// The pair terms over a neighbour list whose functors read nothing a domain's engine lacks.
-const std::set<std::string> kPairTerms = {
-    "LennardJonesType1", "LennardJonesType2", "LennardJonesType3", "WCAType1", "WCAType2", "WCAType3",
-    "GeneralLennardJonesType1", "GeneralLennardJonesType2", "GeneralLennardJonesType3", "Steric6", "Steric12",
-    "SplitLennardJones", "DebyeHuckel"};
-
-void check_sections(const json& document) {
-    if (!document.is_object()) throw input_error("", "expected a JSON object");
-    for (auto it = document.begin(); it != document.end(); ++it) {
-        const std::string& key = it.key();
+// The document's layout: its sections, the system's entries and the particles' columns. The reader
+// has refused any global entry other than units, types, ensemble and fundamental.
+void check_layout(const TrackedNode& root) {
+    for (const std::string& key : root.keys())
         if (key != "system" && key != "global" && key != "integrator" && key != "state" && key != "topology" &&
             key != "simulationStep")
             throw unsupported(key, "the section '" + key + "'");
+    if (const auto system = root.find("system"))
+        for (const std::string& key : system->keys()) {
+            const TrackedNode type = system->at(key).at("type");
+            const std::string cls = type.at(0).as<std::string>(), subclass = type.at(1).as<std::string>();
+            if (cls != "Simulation" || subclass != "Information")
+                throw unsupported(system->path() + "." + key, "entry " + type_text(cls, subclass));
+        }
+    const TrackedNode topology = root.at("topology");
+    for (const std::string& key : topology.keys())
+        if (key != "structure" && key != "forceField")
+            throw unsupported(topology.path() + "." + key, "the section '" + topology.path() + "." + key + "'");
+    if (const auto state = root.find("state")) only_labels(*state, {"id", "position", "velocity"});
+    only_labels(topology.at("structure"), {"id", "type", "batchId", "modelId", "resId", "chainId"});
+}
+
+void check_integrators(const input::SystemDescription& system, const SimulationSpec& spec) {
+    if (system.schedule.size() > 1) throw unsupported(system.schedulePath, "a schedule of more than one integrator");
+    for (const IntegratorSpec& integrator : spec.integrators) {
+        const IntegratorComponent* component = integrator_registry().find(integrator.key);
+        if (!component || !component->underDomains)
+            throw unsupported(integrator.path, "integrator " + type_text(integrator.key.cls, integrator.key.subclass));
+        if (integrator.group != -1) throw unsupported(integrator.path + ".parameters.group", "an integrator of a group");
+        if (const char* name = component->wholeSystemParameter; name && integrator.parameters[name] != 0.0)
+            throw unsupported(integrator.path + ".parameters." + name, component->wholeSystemEffect);
     }
-    if (document.contains("system"))
-        for (auto it = document["system"].begin(); it != document["system"].end(); ++it)
-            if (!has_type(it.value(), "Simulation", "Information"))
-                throw unsupported("system." + it.key(), "entry " + type_text(it.value()));
-    if (document.contains("global"))
-        for (auto it = document["global"].begin(); it != document["global"].end(); ++it) {
-            const json& entry = it.value();
-            if (!(has_type(entry, "Units") || has_type(entry, "Types") || has_type(entry, "Fundamental") ||
-                  has_type(entry, "Ensemble")))
-                throw unsupported("global." + it.key(), "entry " + type_text(entry));
-        }
-    if (document.contains("integrator"))
-        for (auto it = document["integrator"].begin(); it != document["integrator"].end(); ++it) {
-            const std::string path = "integrator." + it.key();
-            const json& entry = it.value();
-            if (has_type(entry, "Schedule")) {
-                if (entry.contains("data") && entry["data"].is_array() && entry["data"].size() > 1)
-                    throw unsupported(path, "a schedule of more than one integrator");
-                continue;
-            }
-            if (!has_type(entry, "Verlet", "VelocityVerlet") && !has_type(entry, "Langevin", "BBK"))
-                throw unsupported(path, "integrator " + type_text(entry));
-            const json parameters = entry.value("parameters", json::object());
-            if (parameters.contains("group") && parameters["group"] != "All")
-                throw unsupported(path + ".parameters.group", "an integrator of a group");
-            if (parameters.contains("stopTransRotSteps") && parameters["stopTransRotSteps"] != 0)
-                throw unsupported(path + ".parameters.stopTransRotSteps", "removing the whole system's motion");
-        }
-    if (document.contains("simulationStep"))
-        for (auto it = document["simulationStep"].begin(); it != document["simulationStep"].end(); ++it) {
-            const std::string path = "simulationStep." + it.key();
-            if (!has_type(it.value(), "WriteStep", "WriteStep"))
-                throw unsupported(path, "simulation step " + type_text(it.value()));
-            const json parameters = it.value().value("parameters", json::object());
-            if (parameters.contains("group") && parameters["group"] != "All")
-                throw unsupported(path + ".parameters.group", "a simulation step of a group");
-        }
-    if (!document.contains("topology") || !document["topology"].is_object())
-        throw input_error("topology", "expected an object with a structure");
-    for (auto it = document["topology"].begin(); it != document["topology"].end(); ++it)
-        if (it.key() != "structure" && it.key() != "forceField")
-            throw unsupported("topology." + it.key(), "the section 'topology." + it.key() + "'");
-    if (document.contains("state")) {
-        only_labels(labels_of(document["state"], "state"), {"id", "position", "velocity"}, "state");
+}
+
+void check_steps(const input::SystemDescription& system) {
+    for (const ComponentEntry& entry : system.simulationSteps) {
+        const SimulationStepEntry* step = simulation_step_registry().find({entry.cls, entry.subclass});
+        if (!step || !step->underDomains)
+            throw unsupported(entry.node.path(), "simulation step " + type_text(entry));
+        const TrackedNode parameters = input::parameters_of(entry.node);
+        if (parameters.valid() && parameters.get_or<std::string>("group", "All") != "All")
+            throw unsupported(entry.node.path() + ".parameters.group", "a simulation step of a group");
+    }
+    // Groups named in the integrator and simulationStep sections select particles by id.
+    for (const ComponentEntry& entry : system.sectionGroups)
+        throw unsupported(entry.node.path(), "entry " + type_text(entry));
+}
+
+void check_forcefield(const input::SystemDescription& system, const ForceFieldSpec& forceField,
+                      const Registry<ForceFieldComponent>& components) {
+    for (const ComponentEntry& entry : system.forceField) {
+        const std::string& path = entry.node.path();
+        // Each domain's engine builds its own lists over the particles it holds, ghosts included.
+        const bool list = std::any_of(forceField.lists.begin(), forceField.lists.end(),
+                                      [&](const NeighbourListSpec& l) { return l.path == path; });
+        if (list) continue;
+        const ForceFieldComponent* component = components.find({entry.cls, entry.subclass});
+        if (!component || !component->underDomains) throw unsupported(path, "forceField entry " + type_text(entry));
     }
 }
 
 }  // namespace
 
-void check_domain_support(const json& document) {
-    check_sections(document);
-    const json& topology = document["topology"];
-    if (!topology.contains("structure")) throw input_error("topology.structure", "expected a table with labels and data");
-    only_labels(labels_of(topology["structure"], "topology.structure"),
-                {"id", "type", "batchId", "modelId", "resId", "chainId"}, "topology.structure");
-    if (!topology.contains("forceField")) return;
-    const json& forceField = topology["forceField"];
-    for (auto it = forceField.begin(); it != forceField.end(); ++it) {
-        const json& entry = it.value();
-        if (has_type(entry, "VerletConditionalListSet") || has_type(entry, "Bond2")) continue;
-        if (has_type(entry, "NonBonded") && kPairTerms.count(entry["type"][1].get<std::string>())) continue;
-        throw unsupported("topology.forceField." + it.key(), "forceField entry " + type_text(entry));
-    }
+void check_domain_support(const input::ParsedDocument& document, const SimulationSpec& spec,
+                          const Registry<ForceFieldComponent>& components) {
+    check_layout(document.root);
+    check_integrators(document.system, spec);
+    check_steps(document.system);
+    check_forcefield(document.system, spec.forceField, components);
 }
 
 }  // namespace structmd

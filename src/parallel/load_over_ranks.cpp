@@ -1,6 +1,7 @@
 #include "parallel/load_over_ranks.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -30,25 +31,9 @@ nlohmann::json parse(const std::string& text) {
 }
 
 // One batch (no batchId, or one value in it): the system is split in space rather than by batch.
-bool one_batch(const nlohmann::json& document) {
-    if (!document.is_object() || !document.contains("topology") || !document["topology"].is_object()) return false;
-    const nlohmann::json& topology = document["topology"];
-    if (!topology.contains("structure") || !topology["structure"].is_object()) return false;
-    const nlohmann::json& structure = topology["structure"];
-    if (!structure.contains("labels") || !structure.contains("data") || !structure["labels"].is_array() ||
-        !structure["data"].is_array())
-        return false;
-    const nlohmann::json& labels = structure["labels"];
-    const auto column = std::find(labels.begin(), labels.end(), "batchId");
-    if (column == labels.end()) return true;
-    const auto k = static_cast<size_t>(column - labels.begin());
-    std::optional<nlohmann::json> first;
-    for (const nlohmann::json& row : structure["data"]) {
-        if (!row.is_array() || k >= row.size()) return false;
-        if (!first) first = row[k];
-        else if (row[k] != *first) return false;
-    }
-    return true;
+bool one_batch(const input::SystemDescription& system) {
+    return std::adjacent_find(system.batchId.begin(), system.batchId.end(), std::not_equal_to<int32_t>()) ==
+           system.batchId.end();
 }
 
 }  // namespace
@@ -82,12 +67,12 @@ std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const 
     if (comm->size() > 1) {
         std::optional<DomainSpec> domains;
         run_together(*comm, [&] {
-            const nlohmann::json document = parse(text);
-            if (!one_batch(document)) return;
+            const input::ParsedDocument document = input::parse_document(text);
+            if (!one_batch(document.system)) return;
             // The reader first, so that bad input is named by its JSON path before the domains
-            // look at the document.
-            SimulationSpec spec = read_simulation(text, log, components.reader());
-            check_domain_support(document);
+            // look at what it read.
+            SimulationSpec spec = read_simulation(document, log, components.reader());
+            check_domain_support(document, spec, components.reader());
             domains.emplace(static_cast<const SystemSpec&>(spec));
             local = make_simulation(options, std::move(spec), components, log);
         });

@@ -13,7 +13,11 @@ namespace structmd {
 
 SimulationSpec read_simulation(const std::string& text, const Logger& log,
                                const Registry<ForceFieldComponent>& components) {
-    input::ParsedDocument doc = input::parse_document(text);
+    return read_simulation(input::parse_document(text), log, components);
+}
+
+SimulationSpec read_simulation(const input::ParsedDocument& doc, const Logger& log,
+                               const Registry<ForceFieldComponent>& components) {
     const input::SystemDescription& system = doc.system;
 
     SimulationSpec spec;

@@ -14,6 +14,10 @@ namespace structmd {
 // of the document must be used by some component; throws Error(ERR_INPUT) naming the path otherwise.
 SimulationSpec read_simulation(const std::string& text, const Logger& log,
                                const Registry<ForceFieldComponent>& components = forcefield_registry());
+// The same from a document already parsed, for a caller that decides from its description first
+// (parallel/load_over_ranks.cpp: one batch or several, which components run under domains).
+SimulationSpec read_simulation(const input::ParsedDocument& document, const Logger& log,
+                               const Registry<ForceFieldComponent>& components);
 
 // What structmd_set_parameter may change, read again from the parsed document after a parameter in
 // it changed: the force field and the integrators, validated as a load validates them (every key of

@@ -97,6 +97,9 @@ struct SimulationStepEntry {
     StepFactory make;
     std::vector<std::string> tableLabels = {};  // the required labels of the id table it reads, if any
     bool schedulesNothing = false;  // its factory makes no step: the engine does its work otherwise
+    // Runs under spatial domains (parallel/domains_over_ranks.hpp): reads only what the handle's
+    // view of the whole system gives (positions, velocities, energies), never one engine's internals.
+    bool underDomains = false;
 };
 
 // The parameters every step reads (intervalStep, startStep, endStep, group) followed by its own.

@@ -132,6 +132,10 @@ std::vector<StepParameter> write_step_parameters() {
                              "extend an existing file instead of replacing it"}});
 }
 
-SimulationStepEntry write_step_entry() { return {{"WriteStep", "WriteStep"}, write_step_parameters(), make}; }
+SimulationStepEntry write_step_entry() {
+    SimulationStepEntry entry{{"WriteStep", "WriteStep"}, write_step_parameters(), make};
+    entry.underDomains = true;  // writes the positions (and velocities) gathered from every domain
+    return entry;
+}
 
 }  // namespace structmd
