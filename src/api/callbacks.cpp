@@ -55,15 +55,15 @@ structmd_status structmd_set_force_callback(structmd_sim* sim, structmd_force_ca
     return with_handle(sim, [&](structmd_sim& s) {
         Simulation& simulation = loaded(s);
         if (!callback) {
-            simulation.set_force_callback(nullptr);
+            simulation.set_force_callback(HostForceCallback());
             return;
         }
         structmd_sim* handle = &s;
-        simulation.set_force_callback([handle, callback, user_data](const HostForceCall& c) {
+        simulation.set_force_callback(HostForceCallback([handle, callback, user_data](const HostForceCall& c) {
             call_host(*handle, "force callback", c.step, [&] {
                 return callback(c.positions, c.forces, c.n, c.energy, c.virial, c.step, user_data);
             });
-        });
+        }));
     });
 }
 
@@ -72,16 +72,16 @@ structmd_status structmd_set_device_force_callback(structmd_sim* sim, structmd_d
     return with_handle(sim, [&](structmd_sim& s) {
         Simulation& simulation = loaded(s);
         if (!callback) {
-            simulation.set_device_force_callback(nullptr);
+            simulation.set_force_callback(DeviceForceCallback());
             return;
         }
         structmd_sim* handle = &s;
-        simulation.set_device_force_callback([handle, callback, user_data](const DeviceForceCall& c) {
+        simulation.set_force_callback(DeviceForceCallback([handle, callback, user_data](const DeviceForceCall& c) {
             call_host(*handle, "device force callback", c.step, [&] {
                 return callback(c.positions, c.forces, c.n, c.realSize, c.energy, c.virial, c.step, c.stream,
                                 user_data);
             });
-        });
+        }));
     });
 }
 

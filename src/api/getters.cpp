@@ -23,56 +23,56 @@ structmd_status structmd_get_ids(structmd_sim* sim, int64_t* ids, int64_t n) {
 structmd_status structmd_get_positions(structmd_sim* sim, double* xyz, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, xyz, "xyz");
-        s.simulation->get_positions(xyz);
+        s.simulation->read(PerParticle::positions, xyz);
     });
 }
 
 structmd_status structmd_get_velocities(structmd_sim* sim, double* v, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, v, "v");
-        s.simulation->get_velocities(v);
+        s.simulation->read(PerParticle::velocities, v);
     });
 }
 
 structmd_status structmd_get_orientations(structmd_sim* sim, double* q, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, q, "q");
-        s.simulation->get_orientations(q);
+        s.simulation->read(PerParticle::orientations, q);
     });
 }
 
 structmd_status structmd_get_magnetic_moments(structmd_sim* sim, double* m, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, m, "m");
-        s.simulation->get_magnetic_moments(m);
+        s.simulation->read(PerParticle::magneticMoments, m);
     });
 }
 
 structmd_status structmd_get_torques(structmd_sim* sim, double* t, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, t, "t");
-        s.simulation->get_torques(t);
+        s.simulation->read(PerParticle::torques, t);
     });
 }
 
 structmd_status structmd_get_forces(structmd_sim* sim, double* f, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, f, "f");
-        s.simulation->get_forces(f);
+        s.simulation->read(PerParticle::forces, f);
     });
 }
 
 structmd_status structmd_get_particle_energies(structmd_sim* sim, double* e, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, e, "e");
-        s.simulation->get_particle_energies(e);
+        s.simulation->read(PerParticle::energies, e);
     });
 }
 
 structmd_status structmd_get_masses(structmd_sim* sim, double* m, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, m, "m");
-        s.simulation->get_masses(m);
+        s.simulation->read(PerParticle::masses, m);
     });
 }
 

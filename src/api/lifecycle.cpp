@@ -25,9 +25,9 @@ void load_text(structmd_sim& sim, const std::string& text) {
     sim.simulation = load_over_ranks(sim.options, text, *sim.components, sim.log,
                                      sim.communicator ? sim.communicator : single_process());
     sim.document = text;
+    const EngineDescription description = sim.simulation->description();
     sim.log.info("loaded " + std::to_string(sim.simulation->particle_count()) + " particles on " +
-                 sim.simulation->backend_name() + " (" + sim.simulation->device_name() + "), " +
-                 sim.simulation->precision_name() + " precision");
+                 description.backend + " (" + description.device + "), " + description.precision + " precision");
 }
 
 }  // namespace

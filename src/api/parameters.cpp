@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "api/handle.hpp"
+#include "core/precise.hpp"
 #include "engines/make_engine.hpp"
 #include "simulation/read_simulation.hpp"
 
@@ -23,12 +24,6 @@ using Json = nlohmann::json;
 const char* const kForms =
     "run-time parameters are global.ensemble.temperature, integrator.<name>.parameters.<key> and "
     "topology.forceField.<name>.parameters.<key>";
-
-std::string precise(double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.17g", x);
-    return text;
-}
 
 Error refused(const std::string& path, const std::string& why) {
     return Error(STRUCTMD_ERR_ARGUMENT, "parameter " + path + ": " + why);

@@ -41,7 +41,7 @@ structmd_status structmd_set_positions(structmd_sim* sim, const double* xyz, int
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, xyz, "xyz");
         require_finite(xyz, 3 * n, "xyz");
-        s.simulation->set_positions(xyz);
+        s.simulation->write(PerParticle::positions, xyz);
     });
 }
 
@@ -49,7 +49,7 @@ structmd_status structmd_set_velocities(structmd_sim* sim, const double* v, int6
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, v, "v");
         require_finite(v, 3 * n, "v");
-        s.simulation->set_velocities(v);
+        s.simulation->write(PerParticle::velocities, v);
     });
 }
 
@@ -57,7 +57,7 @@ structmd_status structmd_set_orientations(structmd_sim* sim, const double* q, in
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, q, "q");
         require_unit_quaternions(q, n);
-        s.simulation->set_orientations(q);
+        s.simulation->write(PerParticle::orientations, q);
     });
 }
 
@@ -76,12 +76,12 @@ structmd_status structmd_set_external_forces(structmd_sim* sim, const double* f,
     return with_handle(sim, [&](structmd_sim& s) {
         Simulation& simulation = loaded(s);
         if (f == nullptr && n == 0) {
-            simulation.set_external_forces(nullptr);
+            simulation.write(PerParticle::externalForces, nullptr);
             return;
         }
         require_count(simulation, n, f, "f");
         require_finite(f, 3 * n, "f");
-        simulation.set_external_forces(f);
+        simulation.write(PerParticle::externalForces, f);
     });
 }
 

@@ -57,19 +57,19 @@ extern "C" {
 
 structmd_status structmd_get_positions_of(structmd_sim* sim, const int64_t* ids, int64_t m, double* xyz) {
     return with_handle(sim, [&](structmd_sim& s) {
-        if (require_subset(s, ids, m, xyz, "xyz")) s.simulation->get_positions_of(ids, m, xyz);
+        if (require_subset(s, ids, m, xyz, "xyz")) s.simulation->read_of(PerParticle::positions, ids, m, xyz);
     });
 }
 
 structmd_status structmd_get_velocities_of(structmd_sim* sim, const int64_t* ids, int64_t m, double* v) {
     return with_handle(sim, [&](structmd_sim& s) {
-        if (require_subset(s, ids, m, v, "v")) s.simulation->get_velocities_of(ids, m, v);
+        if (require_subset(s, ids, m, v, "v")) s.simulation->read_of(PerParticle::velocities, ids, m, v);
     });
 }
 
 structmd_status structmd_get_forces_of(structmd_sim* sim, const int64_t* ids, int64_t m, double* f) {
     return with_handle(sim, [&](structmd_sim& s) {
-        if (require_subset(s, ids, m, f, "f")) s.simulation->get_forces_of(ids, m, f);
+        if (require_subset(s, ids, m, f, "f")) s.simulation->read_of(PerParticle::forces, ids, m, f);
     });
 }
 
@@ -77,7 +77,7 @@ structmd_status structmd_set_positions_of(structmd_sim* sim, const int64_t* ids,
     return with_handle(sim, [&](structmd_sim& s) {
         if (!require_subset(s, ids, m, xyz, "xyz")) return;
         require_finite(xyz, ids, m, "xyz");
-        s.simulation->set_positions_of(ids, m, xyz);
+        s.simulation->write_of(PerParticle::positions, ids, m, xyz);
     });
 }
 
@@ -85,7 +85,7 @@ structmd_status structmd_set_velocities_of(structmd_sim* sim, const int64_t* ids
     return with_handle(sim, [&](structmd_sim& s) {
         if (!require_subset(s, ids, m, v, "v")) return;
         require_finite(v, ids, m, "v");
-        s.simulation->set_velocities_of(ids, m, v);
+        s.simulation->write_of(PerParticle::velocities, ids, m, v);
     });
 }
 
@@ -93,7 +93,7 @@ structmd_status structmd_set_external_forces_of(structmd_sim* sim, const int64_t
     return with_handle(sim, [&](structmd_sim& s) {
         if (!require_subset(s, ids, m, f, "f")) return;
         require_finite(f, ids, m, "f");
-        s.simulation->set_external_forces_of(ids, m, f);
+        s.simulation->write_of(PerParticle::externalForces, ids, m, f);
     });
 }
 

@@ -5,7 +5,7 @@
 
 namespace structmd {
 
-std::unique_ptr<Simulation> make_cpu_engine_double(int threads, SimulationSpec spec,
+std::unique_ptr<LocalEngine> make_cpu_engine_double(int threads, SimulationSpec spec,
                                                    const ForceFieldComponents& components, const Logger& log) {
     return std::make_unique<Engine<CpuBackend, double>>(std::move(spec), components, log, threads);
 }

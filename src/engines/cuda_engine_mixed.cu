@@ -5,7 +5,7 @@
 
 namespace structmd {
 
-std::unique_ptr<Simulation> make_cuda_engine_mixed(int device, SimulationSpec spec,
+std::unique_ptr<LocalEngine> make_cuda_engine_mixed(int device, SimulationSpec spec,
                                                    const ForceFieldComponents& components, const Logger& log) {
     return std::make_unique<Engine<CudaBackend, double, float>>(std::move(spec), components, log, device);
 }

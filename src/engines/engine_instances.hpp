@@ -6,22 +6,22 @@
 
 #include "core/logger.hpp"
 #include "forcefield/component_set.hpp"
-#include "simulation/simulation.hpp"
+#include "simulation/local_engine.hpp"
 #include "simulation/simulation_spec.hpp"
 
 namespace structmd {
 
-std::unique_ptr<Simulation> make_cpu_engine_single(int threads, SimulationSpec spec,
+std::unique_ptr<LocalEngine> make_cpu_engine_single(int threads, SimulationSpec spec,
                                                    const ForceFieldComponents& components, const Logger& log);
-std::unique_ptr<Simulation> make_cpu_engine_mixed(int threads, SimulationSpec spec,
+std::unique_ptr<LocalEngine> make_cpu_engine_mixed(int threads, SimulationSpec spec,
                                                   const ForceFieldComponents& components, const Logger& log);
-std::unique_ptr<Simulation> make_cpu_engine_double(int threads, SimulationSpec spec,
+std::unique_ptr<LocalEngine> make_cpu_engine_double(int threads, SimulationSpec spec,
                                                    const ForceFieldComponents& components, const Logger& log);
-std::unique_ptr<Simulation> make_cuda_engine_single(int device, SimulationSpec spec,
+std::unique_ptr<LocalEngine> make_cuda_engine_single(int device, SimulationSpec spec,
                                                     const ForceFieldComponents& components, const Logger& log);
-std::unique_ptr<Simulation> make_cuda_engine_mixed(int device, SimulationSpec spec,
+std::unique_ptr<LocalEngine> make_cuda_engine_mixed(int device, SimulationSpec spec,
                                                    const ForceFieldComponents& components, const Logger& log);
-std::unique_ptr<Simulation> make_cuda_engine_double(int device, SimulationSpec spec,
+std::unique_ptr<LocalEngine> make_cuda_engine_double(int device, SimulationSpec spec,
                                                     const ForceFieldComponents& components, const Logger& log);
 
 }  // namespace structmd

@@ -6,7 +6,7 @@
 
 namespace structmd {
 
-std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const std::string& text,
+std::unique_ptr<LocalEngine> load_simulation(const EngineOptions& options, const std::string& text,
                                             const ForceFieldComponents& components, const Logger& log,
                                             int64_t firstParticleId) {
     SimulationSpec spec = read_simulation(text, log, components.reader());
@@ -14,7 +14,7 @@ std::unique_ptr<Simulation> load_simulation(const EngineOptions& options, const 
     return make_simulation(options, std::move(spec), components, log);
 }
 
-std::unique_ptr<Simulation> make_simulation(const EngineOptions& options, SimulationSpec spec,
+std::unique_ptr<LocalEngine> make_simulation(const EngineOptions& options, SimulationSpec spec,
                                             const ForceFieldComponents& components, const Logger& log) {
     const bool cuda = options.backend == BackendKind::cuda;
 #ifdef STRUCTMD_WITH_SINGLE

@@ -15,13 +15,13 @@ bool cuda_backend_compiled() { return false; }
 int usable_gpu_count() { return 0; }
 std::string gpu_name(int) { throw no_cuda(); }
 
-std::unique_ptr<Simulation> make_cuda_engine_single(int, SimulationSpec, const ForceFieldComponents&, const Logger&) {
+std::unique_ptr<LocalEngine> make_cuda_engine_single(int, SimulationSpec, const ForceFieldComponents&, const Logger&) {
     throw no_cuda();
 }
-std::unique_ptr<Simulation> make_cuda_engine_mixed(int, SimulationSpec, const ForceFieldComponents&, const Logger&) {
+std::unique_ptr<LocalEngine> make_cuda_engine_mixed(int, SimulationSpec, const ForceFieldComponents&, const Logger&) {
     throw no_cuda();
 }
-std::unique_ptr<Simulation> make_cuda_engine_double(int, SimulationSpec, const ForceFieldComponents&, const Logger&) {
+std::unique_ptr<LocalEngine> make_cuda_engine_double(int, SimulationSpec, const ForceFieldComponents&, const Logger&) {
     throw no_cuda();
 }
 

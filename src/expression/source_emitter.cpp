@@ -3,14 +3,14 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/precise.hpp"
+
 namespace structmd::expression {
 
 namespace {
 
 std::string literal(double value, const std::string& real) {
-    char text[40];
-    std::snprintf(text, sizeof text, "%.17g", value);
-    std::string s = text;
+    const std::string s = precise(value);
     if (s == "inf" || s == "-inf" || s == "nan" || s == "-nan")
         return "(" + real + ")(" + (s == "inf" ? "1.0/0.0" : s == "-inf" ? "-1.0/0.0" : "0.0/0.0") + ")";
     return real + "(" + s + ")";

@@ -25,7 +25,7 @@ std::string number(double x) {
 
 }  // namespace
 
-DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec, std::unique_ptr<Simulation> whole,
+DomainsOverRanks::DomainsOverRanks(const EngineOptions& options, DomainSpec spec, std::unique_ptr<LocalEngine> whole,
                                    const ForceFieldComponents& components, const Logger& log,
                                    std::shared_ptr<const Communicator> comm)
     : StepsOnRankZero(std::move(comm)),
@@ -120,12 +120,33 @@ DomainsOverRanks::~DomainsOverRanks() {
                   (onDevice_ ? " (queueing NCCL's transfers, which run on the GPU's stream)" : ""));
 }
 
-void DomainsOverRanks::set_step_firing(StepFiring*) {
-    throw Error(STRUCTMD_ERR_INTERNAL, "the steps of spatial domains are fired by the view itself");
-}
-
-void DomainsOverRanks::unsupported(const std::string& what) const {
-    throw Error(STRUCTMD_ERR_UNSUPPORTED, what + " is not available under domain decomposition");
+std::string DomainsOverRanks::refusal(Operation op, PerParticle quantity) const {
+    const std::string name = traits(quantity).name;
+    switch (op) {
+        case Operation::read:
+            if (quantity == PerParticle::torques || quantity == PerParticle::magneticMoments) return name;
+            if (quantity == PerParticle::pairVirials) return "the virial of pairs";
+            return {};
+        case Operation::write:
+        case Operation::writeSubset:
+            if (quantity == PerParticle::externalForces) return "external forces from the host";
+            return "setting " + name + (op == Operation::writeSubset ? " of a subset" : "");
+        case Operation::readSubset: return name + " of a subset";
+        case Operation::view: return "a view of the backend's arrays";
+        case Operation::virial: return "the virial (and the pressure)";
+        case Operation::externalEnergy: return "an external energy from the host";
+        case Operation::setBox: return "changing the box";
+        case Operation::setLambda: return "changing lambda";
+        case Operation::forceCallback: return "a force callback";
+        case Operation::changeParameters: return "changing a parameter";
+        case Operation::checkpoint: return "a checkpoint";
+        case Operation::termArrays: return {};
+        case Operation::hessian: return "the Hessian (HessianMeasure)";
+        case Operation::pairForces: return "forces between pairs";
+        case Operation::displacedForces: return "forces with a particle displaced";
+        case Operation::lambdaDerivative: return "the derivative in lambda";
+    }
+    return {};
 }
 
 SlabGeometry DomainsOverRanks::geometry() const {
@@ -503,19 +524,6 @@ void DomainsOverRanks::gather_owned(const std::vector<double>& local, int k, dou
     }
 }
 
-template <class Get>
-void DomainsOverRanks::gather_per_particle(Op op, double* all, int k, Get&& get) {
-    usable();
-    announce(op);
-    std::vector<double> local(static_cast<size_t>(k * local_->particle_count()));
-    run_together(*comm_, [&] {
-        slot_ids();
-        get(local.data());
-    });
-    local.resize(static_cast<size_t>(k * owned_));
-    gather_owned(local, k, all);
-}
-
 double DomainsOverRanks::sum_owned(const std::vector<double>& values) const {
     double sum = 0.0;
     for (int64_t s = 0; s < owned_; ++s) sum += values[static_cast<size_t>(s)];
@@ -528,43 +536,35 @@ void DomainsOverRanks::compute(unsigned flags) {
     run_together(*comm_, [&] { local_->compute(flags); });
 }
 
-void DomainsOverRanks::get_positions(double* xyz) {
-    gather_per_particle(Op::positions, xyz, 3, [&](double* mine) { local_->get_positions(mine); });
-}
-void DomainsOverRanks::get_velocities(double* v) {
-    gather_per_particle(Op::velocities, v, 3, [&](double* mine) { local_->get_velocities(mine); });
-}
-void DomainsOverRanks::get_forces(double* f) {
-    gather_per_particle(Op::forces, f, 3, [&](double* mine) { local_->get_forces(mine); });
-}
-// Identity for all: the domains hold no directions and turn no particle (domain_support.hpp).
-void DomainsOverRanks::get_orientations(double* q) {
-    gather_per_particle(Op::orientations, q, 4, [&](double* mine) { local_->get_orientations(mine); });
-}
-void DomainsOverRanks::get_particle_energies(double* e) {
-    gather_per_particle(Op::particleEnergies, e, 1, [&](double* mine) { local_->get_particle_energies(mine); });
-}
-
-void DomainsOverRanks::get_images(int32_t* images) {
-    std::vector<double> all(static_cast<size_t>(3 * total_));
-    gather_per_particle(Op::images, all.data(), 3, [&](double* mine) {
-        std::vector<int32_t> local(static_cast<size_t>(3 * local_->particle_count()));
-        local_->get_images(local.data());
-        std::copy(local.begin(), local.begin() + 3 * owned_, mine);
+void DomainsOverRanks::read(PerParticle q, double* out) {
+    admit(Operation::read, q);
+    usable();
+    const int k = traits(q).width;
+    switch (q) {
+        // The view keeps the whole system's copies of what the particles do not change.
+        case PerParticle::masses: std::copy(masses_.begin(), masses_.end(), out); return;
+        case PerParticle::types: std::copy(types_.begin(), types_.end(), out); return;
+        case PerParticle::radii: std::copy(radii_.begin(), radii_.end(), out); return;
+        case PerParticle::unwrappedPositions: {
+            read(PerParticle::positions, out);
+            std::vector<double> images(static_cast<size_t>(3 * total_));
+            read(PerParticle::images, images.data());
+            for (int64_t c = 0; c < 3 * total_; ++c) out[c] += images[static_cast<size_t>(c)] * box_[c % 3];
+            return;
+        }
+        default: break;
+    }
+    // Gathered from the owned slots of every rank. Orientations are the identity for all: the domains
+    // hold no directions and turn no particle (domain_support.hpp).
+    announce(Op::read, std::string(), static_cast<int64_t>(q));
+    std::vector<double> local(static_cast<size_t>(k * local_->particle_count()));
+    run_together(*comm_, [&] {
+        slot_ids();
+        local_->read(q, local.data());
     });
-    for (size_t k = 0; k < all.size(); ++k) images[k] = static_cast<int32_t>(all[k]);
+    local.resize(static_cast<size_t>(k * owned_));
+    gather_owned(local, k, out);
 }
-
-void DomainsOverRanks::get_unwrapped_positions(double* xyz) {
-    get_positions(xyz);
-    std::vector<int32_t> images(static_cast<size_t>(3 * total_));
-    get_images(images.data());
-    for (int64_t k = 0; k < 3 * total_; ++k) xyz[k] += images[static_cast<size_t>(k)] * box_[k % 3];
-}
-
-void DomainsOverRanks::get_masses(double* m) { std::copy(masses_.begin(), masses_.end(), m); }
-void DomainsOverRanks::get_types(int32_t* types) { std::copy(types_.begin(), types_.end(), types); }
-void DomainsOverRanks::get_radii(double* r) { std::copy(radii_.begin(), radii_.end(), r); }
 
 double DomainsOverRanks::energy(const std::string& term) {
     usable();
@@ -576,7 +576,7 @@ double DomainsOverRanks::energy(const std::string& term) {
         const bool potential = term == "potential" || term == "total";
         if (kinetic) {
             std::vector<double> v(3 * slots);
-            local_->get_velocities(v.data());
+            local_->read(PerParticle::velocities, v.data());
             for (int64_t s = 0; s < owned_; ++s) {
                 const double* u = &v[static_cast<size_t>(3 * s)];
                 value += 0.5 * masses_[static_cast<size_t>(slot_ids()[static_cast<size_t>(s)])] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
@@ -584,13 +584,15 @@ double DomainsOverRanks::energy(const std::string& term) {
         }
         if (potential) {
             std::vector<double> e(slots);
-            local_->get_particle_energies(e.data());
+            local_->read(PerParticle::energies, e.data());
             value += sum_owned(e);
         }
         if (kinetic || potential) return;
         const std::vector<std::string> names = local_->energy_terms();
         if (std::find(names.begin(), names.end(), term) == names.end())
-            unsupported("the energy '" + term + "' (only kinetic, potential, total and the forceField entries')");
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, "the energy '" + term +
+                                                      "' (only kinetic, potential, total and the forceField "
+                                                      "entries') is not available " + refusal_reason());
         std::vector<double> e(slots), f(3 * slots), t(3 * slots);
         local_->term_energies_and_forces(term, e.data(), f.data(), t.data());
         value = sum_owned(e);
@@ -616,45 +618,5 @@ void DomainsOverRanks::term_energies_and_forces(const std::string& term, double*
     gather_owned(f, 3, forces);
     gather_owned(t, 3, torques);
 }
-
-// ---- what domain decomposition does not do yet ----
-
-void DomainsOverRanks::set_orientations(const double*) { unsupported("setting orientations"); }
-void DomainsOverRanks::get_torques(double*) { unsupported("torques"); }
-void DomainsOverRanks::get_magnetic_moments(double*) { unsupported("magnetic moments"); }
-std::array<double, 9> DomainsOverRanks::virial() { unsupported("the virial (and the pressure)"); }
-void DomainsOverRanks::get_pair_virials(double*) { unsupported("the virial of pairs"); }
-void DomainsOverRanks::hessian_column(int64_t, double*) { unsupported("the Hessian (HessianMeasure)"); }
-void DomainsOverRanks::pair_forces_on(int64_t, double*) { unsupported("forces between pairs"); }
-void DomainsOverRanks::forces_with_displaced(int64_t, const double*, double*) {
-    unsupported("forces with a particle displaced");
-}
-void DomainsOverRanks::set_positions(const double*) { unsupported("setting positions"); }
-void DomainsOverRanks::set_velocities(const double*) { unsupported("setting velocities"); }
-void DomainsOverRanks::set_box(const double*) { unsupported("changing the box"); }
-void DomainsOverRanks::set_external_forces(const double*) { unsupported("external forces from the host"); }
-void DomainsOverRanks::set_lambda(double) { unsupported("changing lambda"); }
-double DomainsOverRanks::lambda_derivative() { unsupported("the derivative in lambda"); }
-void DomainsOverRanks::get_positions_of(const int64_t*, int64_t, double*) { unsupported("positions of a subset"); }
-void DomainsOverRanks::get_velocities_of(const int64_t*, int64_t, double*) { unsupported("velocities of a subset"); }
-void DomainsOverRanks::get_forces_of(const int64_t*, int64_t, double*) { unsupported("forces of a subset"); }
-void DomainsOverRanks::set_positions_of(const int64_t*, int64_t, const double*) {
-    unsupported("setting positions of a subset");
-}
-void DomainsOverRanks::set_velocities_of(const int64_t*, int64_t, const double*) {
-    unsupported("setting velocities of a subset");
-}
-void DomainsOverRanks::set_external_forces_of(const int64_t*, int64_t, const double*) {
-    unsupported("external forces from the host");
-}
-void DomainsOverRanks::set_external_energy(double) { unsupported("an external energy from the host"); }
-void DomainsOverRanks::set_force_callback(HostForceCallback) { unsupported("a force callback"); }
-void DomainsOverRanks::set_device_force_callback(DeviceForceCallback) { unsupported("a device force callback"); }
-Simulation::ArrayView DomainsOverRanks::view(const std::string&) { unsupported("a view of the backend's arrays"); }
-void DomainsOverRanks::change_parameters(const RuntimeSpec&, const ForceFieldComponents&) {
-    unsupported("changing a parameter");
-}
-void DomainsOverRanks::save_checkpoint(const std::string&) { unsupported("a checkpoint"); }
-void DomainsOverRanks::load_checkpoint(const std::string&) { unsupported("a checkpoint"); }
 
 }  // namespace structmd

@@ -66,6 +66,7 @@
 #include "parallel/nccl_channel.hpp"
 #endif
 #include "parallel/steps_on_rank_zero.hpp"
+#include "simulation/local_engine.hpp"
 #include "steps/simulation_step.hpp"
 
 namespace structmd {
@@ -74,85 +75,28 @@ class DomainsOverRanks final : public StepsOnRankZero, private GhostExchange {
 public:
     // `whole`: the system loaded whole on this rank from `spec`, released once the domains are
     // made. Collective.
-    DomainsOverRanks(const EngineOptions& options, DomainSpec spec, std::unique_ptr<Simulation> whole,
+    DomainsOverRanks(const EngineOptions& options, DomainSpec spec, std::unique_ptr<LocalEngine> whole,
                      const ForceFieldComponents& components, const Logger& log, std::shared_ptr<const Communicator> comm);
     ~DomainsOverRanks() override;
 
     int64_t particle_count() const override { return total_; }
     int64_t massive_count() const override { return massive_; }
-    int64_t current_step() const override { return local_->current_step(); }
-    double current_time() const override { return local_->current_time(); }
-    int64_t final_step() const override { return finalStep_; }
-    double boltzmann() const override { return local_->boltzmann(); }
+    ScheduleClock clock() const override { return {local_->current_step(), local_->current_time(), finalStep_}; }
     std::array<double, 3> box() const override { return box_; }
-    double volume() const override { return box_[0] * box_[1] * box_[2]; }
+    const std::vector<std::string>& type_names() const override { return typeNames_; }
+    Counters counters() override;  // this rank's engines since load
 
     void advance(int64_t n) override;
     void request_stop(const std::string& by) override {
         if (stoppedBy_.empty()) stoppedBy_ = by;
     }
     const std::string& stopped_by() const override { return stoppedBy_; }
-    void set_step_firing(StepFiring*) override;
     void compute(unsigned flags) override;
-
-    void get_positions(double* xyz) override;
-    void get_images(int32_t* images) override;
-    void get_unwrapped_positions(double* xyz) override;
-    void get_velocities(double* v) override;
-    void get_forces(double* f) override;
-    void get_particle_energies(double* e) override;
-    void get_masses(double* m) override;
-    void get_types(int32_t* types) override;
-    void get_radii(double* r) override;
-    void get_orientations(double* q) override;
-    void set_orientations(const double* q) override;
-    void get_torques(double* t) override;
-    void get_magnetic_moments(double* m) override;
-    bool has_magnetization() const override { return false; }
-    const std::vector<std::string>& type_names() const override { return typeNames_; }
-
+    void read(PerParticle q, double* out) override;
     double energy(const std::string& term) override;
-    std::vector<std::string> energy_terms() const override { return local_->energy_terms(); }
+
     void term_energies_and_forces(const std::string& term, double* energies, double* forces, double* torques) override;
-    std::array<double, 9> virial() override;
-    void get_pair_virials(double* w) override;
-
-    void hessian_column(int64_t id, double* blocks) override;
-    void pair_forces_on(int64_t id, double* f) override;
-    void forces_with_displaced(int64_t id, const double displacement[3], double* f) override;
-
-    void set_positions(const double* xyz) override;
-    void set_velocities(const double* v) override;
-    void set_box(const double lengths[3]) override;
-    void set_external_forces(const double* f) override;
-
-    double lambda() const override { return local_->lambda(); }
-    void set_lambda(double lambda) override;
-    double lambda_derivative() override;
-
-    void get_positions_of(const int64_t* ids, int64_t m, double* xyz) override;
-    void get_velocities_of(const int64_t* ids, int64_t m, double* v) override;
-    void get_forces_of(const int64_t* ids, int64_t m, double* f) override;
-    void set_positions_of(const int64_t* ids, int64_t m, const double* xyz) override;
-    void set_velocities_of(const int64_t* ids, int64_t m, const double* v) override;
-    void set_external_forces_of(const int64_t* ids, int64_t m, const double* f) override;
-
-    void set_external_energy(double energy) override;
-    double external_energy() const override { return 0.0; }
-
-    void set_force_callback(HostForceCallback callback) override;
-    void set_device_force_callback(DeviceForceCallback callback) override;
-    ArrayView view(const std::string& quantity) override;
-    void change_parameters(const RuntimeSpec& spec, const ForceFieldComponents& components) override;
-    void save_checkpoint(const std::string& path) override;
-    void load_checkpoint(const std::string& path) override;
-
-    Counters counters() override;  // this rank's engines since load
-    std::string backend_name() const override { return local_->backend_name(); }
-    std::string precision_name() const override { return local_->precision_name(); }
-    std::string device_name() const override { return local_->device_name(); }
-    int threads() const override { return local_->threads(); }
-    std::optional<double> overdamped_kT() const override { return local_->overdamped_kT(); }
+    bool has_magnetization() const override { return false; }
 
 private:
     // One neighbour the ghosts are exchanged with: this rank sends `sent` particles to `to` and
@@ -193,7 +137,7 @@ private:
     struct Domain {
         DomainLayout layout;
         std::vector<Link> links;
-        std::unique_ptr<Simulation> engine;
+        std::unique_ptr<LocalEngine> engine;
     };
     // Picks the ghosts of `owned` and loads the domain's engine, leaving the present one untouched
     // (collective: the ghosts are exchanged).
@@ -207,10 +151,10 @@ private:
     // Per-particle values of the owned slots (k each, from `local` over all the engine's slots) of
     // every rank, into `all` in id order.
     void gather_owned(const std::vector<double>& local, int k, double* all);
-    template <class Get>
-    void gather_per_particle(Op op, double* all, int k, Get&& get);
     double sum_owned(const std::vector<double>& values) const;
-    [[noreturn]] void unsupported(const std::string& what) const;
+    Simulation& inner() const override { return *local_; }
+    std::string refusal(Operation op, PerParticle quantity) const override;
+    std::string refusal_reason() const override { return "under domain decomposition"; }
     // Throws ERR_STATE after a step or a rebuild in place that failed part way.
     void usable() const;
 
@@ -218,7 +162,7 @@ private:
     DomainSpec spec_;
     const ForceFieldComponents* components_;
     Logger log_;
-    std::unique_ptr<Simulation> local_;
+    std::unique_ptr<LocalEngine> local_;
     std::vector<std::unique_ptr<SimulationStep>> steps_;
     std::vector<SimulationStep*> dueSteps_;
     std::string stoppedBy_;

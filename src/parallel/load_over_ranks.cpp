@@ -62,7 +62,7 @@ std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const 
         });
         if (spec) return std::make_unique<ReplicaExchange>(std::move(replicas), std::move(comm), std::move(*spec));
     }
-    std::unique_ptr<Simulation> local;
+    std::unique_ptr<LocalEngine> local;
     // One batch on several ranks: spatial domains (domains_over_ranks.hpp).
     if (comm->size() > 1) {
         std::optional<DomainSpec> domains;

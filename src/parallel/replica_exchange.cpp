@@ -109,8 +109,8 @@ std::vector<double> ReplicaExchange::configuration(int from, int to) const {
 void ReplicaExchange::place(int k, const std::vector<double>& state) {
     Simulation& target = replica(k);
     const size_t n = state.size() / 6;
-    target.set_positions(state.data());
-    target.set_velocities(state.data() + 3 * n);
+    target.write(PerParticle::positions, state.data());
+    target.write(PerParticle::velocities, state.data() + 3 * n);
 }
 
 void ReplicaExchange::swap(int a, int b) {
@@ -134,20 +134,13 @@ void ReplicaExchange::set_box(const double lengths[3]) {
     for (auto& replica : replicas_) replica->set_box(lengths);
 }
 
-void ReplicaExchange::set_force_callback(HostForceCallback) {
-    throw Error(STRUCTMD_ERR_UNSUPPORTED, "a force callback under parallel tempering");
-}
-void ReplicaExchange::set_device_force_callback(DeviceForceCallback) {
-    throw Error(STRUCTMD_ERR_UNSUPPORTED, "a device force callback under parallel tempering");
-}
-void ReplicaExchange::change_parameters(const RuntimeSpec&, const ForceFieldComponents&) {
-    throw Error(STRUCTMD_ERR_UNSUPPORTED, "changing a parameter under parallel tempering");
-}
-void ReplicaExchange::save_checkpoint(const std::string&) {
-    throw Error(STRUCTMD_ERR_UNSUPPORTED, "a checkpoint under parallel tempering");
-}
-void ReplicaExchange::load_checkpoint(const std::string&) {
-    throw Error(STRUCTMD_ERR_UNSUPPORTED, "a checkpoint under parallel tempering");
+std::string ReplicaExchange::refusal(Operation op, PerParticle) const {
+    switch (op) {
+        case Operation::forceCallback: return "a force callback";
+        case Operation::changeParameters: return "changing a parameter";
+        case Operation::checkpoint: return "a checkpoint";
+        default: return {};
+    }
 }
 
 }  // namespace structmd

@@ -61,7 +61,6 @@ void StepsOnRankZero::fire(const std::vector<SimulationStep*>& due) {
 void StepsOnRankZero::serve() {
     const auto n = static_cast<size_t>(particle_count());
     std::vector<double> scratch(9 * n), more(3 * n), most(3 * n);
-    std::vector<int32_t> integers(3 * n);
     for (;;) {
         const Request request = receive();
         if (request.op == Op::done) {
@@ -75,34 +74,22 @@ void StepsOnRankZero::serve() {
         // A request this rank fails on fails on every rank, rank 0 included (its gathers run
         // together), which then sends the failure; this rank goes on serving until it does.
         try {
-            serve_one(request, scratch, more, most, integers);
+            serve_one(request, scratch, more, most);
         } catch (const std::exception&) {
         }
     }
 }
 
 void StepsOnRankZero::serve_one(const Request& request, std::vector<double>& scratch, std::vector<double>& more,
-                                 std::vector<double>& most, std::vector<int32_t>& integers) {
+                                 std::vector<double>& most) {
     switch (request.op) {
         case Op::done:
         case Op::failed: break;
         case Op::compute: compute(static_cast<unsigned>(request.number)); break;
-        case Op::positions: get_positions(scratch.data()); break;
-        case Op::images: get_images(integers.data()); break;
-        case Op::unwrappedPositions: get_unwrapped_positions(scratch.data()); break;
-        case Op::velocities: get_velocities(scratch.data()); break;
-        case Op::forces: get_forces(scratch.data()); break;
-        case Op::particleEnergies: get_particle_energies(scratch.data()); break;
-        case Op::masses: get_masses(scratch.data()); break;
-        case Op::types: get_types(integers.data()); break;
-        case Op::radii: get_radii(scratch.data()); break;
-        case Op::orientations: get_orientations(scratch.data()); break;
-        case Op::torques: get_torques(scratch.data()); break;
-        case Op::magneticMoments: get_magnetic_moments(scratch.data()); break;
+        case Op::read: read(static_cast<PerParticle>(request.number), scratch.data()); break;
         case Op::energy: energy(request.text); break;
         case Op::termArrays: term_energies_and_forces(request.text, scratch.data(), more.data(), most.data()); break;
         case Op::virial: virial(); break;
-        case Op::pairVirials: get_pair_virials(scratch.data()); break;
         case Op::setLambda: set_lambda(request.value); break;
         case Op::lambdaDerivative: lambda_derivative(); break;
     }

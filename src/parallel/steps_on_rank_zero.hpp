@@ -15,11 +15,12 @@
 #include <vector>
 
 #include "parallel/communicator.hpp"
-#include "simulation/simulation.hpp"
+#include "simulation/domain_member.hpp"
+#include "simulation/forwarding_simulation.hpp"
 
 namespace structmd {
 
-class StepsOnRankZero : public Simulation, protected StepFiring {
+class StepsOnRankZero : public ForwardingSimulation, protected StepFiring {
 protected:
     explicit StepsOnRankZero(std::shared_ptr<const Communicator> comm) : comm_(std::move(comm)) {}
 
@@ -27,23 +28,11 @@ protected:
     enum class Op : int32_t {
         done,    // text: the step that asked to stop, or empty
         failed,  // number: the status, text: the message
-        compute,
-        positions,
-        images,
-        unwrappedPositions,
-        velocities,
-        forces,
-        particleEnergies,
-        masses,
-        types,
-        radii,
-        orientations,
-        torques,
-        magneticMoments,
+        compute,     // number: the flags
+        read,        // number: the PerParticle quantity
         energy,      // text: the term
         termArrays,  // text: the term
         virial,
-        pairVirials,
         setLambda,  // value
         lambdaDerivative,
     };
@@ -65,7 +54,7 @@ private:
     };
     void serve();
     void serve_one(const Request& request, std::vector<double>& scratch, std::vector<double>& more,
-                   std::vector<double>& most, std::vector<int32_t>& integers);
+                   std::vector<double>& most);
     void send(const Request& request);
     Request receive();
 

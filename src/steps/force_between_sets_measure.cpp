@@ -22,7 +22,7 @@ void ForceBetweenSetsMeasure::run(Simulation& sim) {
     std::vector<double> f(3 * sim.particle_count());
     for (size_t to = 0; to < count; ++to)
         for (int64_t i : sets_[to].ids) {
-            sim.pair_forces_on(i, f.data());
+            sim.probes().pair_forces_on(i, f.data());
             for (size_t from = 0; from < count; ++from) {
                 if (from == to) continue;
                 for (int64_t j : sets_[from].ids)

@@ -17,21 +17,21 @@ HessianMeasure::HessianMeasure(std::string name, int64_t interval, int64_t start
 
 void HessianMeasure::column(Simulation& sim, int64_t id, std::vector<double>& blocks) const {
     if (mode_ == Mode::analytical) {
-        sim.hessian_column(id, blocks.data());
+        sim.probes().hessian_column(id, blocks.data());
         return;
     }
     // Central differences, whose error (h^2 U'''' against rounding eps U' / h) is least near
     // h = eps^(1/3), eps that of the precision the forces are computed in.
-    const double eps = sim.precision_name() == "double" ? 0x1p-52 : 0x1p-23;
+    const double eps = sim.description().precision == "double" ? 0x1p-52 : 0x1p-23;
     const double h = std::cbrt(eps);
     const int64_t n = sim.particle_count();
     std::vector<double> forward(3 * n), backward(3 * n);
     for (int a = 0; a < 3; ++a) {
         double displacement[3] = {0.0, 0.0, 0.0};
         displacement[a] = h;
-        sim.forces_with_displaced(id, displacement, forward.data());
+        sim.probes().forces_with_displaced(id, displacement, forward.data());
         displacement[a] = -h;
-        sim.forces_with_displaced(id, displacement, backward.data());
+        sim.probes().forces_with_displaced(id, displacement, backward.data());
         for (int64_t j = 0; j < n; ++j)
             for (int b = 0; b < 3; ++b)
                 blocks[9 * j + 3 * a + b] = -(forward[3 * j + b] - backward[3 * j + b]) / (2.0 * h);

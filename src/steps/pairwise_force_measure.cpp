@@ -18,13 +18,13 @@ void PairwiseForceMeasure::run(Simulation& sim) {
     std::fprintf(out, "# step %lld time %.17g\n", static_cast<long long>(sim.current_step()), sim.current_time());
     if (mode_ == Mode::total) {
         const double still[3] = {0.0, 0.0, 0.0};
-        sim.forces_with_displaced(0, still, f.data());
+        sim.probes().forces_with_displaced(0, still, f.data());
         for (int64_t i : members_)
             std::fprintf(out, "%lld %.17g %.17g %.17g\n", static_cast<long long>(i), f[3 * i], f[3 * i + 1],
                          f[3 * i + 2]);
     } else {
         for (int64_t i : members_) {
-            sim.pair_forces_on(i, f.data());
+            sim.probes().pair_forces_on(i, f.data());
             for (int64_t j : members_) {
                 const double* fj = &f[3 * j];
                 if (j == i || (fj[0] == 0.0 && fj[1] == 0.0 && fj[2] == 0.0)) continue;

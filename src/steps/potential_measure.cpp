@@ -26,7 +26,7 @@ void PotentialMeasure::run(Simulation& sim) {
     std::vector<std::vector<double>> forces(terms.size(), std::vector<double>(3 * n));
     std::vector<std::vector<double>> torques(terms.size(), std::vector<double>(3 * n));
     for (size_t t = 0; t < terms.size(); ++t)
-        sim.term_energies_and_forces(terms[t], energies[t].data(), forces[t].data(), torques[t].data());
+        sim.probes().term_energies_and_forces(terms[t], energies[t].data(), forces[t].data(), torques[t].data());
     std::FILE* out = file_->stream();
     std::fprintf(out, "# %lld\n", static_cast<long long>(sim.current_step()));
     for (int64_t id : ids_) {

@@ -22,7 +22,7 @@ void ThermodynamicIntegration::run(Simulation& sim) {
         sim.set_lambda(values_[static_cast<size_t>(block)]);
         std::fprintf(out, "# %.17g\n", sim.lambda());
     }
-    std::fprintf(out, "%.17g\n", sim.lambda_derivative());
+    std::fprintf(out, "%.17g\n", sim.probes().lambda_derivative());
     file_.flush();
 }
 

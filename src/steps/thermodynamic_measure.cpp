@@ -39,7 +39,7 @@ void ThermodynamicMeasure::run(Simulation& sim) {
         std::fprintf(out, " %.10g", e);
     }
     const Simulation::Thermodynamics thermo = sim.thermodynamics();
-    const double external = sim.external_energy();
+    const double external = sim.energy("external");
     std::fprintf(out, " %.10g %.10g %.10g %.10g %.10g %.10g %.10g\n", thermo.kinetic, potential,
                  thermo.kinetic + potential + external, thermo.temperature, thermo.virialTrace, thermo.pressure,
                  external);

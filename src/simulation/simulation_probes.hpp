@@ -1,0 +1,39 @@
+#pragma once
+// What simulation steps probe beyond the state (Simulation::probes()): one term's arrays, Hessian
+// columns, pair forces, forces at a displaced particle, dU/dlambda. Vectors are 3n doubles in
+// particle-id order.
+#include <cstdint>
+#include <string>
+
+namespace structmd {
+
+class SimulationProbes {
+public:
+    virtual ~SimulationProbes() = default;
+
+    // One forceField entry's energy on each particle (split as the per-particle energies split it),
+    // its force on each (3n) and its torque on each (3n, lab frame; zero for terms that do not act
+    // on orientations), in id order; zero while the entry is inactive. ERR_ARGUMENT for a name that
+    // is not an entry.
+    virtual void term_energies_and_forces(const std::string& term, double* energies, double* forces,
+                                          double* torques) = 0;
+    // The Hessian of the force field's potential energy (its terms only: no external forces, no
+    // callbacks), one column of 3x3 blocks at a time: for particle `id`, blocks[9 j + 3 a + b] =
+    // d2U / dx_id^a dx_j^b for every particle j, in id order. Exact second derivatives; only for an
+    // input whose steps ask for them (SimulationStep::needs_hessian), else ERR_STATE.
+    virtual void hessian_column(int64_t id, double* blocks) = 0;
+    // The forces each particle j exerts on particle `id` through the force field's terms (as
+    // hessian_column), 3n in id order: pair forces, and bonds split into central pair forces; fields
+    // and tethers of one particle exert none. Only for an input whose steps ask for them
+    // (SimulationStep::needs_pair_forces), else ERR_STATE.
+    virtual void pair_forces_on(int64_t id, double* f) = 0;
+    // The forces of the force field's terms alone (as hessian_column) with particle `id` displaced by
+    // `displacement`, in id order (3n); the state is as it was afterwards.
+    virtual void forces_with_displaced(int64_t id, const double displacement[3], double* f) = 0;
+    // dU/dlambda summed over the active terms of lambda (0 without any).
+    virtual double lambda_derivative() = 0;
+    // Whether the particles carry magnetic moments (the magnetic trajectory formats and measures).
+    virtual bool has_magnetization() const = 0;
+};
+
+}  // namespace structmd
