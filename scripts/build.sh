@@ -4,12 +4,7 @@
 # launcher alone for the example, which needs neither the tests nor the host examples.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# ccache (scripts/install-deps.sh installs it) makes a second build of the same sources, such as the
-# wheel check's, a look-up.
-launcher=()
-if command -v ccache > /dev/null; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_CUDA_COMPILER_LAUNCHER=ccache)
-fi
+source scripts/compiler_cache.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "$@"
 if [ -n "${STRUCTMD_TARGETS:-}" ]; then
   # shellcheck disable=SC2086 # the targets are words

@@ -23,7 +23,8 @@ if ! command -v clang++ > /dev/null; then
   echo "fuzz: clang++ not found (bash scripts/install-deps.sh installs it)" >&2
   exit 1
 fi
-CC=clang CXX=clang++ cmake -S "$root/tests/fuzz" -B "$build" -DSTRUCTMD_FUZZ=ON \
+source "$root/scripts/compiler_cache.sh"
+CC=clang CXX=clang++ cmake -S "$root/tests/fuzz" -B "$build" -DSTRUCTMD_FUZZ=ON "${launcher[@]}" \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
 cmake --build "$build" -j"$jobs" --target "${targets[@]}"
 
