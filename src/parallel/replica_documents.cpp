@@ -3,14 +3,13 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "input/description.hpp"
 
 namespace structmd {
 
 namespace {
 
 using json = nlohmann::json;
-
-constexpr uint64_t kDefaultSeed = 0x5EED;  // input/document.cpp's, for a document that names none
 
 const json* find(const json& node, std::initializer_list<const char*> path) {
     const json* at = &node;
@@ -83,7 +82,7 @@ std::optional<ReplicaExchangeSpec> take_replica_exchange(json& document) {
         throw input_error("global.ensemble", "parallel tempering needs the ensemble whose temperature it sets");
     const json* info = information(document);
     const json* seed = info ? find(*info, {"parameters", "seed"}) : nullptr;
-    found->seed = seed && seed->is_number_unsigned() ? seed->get<uint64_t>() : kDefaultSeed;
+    found->seed = seed && seed->is_number_unsigned() ? seed->get<uint64_t>() : input::kDefaultSeed;
     return found;
 }
 
