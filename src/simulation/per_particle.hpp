@@ -1,8 +1,8 @@
 #pragma once
 // The per-particle quantities of a simulation, read and written through one keyed accessor
-// (Simulation::read, write, read_of, write_of) instead of a function each: a quantity's name, its
-// values per particle and what may be done with it are declared here once, and the API, the views
-// over ranks and the engine all go by this table.
+// (Simulation::read, write, read_of, write_of) instead of a function each: a quantity's name and its
+// values per particle are declared here once, and the API, the views over ranks and the engine all
+// go by this table.
 #include <cstdint>
 
 namespace structmd {
@@ -27,28 +27,16 @@ enum class PerParticle : int32_t {
 struct PerParticleTraits {
     const char* name;  // for messages: "the <name> of a subset"
     int width;         // values per particle
-    bool readable;
-    bool writable;      // as a whole array
-    bool subsetReadable;  // by id (read_of)
-    bool subsetWritable;  // by id (write_of)
 };
 
+// What can be read or written of each is the engine's (engine_particles.hpp) and the C API's
+// choice; a view over ranks gathers and slices any quantity by its width.
 inline const PerParticleTraits& traits(PerParticle q) {
     static constexpr PerParticleTraits kTable[] = {
-        {"positions", 3, true, true, true, true},
-        {"unwrapped positions", 3, true, false, false, false},
-        {"images", 3, true, false, false, false},
-        {"velocities", 3, true, true, true, true},
-        {"forces", 3, true, false, true, false},
-        {"particle energies", 1, true, false, false, false},
-        {"masses", 1, true, false, false, false},
-        {"types", 1, true, false, false, false},
-        {"radii", 1, true, false, false, false},
-        {"orientations", 4, true, true, false, false},
-        {"torques", 3, true, false, false, false},
-        {"magnetic moments", 3, true, false, false, false},
-        {"pair virials", 9, true, false, false, false},
-        {"external forces", 3, false, true, false, true},
+        {"positions", 3},   {"unwrapped positions", 3}, {"images", 3},          {"velocities", 3},
+        {"forces", 3},      {"particle energies", 1},   {"masses", 1},          {"types", 1},
+        {"radii", 1},       {"orientations", 4},        {"torques", 3},         {"magnetic moments", 3},
+        {"pair virials", 9}, {"external forces", 3},
     };
     return kTable[static_cast<int32_t>(q)];
 }

@@ -84,9 +84,9 @@ public:
     virtual const std::string& stopped_by() const = 0;
     virtual void compute(unsigned flags) = 0;
 
-    // A per-particle quantity of every particle (traits(q).width values each, id order). The caller
-    // checks the quantity may be read or written (PerParticleTraits); a getter that fails leaves
-    // `out` alone. Writing positions wraps them and makes everything computed from them stale;
+    // A per-particle quantity of every particle (traits(q).width values each, id order). Which
+    // quantities each call takes is the C API's (engine_particles.hpp: another is an internal
+    // error); a getter that fails leaves `out` alone. Writing positions wraps them and makes everything computed from them stale;
     // writing orientations keeps them from then on; writing external forces with a null array
     // clears them and their energy.
     virtual void read(PerParticle q, double* out) = 0;
