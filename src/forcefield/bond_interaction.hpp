@@ -37,6 +37,11 @@ struct BondIndex {
                   const ForceOutputs<R>& out) const {
         return Kernel{particles.pos.data(), particles.box, firstEntry.data(), entries.data(), members.data(), params, out};
     }
+
+    template <int N, class R, class Params>
+    BondsAroundSeed<N, R, Params> around(const Particles<B, R>& particles, const Params* params, int seed) const {
+        return {particles.pos.data(), particles.box, firstEntry.data(), entries.data(), members.data(), params, seed};
+    }
 };
 
 template <class B, class R, class Potential>
@@ -56,9 +61,7 @@ public:
     void add_pair_forces(Particles<B, R>& particles, int seed, Real4<R>* out) override {
         if constexpr (Potential::arity > 1)
             backend_.for_each(particles.count, BondForceOnSeedKernel<Potential, R>{
-                                                   particles.pos.data(), particles.box, index_.firstEntry.data(),
-                                                   index_.entries.data(), index_.members.data(), params_.data(),
-                                                   seed, out});
+                                                   index_.template around<arity>(particles, params_.data(), seed), out});
     }
 
     // The parameters again in dual numbers (one per bond, as given to the constructor), for the Hessian.
@@ -68,17 +71,15 @@ public:
     }
     bool has_hessian() const override { return hessian_; }
     void add_hessian(Particles<B, R>& particles, int seed, Tensor3<R>* blocks) override {
-        backend_.for_each(particles.count, BondHessianKernel<Potential, R>{
-                                               particles.pos.data(), particles.box, index_.firstEntry.data(),
-                                               index_.entries.data(), index_.members.data(), dualParams_.data(),
-                                               seed, blocks});
+        backend_.for_each(particles.count,
+                          BondHessianKernel<Potential, R>{
+                              index_.template around<arity>(particles, dualParams_.data(), seed), blocks});
     }
 
     bool couples_to_lambda() const override { return couples_to_lambda_v; }
     void add_lambda_derivative(Particles<B, R>& particles, R* perParticle) override {
         if constexpr (couples_to_lambda_v) {
-            ForceOutputs<R> out;
-            out.energy = perParticle;
+            const ForceOutputs<R> out = energy_outputs(perParticle);
             using Kernel = BondKernel<BondLambdaDerivative<Potential>, R, false, true, false>;
             backend_.for_each(particles.count, index_.template kernel<Kernel>(particles, params_.data(), out));
         }
@@ -93,6 +94,7 @@ public:
     }
 
 private:
+    static constexpr int arity = Potential::arity;
     static constexpr bool couples_to_lambda_v = structmd::couples_to_lambda<Potential>::value;
 
     const B& backend_;

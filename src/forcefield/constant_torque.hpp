@@ -22,9 +22,7 @@ struct AddConstantTorque {
     Vec3<R> value;
     SMD_HD void operator()(int64_t i) const {
         if (group && !group[i]) return;
-        torque[i].x += value.x;
-        torque[i].y += value.y;
-        torque[i].z += value.z;
+        accumulate(torque[i], value);
     }
 };
 

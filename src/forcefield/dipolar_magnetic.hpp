@@ -67,24 +67,11 @@ struct DipolarMagneticKernel {
         e = lanes.sum(e);
         w = lanes.sum(w);
         if (!lanes.leader()) return;
-        if (out.force) {
-            out.force[i].x += f.x;
-            out.force[i].y += f.y;
-            out.force[i].z += f.z;
-        }
+        if (out.force) accumulate(out.force[i], f);
         if (out.energy) out.energy[i] += e;
         if (out.virial) out.virial[i] += w;
-        if (out.torque) {
-            const Vec3<R> t = cross(mui, b);
-            out.torque[i].x += t.x;
-            out.torque[i].y += t.y;
-            out.torque[i].z += t.z;
-        }
-        if (out.magneticField) {
-            out.magneticField[i].x += b.x;
-            out.magneticField[i].y += b.y;
-            out.magneticField[i].z += b.z;
-        }
+        if (out.torque) accumulate(out.torque[i], cross(mui, b));
+        if (out.magneticField) accumulate(out.magneticField[i], b);
     }
 };
 

@@ -76,9 +76,7 @@ public:
     }
     bool has_hessian() const override { return hessian_; }
     void add_hessian(Particles<B, R>& particles, int seed, Tensor3<R>* blocks) override {
-        backend_.for_each(1, TypedExternalHessianKernel<Potential, R>{
-                                 particles.pos.data(), particles.radius.data(), this->group(), dualTable_.data(),
-                                 listed_.data(), batch_, ntypes_, particles.now(), seed, blocks});
+        backend_.for_each(1, TypedExternalHessianKernel<Potential, R>{field(particles, dualTable_), seed, blocks});
     }
 
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
@@ -87,12 +85,18 @@ public:
         dispatch_outputs(own, [&](auto force, auto energy, auto) {
             backend_.for_each(particles.count,
                               TypedExternalKernel<Potential, R, decltype(force)::value, decltype(energy)::value>{
-                                  particles.pos.data(), particles.radius.data(), this->group(), table_.data(),
-                                  listed_.data(), batch_, ntypes_, particles.now(), own});
+                                  field(particles, table_), own});
         });
     }
 
 private:
+    template <class Entry>
+    TypedField<R, Entry> field(const Particles<B, R>& particles,
+                               const typename B::template Buffer<Entry>& table) const {
+        return {particles.pos.data(), particles.radius.data(), this->group(), table.data(),
+                listed_.data(),       batch_,                  ntypes_,       particles.now()};
+    }
+
     const B& backend_;
     typename B::template Buffer<Params> table_;
     typename B::template Buffer<uint8_t> listed_;

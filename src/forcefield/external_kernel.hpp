@@ -27,19 +27,11 @@ struct ExternalKernel {
     }
 };
 
-// The entry of particle i (position p) in a per-type table: its type, in the row of its batch when
-// `batch` is given (ntypes entries per batch).
-template <class R>
-SMD_HD SMD_INLINE int typed_entry(const Real4<R>& p, const int* batch, int64_t i, int ntypes) {
-    return static_cast<int>(p.w) + (batch ? batch[i] * ntypes : 0);
-}
-
-// The same for a potential of per-type parameters (external_potential.hpp): each particle takes the
+// What a field of per-type parameters reads (external_potential.hpp): each particle takes the
 // Params of its type (pos.w) from `table`, in the row of its batch when `batch` is given (a batched
 // table, ntypes entries per batch); an entry whose `listed` is 0 acts on nothing.
-template <class Potential, class R, bool WantForce, bool WantEnergy>
-struct TypedExternalKernel {
-    using Params = typename Potential::template Params<R>;
+template <class R, class Params>
+struct TypedField {
     const Real4<R>* pos;
     const R* radius;
     const uint8_t* group;
@@ -48,15 +40,26 @@ struct TypedExternalKernel {
     const int* batch;
     int ntypes;
     ClockView now;
+
+    // The table entry that acts on particle i, or null where none does.
+    SMD_HD SMD_INLINE const Params* entry_of(int64_t i) const {
+        if (group && !group[i]) return nullptr;
+        const int at = static_cast<int>(pos[i].w) + (batch ? batch[i] * ntypes : 0);
+        return listed[at] ? table + at : nullptr;
+    }
+};
+
+template <class Potential, class R, bool WantForce, bool WantEnergy>
+struct TypedExternalKernel {
+    using Params = typename Potential::template Params<R>;
+    TypedField<R, Params> field;
     ForceOutputs<R> out;
 
     SMD_HD void operator()(int64_t i) const {
-        if (group && !group[i]) return;
-        const Real4<R> p = pos[i];
-        const int at = typed_entry(p, batch, i, ntypes);
-        if (!listed[at]) return;
+        const Params* params = field.entry_of(i);
+        if (!params) return;
         Vec3<R> f{0, 0, 0};
-        const R e = Potential::compute(xyz(p), radius[i], table[at], R(now.time()), f);
+        const R e = Potential::compute(xyz(field.pos[i]), field.radius[i], *params, R(field.now.time()), f);
         add_to_outputs<WantForce, WantEnergy, false>(out, i, f, e, zero_tensor<R>());
     }
 };

@@ -18,18 +18,38 @@ struct ForceOutputs {
     Real4<R>* magneticField = nullptr;
 };
 
+// Outputs that take each particle's energy alone (a dU/dlambda, an energy probe).
+template <class R>
+ForceOutputs<R> energy_outputs(R* perParticle) {
+    ForceOutputs<R> out;
+    out.energy = perParticle;
+    return out;
+}
+
+// to.xyz += v; w stays.
+template <class R>
+SMD_HD SMD_INLINE void accumulate(Real4<R>& to, const Vec3<R>& v) {
+    to.x += v.x;
+    to.y += v.y;
+    to.z += v.z;
+}
+
 // Adds one particle's sums to the requested outputs; each particle is written by one thread only.
 template <bool WantForce, bool WantEnergy, bool WantVirial, class R>
 SMD_HD SMD_INLINE void add_to_outputs(const ForceOutputs<R>& out, int64_t i, const Vec3<R>& f, R e,
                                       const Tensor3<R>& w) {
-    if (WantForce) {
-        Real4<R>& fi = out.force[i];
-        fi.x += f.x;
-        fi.y += f.y;
-        fi.z += f.z;
-    }
+    if (WantForce) accumulate(out.force[i], f);
     if (WantEnergy) out.energy[i] += e;
     if (WantVirial) out.virial[i] += w;
+}
+
+// The same for a term that also turns the particle: its torque t goes with the force, where
+// torques are asked for.
+template <bool WantForce, bool WantEnergy, bool WantVirial, class R>
+SMD_HD SMD_INLINE void add_to_outputs(const ForceOutputs<R>& out, int64_t i, const Vec3<R>& f, R e,
+                                      const Tensor3<R>& w, const Vec3<R>& t) {
+    add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
+    if (WantForce && out.torque) accumulate(out.torque[i], t);
 }
 
 }  // namespace structmd

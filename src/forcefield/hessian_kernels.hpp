@@ -81,25 +81,18 @@ template <class Potential, class R>
 struct BondHessianKernel {
     static constexpr int N = Potential::arity;
     using Params = typename Potential::template Params<Dual<R>>;
-    const Real4<R>* pos;
-    Box<R> box;
-    const int* firstEntry;
-    const int* entries;
-    const int* members;
-    const Params* params;
-    int seed;
+    BondsAroundSeed<N, R, Params> bonds;
     Tensor3<R>* blocks;
 
     SMD_HD void operator()(int64_t i) const {
         Tensor3<R> h = zero_tensor<R>();
-        const Box<Dual<R>> dualBox = constant_dual(box);
-        for_each_bond_with_seed<N>(i, seed, pos, box, firstEntry, entries, members,
-                                   [&](int b, int slot, int seedSlot, const Vec3<R>* r) {
+        const Box<Dual<R>> dualBox = constant_dual(bonds.box);
+        bonds.for_each_of(i, [&](const Params& params, int slot, int seedSlot, const Vec3<R>* r) {
             for (int axis = 0; axis < 3; ++axis) {
                 Vec3<Dual<R>> rd[N];
                 for (int m = 0; m < N; ++m) rd[m] = m == seedSlot ? seeded_dual(r[m], axis) : constant_dual(r[m]);
                 Vec3<Dual<R>> force[N];
-                Potential::compute(rd, params[b], dualBox, force);
+                Potential::compute(rd, params, dualBox, force);
                 subtract_force_derivative(h, axis, force[slot]);
             }
         });
@@ -142,22 +135,14 @@ struct ExternalHessianKernel {
 template <class Potential, class R>
 struct TypedExternalHessianKernel {
     using Params = typename Potential::template Params<Dual<R>>;
-    const Real4<R>* pos;
-    const R* radius;
-    const uint8_t* group;
-    const Params* table;
-    const uint8_t* listed;
-    const int* batch;
-    int ntypes;
-    ClockView now;
+    TypedField<R, Params> field;
     int seed;
     Tensor3<R>* blocks;
 
     SMD_HD void operator()(int64_t) const {
-        if (group && !group[seed]) return;
-        const int at = typed_entry(pos[seed], batch, seed, ntypes);
-        if (!listed[at]) return;
-        blocks[seed] += field_block<Potential>(xyz(pos[seed]), radius[seed], table[at], R(now.time()));
+        const Params* params = field.entry_of(seed);
+        if (!params) return;
+        blocks[seed] += field_block<Potential>(xyz(field.pos[seed]), field.radius[seed], *params, R(field.now.time()));
     }
 };
 

@@ -31,20 +31,11 @@ struct MagneticFieldTerm {
         if (group && !group[i]) return;
         const R amplitude = alternating ? R(sin(double(angularFrequency) * now.time() + double(phase))) : R(1);
         const Vec3<R> b = amplitude * field;
-        if (out.magneticField) {
-            out.magneticField[i].x += b.x;
-            out.magneticField[i].y += b.y;
-            out.magneticField[i].z += b.z;
-        }
+        if (out.magneticField) accumulate(out.magneticField[i], b);
         if (!out.energy && !out.torque) return;
         const Vec3<R> mu = magnetic_moment(magnetization, dir, i);
         if (out.energy) out.energy[i] -= dot(mu, b);
-        if (out.torque) {
-            const Vec3<R> t = bonded_geometry::cross(mu, b);
-            out.torque[i].x += t.x;
-            out.torque[i].y += t.y;
-            out.torque[i].z += t.z;
-        }
+        if (out.torque) accumulate(out.torque[i], bonded_geometry::cross(mu, b));
     }
 };
 

@@ -50,12 +50,7 @@ struct OrientedBondKernel {
             if (WantEnergy) e += R(0.5) * energy;
             if (WantVirial) w += R(0.5) * outer(r[1] - r[0], force[1]);
         }
-        add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
-        if (WantForce && out.torque) {
-            out.torque[i].x += t.x;
-            out.torque[i].y += t.y;
-            out.torque[i].z += t.z;
-        }
+        add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w, t);
     }
 };
 

@@ -74,9 +74,7 @@ struct PairForceOnSeedKernel {
                                         [&](int j, const Vec3<R>& d, const Params& p) {
             const PairTerm<PairR> t = evaluate_pair_of<Potential>(PairR(dot(d, d)), p, charge, radius, seed, j);
             const Vec3<R> f = R(t.dudr_over_r) * d;
-            out[j].x += f.x;
-            out[j].y += f.y;
-            out[j].z += f.z;
+            accumulate(out[j], f);
         });
     }
 };
@@ -87,22 +85,15 @@ template <class Potential, class R>
 struct BondForceOnSeedKernel {
     static constexpr int N = Potential::arity;
     using Params = typename Potential::template Params<R>;
-    const Real4<R>* pos;
-    Box<R> box;
-    const int* firstEntry;
-    const int* entries;
-    const int* members;
-    const Params* params;
-    int seed;
+    BondsAroundSeed<N, R, Params> bonds;
     Real4<R>* out;
 
     SMD_HD void operator()(int64_t i) const {
-        if (i == seed) return;
+        if (i == bonds.seed) return;
         Vec3<R> total{R(0), R(0), R(0)};
-        for_each_bond_with_seed<N>(i, seed, pos, box, firstEntry, entries, members,
-                                   [&](int b, int slot, int seedSlot, const Vec3<R>* r) {
+        bonds.for_each_of(i, [&](const Params& params, int slot, int seedSlot, const Vec3<R>* r) {
             Vec3<R> force[N];
-            Potential::compute(r, params[b], box, force);
+            Potential::compute(r, params, bonds.box, force);
             if constexpr (N == 2) {
                 total += force[seedSlot];  // all of it comes from the other particle, central or not
             } else {
@@ -112,9 +103,7 @@ struct BondForceOnSeedKernel {
                 total += c[a * N - a * (a + 1) / 2 + (z - a - 1)] * (r[seedSlot] - r[slot]);
             }
         });
-        out[i].x += total.x;
-        out[i].y += total.y;
-        out[i].z += total.z;
+        accumulate(out[i], total);
     }
 };
 

@@ -59,8 +59,7 @@ public:
     bool couples_to_lambda() const override { return couples_to_lambda_v; }
     void add_lambda_derivative(Particles<B, R>& particles, R* perParticle) override {
         if constexpr (couples_to_lambda_v) {
-            ForceOutputs<R> out;
-            out.energy = perParticle;
+            const ForceOutputs<R> out = energy_outputs(perParticle);
             backend_.for_each_lanes(particles.count,
                                     PairKernel<PairLambdaDerivative<Potential>, R, PairR, false, true, false>{
                                         particles.charge.data(), radii(particles), this->group(),

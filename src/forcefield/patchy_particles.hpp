@@ -220,12 +220,7 @@ struct GatherPatches {
             if (WantEnergy) e += energy[a];
             if (WantVirial) w += virial[a];
         }
-        add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
-        if (WantForce && out.torque) {
-            out.torque[i].x += t.x;
-            out.torque[i].y += t.y;
-            out.torque[i].z += t.z;
-        }
+        add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w, t);
     }
 };
 

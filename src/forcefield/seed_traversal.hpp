@@ -30,25 +30,35 @@ SMD_HD SMD_INLINE void for_each_partner_of_seed(const NeighbourView<R>& v, int64
     });
 }
 
-// For particle i: visit(b, slot, seedSlot, r) for each bond b of N particles that holds both i (at
-// `slot`) and the seed (at `seedSlot`), with r[0] the first particle's position and
-// r[m] = r[m-1] + minimum_image(x_m - x_{m-1}), as the bond kernel gives them to the functor.
-template <int N, class R, class Visit>
-SMD_HD SMD_INLINE void for_each_bond_with_seed(int64_t i, int seed, const Real4<R>* pos, const Box<R>& box,
-                                               const int* firstEntry, const int* entries, const int* members,
-                                               Visit&& visit) {
-    for (int k = firstEntry[i]; k < firstEntry[i + 1]; ++k) {
-        const int b = entries[k] / N;
-        const int* ids = members + N * b;
-        int seedSlot = -1;
-        for (int m = 0; m < N; ++m)
-            if (ids[m] == seed) seedSlot = m;
-        if (seedSlot < 0) continue;
-        Vec3<R> r[N];
-        r[0] = xyz(pos[ids[0]]);
-        for (int m = 1; m < N; ++m) r[m] = r[m - 1] + box.minimum_image(xyz(pos[ids[m]]) - xyz(pos[ids[m - 1]]));
-        visit(b, entries[k] % N, seedSlot, r);
+// The bonds of N particles of one term, seen from the seed (built by BondIndex::around).
+template <int N, class R, class Params>
+struct BondsAroundSeed {
+    const Real4<R>* pos;
+    Box<R> box;
+    const int* firstEntry;
+    const int* entries;
+    const int* members;
+    const Params* params;
+    int seed;
+
+    // For particle i: visit(params, slot, seedSlot, r) for each bond that holds both i (at `slot`)
+    // and the seed (at `seedSlot`), with r[0] the first particle's position and
+    // r[m] = r[m-1] + minimum_image(x_m - x_{m-1}), as the bond kernel gives them to the functor.
+    template <class Visit>
+    SMD_HD SMD_INLINE void for_each_of(int64_t i, Visit&& visit) const {
+        for (int k = firstEntry[i]; k < firstEntry[i + 1]; ++k) {
+            const int b = entries[k] / N;
+            const int* ids = members + N * b;
+            int seedSlot = -1;
+            for (int m = 0; m < N; ++m)
+                if (ids[m] == seed) seedSlot = m;
+            if (seedSlot < 0) continue;
+            Vec3<R> r[N];
+            r[0] = xyz(pos[ids[0]]);
+            for (int m = 1; m < N; ++m) r[m] = r[m - 1] + box.minimum_image(xyz(pos[ids[m]]) - xyz(pos[ids[m - 1]]));
+            visit(params[b], entries[k] % N, seedSlot, r);
+        }
     }
-}
+};
 
 }  // namespace structmd

@@ -147,8 +147,7 @@ public:
     bool couples_to_lambda() const override { return lambda_ != nullptr; }
     void add_lambda_derivative(Particles<B, R>& particles, R* perParticle) override {
         if (!lambda_) return;
-        ForceOutputs<R> out;
-        out.energy = perParticle;
+        const ForceOutputs<R> out = energy_outputs(perParticle);
         backend_.for_each(particles.count, TabulatedFieldKernel<R, false, true, true>{
                                                particles.pos.data(), this->group(), energy_.data(),
                                                factor_.empty() ? nullptr : factor_.data(), n_[0], n_[1], n_[2],

@@ -138,12 +138,7 @@ struct ZhangKernel {
         if (WantEnergy) e = lanes.sum(e);
         if (WantVirial) w = lanes.sum(w);
         if (!lanes.leader()) return;
-        add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
-        if (WantForce && out.torque) {
-            out.torque[i].x += t.x;
-            out.torque[i].y += t.y;
-            out.torque[i].z += t.z;
-        }
+        add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w, t);
     }
 };
 

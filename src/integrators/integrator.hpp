@@ -58,6 +58,26 @@ SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {
     return v;
 }
 
+// The half kick that closes an inertial step (velocity Verlet, Langevin GJF) also checks the
+// particle's new state, so a blow-up is recorded in the step that produced it at no extra pass
+// over memory.
+template <class R>
+struct ClosingHalfKick {
+    const uint8_t* group;
+    const Real4<R>* pos;
+    Real4<R>* vel;
+    const Real4<R>* force;
+    R dt;
+    FaultSlot fault;
+    SMD_HD void operator()(int64_t i) const {
+        if ((group && !group[i]) || held_fixed(vel[i])) return;
+        const Real4<R> f = force[i];
+        const Real4<R> v = half_kick(vel[i], f, dt);
+        vel[i] = v;
+        fault.check(i, pos[i], v, f);
+    }
+};
+
 // What an integrator reads from its input entry besides timeStep, temperature and group (which every
 // integrator takes): its own parameters, by name, and what it needs of the system. Each integrator
 // declares a struct derived from this one beside its class.

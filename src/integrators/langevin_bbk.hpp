@@ -8,10 +8,7 @@
 // that reaches a multiple of N (global_motion.hpp), as UAMMD-structured does for a solute that must
 // not drift or spin.
 #include "integrators/global_motion.hpp"
-#include "integrators/integrator.hpp"
-#include "integrators/langevin_inputs.hpp"
-#include "integrators/thermal_noise.hpp"
-#include "state/fault.hpp"
+#include "integrators/langevin_step.hpp"
 
 namespace structmd {
 
@@ -42,84 +39,59 @@ struct HalfKickBack {
     }
 };
 
-// Also does the engine's bookkeeping for the evaluation at the new positions (state/
-// drift_bookkeeping.hpp), for every particle, moved or not.
 template <class R>
 struct BbkStep {
-    Real4<R>* pos;
-    Image* image;
-    Real4<R>* vel;
-    const Real4<R>* force;
-    const uint8_t* group;
-    const R* frictionOf;  // by particle; null: gamma for all
-    Box<R> box;
-    R dt, gamma, kT;
-    NoiseKey noiseKey;
-    ClockView now;
-    FaultSlot fault;
-    DriftBookkeeping<R> bookkeeping;
+    LangevinParticles<R> in;
     SMD_HD void operator()(int64_t i) const {
-        if ((group && !group[i]) || held_fixed(vel[i])) {
-            bookkeeping(i, pos[i]);
-            return;
-        }
-        Real4<R> v = vel[i];
-        const Real4<R> f = force[i];
+        if (in.stays(i)) return;
+        Real4<R> v = in.vel[i];
+        const Real4<R> f = in.force[i];
         const R m = v.w;
-        const R friction = frictionOf ? frictionOf[i] : gamma;
+        const R dt = in.dt;
+        const R friction = in.friction(i);
         const R g = R(0.5) * friction * dt;
-        const R noise = sqrt(R(2) * m * friction * kT / dt);
-        const Vec3<R> xi = gaussian3<R>(noiseKey, NoisePurpose::integrator, i, now.step());
+        const R noise = sqrt(R(2) * m * friction * in.kT / dt);
+        const Vec3<R> xi = in.noise(i);
         v.x = ((R(1) - g) * v.x + dt * (f.x + noise * xi.x) / m) / (R(1) + g);
         v.y = ((R(1) - g) * v.y + dt * (f.y + noise * xi.y) / m) / (R(1) + g);
         v.z = ((R(1) - g) * v.z + dt * (f.z + noise * xi.z) / m) / (R(1) + g);
-        vel[i] = v;
+        in.vel[i] = v;
         const Vec3<R> move = dt * xyz(v);
-        fault.check_move(i, move);
-        const Real4<R> p = displaced(pos[i], move, box, image[i]);
-        pos[i] = p;
-        fault.check(i, p, v, f);
-        bookkeeping(i, p);
+        in.fault.check_move(i, move);
+        const Real4<R> p = displaced(in.pos[i], move, in.box, in.image[i]);
+        in.pos[i] = p;
+        in.fault.check(i, p, v, f);
+        in.bookkeeping(i, p);
     }
 };
 
 template <class B, class R>
-class LangevinBBK : public Integrator<B, R> {
+class LangevinBBK : public LangevinIntegrator<B, R> {
 public:
     LangevinBBK(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
-        : Integrator<B, R>(scope),
-          backend_(backend),
-          friction_(v["frictionConstant"]),
-          resetVelocities_(v["resetVelocities"] != 0.0),
+        : LangevinIntegrator<B, R>(backend, scope, v),
           stopTransRotSteps_(static_cast<int64_t>(v["stopTransRotSteps"])) {}
 
     void begin(Particles<B, R>& p, ForceSource& forces) override {
+        LangevinIntegrator<B, R>::begin(p, forces);
         const IntegratorScope& s = this->scope();
-        if (resetVelocities_)
-            backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.noise, p.now(), R(s.kT)});
-        if (stopTransRotSteps_ > 0) remove_rigid_motion(backend_, p, s.group, R(0));  // full-step v(0) at x(0)
+        if (stopTransRotSteps_ > 0) remove_rigid_motion(this->backend_, p, s.group, R(0));  // full-step v(0) at x(0)
         forces.update_forces();
-        backend_.for_each(p.count, HalfKickBack<R>{p.vel.data(), p.force.data(), s.group, R(s.timeStep)});
+        this->backend_.for_each(p.count, HalfKickBack<R>{p.vel.data(), p.force.data(), s.group, R(s.timeStep)});
     }
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
         forces.update_forces();
-        const R* frictionOf = friction_ > 0.0 ? nullptr : p.friction.data();
-        backend_.for_each(p.count, BbkStep<R>{p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,
-                                              frictionOf, p.box, R(s.timeStep), R(friction_), R(s.kT), p.noise, p.now(),
-                                              p.fault_slot(1), p.drift});
+        this->backend_.for_each(p.count, BbkStep<R>{this->particles(p)});
         // A reduction, so the host waits: only on the steps that ask for it. It moves the
         // particles again, so the engine does its bookkeeping itself then.
         const bool removal = stopTransRotSteps_ > 0 && (p.timeline.step() + 1) % stopTransRotSteps_ == 0;
-        if (removal) remove_rigid_motion(backend_, p, s.group, R(s.timeStep));
+        if (removal) remove_rigid_motion(this->backend_, p, s.group, R(s.timeStep));
         forces.positions_moved(s.timeStep, !removal);
     }
 
 private:
-    const B& backend_;
-    double friction_;
-    bool resetVelocities_;
     int64_t stopTransRotSteps_;  // 0: never
 };
 

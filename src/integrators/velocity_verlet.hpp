@@ -35,25 +35,6 @@ struct VerletKickDrift {
     }
 };
 
-// The closing half kick also checks the particle's new state, so a blow-up is recorded in the
-// step that produced it at no extra pass over memory.
-template <class R>
-struct VerletKick {
-    const uint8_t* group;
-    const Real4<R>* pos;
-    Real4<R>* vel;
-    const Real4<R>* force;
-    R dt;
-    FaultSlot fault;
-    SMD_HD void operator()(int64_t i) const {
-        if ((group && !group[i]) || held_fixed(vel[i])) return;
-        const Real4<R> f = force[i];
-        const Real4<R> v = half_kick(vel[i], f, dt);
-        vel[i] = v;
-        fault.check(i, pos[i], v, f);
-    }
-};
-
 template <class B, class R>
 class VelocityVerlet : public Integrator<B, R> {
 public:
@@ -67,7 +48,7 @@ public:
                                                       p.force.data(), p.box, dt, p.fault_slot(1), p.drift});
         forces.positions_moved(this->time_step(), true);
         forces.update_forces();
-        backend_.for_each(p.count, VerletKick<R>{this->scope().group, p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});
+        backend_.for_each(p.count, ClosingHalfKick<R>{this->scope().group, p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});
     }
 
 private:

@@ -28,8 +28,7 @@ double Engine<B, R, PairR>::energy(const std::string& request) {
         return kinetic_energy(r.batch) + potential_energy(r.batch) + (r.batch < 0 ? externalEnergy_ : 0.0);
     backend_.resize(p_.energy, p_.count);
     backend_.fill(p_.energy, R(0));
-    ForceOutputs<R> out;
-    out.energy = p_.energy.data();
+    const ForceOutputs<R> out = energy_outputs(p_.energy.data());
     forceField_.compute_one(forceField_.find(r.term), p_, out);
     ForceCache<B, R>::count(out, evaluations_);
     cache_.energy_overwritten();

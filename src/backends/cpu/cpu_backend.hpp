@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "backends/cpu/host_staging.hpp"
+#include "backends/backend_types.hpp"
 #include "backends/transfer_counters.hpp"
 #include "core/lanes.hpp"
 
@@ -63,17 +64,8 @@ class CpuFft3d;  // backends/cpu/cpu_fft.hpp, included where engines are instant
 template <class R>
 class CpuCholesky;  // backends/cpu/cpu_cholesky.hpp, likewise
 
-class CpuBackend {
+class CpuBackend : public BackendTypes<HostBuffer, HostStaging, CpuFft3d, CpuCholesky> {
 public:
-    template <class T>
-    using Buffer = HostBuffer<T>;
-    template <class T>
-    using Staging = HostStaging<T>;
-    template <class R>
-    using Fft3d = CpuFft3d<R>;
-    template <class R>
-    using Cholesky = CpuCholesky<R>;
-
     static constexpr const char* name = "cpu";
     // Neighbour lists in index order: force sums independent of the build history, so a restart
     // continues bit for bit (the promise of the CPU backend).

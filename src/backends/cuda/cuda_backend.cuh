@@ -23,6 +23,7 @@
 #include "backends/cuda/pinned_staging.cuh"
 #include "backends/cuda/runtime_compiler.hpp"
 #include "backends/cuda/step_graphs.cuh"
+#include "backends/backend_types.hpp"
 #include "backends/transfer_counters.hpp"
 #include "core/lanes.hpp"
 
@@ -102,17 +103,8 @@ class CudaFft3d;  // backends/cuda/cuda_fft.cuh, included where engines are inst
 template <class R>
 class CudaCholesky;  // backends/cuda/cuda_cholesky.cuh, likewise
 
-class CudaBackend {
+class CudaBackend : public BackendTypes<DeviceBuffer, PinnedStaging, CudaFft3d, CudaCholesky> {
 public:
-    template <class T>
-    using Buffer = DeviceBuffer<T>;
-    template <class T>
-    using Staging = PinnedStaging<T>;
-    template <class R>
-    using Fft3d = CudaFft3d<R>;
-    template <class R>
-    using Cholesky = CudaCholesky<R>;
-
     static constexpr const char* name = "cuda";
     // Sorting every list in global memory at each build cut the LJ benchmark at a million particles
     // from 9.5e8 to 5.7e8 particle-steps/s on an H200; on the GPU a restart agrees with the
