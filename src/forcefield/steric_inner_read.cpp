@@ -14,14 +14,14 @@ namespace {
 
 ForceFieldComponent configure(const ForceFieldComponent& c, const input::ComponentEntry& entry,
                               const input::SystemDescription& system) {
-    const auto column = system.particleColumns.find("innerRadius");
-    if (column == system.particleColumns.end())
+    const std::vector<double>& innerRadius = system.stateColumns[StateColumn::innerRadius];
+    if (innerRadius.empty())
         throw input_error(entry.node.path() + ".type", c.key.text() +
                                                            " sizes each pair by the particles' inner radii: the state "
                                                            "needs an \"innerRadius\" column");
     auto config = std::make_shared<InnerRadiiConfig>();
-    config->innerRadius = column->second;
-    std::vector<double> largest = column->second;
+    config->innerRadius = innerRadius;
+    std::vector<double> largest = innerRadius;
     std::sort(largest.begin(), largest.end(), std::greater<double>());
     config->largestSigma = largest[0] + (largest.size() > 1 ? largest[1] : largest[0]);
     ForceFieldComponent configured = c;

@@ -65,13 +65,13 @@ ForceFieldComponent configure(const ForceFieldComponent& c, bool polarization, c
         if (table.has("force")) input::read_parameter(table.cell(row, "force"), numbers("force", 3, "energy/length"));
     }
     if (polarization) {
-        const auto column = system.particleColumns.find("polarizability");
-        if (column == system.particleColumns.end())
+        const std::vector<double>& polarizability = system.stateColumns[StateColumn::polarizability];
+        if (polarizability.empty())
             throw input_error(entry.node.path() + ".type", c.key.text() +
                                                                " scales the field by each particle's polarizability: "
                                                                "the state needs a \"polarizability\" column");
         const double eps = values["dielectricConstant"] / (4.0 * M_PI * system.units.electricConversion);
-        for (double alpha : column->second) config->factor.push_back(eps * alpha);
+        for (double alpha : polarizability) config->factor.push_back(eps * alpha);
     }
     ForceFieldComponent configured = c;
     configured.config = config;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/state_columns.hpp"
 #include "input/tracked_node.hpp"
 
 namespace structmd::input {
@@ -79,14 +80,11 @@ struct SystemDescription {
     std::vector<std::array<double, 4>> orientations;  // the state's direction [q0, q1, q2, q3], normalised; empty when not given
     // The state's magnetization [mx, my, mz, M]: unit direction in the body frame and magnitude; empty when not given.
     std::vector<std::array<double, 4>> magnetizations;
-    std::vector<double> anisotropy;  // the state's anisotropy constant K (energy/volume); empty when not given
     std::vector<int32_t> typeIndex;
     std::vector<double> mass, radius, charge;  // type values with the state's overrides applied
     std::vector<int32_t> modelId, batchId;
     std::vector<int32_t> resId, chainId;  // empty when the structure has no such column (PDB output reads them)
-    // The state's per-particle frictionConstant, translationalSelfDiffusion, rotationalSelfDiffusion,
-    // polarizability and innerRadius, by name, when given.
-    std::map<std::string, std::vector<double>> particleColumns;
+    PerStateColumn<std::vector<double>> stateColumns;  // core/state_columns.hpp; each empty when not given
 
     // components, in document order
     std::vector<ComponentEntry> forceField;

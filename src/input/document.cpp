@@ -281,11 +281,25 @@ std::array<double, 4> read_magnetization(const TrackedNode& cell) {
     return m;
 }
 
+// A state column's values by particle id, each checked against what the column's values must be.
+std::vector<double> read_state_column(const Table& table, const std::vector<int64_t>& idOfRow, StateColumn column) {
+    const StateColumnTraits& c = traits(column);
+    std::vector<double> values(table.rows());
+    for (size_t row = 0; row < table.rows(); ++row) {
+        const TrackedNode cell = table.cell(row, c.label);
+        double& value = values[static_cast<size_t>(idOfRow[row])];
+        value = cell.as<double>();
+        if (c.values == ColumnValues::atLeastZero) value = read_at_least(cell, 0.0, c.label);
+        if (c.values == ColumnValues::positive && !(value > 0.0))
+            throw input_error(cell.path(), std::string(c.label) + " must be > 0");
+    }
+    return values;
+}
+
 StateTable read_state(const TrackedNode& state, SystemDescription& description) {
-    Table table = read_table(state, {"id", "position"},
-                             {"velocity", "mass", "radius", "charge", "direction", "polarizability", "innerRadius",
-                              "frictionConstant", "translationalSelfDiffusion", "rotationalSelfDiffusion",
-                              "magnetization", "anisotropy"});
+    std::vector<std::string> optional{"velocity", "mass", "radius", "charge", "direction", "magnetization"};
+    for_each_state_column([&](StateColumn c) { optional.push_back(traits(c).label); });
+    Table table = read_table(state, {"id", "position"}, optional);
     const size_t count = table.rows();
     const auto particleCount = static_cast<int64_t>(count);
     std::vector<int64_t> idOfRow =
@@ -298,7 +312,6 @@ StateTable read_state(const TrackedNode& state, SystemDescription& description) 
     if (table.has("velocity")) description.velocities.resize(count);
     if (table.has("direction")) description.orientations.resize(count);
     if (table.has("magnetization")) description.magnetizations.resize(count);
-    if (table.has("anisotropy")) description.anisotropy.resize(count);
     for (size_t row = 0; row < count; ++row) {
         const auto id = static_cast<size_t>(idOfRow[row]);
         description.positions[id] = table.cell(row, "position").as<Vec3d>();
@@ -306,29 +319,10 @@ StateTable read_state(const TrackedNode& state, SystemDescription& description) 
         if (table.has("direction")) description.orientations[id] = read_quaternion(table.cell(row, "direction"));
         if (table.has("magnetization"))
             description.magnetizations[id] = read_magnetization(table.cell(row, "magnetization"));
-        if (table.has("anisotropy")) description.anisotropy[id] = table.cell(row, "anisotropy").as<double>();
-        // UAMMD-structured's induced-dipole data, read by ["External","PolarizationTabulated"].
-        if (table.has("polarizability")) {
-            std::vector<double>& values = description.particleColumns["polarizability"];
-            values.resize(count);
-            values[id] = table.cell(row, "polarizability").as<double>();
-        }
-        // The size of each particle in ["NonBonded","StericInner6"/"StericInner12"].
-        if (table.has("innerRadius")) {
-            std::vector<double>& values = description.particleColumns["innerRadius"];
-            values.resize(count);
-            values[id] = read_at_least(table.cell(row, "innerRadius"), 0.0, "innerRadius");
-        }
-        // Per-particle values that integrators take when their own parameter is absent.
-        for (const char* column : {"frictionConstant", "translationalSelfDiffusion", "rotationalSelfDiffusion"}) {
-            if (!table.has(column)) continue;
-            std::vector<double>& values = description.particleColumns[column];
-            values.resize(count);
-            const TrackedNode cell = table.cell(row, column);
-            values[id] = cell.as<double>();
-            if (!(values[id] > 0.0)) throw input_error(cell.path(), std::string(column) + " must be > 0");
-        }
     }
+    for_each_state_column([&](StateColumn c) {
+        if (table.has(traits(c).label)) description.stateColumns[c] = read_state_column(table, idOfRow, c);
+    });
     return {std::move(table), std::move(idOfRow)};
 }
 

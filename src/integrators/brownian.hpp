@@ -16,7 +16,7 @@ struct BrownianInputs : IntegratorInputs {
     static constexpr bool overdamped = true;
     // Without a viscosity, each particle's mobility is D / (k_B T) from the state.
     static constexpr const char* fallbackParameter = "viscosity";
-    static constexpr const char* fallbackColumn = "translationalSelfDiffusion";
+    static constexpr StateColumn fallbackColumn = StateColumn::translationalSelfDiffusion;
 };
 
 template <class R>
@@ -78,7 +78,7 @@ public:
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
         forces.update_forces();
-        const R* selfDiffusion = viscosity_ > 0.0 ? nullptr : p.selfDiffusion.data();
+        const R* selfDiffusion = viscosity_ > 0.0 ? nullptr : p.columns[StateColumn::translationalSelfDiffusion].data();
         backend_.for_each(p.count, EulerMaruyamaStep<R>{p.pos.data(), p.image.data(), p.force.data(), p.radius.data(),
                                                         selfDiffusion, s.group, p.box, R(s.timeStep), R(viscosity_), R(s.kT),
                                                         p.noise, p.now(), p.fault_slot(1), p.drift});

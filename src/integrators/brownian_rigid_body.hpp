@@ -47,7 +47,7 @@ public:
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
         forces.update_forces();
-        const R* rotationalDiffusion = viscosity_ > 0.0 ? nullptr : p.rotationalSelfDiffusion.data();
+        const R* rotationalDiffusion = viscosity_ > 0.0 ? nullptr : p.columns[StateColumn::rotationalSelfDiffusion].data();
         backend_.for_each(p.count, RotateByTorque<R>{p.dir.data(), p.torque.data(), p.radius.data(), rotationalDiffusion,
                                                      s.group, R(s.timeStep), R(viscosity_), R(s.kT), p.noise, p.now()});
         BrownianEulerMaruyama<B, R>::step(p, forces);

@@ -7,6 +7,7 @@
 
 #include "core/logger.hpp"
 #include "core/parameters.hpp"
+#include "core/state_columns.hpp"
 #include "state/particles.hpp"
 
 namespace structmd {
@@ -104,7 +105,7 @@ struct IntegratorInputs {
     // A parameter that may be left out when the state gives each particle's value in a column
     // (UAMMD-structured's particle data): its default 0 then means "from the column".
     static constexpr const char* fallbackParameter = nullptr;
-    static constexpr const char* fallbackColumn = nullptr;
+    static constexpr StateColumn fallbackColumn = StateColumn::frictionConstant;  // read with fallbackParameter only
     // A parameter that, where given (> 0), stands for every particle's radius: the state's radii are
     // then not needed.
     static constexpr const char* radiusParameter = nullptr;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/parameters.hpp"
+#include "core/state_columns.hpp"
 #include "core/registry.hpp"
 
 namespace structmd {
@@ -37,7 +38,7 @@ struct IntegratorComponent {
     std::function<void(const ParameterValues&, const std::string& path)> validate;
     bool overdamped = false;
     const char* fallbackParameter = nullptr;  // IntegratorInputs::fallbackParameter and fallbackColumn
-    const char* fallbackColumn = nullptr;
+    StateColumn fallbackColumn = StateColumn::frictionConstant;
     bool rotates = false;
     std::vector<TextOption> textOptions;
     bool magnetic = false;

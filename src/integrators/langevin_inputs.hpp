@@ -11,7 +11,7 @@ struct LangevinInputs : IntegratorInputs {
                 with_default(boolean("resetVelocities"), 1.0)};
     }
     static constexpr const char* fallbackParameter = "frictionConstant";
-    static constexpr const char* fallbackColumn = "frictionConstant";
+    static constexpr StateColumn fallbackColumn = StateColumn::frictionConstant;
 };
 
 }  // namespace structmd

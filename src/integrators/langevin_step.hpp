@@ -55,7 +55,7 @@ protected:
     // column) where the entry gives none.
     LangevinParticles<R> particles(Particles<B, R>& p) const {
         const IntegratorScope& s = this->scope();
-        const R* frictionOf = friction_ > 0.0 ? nullptr : p.friction.data();
+        const R* frictionOf = friction_ > 0.0 ? nullptr : p.columns[StateColumn::frictionConstant].data();
         return {p.pos.data(), p.image.data(), p.vel.data(), p.force.data(), s.group,  frictionOf, p.box,
                 R(s.timeStep), R(friction_),    R(s.kT),        p.noise,         p.now(), p.fault_slot(1), p.drift};
     }

@@ -57,7 +57,7 @@ struct MagneticBrownianInputs : MagneticInputs {
     static constexpr bool overdamped = BrownianRigidBodyInputs::overdamped;
     static constexpr bool rotates = BrownianRigidBodyInputs::rotates;
     static constexpr const char* fallbackParameter = BrownianRigidBodyInputs::fallbackParameter;
-    static constexpr const char* fallbackColumn = BrownianRigidBodyInputs::fallbackColumn;
+    static constexpr StateColumn fallbackColumn = BrownianRigidBodyInputs::fallbackColumn;
 };
 
 // dm/dt of the Landau-Lifshitz-Gilbert equation for the unit moment m in the field b.
@@ -135,9 +135,10 @@ public:
 private:
     void stage(Particles<B, R>& p, ForceSource& forces, const IntegratorScope& s, LlgStage which) {
         forces.update_magnetic_field();
+        const auto& anisotropy = p.columns[StateColumn::anisotropy];
         backend_.for_each(p.count, LlgStep<R>{p.magnetization.data(), start_.data(), p.magneticField.data(),
                                               p.dir.empty() ? nullptr : p.dir.data(),
-                                              p.anisotropy.empty() ? nullptr : p.anisotropy.data(), s.group,
+                                              anisotropy.empty() ? nullptr : anisotropy.data(), s.group,
                                               R(s.timeStep), R(s.kT), R(damping_), R(gyroRatio_), R(msat_), p.noise,
                                               p.now(), which});
         forces.magnetization_changed();

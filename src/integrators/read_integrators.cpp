@@ -97,18 +97,18 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
                                                        " turns magnetic moments: the state needs a 'magnetization' column");
 
         const bool fromColumn = component.fallbackParameter && spec.parameters[component.fallbackParameter] == 0.0;
-        if (fromColumn && !system.particleColumns.count(component.fallbackColumn))
+        const std::string fallbackLabel = traits(component.fallbackColumn).label;
+        if (fromColumn && system.stateColumns[component.fallbackColumn].empty())
             throw input_error(spec.path + ".parameters." + component.fallbackParameter,
-                              std::string("missing: give it here, or each particle's in a state column '") +
-                                  component.fallbackColumn + "'");
+                              "missing: give it here, or each particle's in a state column '" + fallbackLabel + "'");
         // A rotating integrator takes its rotational mobility from the same place as its translational one.
-        if (fromColumn && component.rotates && !system.particleColumns.count("rotationalSelfDiffusion"))
+        if (fromColumn && component.rotates && system.stateColumns[StateColumn::rotationalSelfDiffusion].empty())
             throw input_error(spec.path + ".parameters." + component.fallbackParameter,
-                              std::string("missing: give it here, or each particle's in state columns '") +
-                                  component.fallbackColumn + "' and 'rotationalSelfDiffusion'");
+                              "missing: give it here, or each particle's in state columns '" + fallbackLabel +
+                                  "' and 'rotationalSelfDiffusion'");
         if (fromColumn && component.overdamped && !(spec.temperature > 0.0))
             throw input_error(spec.path + ".parameters.temperature",
-                              std::string("the mobility D / (k_B T) from the state's ") + component.fallbackColumn +
+                              "the mobility D / (k_B T) from the state's " + fallbackLabel +
                                   " needs a temperature > 0");
         const bool radiusGiven = component.radiusParameter && spec.parameters[component.radiusParameter] > 0.0;
         if (component.needsRadius && !fromColumn && !radiusGiven)

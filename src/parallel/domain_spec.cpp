@@ -79,12 +79,9 @@ SimulationSpec DomainSpec::local(const std::vector<int64_t>& ids, int64_t owned,
     s.mass = select(whole_.mass, ids);
     s.radius = select(whole_.radius, ids);
     s.charge = select(whole_.charge, ids);
-    s.friction = select(whole_.friction, ids);
-    s.selfDiffusion = select(whole_.selfDiffusion, ids);
-    s.rotationalSelfDiffusion = select(whole_.rotationalSelfDiffusion, ids);
     s.orientations = select(whole_.orientations, ids);
     s.magnetizations = select(whole_.magnetizations, ids);
-    s.anisotropy = select(whole_.anisotropy, ids);
+    for_each_state_column([&](StateColumn c) { s.columns[c] = select(whole_.columns[c], ids); });
     s.batchId = select(whole_.batchId, ids);
     s.modelId = select(whole_.modelId, ids);
 

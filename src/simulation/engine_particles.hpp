@@ -69,10 +69,7 @@ void Engine<B, R, PairR>::load_particles(const SimulationSpec& spec) {
     };
     upload(p_.radius, spec.radius);
     upload(p_.charge, spec.charge);
-    upload(p_.friction, spec.friction);
-    upload(p_.selfDiffusion, spec.selfDiffusion);
-    upload(p_.rotationalSelfDiffusion, spec.rotationalSelfDiffusion);
-    upload(p_.anisotropy, spec.anisotropy);
+    for_each_state_column([&](StateColumn c) { upload(p_.columns[c], spec.columns[c]); });
     // Orientations and torques only where the input has them or an integrator turns particles.
     const bool rotates = std::any_of(spec.integrators.begin(), spec.integrators.end(),
                                      [](const IntegratorSpec& s) { return s.rotates; });

@@ -47,15 +47,11 @@ SimulationSpec read_simulation(const input::ParsedDocument& doc, const Logger& l
     spec.mass = system.mass;
     spec.radius = system.radius;
     spec.charge = system.charge;
-    if (auto column = system.particleColumns.find("frictionConstant"); column != system.particleColumns.end())
-        spec.friction = column->second;
-    if (auto column = system.particleColumns.find("translationalSelfDiffusion"); column != system.particleColumns.end())
-        spec.selfDiffusion = column->second;
-    if (auto column = system.particleColumns.find("rotationalSelfDiffusion"); column != system.particleColumns.end())
-        spec.rotationalSelfDiffusion = column->second;
     spec.orientations = system.orientations;
     spec.magnetizations = system.magnetizations;
-    spec.anisotropy = system.anisotropy;
+    for_each_state_column([&](StateColumn c) {
+        if (traits(c).onBackend) spec.columns[c] = system.stateColumns[c];
+    });
     spec.batchId = system.batchId;
     spec.modelId = system.modelId;
     return spec;

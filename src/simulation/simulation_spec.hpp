@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/state_columns.hpp"
 #include "forcefield/forcefield_spec.hpp"
 #include "forcefield/pair_potential.hpp"
 #include "integrators/integrator_spec.hpp"
@@ -33,11 +34,9 @@ struct SystemSpec {
     std::vector<std::array<double, 3>> velocities;  // empty: draw from Maxwell-Boltzmann
     std::vector<int32_t> typeIndex;
     std::vector<double> mass, radius, charge;
-    std::vector<double> friction, selfDiffusion;  // the state's frictionConstant, translationalSelfDiffusion (or empty)
-    std::vector<double> rotationalSelfDiffusion;  // the state's column (or empty)
     std::vector<std::array<double, 4>> orientations;  // unit quaternions [q0, q1, q2, q3]; empty: none given
     std::vector<std::array<double, 4>> magnetizations;  // [mx, my, mz, M], body frame; empty: none given
-    std::vector<double> anisotropy;                      // empty: none given
+    PerStateColumn<std::vector<double>> columns;        // core/state_columns.hpp; each empty when not given
     std::vector<int32_t> batchId, modelId;
 
     ForceFieldSpec forceField;

@@ -6,6 +6,7 @@
 
 #include "core/box.hpp"
 #include "core/noise_key.hpp"
+#include "core/state_columns.hpp"
 #include "core/vec.hpp"
 #include "state/drift_bookkeeping.hpp"
 #include "state/fault.hpp"
@@ -29,8 +30,6 @@ struct Particles {
     Buffer<Real4<R>> externalForce;  // empty when the host set none
     Buffer<R> radius;
     Buffer<R> charge;
-    Buffer<R> friction;       // the state's frictionConstant column; empty when not given
-    Buffer<R> selfDiffusion;  // the state's translationalSelfDiffusion column; empty when not given
     Buffer<int> batch;  // batchId by particle; empty when every particle is in batch 0
     Buffer<int> batchIndex;  // the same batches numbered 0, 1, ... in order of batchId; empty with batch
     Buffer<int> model;  // modelId by particle
@@ -57,14 +56,16 @@ struct Particles {
     // empty unless the input gives directions, an integrator rotates or the host set them.
     Buffer<Real4<R>> dir;
     Buffer<Real4<R>> torque;            // lab frame, w unused; empty until an integrator or the host reads torques
-    Buffer<R> rotationalSelfDiffusion;  // the state's column; empty when not given
 
     // Magnetic moments, after the orientations for the same reason; each empty unless the input gives
     // the state's magnetization. xyz: the moment's unit direction in the body frame (UAMMD-structured's
     // layout: the moment turns with the particle), w: its magnitude M.
     Buffer<Real4<R>> magnetization;
-    Buffer<R> anisotropy;            // the state's anisotropy constant K by particle; empty: 0 for all
     Buffer<Real4<R>> magneticField;  // lab frame, w unused; sized when a magnetic integrator asks for fields
+
+    // The state's optional columns (core/state_columns.hpp), those read by kernels; each empty when
+    // not given.
+    PerStateColumn<Buffer<R>> columns;
 };
 
 }  // namespace structmd

@@ -189,6 +189,30 @@ TEST(Document, StateDirectionPolarizabilityAndInnerRadius) {
     expect_input_error(document, {"state.data[2][4]", "innerRadius must be >= 0"});
 }
 
+// Every optional state column declared in core/state_columns.hpp is read by its label, kept by
+// particle id (rows out of order), left empty when absent, and its values checked by its rule.
+TEST(Document, EveryDeclaredStateColumn) {
+    for (int k = 0; k < kStateColumns; ++k) {
+        const StateColumn column = StateColumn(k);
+        const StateColumnTraits& c = traits(column);
+        SCOPED_TRACE(c.label);
+        json document = valid_document();
+        document["state"] = {{"labels", {"id", "position", c.label}},
+                             {"data", {{2, {2, 2, 2}, 0.5}, {0, {0, 0, 0}, 1.5}, {1, {1, 1, 1}, 2.5}}}};
+        const SystemDescription system = parse_document(document.dump()).system;
+        EXPECT_EQ(system.stateColumns[column], (std::vector<double>{1.5, 2.5, 0.5}));
+        for (int other = 0; other < kStateColumns; ++other)
+            if (other != k) EXPECT_TRUE(system.stateColumns[StateColumn(other)].empty());
+        document["state"]["data"][1][2] = -1.0;
+        if (c.values == ColumnValues::anyNumber) {
+            EXPECT_EQ(parse_document(document.dump()).system.stateColumns[column][0], -1.0);
+        } else {
+            const std::string rule = c.values == ColumnValues::positive ? " must be > 0" : " must be >= 0";
+            expect_input_error(document, {"state.data[1][2]", std::string(c.label) + rule});
+        }
+    }
+}
+
 TEST(Document, MalformedJsonGivesLineAndColumn) {
     expect_input_error_text("{\n  \"a\": 1,\n  \"b\": x\n}", {"line 3, column 8: "});
     expect_input_error_text("{\"system\": {}", {"line 1, column 14: "});
