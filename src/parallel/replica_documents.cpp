@@ -1,8 +1,11 @@
 #include "parallel/replica_documents.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/error.hpp"
+#include "core/registry.hpp"
 #include "input/description.hpp"
 
 namespace structmd {
@@ -10,6 +13,13 @@ namespace structmd {
 namespace {
 
 using json = nlohmann::json;
+
+// The entry's key, written once: parallel tempering runs the input as replicas (load_over_ranks.cpp),
+// so no engine's step registry holds it.
+const ComponentKey& parallel_tempering() {
+    static const ComponentKey key{"ReplicaExchange", "ParallelTempering"};
+    return key;
+}
 
 const json* find(const json& node, std::initializer_list<const char*> path) {
     const json* at = &node;
@@ -30,15 +40,20 @@ json* information(json& document) {
 
 }  // namespace
 
-std::optional<ReplicaExchangeSpec> take_replica_exchange(json& document) {
-    if (!document.is_object() || !document.contains("simulationStep") || !document["simulationStep"].is_object())
-        return std::nullopt;
-    json& steps = document["simulationStep"];
+bool asks_for_replicas(const input::SystemDescription& system) {
+    return std::any_of(system.simulationSteps.begin(), system.simulationSteps.end(),
+                       [](const input::ComponentEntry& entry) {
+                           return ComponentKey{entry.cls, entry.subclass} == parallel_tempering();
+                       });
+}
+
+ReplicaExchangeSpec take_replica_exchange(json& document) {
+    json& steps = document.at("simulationStep");
+    const json type = json::array({parallel_tempering().cls, parallel_tempering().subclass});
     std::optional<ReplicaExchangeSpec> found;
     for (auto it = steps.begin(); it != steps.end(); ++it) {
         const json& entry = it.value();
-        if (!entry.is_object() || entry.value("type", json()) != json::array({"ReplicaExchange", "ParallelTempering"}))
-            continue;
+        if (!entry.is_object() || entry.value("type", json()) != type) continue;
         const std::string path = "simulationStep." + it.key();
         if (found) throw input_error(path, "a second ReplicaExchange entry (one ensemble has one set of temperatures)");
         ReplicaExchangeSpec spec;
@@ -68,7 +83,7 @@ std::optional<ReplicaExchangeSpec> take_replica_exchange(json& document) {
         spec.outputPath = output->get<std::string>();
         found = spec;
     }
-    if (!found) return std::nullopt;
+    if (!found) throw Error(STRUCTMD_ERR_INTERNAL, "simulationStep: no parallel tempering entry to take");
     steps.erase(found->name);
 
     if (const json* integrators = find(document, {"integrator"}); integrators && integrators->is_object())
@@ -83,7 +98,7 @@ std::optional<ReplicaExchangeSpec> take_replica_exchange(json& document) {
     const json* info = information(document);
     const json* seed = info ? find(*info, {"parameters", "seed"}) : nullptr;
     found->seed = seed && seed->is_number_unsigned() ? seed->get<uint64_t>() : input::kDefaultSeed;
-    return found;
+    return *found;
 }
 
 json replica_document(const json& document, const ReplicaExchangeSpec& spec, int k) {
