@@ -37,12 +37,13 @@ std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const 
     std::optional<input::ParsedDocument> document;
     run_together(*comm, [&] { document.emplace(input::parse_document(text)); });
     // Parallel tempering: the document's replicas over the ranks.
-    if (asks_for_replicas(document->system)) {
+    const input::ComponentEntry* exchange = nullptr;
+    run_together(*comm, [&] { exchange = replica_exchange_entry(document->system); });
+    if (exchange) {
         std::vector<std::unique_ptr<Simulation>> replicas;
         ReplicaExchangeSpec spec;
         run_together(*comm, [&] {
-            nlohmann::json whole = document->root.json();
-            spec = take_replica_exchange(whole);
+            spec = read_replica_exchange(*document, *exchange);
             const int count = static_cast<int>(spec.temperatures.size());
             if (count < comm->size())
                 throw Error(STRUCTMD_ERR_UNSUPPORTED,
@@ -50,7 +51,7 @@ std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const 
                                 " replicas cannot be spread over " + std::to_string(comm->size()) +
                                 " ranks: every rank needs one");
             for (int k = comm->rank(); k < count; k += comm->size())
-                replicas.push_back(load_simulation(options, replica_document(whole, spec, k).dump(), components, log));
+                replicas.push_back(load_simulation(options, replica_document(document->root.json(), spec, k).dump(), components, log));
         });
         return std::make_unique<ReplicaExchange>(std::move(replicas), std::move(comm), std::move(spec));
     }
