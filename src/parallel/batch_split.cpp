@@ -1,6 +1,7 @@
 #include "parallel/batch_split.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "core/error.hpp"
 
@@ -10,8 +11,14 @@ namespace {
 
 using json = nlohmann::json;
 
-Error unsupported(const std::string& path, const std::string& what) {
-    return Error(STRUCTMD_ERR_UNSUPPORTED, path + ": " + what + " (batches over MPI ranks)");
+// Something of the input that no share can take: the JSON path that asks for it, and what it is.
+struct Refusal {
+    std::string path;
+    std::string what;
+};
+
+Error unsupported(const Refusal& refusal) {
+    return Error(STRUCTMD_ERR_UNSUPPORTED, refusal.path + ": " + refusal.what + " (batches over MPI ranks)");
 }
 
 int column(const json& labels, const std::string& name) {
@@ -20,15 +27,56 @@ int column(const json& labels, const std::string& name) {
     return -1;
 }
 
-// Labels that name particles by id, beside those the split rewrites.
-bool names_particles(const std::string& label) {
-    if (label == "batchId" || label == "modelId" || label == "resId" || label == "chainId") return false;
-    return label.rfind("id", 0) == 0 || (label.size() > 2 && label.compare(label.size() - 2, 2, "Id") == 0);
+// What a table's column is to the split, by its label.
+enum class Column {
+    particle,        // "id" and the members of bonded entries ("id_i"...): kept with the ids shifted
+    batch,           // "batchId": the rows of other ranks' batches are dropped
+    other,           // kept as it is (modelId, resId and chainId number within the structure)
+    namesParticles,  // any other id column ("idSet", "firstId"...), which the split cannot rewrite
+};
+
+Column column_of(const std::string& label) {
+    if (label == "id" || (label.rfind("id_", 0) == 0 && label.size() == 4)) return Column::particle;
+    if (label == "batchId") return Column::batch;
+    if (label == "modelId" || label == "resId" || label == "chainId") return Column::other;
+    const bool id = label.rfind("id", 0) == 0 || (label.size() > 2 && label.compare(label.size() - 2, 2, "Id") == 0);
+    return id ? Column::namesParticles : Column::other;
 }
 
 // The selection types of ["Groups","GroupsList"] that list particle ids.
 bool selects_ids(const json& type) {
     return type.is_string() && (type == "Ids" || type == "notIds");
+}
+
+// What of the object at `path` names particles by id where the split cannot rewrite them for a share:
+// a group of ids, an id column no share renumbers, and in a simulation step (which sees the whole
+// system, batches_over_ranks.hpp, so reads nothing that depends on the share) a group other than
+// "All" or a table of particles.
+std::optional<Refusal> names_particles_by_id(const json& node, const std::string& path, bool step) {
+    if (step && node.contains("parameters") && node["parameters"].is_object()) {
+        const json& parameters = node["parameters"];
+        if (parameters.contains("group") && parameters["group"] != "All")
+            return Refusal{path + ".parameters.group", "a simulation step of a group other than \"All\""};
+    }
+    if (!node.contains("labels") || !node["labels"].is_array()) return std::nullopt;
+    const bool data = node.contains("data") && node["data"].is_array();
+    if (!step && !data) return std::nullopt;  // not a table
+    const json& labels = node["labels"];
+    for (const json& label : labels) {
+        if (!label.is_string()) continue;
+        const Column kind = column_of(label.get<std::string>());
+        if (step && (kind == Column::particle || kind == Column::namesParticles))
+            return Refusal{path + ".labels", "a simulation step with a table of particles"};
+        if (kind == Column::namesParticles)
+            return Refusal{path + ".labels", "column '" + label.get<std::string>() + "' names particles by id"};
+    }
+    const int typeColumn = column(labels, "type"), selection = column(labels, "selection");
+    if (selection < 0 || typeColumn < 0 || !data) return std::nullopt;
+    const json& rows = node["data"];
+    for (size_t r = 0; r < rows.size(); ++r)
+        if (rows[r].is_array() && typeColumn < static_cast<int>(rows[r].size()) && selects_ids(rows[r][typeColumn]))
+            return Refusal{path + ".data[" + std::to_string(r) + "]", "a group selected by particle ids"};
+    return std::nullopt;
 }
 
 struct Range {
@@ -53,22 +101,10 @@ public:
             return;
         }
         if (!node.is_object()) return;
-        // The simulation steps see the whole system (batches_over_ranks.hpp), so what they read
-        // of the document must not depend on the share.
         const bool step = path.rfind("simulationStep.", 0) == 0;
-        if (step && node.contains("parameters") && node["parameters"].is_object()) {
-            const json& parameters = node["parameters"];
-            if (parameters.contains("group") && parameters["group"] != "All")
-                throw unsupported(path + ".parameters.group", "a simulation step of a group other than \"All\"");
-        }
-        if (step && node.contains("labels")) {
-            // Its table stays whole; one that names particles by id is refused.
-            for (const json& label : node["labels"])
-                if (label.is_string() && (label == "id" || names_particles(label.get<std::string>())))
-                    throw unsupported(path + ".labels", "a simulation step with a table of particles");
-            if (node.contains("data")) refuse_id_selections(node, path);
-            return;
-        }
+        if (const std::optional<Refusal> refusal = names_particles_by_id(node, path, step)) throw unsupported(*refusal);
+        // A step's table stays whole.
+        if (step && node.contains("labels")) return;
         if (node.contains("labels") && node.contains("data") && node["labels"].is_array() && node["data"].is_array()) {
             table(node, path);
             return;
@@ -77,33 +113,18 @@ public:
     }
 
 private:
-    // Groups of ["Groups","GroupsList"] that list particle ids.
-    static void refuse_id_selections(const json& node, const std::string& path) {
-        const json& labels = node["labels"];
-        const json& data = node["data"];
-        const int typeColumn = column(labels, "type"), selection = column(labels, "selection");
-        if (selection < 0 || typeColumn < 0 || !data.is_array()) return;
-        for (size_t r = 0; r < data.size(); ++r)
-            if (data[r].is_array() && typeColumn < static_cast<int>(data[r].size()) && selects_ids(data[r][typeColumn]))
-                throw unsupported(path + ".data[" + std::to_string(r) + "]", "a group selected by particle ids");
-    }
-
     // One labelled table: rows of particles or bonds kept with shifted ids, batched rows kept for this
     // rank's batches.
     void table(json& node, const std::string& path) {
         const json& labels = node["labels"];
         json& data = node["data"];
         std::vector<int> idColumns;
+        int batchColumn = -1;
         for (size_t k = 0; k < labels.size(); ++k) {
-            if (!labels[k].is_string()) continue;
-            const std::string label = labels[k].get<std::string>();
-            if (label == "id" || (label.rfind("id_", 0) == 0 && label.size() == 4))
-                idColumns.push_back(static_cast<int>(k));
-            else if (names_particles(label))
-                throw unsupported(path + ".labels", "column '" + label + "' names particles by id");
+            const Column kind = labels[k].is_string() ? column_of(labels[k].get<std::string>()) : Column::other;
+            if (kind == Column::particle) idColumns.push_back(static_cast<int>(k));
+            if (kind == Column::batch) batchColumn = static_cast<int>(k);
         }
-        refuse_id_selections(node, path);
-        const int batchColumn = column(labels, "batchId");
         json kept = json::array();
         for (size_t r = 0; r < data.size(); ++r) {
             const std::string rowPath = path + ".data[" + std::to_string(r) + "]";
@@ -113,7 +134,7 @@ private:
                 for (int col : idColumns) inside += range_.holds(id_at(row, col, rowPath)) ? 1 : 0;
                 if (inside == 0) continue;
                 if (inside != static_cast<int>(idColumns.size()))
-                    throw unsupported(rowPath, "an entry between particles of batches on different ranks");
+                    throw unsupported({rowPath, "an entry between particles of batches on different ranks"});
                 for (int col : idColumns) row[col] = row[col].get<int64_t>() - range_.first;
             } else if (batchColumn >= 0) {
                 if (!row.is_array() || batchColumn >= static_cast<int>(row.size()) || !row[batchColumn].is_number_integer())
@@ -165,10 +186,10 @@ BatchShare split_batches(const json& document, int rank, int ranks) {
             throw input_error("topology.structure.data", "expected the ids 0 to " + std::to_string(byId.size() - 1));
         if (batchOrder.empty() || byId[k].second != batchOrder.back()) {
             if (!batchOrder.empty() && byId[k].second < batchOrder.back())
-                throw unsupported("topology.structure.data",
-                                  "batchId " + std::to_string(byId[k].second) + " at id " + std::to_string(k) +
-                                      " after batchId " + std::to_string(batchOrder.back()) +
-                                      ": each batch must be one run of consecutive ids, in increasing batchId order");
+                throw unsupported({"topology.structure.data",
+                                   "batchId " + std::to_string(byId[k].second) + " at id " + std::to_string(k) +
+                                       " after batchId " + std::to_string(batchOrder.back()) +
+                                       ": each batch must be one run of consecutive ids, in increasing batchId order"});
             batchOrder.push_back(byId[k].second);
             batchStart.push_back(static_cast<int64_t>(k));
         }
@@ -176,8 +197,8 @@ BatchShare split_batches(const json& document, int rank, int ranks) {
     batchStart.push_back(static_cast<int64_t>(byId.size()));
     const int batches = static_cast<int>(batchOrder.size());
     if (batches < ranks)
-        throw unsupported("topology.structure.data", std::to_string(batches) + " batch(es) cannot be spread over " +
-                                                         std::to_string(ranks) + " ranks: every rank needs one");
+        throw unsupported({"topology.structure.data", std::to_string(batches) + " batch(es) cannot be spread over " +
+                                                          std::to_string(ranks) + " ranks: every rank needs one"});
 
     // Rank r's batches: a contiguous block, the first B mod K ranks one more.
     auto firstBatch = [&](int r) { return r * (batches / ranks) + std::min(r, batches % ranks); };

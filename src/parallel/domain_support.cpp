@@ -1,8 +1,10 @@
 #include "parallel/domain_support.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "input/read_parameters.hpp"
@@ -16,83 +18,117 @@ namespace {
 using input::ComponentEntry;
 using input::TrackedNode;
 
-Error unsupported(const std::string& path, const std::string& what) {
-    return Error(STRUCTMD_ERR_UNSUPPORTED, path + ": " + what + " is not available under domain decomposition");
-}
+// Something the domains do not run: the JSON path that asks for it, and what it is. The checks list
+// them in document order and load_over_ranks is refused with the first.
+struct Refusal {
+    std::string path;
+    std::string what;
+};
+using Refusals = std::vector<Refusal>;
 
 // As the input writes it: ["Class","SubClass"].
-std::string type_text(const std::string& cls, const std::string& subclass) {
-    return "[\"" + cls + "\",\"" + subclass + "\"]";
-}
-std::string type_text(const ComponentEntry& entry) { return type_text(entry.cls, entry.subclass); }
+std::string type_text(const ComponentKey& key) { return "[\"" + key.cls + "\",\"" + key.subclass + "\"]"; }
+ComponentKey key_of(const ComponentEntry& entry) { return {entry.cls, entry.subclass}; }
 
-// The labels of a table the reader has already checked.
-void only_labels(const TrackedNode& table, const std::set<std::string>& allowed) {
-    const TrackedNode labels = table.at("labels");
-    for (size_t k = 0; k < labels.size(); ++k) {
-        const std::string label = labels.at(k).as<std::string>();
-        if (!allowed.count(label)) throw unsupported(labels.path(), "column \"" + label + "\"");
+// What the domains carry of the document's layout: the keys an object may have, or the labels a
+// table may have. The reader has refused any global entry other than units, types, ensemble and
+// fundamental. Each domain moves positions and velocities by id; the structure's columns are read
+// once for the whole system.
+enum class Part { sections, columns };
+struct Layout {
+    std::vector<std::string> path;  // from the root
+    Part part;
+    std::set<std::string> allowed;
+};
+const std::vector<Layout>& layout() {
+    static const std::vector<Layout> rules = {
+        {{}, Part::sections, {"system", "global", "integrator", "state", "topology", "simulationStep"}},
+        {{"topology"}, Part::sections, {"structure", "forceField"}},
+        {{"state"}, Part::columns, {"id", "position", "velocity"}},
+        {{"topology", "structure"}, Part::columns, {"id", "type", "batchId", "modelId", "resId", "chainId"}},
+    };
+    return rules;
+}
+
+void refuse_layout(const TrackedNode& root, Refusals& found) {
+    for (const Layout& rule : layout()) {
+        std::optional<TrackedNode> node = root;
+        for (const std::string& key : rule.path)
+            if (node) node = node->find(key);
+        if (!node) continue;
+        if (rule.part == Part::sections) {
+            for (const std::string& key : node->keys()) {
+                const std::string path = node->path().empty() ? key : node->path() + "." + key;
+                if (!rule.allowed.count(key)) found.push_back({path, "the section '" + path + "'"});
+            }
+            continue;
+        }
+        const TrackedNode labels = node->at("labels");
+        for (size_t k = 0; k < labels.size(); ++k) {
+            const std::string label = labels.at(k).as<std::string>();
+            if (!rule.allowed.count(label)) found.push_back({labels.path(), "column \"" + label + "\""});
+        }
     }
-}
-
-// The document's layout: its sections, the system's entries and the particles' columns. The reader
-// has refused any global entry other than units, types, ensemble and fundamental.
-void check_layout(const TrackedNode& root) {
-    for (const std::string& key : root.keys())
-        if (key != "system" && key != "global" && key != "integrator" && key != "state" && key != "topology" &&
-            key != "simulationStep")
-            throw unsupported(key, "the section '" + key + "'");
+    // Of the system section, the domains read the simulation's information only.
     if (const auto system = root.find("system"))
         for (const std::string& key : system->keys()) {
             const TrackedNode type = system->at(key).at("type");
-            const std::string cls = type.at(0).as<std::string>(), subclass = type.at(1).as<std::string>();
-            if (cls != "Simulation" || subclass != "Information")
-                throw unsupported(system->path() + "." + key, "entry " + type_text(cls, subclass));
+            const ComponentKey entry{type.at(0).as<std::string>(), type.at(1).as<std::string>()};
+            if (!(entry == ComponentKey{"Simulation", "Information"}))
+                found.push_back({system->path() + "." + key, "entry " + type_text(entry)});
         }
-    const TrackedNode topology = root.at("topology");
-    for (const std::string& key : topology.keys())
-        if (key != "structure" && key != "forceField")
-            throw unsupported(topology.path() + "." + key, "the section '" + topology.path() + "." + key + "'");
-    if (const auto state = root.find("state")) only_labels(*state, {"id", "position", "velocity"});
-    only_labels(topology.at("structure"), {"id", "type", "batchId", "modelId", "resId", "chainId"});
 }
 
-void check_integrators(const input::SystemDescription& system, const SimulationSpec& spec) {
-    if (system.schedule.size() > 1) throw unsupported(system.schedulePath, "a schedule of more than one integrator");
+// One integrator, simulation step or force-field entry, as its registry declares it.
+struct Declared {
+    const char* kind;  // "integrator", "simulation step", "forceField entry"
+    std::string path;
+    ComponentKey key;
+    bool underDomains;  // false too for a key its registry lacks
+    // "an integrator of a group" when it acts on a group rather than every particle, which a domain
+    // would have to select among its own particles and ghosts.
+    const char* ofGroup = nullptr;
+};
+
+void refuse(const Declared& component, Refusals& found) {
+    if (!component.underDomains)
+        found.push_back({component.path, std::string(component.kind) + " " + type_text(component.key)});
+    if (component.ofGroup) found.push_back({component.path + ".parameters.group", component.ofGroup});
+}
+
+bool of_group(const TrackedNode& entry) {
+    const TrackedNode parameters = input::parameters_of(entry);
+    return parameters.valid() && parameters.get_or<std::string>("group", "All") != "All";
+}
+
+void refuse_components(const input::SystemDescription& system, const SimulationSpec& spec,
+                       const Registry<ForceFieldComponent>& components, Refusals& found) {
+    if (system.schedule.size() > 1) found.push_back({system.schedulePath, "a schedule of more than one integrator"});
     for (const IntegratorSpec& integrator : spec.integrators) {
         const IntegratorComponent* component = integrator_registry().find(integrator.key);
-        if (!component || !component->underDomains)
-            throw unsupported(integrator.path, "integrator " + type_text(integrator.key.cls, integrator.key.subclass));
-        if (integrator.group != -1) throw unsupported(integrator.path + ".parameters.group", "an integrator of a group");
-        if (const char* name = component->wholeSystemParameter; name && integrator.parameters[name] != 0.0)
-            throw unsupported(integrator.path + ".parameters." + name, component->wholeSystemEffect);
+        refuse({"integrator", integrator.path, integrator.key, component && component->underDomains,
+                integrator.group != -1 ? "an integrator of a group" : nullptr},
+               found);
+        if (const char* name = component ? component->wholeSystemParameter : nullptr;
+            name && integrator.parameters[name] != 0.0)
+            found.push_back({integrator.path + ".parameters." + name, component->wholeSystemEffect});
     }
-}
-
-void check_steps(const input::SystemDescription& system) {
     for (const ComponentEntry& entry : system.simulationSteps) {
-        const SimulationStepEntry* step = simulation_step_registry().find({entry.cls, entry.subclass});
-        if (!step || !step->underDomains)
-            throw unsupported(entry.node.path(), "simulation step " + type_text(entry));
-        const TrackedNode parameters = input::parameters_of(entry.node);
-        if (parameters.valid() && parameters.get_or<std::string>("group", "All") != "All")
-            throw unsupported(entry.node.path() + ".parameters.group", "a simulation step of a group");
+        const SimulationStepEntry* step = simulation_step_registry().find(key_of(entry));
+        refuse({"simulation step", entry.node.path(), key_of(entry), step && step->underDomains,
+                of_group(entry.node) ? "a simulation step of a group" : nullptr},
+               found);
     }
     // Groups named in the integrator and simulationStep sections select particles by id.
     for (const ComponentEntry& entry : system.sectionGroups)
-        throw unsupported(entry.node.path(), "entry " + type_text(entry));
-}
-
-void check_forcefield(const input::SystemDescription& system, const ForceFieldSpec& forceField,
-                      const Registry<ForceFieldComponent>& components) {
+        found.push_back({entry.node.path(), "entry " + type_text(key_of(entry))});
     for (const ComponentEntry& entry : system.forceField) {
-        const std::string& path = entry.node.path();
         // Each domain's engine builds its own lists over the particles it holds, ghosts included.
-        const bool list = std::any_of(forceField.lists.begin(), forceField.lists.end(),
-                                      [&](const NeighbourListSpec& l) { return l.path == path; });
+        const bool list = std::any_of(spec.forceField.lists.begin(), spec.forceField.lists.end(),
+                                      [&](const NeighbourListSpec& l) { return l.path == entry.node.path(); });
         if (list) continue;
-        const ForceFieldComponent* component = components.find({entry.cls, entry.subclass});
-        if (!component || !component->underDomains) throw unsupported(path, "forceField entry " + type_text(entry));
+        const ForceFieldComponent* component = components.find(key_of(entry));
+        refuse({"forceField entry", entry.node.path(), key_of(entry), component && component->underDomains}, found);
     }
 }
 
@@ -100,10 +136,12 @@ void check_forcefield(const input::SystemDescription& system, const ForceFieldSp
 
 void check_domain_support(const input::ParsedDocument& document, const SimulationSpec& spec,
                           const Registry<ForceFieldComponent>& components) {
-    check_layout(document.root);
-    check_integrators(document.system, spec);
-    check_steps(document.system);
-    check_forcefield(document.system, spec.forceField, components);
+    Refusals found;
+    refuse_layout(document.root, found);
+    refuse_components(document.system, spec, components, found);
+    if (!found.empty())
+        throw Error(STRUCTMD_ERR_UNSUPPORTED,
+                    found.front().path + ": " + found.front().what + " is not available under domain decomposition");
 }
 
 }  // namespace structmd

@@ -21,15 +21,6 @@ namespace structmd {
 
 namespace {
 
-// Malformed text, and numbers no double holds (1e3000: nlohmann's out_of_range), are the input's fault.
-nlohmann::json parse(const std::string& text) {
-    try {
-        return nlohmann::json::parse(text);
-    } catch (const nlohmann::json::exception& e) {
-        throw input_error("", std::string("not valid JSON: ") + e.what());
-    }
-}
-
 // One batch (no batchId, or one value in it): the system is split in space rather than by batch.
 bool one_batch(const input::SystemDescription& system) {
     return std::adjacent_find(system.batchId.begin(), system.batchId.end(), std::not_equal_to<int32_t>()) ==
@@ -41,53 +32,51 @@ bool one_batch(const input::SystemDescription& system) {
 std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const std::string& text,
                                             const ForceFieldComponents& components, const Logger& log,
                                             std::shared_ptr<const Communicator> comm) {
-    // Parallel tempering: the document's replicas over the ranks. A cheap look first, so that
-    // other inputs are not parsed twice.
-    if (text.find("ReplicaExchange") != std::string::npos) {
+    // Parsed once: every rank's way of running the input is decided from its description. A rank whose
+    // load fails (its own input error, memory) fails every rank's load.
+    std::optional<input::ParsedDocument> document;
+    run_together(*comm, [&] { document.emplace(input::parse_document(text)); });
+    // Parallel tempering: the document's replicas over the ranks.
+    const input::ComponentEntry* exchange = nullptr;
+    run_together(*comm, [&] { exchange = replica_exchange_entry(document->system); });
+    if (exchange) {
         std::vector<std::unique_ptr<Simulation>> replicas;
-        std::optional<ReplicaExchangeSpec> spec;
+        ReplicaExchangeSpec spec;
         run_together(*comm, [&] {
-            nlohmann::json document = parse(text);
-            spec = take_replica_exchange(document);
-            if (!spec) return;
-            const int count = static_cast<int>(spec->temperatures.size());
+            spec = read_replica_exchange(*document, *exchange);
+            const int count = static_cast<int>(spec.temperatures.size());
             if (count < comm->size())
                 throw Error(STRUCTMD_ERR_UNSUPPORTED,
-                            "simulationStep." + spec->name + ".parameters.temperatures: " + std::to_string(count) +
+                            "simulationStep." + spec.name + ".parameters.temperatures: " + std::to_string(count) +
                                 " replicas cannot be spread over " + std::to_string(comm->size()) +
                                 " ranks: every rank needs one");
             for (int k = comm->rank(); k < count; k += comm->size())
-                replicas.push_back(
-                    load_simulation(options, replica_document(document, *spec, k).dump(), components, log));
+                replicas.push_back(load_simulation(options, replica_document(document->root.json(), spec, k).dump(), components, log));
         });
-        if (spec) return std::make_unique<ReplicaExchange>(std::move(replicas), std::move(comm), std::move(*spec));
+        return std::make_unique<ReplicaExchange>(std::move(replicas), std::move(comm), std::move(spec));
     }
     std::unique_ptr<LocalEngine> local;
     // One batch on several ranks: spatial domains (domains_over_ranks.hpp).
-    if (comm->size() > 1) {
+    if (comm->size() > 1 && one_batch(document->system)) {
         std::optional<DomainSpec> domains;
         run_together(*comm, [&] {
-            const input::ParsedDocument document = input::parse_document(text);
-            if (!one_batch(document.system)) return;
             // The reader first, so that bad input is named by its JSON path before the domains
             // look at what it read.
-            SimulationSpec spec = read_simulation(document, log, components.reader());
-            check_domain_support(document, spec, components.reader());
+            SimulationSpec spec = read_simulation(*document, log, components.reader());
+            check_domain_support(*document, spec, components.reader());
             domains.emplace(static_cast<const SystemSpec&>(spec));
             local = make_simulation(options, std::move(spec), components, log);
         });
-        if (domains)
-            return std::make_unique<DomainsOverRanks>(options, std::move(*domains), std::move(local), components, log,
-                                                      std::move(comm));
+        return std::make_unique<DomainsOverRanks>(options, std::move(*domains), std::move(local), components, log,
+                                                  std::move(comm));
     }
     BatchShare share;
-    // A rank whose share fails to load (its own input error, memory) fails every rank's load.
     run_together(*comm, [&] {
         if (comm->size() == 1) {
-            local = load_simulation(options, text, components, log);
+            local = make_simulation(options, read_simulation(*document, log, components.reader()), components, log);
             return;
         }
-        share = split_batches(parse(text), comm->rank(), comm->size());
+        share = split_batches(document->root.json(), comm->rank(), comm->size());
         local = load_simulation(options, share.document.dump(), components, log, share.firstId);
     });
     if (comm->size() == 1) return local;

@@ -1,24 +1,16 @@
 #include "parallel/replica_documents.hpp"
 
-#include <cmath>
+#include <optional>
 
 #include "core/error.hpp"
-#include "input/description.hpp"
+#include "input/read_parameters.hpp"
+#include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
 namespace {
 
 using json = nlohmann::json;
-
-const json* find(const json& node, std::initializer_list<const char*> path) {
-    const json* at = &node;
-    for (const char* key : path) {
-        if (!at->is_object() || !at->contains(key)) return nullptr;
-        at = &(*at)[key];
-    }
-    return at;
-}
 
 // The system's ["Simulation","Information"] entry, or nullptr (the reader then says it is missing).
 json* information(json& document) {
@@ -30,64 +22,61 @@ json* information(json& document) {
 
 }  // namespace
 
-std::optional<ReplicaExchangeSpec> take_replica_exchange(json& document) {
-    if (!document.is_object() || !document.contains("simulationStep") || !document["simulationStep"].is_object())
-        return std::nullopt;
-    json& steps = document["simulationStep"];
-    std::optional<ReplicaExchangeSpec> found;
-    for (auto it = steps.begin(); it != steps.end(); ++it) {
-        const json& entry = it.value();
-        if (!entry.is_object() || entry.value("type", json()) != json::array({"ReplicaExchange", "ParallelTempering"}))
-            continue;
-        const std::string path = "simulationStep." + it.key();
-        if (found) throw input_error(path, "a second ReplicaExchange entry (one ensemble has one set of temperatures)");
-        ReplicaExchangeSpec spec;
-        spec.name = it.key();
-        const json* parameters = find(entry, {"parameters"});
-        if (!parameters || !parameters->is_object()) throw input_error(path + ".parameters", "expected an object");
-        for (auto p = parameters->begin(); p != parameters->end(); ++p)
-            if (p.key() != "intervalStep" && p.key() != "temperatures" && p.key() != "outputFilePath")
-                throw input_error(path + ".parameters." + p.key(),
-                                  "unknown parameter (known: intervalStep, temperatures, outputFilePath)");
-        const json* interval = find(*parameters, {"intervalStep"});
-        if (!interval || !interval->is_number_integer() || interval->get<int64_t>() <= 0)
-            throw input_error(path + ".parameters.intervalStep", "expected an integer > 0");
-        spec.interval = interval->get<int64_t>();
-        const json* temperatures = find(*parameters, {"temperatures"});
-        if (!temperatures || !temperatures->is_array() || temperatures->size() < 2)
-            throw input_error(path + ".parameters.temperatures", "expected a list of at least two temperatures");
-        for (size_t k = 0; k < temperatures->size(); ++k) {
-            const json& t = (*temperatures)[k];
-            if (!t.is_number() || !(t.get<double>() > 0.0) || !std::isfinite(t.get<double>()))
-                throw input_error(path + ".parameters.temperatures[" + std::to_string(k) + "]",
-                                  "expected a temperature > 0, got " + t.dump());
-            spec.temperatures.push_back(t.get<double>());
-        }
-        const json* output = find(*parameters, {"outputFilePath"});
-        if (!output || !output->is_string()) throw input_error(path + ".parameters.outputFilePath", "expected a path");
-        spec.outputPath = output->get<std::string>();
-        found = spec;
+const input::ComponentEntry* replica_exchange_entry(const input::SystemDescription& system) {
+    const input::ComponentEntry* found = nullptr;
+    for (const input::ComponentEntry& entry : system.simulationSteps) {
+        const SimulationStepEntry* step = simulation_step_registry().find({entry.cls, entry.subclass});
+        if (!step || !step->runsReplicas) continue;
+        if (found)
+            throw input_error(entry.node.path(),
+                              "a second ReplicaExchange entry (one ensemble has one set of temperatures)");
+        found = &entry;
     }
-    if (!found) return std::nullopt;
-    steps.erase(found->name);
-
-    if (const json* integrators = find(document, {"integrator"}); integrators && integrators->is_object())
-        for (auto it = integrators->begin(); it != integrators->end(); ++it)
-            if (const json* t = find(it.value(), {"parameters", "temperature"}))
-                throw Error(STRUCTMD_ERR_UNSUPPORTED, "integrator." + it.key() + ".parameters.temperature: under "
-                            "parallel tempering the replicas' temperatures come from simulationStep." + found->name +
-                            ".parameters.temperatures, in place of the ensemble's (drop this one); got " + t->dump());
-    const json* ensemble = find(document, {"global", "ensemble"});
-    if (!ensemble || !ensemble->contains("labels") || !ensemble->contains("data"))
-        throw input_error("global.ensemble", "parallel tempering needs the ensemble whose temperature it sets");
-    const json* info = information(document);
-    const json* seed = info ? find(*info, {"parameters", "seed"}) : nullptr;
-    found->seed = seed && seed->is_number_unsigned() ? seed->get<uint64_t>() : input::kDefaultSeed;
     return found;
+}
+
+ReplicaExchangeSpec read_replica_exchange(const input::ParsedDocument& document, const input::ComponentEntry& entry) {
+    const SimulationStepEntry& step =
+        simulation_step_registry().at({entry.cls, entry.subclass}, entry.node.path() + ".type", "simulation step");
+    const StepParameters parameters(entry.node, step.parameters);
+    // Its parameters are read here only: the replicas run the input without the entry.
+    entry.node.check_all_used();
+    if (parameters.text("group") != "All")
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, parameters.path("group") +
+                                                  ": the replicas exchange whole configurations; a group other than "
+                                                  "\"All\" is not supported");
+    ReplicaExchangeSpec spec;
+    spec.name = entry.name;
+    spec.interval = parameters.integer("intervalStep");
+    spec.start = parameters.integer("startStep");
+    spec.end = parameters.integer("endStep");
+    spec.temperatures = parameters.numbers("temperatures");
+    if (spec.temperatures.size() < 2)
+        throw input_error(parameters.path("temperatures"), "expected a list of at least two temperatures");
+    for (size_t k = 0; k < spec.temperatures.size(); ++k)
+        if (!(spec.temperatures[k] > 0.0))
+            throw input_error(parameters.path("temperatures") + "[" + std::to_string(k) + "]",
+                              "expected a temperature > 0, got " + json(spec.temperatures[k]).dump());
+    spec.outputPath = parameters.text("outputFilePath");
+
+    for (const input::ComponentEntry& integrator : document.system.integrators) {
+        const input::TrackedNode own = input::parameters_of(integrator.node);
+        if (const auto t = own.valid() ? own.find("temperature") : std::nullopt)
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, t->path() + ": under parallel tempering the replicas' temperatures "
+                        "come from " + parameters.path("temperatures") + ", in place of the ensemble's (drop this "
+                        "one); got " + t->json().dump());
+    }
+    const json& whole = document.root.json();
+    const bool ensemble = whole.contains("global") && whole["global"].contains("ensemble") &&
+                          whole["global"]["ensemble"].contains("labels") && whole["global"]["ensemble"].contains("data");
+    if (!ensemble) throw input_error("global.ensemble", "parallel tempering needs the ensemble whose temperature it sets");
+    spec.seed = document.system.seed;
+    return spec;
 }
 
 json replica_document(const json& document, const ReplicaExchangeSpec& spec, int k) {
     json replica = document;
+    replica["simulationStep"].erase(spec.name);
     // An ensemble of another shape is left as it is, for the replica's reader to name.
     json* global = replica.is_object() && replica.contains("global") && replica["global"].is_object() ? &replica["global"]
                                                                                                      : nullptr;

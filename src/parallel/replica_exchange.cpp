@@ -49,7 +49,8 @@ void ReplicaExchange::advance(int64_t n) {
                                                               "replicas step together");
             }
         });
-        if (current_step() % spec_.interval == 0) exchange();
+        const int64_t now = current_step();
+        if (now % spec_.interval == 0 && now >= spec_.start && now <= spec_.end) exchange();
     }
 }
 

@@ -21,6 +21,7 @@
 #include "steps/lambda_schedule.hpp"
 #include "steps/mean_square_displacement.hpp"
 #include "steps/pairwise_force_measure.hpp"
+#include "steps/parallel_tempering.hpp"
 #include "steps/particle_list_measure.hpp"
 #include "steps/potential_measure.hpp"
 #include "steps/sort_step.hpp"
@@ -65,6 +66,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(write_patchy_particles_step_entry());
         steps.add(sort_step_entry());
         steps.add(thermodynamic_integration_entry());
+        steps.add(parallel_tempering_entry());
         steps.add(lambda_activation_entry());
         steps.add(lambda_cycle_entry());
         return steps;

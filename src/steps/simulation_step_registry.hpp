@@ -100,6 +100,9 @@ struct SimulationStepEntry {
     // Runs under spatial domains (parallel/domains_over_ranks.hpp): reads only what the handle's
     // view of the whole system gives (positions, velocities, energies), never one engine's internals.
     bool underDomains = false;
+    // Runs the whole input as replicas (parallel/replica_exchange.hpp) rather than as a step of one
+    // engine: its factory makes nothing, and parallel/load_over_ranks.cpp reads the entry.
+    bool runsReplicas = false;
 };
 
 // The parameters every step reads (intervalStep, startStep, endStep, group) followed by its own.

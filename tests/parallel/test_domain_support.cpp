@@ -93,5 +93,14 @@ TEST(DomainSupport, AParameterThatCouplesTheWholeSystemIsRefused) {
               "under domain decomposition");
 }
 
+TEST(DomainSupport, ALayoutTheDomainsDoNotCarryIsRefusedByItsPath) {
+    std::string text = document(kLennardJones, kVerlet, kWrite);
+    const std::string state = R"("labels": ["id", "position"], "data": [[0, [0, 0, 0]], [1, [1, 0, 0]]])";
+    text.replace(text.find(state), state.size(),
+                 R"("labels": ["id", "position", "direction"],
+                    "data": [[0, [0, 0, 0], [1, 0, 0, 0]], [1, [1, 0, 0], [1, 0, 0, 0]]])");
+    EXPECT_EQ(refusal(text), "state.labels: column \"direction\" is not available under domain decomposition");
+}
+
 }  // namespace
 }  // namespace structmd
