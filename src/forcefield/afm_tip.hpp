@@ -151,30 +151,22 @@ class AfmInteraction : public Interactor<B, R> {
 public:
     AfmInteraction(const B& backend, InteractorScope scope, const std::vector<int>& members,
                    const std::vector<int>& start, const std::vector<AfmParams<Tip, R>>& params)
-        : Interactor<B, R>(std::move(scope)), backend_(backend), memberCount_(static_cast<int64_t>(members.size())) {
-        std::vector<int> setOf(members.size());
-        for (size_t k = 0; k + 1 < start.size(); ++k)
-            for (int m = start[k]; m < start[k + 1]; ++m) setOf[m] = static_cast<int>(k);
-        backend_.upload(members_, members.data(), members.size());
-        backend_.upload(start_, start.data(), start.size());
-        backend_.upload(setOf_, setOf.data(), setOf.size());
-        backend_.upload(params_, params.data(), params.size());
-    }
+        : Interactor<B, R>(std::move(scope)), backend_(backend), memberCount_(static_cast<int64_t>(members.size())),
+          sets_(backend, members, start, params) {}
 
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
             backend_.for_each(memberCount_,
                               AfmKernel<Tip, R, decltype(force)::value, decltype(energy)::value, decltype(virial)::value>{
-                                  particles.pos.data(), particles.radius.data(), particles.box, members_.data(),
-                                  start_.data(), setOf_.data(), params_.data(), particles.now(), out});
+                                  particles.pos.data(), particles.radius.data(), particles.box, sets_.members.data(),
+                                  sets_.start.data(), sets_.setOf.data(), sets_.params.data(), particles.now(), out});
         });
     }
 
 private:
     const B& backend_;
     int64_t memberCount_;
-    typename B::template Buffer<int> members_, start_, setOf_;
-    typename B::template Buffer<AfmParams<Tip, R>> params_;
+    SetBuffers<B, AfmParams<Tip, R>> sets_;
 };
 
 template <class Tip>

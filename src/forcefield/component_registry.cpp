@@ -1,5 +1,6 @@
 #include "forcefield/component_registry.hpp"
 
+#include "core/error.hpp"
 #include "forcefield/components.hpp"
 #include "forcefield/reader_entries.hpp"
 
@@ -13,6 +14,13 @@ const Registry<ForceFieldComponent>& forcefield_registry() {
         return registry;
     }();
     return builtin;
+}
+
+void require_orientations(const ForceFieldComponent& c, const input::ComponentEntry& entry,
+                          const input::SystemDescription& system, const std::string& use) {
+    if (system.orientations.empty())
+        throw input_error(entry.node.path() + ".type",
+                          c.key.text() + " " + use + ": the state needs a \"direction\" column");
 }
 
 }  // namespace structmd

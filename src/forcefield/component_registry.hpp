@@ -62,4 +62,10 @@ struct ForceFieldComponent {
 
 const Registry<ForceFieldComponent>& forcefield_registry();
 
+// For a component that reads the particles' orientations: an input error at the entry's type unless
+// the state gives them (its "direction" column); `use` says what the component does with them
+// ("aligns the particles' orientations").
+void require_orientations(const ForceFieldComponent& c, const input::ComponentEntry& entry,
+                          const input::SystemDescription& system, const std::string& use);
+
 }  // namespace structmd

@@ -16,10 +16,7 @@ namespace {
 
 ForceFieldComponent configure(const ForceFieldComponent& c, const input::ComponentEntry& entry,
                               const input::SystemDescription& system) {
-    if (system.orientations.empty())
-        throw input_error(entry.node.path() + ".type", c.key.text() +
-                                                           " aligns the particles' orientations: the state needs a "
-                                                           "\"direction\" column");
+    require_orientations(c, entry, system, "aligns the particles' orientations");
     std::vector<std::string> columns = {"id_i", "id_j"};
     for (const Parameter& p : c.parameters) columns.push_back(p.name);
     const input::Table table = input::read_table(entry.node, columns);

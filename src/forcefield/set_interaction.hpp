@@ -231,6 +231,25 @@ struct SetHessianKernel {
     }
 };
 
+// An entry's sets and per-row parameters in backend memory, uploaded from the host: members and start
+// as SetConfig's, setOf the set of each member slot (what a thread per member reads), params one per row.
+template <class B, class Params>
+struct SetBuffers {
+    typename B::template Buffer<int> members, start, setOf;
+    typename B::template Buffer<Params> params;
+
+    SetBuffers(const B& backend, const std::vector<int>& hostMembers, const std::vector<int>& hostStart,
+               const std::vector<Params>& hostParams) {
+        std::vector<int> hostSetOf(hostMembers.size());
+        for (size_t k = 0; k + 1 < hostStart.size(); ++k)
+            for (int m = hostStart[k]; m < hostStart[k + 1]; ++m) hostSetOf[m] = static_cast<int>(k);
+        backend.upload(members, hostMembers.data(), hostMembers.size());
+        backend.upload(start, hostStart.data(), hostStart.size());
+        backend.upload(setOf, hostSetOf.data(), hostSetOf.size());
+        backend.upload(params, hostParams.data(), hostParams.size());
+    }
+};
+
 template <class B, class R, class Potential>
 class SetInteraction : public Interactor<B, R> {
 public:
@@ -240,14 +259,8 @@ public:
     SetInteraction(const B& backend, InteractorScope scope, const std::vector<int>& members,
                    const std::vector<int>& start, const std::vector<Params>& params)
         : Interactor<B, R>(std::move(scope)), backend_(backend), rowCount_(static_cast<int64_t>(params.size())),
-          memberCount_(static_cast<int64_t>(members.size())), start_host_(start) {
-        std::vector<int> setOf(members.size());
-        for (size_t k = 0; k + 1 < start.size(); ++k)
-            for (int m = start[k]; m < start[k + 1]; ++m) setOf[m] = static_cast<int>(k);
-        backend_.upload(members_, members.data(), members.size());
-        backend_.upload(start_, start.data(), start.size());
-        backend_.upload(setOf_, setOf.data(), setOf.size());
-        backend_.upload(params_, params.data(), params.size());
+          memberCount_(static_cast<int64_t>(members.size())), start_host_(start),
+          sets_(backend, members, start, params) {
         backend_.resize(centres_, params.size() * Potential::arity);
         backend_.resize(rows_, params.size());
     }
@@ -269,10 +282,10 @@ public:
         if constexpr (!is_set_torque<Potential>::value) {
             if (rowCount_ == 0) return;
             backend_.for_each(rowCount_, centres_kernel(particles));
-            backend_.for_each(memberCount_, SetHessianKernel<Potential, R>{
-                                                particles.vel.data(), particles.box, members_.data(), setOf_.data(),
-                                                setOfParticle_.data(), centres_.data(), dualParams_.data(), seed,
-                                                blocks});
+            backend_.for_each(memberCount_,
+                              SetHessianKernel<Potential, R>{particles.vel.data(), particles.box, sets_.members.data(),
+                                                             sets_.setOf.data(), setOfParticle_.data(), centres_.data(),
+                                                             dualParams_.data(), seed, blocks});
         }
     }
 
@@ -285,15 +298,15 @@ public:
             backend_.for_each(memberCount_,
                               SetMembersKernel<Potential, R, decltype(force)::value, decltype(energy)::value,
                                                decltype(virial)::value>{
-                                  particles.pos.data(), particles.vel.data(), particles.box, members_.data(),
-                                  start_.data(), setOf_.data(), centres_.data(), rows_.data(), own});
+                                  particles.pos.data(), particles.vel.data(), particles.box, sets_.members.data(),
+                                  sets_.start.data(), sets_.setOf.data(), centres_.data(), rows_.data(), own});
         });
     }
 
 private:
     SetCentresKernel<Potential, R> centres_kernel(Particles<B, R>& particles) {
-        return {particles.pos.data(), particles.vel.data(), particles.box, members_.data(), start_.data(),
-                params_.data(), centres_.data(), rows_.data()};
+        return {particles.pos.data(), particles.vel.data(), particles.box, sets_.members.data(), sets_.start.data(),
+                sets_.params.data(), centres_.data(), rows_.data()};
     }
 
     const B& backend_;
@@ -302,8 +315,7 @@ private:
     typename B::template Buffer<int> setOfParticle_;
     typename B::template Buffer<typename Potential::template Params<Dual<R>>> dualParams_;
     bool hessian_ = false;
-    typename B::template Buffer<int> members_, start_, setOf_;
-    typename B::template Buffer<Params> params_;
+    SetBuffers<B, Params> sets_;
     typename B::template Buffer<SetCentre<R>> centres_;
     typename B::template Buffer<SetRow<R>> rows_;
 };

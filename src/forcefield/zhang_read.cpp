@@ -16,10 +16,7 @@ namespace {
 
 ForceFieldComponent configure(const ForceFieldComponent& c, const input::ComponentEntry& entry,
                               const input::SystemDescription& system) {
-    if (system.orientations.empty())
-        throw input_error(entry.node.path() + ".type", c.key.text() +
-                                                           " orients each particle by its direction: the state needs "
-                                                           "a \"direction\" column");
+    require_orientations(c, entry, system, "orients each particle by its direction");
     auto config = std::make_shared<ZhangConfig>();
     const input::TrackedNode params = input::parameters_of(entry.node);
     if (params.valid())

@@ -19,9 +19,8 @@
 #include "core/error.hpp"
 #include "hydrodynamics/lanczos_sqrt.hpp"
 #include "hydrodynamics/slab_mesh.hpp"
+#include "integrators/bdhi_grid.hpp"
 #include "integrators/bdhi_kernels.hpp"
-#include "integrators/brownian.hpp"
-#include "integrators/integrator.hpp"
 #include "integrators/thermal_noise.hpp"
 
 namespace structmd {
@@ -118,24 +117,17 @@ struct AddFiniteDifference {
 };
 
 template <class B, class R>
-class BdhiDPStokes : public Integrator<B, R> {
+class BdhiDPStokes : public GridBdhi<B, R> {
 public:
     // More iterations than this mean a tolerance below what the precision can give.
     static constexpr int kMaxIterations = 100;
 
     BdhiDPStokes(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
-        : Integrator<B, R>(scope), backend_(backend), plan_(BdhiDPStokesInputs::slab_plan(v)),
+        : GridBdhi<B, R>(backend, scope), plan_(BdhiDPStokesInputs::slab_plan(v)),
           viscosity_(v["viscosity"]), radius_(v["hydrodynamicRadius"]),
           // Below 100 eps the iteration cannot see its own convergence.
           lanczos_(backend, std::max(v["tolerance"], 100.0 * std::numeric_limits<R>::epsilon()), kMaxIterations,
                    "the mobility of " + scope.name) {}
-
-    bool overdamped() const override { return true; }
-
-    void begin(Particles<B, R>& p, ForceSource&) override {
-        backend_.for_each(p.count, StopParticles<R>{p.vel.data(), this->scope().group});
-        prepare(p);
-    }
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
@@ -177,7 +169,7 @@ private:
 
     // The mesh, made once for the box it starts with: Lx and Ly must be the box's x and y, which
     // may not change afterwards.
-    void prepare(const Particles<B, R>& p) {
+    void prepare(const Particles<B, R>& p) override {
         const IntegratorScope& s = this->scope();
         const double box[3] = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
         for (int d = 0; d < 2; ++d)
@@ -196,7 +188,7 @@ private:
         backend_.resize(shifted_, s.kT > 0.0 ? static_cast<size_t>(p.count) : 0);
     }
 
-    const B& backend_;
+    using GridBdhi<B, R>::backend_;
     SlabPlan plan_;
     double viscosity_, radius_;
     LanczosSqrt<B, R> lanczos_;

@@ -9,35 +9,18 @@
 
 #include "core/error.hpp"
 #include "hydrodynamics/fcm_mesh.hpp"
-#include "integrators/bdhi_kernels.hpp"
-#include "integrators/brownian.hpp"
+#include "integrators/bdhi_grid.hpp"
 
 namespace structmd {
 
-struct BdhiForceCouplingInputs : IntegratorInputs {
-    static constexpr bool oneFluid = true;
-    static std::vector<Parameter> parameters() {
-        return {number("viscosity", "mass/(length time)", Must::be_positive),
-                number("hydrodynamicRadius", "length", Must::be_positive),
-                with_default(number("tolerance", "1", Must::be_positive), 1e-3)};
-    }
-    static constexpr bool overdamped = true;
-    static void validate(const ParameterValues& v, const std::string& path) { validate_grid_tolerance(v, path); }
-};
+using BdhiForceCouplingInputs = GridBdhiInputs;
 
 template <class B, class R>
-class BdhiForceCoupling : public Integrator<B, R> {
+class BdhiForceCoupling : public GridBdhi<B, R> {
 public:
     BdhiForceCoupling(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
-        : Integrator<B, R>(scope), backend_(backend), viscosity_(v["viscosity"]),
-          radius_(v["hydrodynamicRadius"]), tolerance_(v["tolerance"]) {}
-
-    bool overdamped() const override { return true; }
-
-    void begin(Particles<B, R>& p, ForceSource&) override {
-        backend_.for_each(p.count, StopParticles<R>{p.vel.data(), this->scope().group});
-        prepare(p);
-    }
+        : GridBdhi<B, R>(backend, scope), viscosity_(v["viscosity"]), radius_(v["hydrodynamicRadius"]),
+          tolerance_(v["tolerance"]) {}
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
@@ -45,15 +28,12 @@ public:
         forces.update_forces();
         mesh_->displace(p, s.group, s.timeStep, s.kT, FcmGreen<R>{R(1.0 / viscosity_)},
                         static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48, displacement_.data());
-        backend_.for_each(p.count, BdhiMove<R>{p.pos.data(), p.image.data(), p.force.data(), nullptr, nullptr,
-                                               displacement_.data(), s.group, p.box, R(0), R(0), p.fault_slot(1),
-                                               p.drift});
-        forces.positions_moved(s.timeStep, true);
+        this->move_by(p, forces, displacement_.data());
     }
 
 private:
     // The mesh for the present box, made once: a box that changes afterwards is refused.
-    void prepare(const Particles<B, R>& p) {
+    void prepare(const Particles<B, R>& p) override {
         const double box[3] = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
         if (mesh_) {
             for (int d = 0; d < 3; ++d)
@@ -67,7 +47,7 @@ private:
         backend_.resize(displacement_, static_cast<size_t>(3 * p.count));
     }
 
-    const B& backend_;
+    using GridBdhi<B, R>::backend_;
     double viscosity_, radius_, tolerance_;
     std::unique_ptr<FcmMesh<B, R, FcmGreen<R>>> mesh_;
     typename B::template Buffer<R> displacement_;

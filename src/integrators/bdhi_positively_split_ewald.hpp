@@ -17,8 +17,8 @@
 #include "hydrodynamics/lanczos_sqrt.hpp"
 #include "hydrodynamics/pse_far_field.hpp"
 #include "hydrodynamics/pse_near_field.hpp"
+#include "integrators/bdhi_grid.hpp"
 #include "integrators/bdhi_kernels.hpp"
-#include "integrators/brownian.hpp"
 #include "neighbour/verlet_list.hpp"
 
 namespace structmd {
@@ -78,7 +78,7 @@ struct GroupRadii {
 };
 
 template <class B, class R>
-class BdhiPositivelySplitEwald : public Integrator<B, R> {
+class BdhiPositivelySplitEwald : public GridBdhi<B, R> {
 public:
     // More iterations than this mean a tolerance below what the precision can give.
     static constexpr int kMaxLanczosIterations = 100;
@@ -87,15 +87,12 @@ public:
     static constexpr double kListSkinFactor = 1.1;
 
     BdhiPositivelySplitEwald(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
-        : Integrator<B, R>(scope), backend_(backend), viscosity_(v["viscosity"]), radius_(v["hydrodynamicRadius"]),
+        : GridBdhi<B, R>(backend, scope), viscosity_(v["viscosity"]), radius_(v["hydrodynamicRadius"]),
           tolerance_(v["tolerance"]), xi_(v["psi"]),
           lanczos_(backend, v["tolerance"], kMaxLanczosIterations, "the near-field mobility of " + scope.name) {}
 
-    bool overdamped() const override { return true; }
-
-    void begin(Particles<B, R>& p, ForceSource&) override {
-        backend_.for_each(p.count, StopParticles<R>{p.vel.data(), this->scope().group});
-        prepare(p);
+    void begin(Particles<B, R>& p, ForceSource& forces) override {
+        GridBdhi<B, R>::begin(p, forces);
         list_->adapt();
     }
 
@@ -129,7 +126,7 @@ private:
 
     // The mesh, the near-field tensor and the list for the present box, made once: a box that
     // changes afterwards is refused.
-    void prepare(const Particles<B, R>& p) {
+    void prepare(const Particles<B, R>& p) override {
         const std::string& path = this->scope().path;
         const double box[3] = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
         if (mesh_) {
@@ -176,7 +173,7 @@ private:
         return mean;
     }
 
-    const B& backend_;
+    using GridBdhi<B, R>::backend_;
     double viscosity_, radius_, tolerance_, xi_;
     LanczosSqrt<B, R> lanczos_;
     PseNearTensor<R> near_{};

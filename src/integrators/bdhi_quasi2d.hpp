@@ -10,39 +10,22 @@
 
 #include "core/error.hpp"
 #include "hydrodynamics/planar_mesh.hpp"
-#include "integrators/bdhi_kernels.hpp"
-#include "integrators/brownian.hpp"
-#include "integrators/integrator.hpp"
+#include "integrators/bdhi_grid.hpp"
 #include "integrators/thermal_noise.hpp"
 
 namespace structmd {
 
-struct BdhiQuasi2DInputs : IntegratorInputs {
-    static constexpr bool oneFluid = true;
-    static std::vector<Parameter> parameters() {
-        return {number("viscosity", "mass/(length time)", Must::be_positive),
-                number("hydrodynamicRadius", "length", Must::be_positive),
-                with_default(number("tolerance", "1", Must::be_positive), 1e-3)};
-    }
+struct BdhiQuasi2DInputs : GridBdhiInputs {
     // Which fluid the plane is in (the order of PlanarHydrodynamics).
     static std::vector<TextOption> text_options() { return {{"hydrodynamicKernel", "Quasi2D", {"Quasi2D", "True2D"}, {}, ""}}; }
-    static constexpr bool overdamped = true;
-    static void validate(const ParameterValues& v, const std::string& path) { validate_grid_tolerance(v, path); }
 };
 
 template <class B, class R>
-class BdhiQuasi2D : public Integrator<B, R> {
+class BdhiQuasi2D : public GridBdhi<B, R> {
 public:
     BdhiQuasi2D(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
-        : Integrator<B, R>(scope), backend_(backend), viscosity_(v["viscosity"]), radius_(v["hydrodynamicRadius"]),
+        : GridBdhi<B, R>(backend, scope), viscosity_(v["viscosity"]), radius_(v["hydrodynamicRadius"]),
           tolerance_(v["tolerance"]), kind_(static_cast<PlanarHydrodynamics>(static_cast<int>(v["hydrodynamicKernel"]))) {}
-
-    bool overdamped() const override { return true; }
-
-    void begin(Particles<B, R>& p, ForceSource&) override {
-        backend_.for_each(p.count, StopParticles<R>{p.vel.data(), this->scope().group});
-        prepare(p);
-    }
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
@@ -50,15 +33,12 @@ public:
         forces.update_forces();
         mesh_->displace(p, s.group, s.timeStep, viscosity_, s.kT, static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48,
                         displacement_.data());
-        backend_.for_each(p.count, BdhiMove<R>{p.pos.data(), p.image.data(), p.force.data(), nullptr, nullptr,
-                                               displacement_.data(), s.group, p.box, R(0), R(0), p.fault_slot(1),
-                                               p.drift});
-        forces.positions_moved(s.timeStep, true);
+        this->move_by(p, forces, displacement_.data());
     }
 
 private:
     // The mesh for the present box, made once: a box whose x or y changes afterwards is refused.
-    void prepare(const Particles<B, R>& p) {
+    void prepare(const Particles<B, R>& p) override {
         const double box[2] = {double(p.box.length.x), double(p.box.length.y)};
         if (mesh_) {
             for (int d = 0; d < 2; ++d)
@@ -73,7 +53,7 @@ private:
         backend_.resize(displacement_, static_cast<size_t>(3 * p.count));
     }
 
-    const B& backend_;
+    using GridBdhi<B, R>::backend_;
     double viscosity_, radius_, tolerance_;
     PlanarHydrodynamics kind_;
     std::unique_ptr<PlanarMesh<B, R>> mesh_;

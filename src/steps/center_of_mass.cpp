@@ -6,18 +6,15 @@ namespace structmd {
 
 CenterOfMassMeasure::CenterOfMassMeasure(Quantity quantity, std::string name, int64_t interval, int64_t start,
                                          int64_t end, std::string outputPath, std::vector<uint8_t> members)
-    : SimulationStep(name, interval, start, end),
-      quantity_(quantity),
-      file_("simulationStep." + name, std::move(outputPath),
-            quantity == Quantity::position ? "#step time X Y Z" : "#step time Rmean"),
-      members_(std::move(members)) {}
+    : GroupMeasureStep(std::move(name), interval, start, end, std::move(outputPath),
+                       quantity == Quantity::position ? "#step time X Y Z" : "#step time Rmean", std::move(members)),
+      quantity_(quantity) {}
 
 void CenterOfMassMeasure::run(Simulation& sim) {
     const int64_t n = sim.particle_count();
     std::vector<double> xyz(3 * n), mass(n);
     sim.get_unwrapped_positions(xyz.data());
     sim.get_masses(mass.data());
-    auto measured = [&](int64_t i) { return members_.empty() || members_[i]; };
     std::array<double, 3> centre{0.0, 0.0, 0.0};
     double total = 0.0;
     int64_t count = 0;
@@ -39,21 +36,18 @@ void CenterOfMassMeasure::run(Simulation& sim) {
     if (norm > 0.0)
         for (double& c : centre) c /= norm;
 
-    std::FILE* out = file_.stream();
-    std::fprintf(out, "%lld %.17g", static_cast<long long>(sim.current_step()), sim.current_time());
     if (quantity_ == Quantity::position) {
-        std::fprintf(out, " %.17g %.17g %.17g\n", centre[0], centre[1], centre[2]);
-    } else {
-        double sum = 0.0;
-        for (int64_t i = 0; i < n; ++i)
-            if (measured(i)) {
-                double d2 = 0.0;
-                for (int d = 0; d < 3; ++d) d2 += (xyz[3 * i + d] - centre[d]) * (xyz[3 * i + d] - centre[d]);
-                sum += std::sqrt(d2);
-            }
-        std::fprintf(out, " %.17g\n", count > 0 ? sum / static_cast<double>(count) : 0.0);
+        write_line(sim, {centre[0], centre[1], centre[2]});
+        return;
     }
-    file_.flush();
+    double sum = 0.0;
+    for (int64_t i = 0; i < n; ++i)
+        if (measured(i)) {
+            double d2 = 0.0;
+            for (int d = 0; d < 3; ++d) d2 += (xyz[3 * i + d] - centre[d]) * (xyz[3 * i + d] - centre[d]);
+            sum += std::sqrt(d2);
+        }
+    write_line(sim, {count > 0 ? sum / static_cast<double>(count) : 0.0});
 }
 
 namespace {

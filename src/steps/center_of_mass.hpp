@@ -9,13 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "steps/measure_file.hpp"
-#include "steps/simulation_step.hpp"
+#include "steps/group_measure_step.hpp"
 #include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
-class CenterOfMassMeasure : public SimulationStep {
+class CenterOfMassMeasure : public GroupMeasureStep {
 public:
     enum class Quantity { position, meanRadius };
     // members: by particle id, 1 for the particles measured; empty for every particle.
@@ -27,8 +26,6 @@ protected:
 
 private:
     Quantity quantity_;
-    MeasureFile file_;
-    std::vector<uint8_t> members_;
 };
 
 SimulationStepEntry center_of_mass_position_entry();

@@ -6,16 +6,13 @@ namespace structmd {
 
 GyrationRadius::GyrationRadius(std::string name, int64_t interval, int64_t start, int64_t end, std::string outputPath,
                                std::vector<uint8_t> members)
-    : SimulationStep(name, interval, start, end),
-      file_("simulationStep." + name, std::move(outputPath), "#step time Rg"),
-      members_(std::move(members)) {}
+    : GroupMeasureStep(std::move(name), interval, start, end, std::move(outputPath), "#step time Rg",
+                       std::move(members)) {}
 
 void GyrationRadius::run(Simulation& sim) {
     const int64_t n = sim.particle_count();
     std::vector<double> xyz(3 * n);
     sim.get_unwrapped_positions(xyz.data());
-    std::FILE* out = file_.stream();
-    auto measured = [&](int64_t i) { return members_.empty() || members_[i]; };
     // Two passes (mean, then spread about it) rather than <r^2> - <r>^2, which cancels badly once
     // the particles have drifted far from the origin.
     double mean[3] = {0.0, 0.0, 0.0};
@@ -37,8 +34,7 @@ void GyrationRadius::run(Simulation& sim) {
                 }
         rg = std::sqrt(spread / static_cast<double>(count));
     }
-    std::fprintf(out, "%lld %.17g %.17g\n", static_cast<long long>(sim.current_step()), sim.current_time(), rg);
-    file_.flush();
+    write_line(sim, {rg});
 }
 
 namespace {

@@ -9,10 +9,9 @@ namespace structmd {
 
 MagnetizationMeasure::MagnetizationMeasure(bool mean, std::string name, int64_t interval, int64_t start, int64_t end,
                                            std::string outputPath, std::vector<uint8_t> members)
-    : SimulationStep(name, interval, start, end),
-      mean_(mean),
-      file_("simulationStep." + name, std::move(outputPath), "#step time Mx My Mz"),
-      members_(std::move(members)) {}
+    : GroupMeasureStep(std::move(name), interval, start, end, std::move(outputPath), "#step time Mx My Mz",
+                       std::move(members)),
+      mean_(mean) {}
 
 void MagnetizationMeasure::run(Simulation& sim) {
     const int64_t n = sim.particle_count();
@@ -21,7 +20,7 @@ void MagnetizationMeasure::run(Simulation& sim) {
     std::array<double, 3> total{0.0, 0.0, 0.0};
     double magnitudes = 0.0;
     for (int64_t i = 0; i < n; ++i) {
-        if (!members_.empty() && !members_[i]) continue;
+        if (!measured(i)) continue;
         const double* mu = moments.data() + 3 * i;
         for (int d = 0; d < 3; ++d) total[d] += mu[d];
         magnitudes += std::sqrt(mu[0] * mu[0] + mu[1] * mu[1] + mu[2] * mu[2]);
@@ -29,9 +28,7 @@ void MagnetizationMeasure::run(Simulation& sim) {
     // Moments all of magnitude 0 have no mean direction: the mean reads 0.
     if (mean_)
         for (double& m : total) m = magnitudes > 0.0 ? m / magnitudes : 0.0;
-    std::fprintf(file_.stream(), "%lld %.17g %.17g %.17g %.17g\n", static_cast<long long>(sim.current_step()),
-                 sim.current_time(), total[0], total[1], total[2]);
-    file_.flush();
+    write_line(sim, {total[0], total[1], total[2]});
 }
 
 namespace {

@@ -7,13 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "steps/measure_file.hpp"
-#include "steps/simulation_step.hpp"
+#include "steps/group_measure_step.hpp"
 #include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
-class MagnetizationMeasure : public SimulationStep {
+class MagnetizationMeasure : public GroupMeasureStep {
 public:
     // members: by particle id, 1 for the particles measured; empty for every particle.
     MagnetizationMeasure(bool mean, std::string name, int64_t interval, int64_t start, int64_t end,
@@ -24,8 +23,6 @@ protected:
 
 private:
     bool mean_;
-    MeasureFile file_;
-    std::vector<uint8_t> members_;
 };
 
 SimulationStepEntry total_magnetization_entry();

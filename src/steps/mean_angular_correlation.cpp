@@ -6,9 +6,8 @@ namespace structmd {
 
 MeanAngularCorrelation::MeanAngularCorrelation(std::string name, int64_t interval, int64_t start, int64_t end,
                                                std::string outputPath, std::vector<uint8_t> members)
-    : SimulationStep(name, interval, start, end),
-      file_("simulationStep." + name, std::move(outputPath), "#step time MAC"),
-      members_(std::move(members)) {}
+    : GroupMeasureStep(std::move(name), interval, start, end, std::move(outputPath), "#step time MAC",
+                       std::move(members)) {}
 
 void MeanAngularCorrelation::run(Simulation& sim) {
     const int64_t n = sim.particle_count();
@@ -25,15 +24,13 @@ void MeanAngularCorrelation::run(Simulation& sim) {
     double sum = 0.0;
     int64_t count = 0;
     for (int64_t i = 0; i < n; ++i) {
-        if (!members_.empty() && !members_[i]) continue;
+        if (!measured(i)) continue;
         ++count;
         double cosine = 0.0;
         for (int d = 0; d < 3; ++d) cosine += axes[3 * i + d] * referenceAxes_[3 * i + d];
         sum += cosine;
     }
-    std::fprintf(file_.stream(), "%lld %.17g %.17g\n", static_cast<long long>(sim.current_step()), sim.current_time(),
-                 count > 0 ? sum / static_cast<double>(count) : 0.0);
-    file_.flush();
+    write_line(sim, {count > 0 ? sum / static_cast<double>(count) : 0.0});
 }
 
 namespace {

@@ -6,13 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "steps/measure_file.hpp"
-#include "steps/simulation_step.hpp"
+#include "steps/group_measure_step.hpp"
 #include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
-class MeanAngularCorrelation : public SimulationStep {
+class MeanAngularCorrelation : public GroupMeasureStep {
 public:
     // members: by particle id, 1 for the particles measured; empty for every particle.
     MeanAngularCorrelation(std::string name, int64_t interval, int64_t start, int64_t end, std::string outputPath,
@@ -22,8 +21,6 @@ protected:
     void run(Simulation& sim) override;
 
 private:
-    MeasureFile file_;
-    std::vector<uint8_t> members_;
     std::vector<double> referenceAxes_;  // 3n: each particle's body z axis at the first firing
 };
 

@@ -81,10 +81,9 @@ std::vector<double> neighbour_volumes(const std::vector<double>& xyz, const std:
 
 StressMeasure::StressMeasure(std::string name, int64_t interval, int64_t start, int64_t end, std::string outputPath,
                              double radiusCutOff, std::vector<uint8_t> members)
-    : SimulationStep(name, interval, start, end),
-      file_("simulationStep." + name, std::move(outputPath), "#id volume sxx sxy sxz syx syy syz szx szy szz"),
-      radiusCutOff_(radiusCutOff),
-      members_(std::move(members)) {}
+    : GroupMeasureStep(std::move(name), interval, start, end, std::move(outputPath),
+                       "#id volume sxx sxy sxz syx syy syz szx szy szz", std::move(members)),
+      radiusCutOff_(radiusCutOff) {}
 
 void StressMeasure::run(Simulation& sim) {
     const std::array<double, 3> box = sim.box();
@@ -103,10 +102,10 @@ void StressMeasure::run(Simulation& sim) {
     sim.get_pair_virials(virials.data());
     const std::vector<double> volumes = neighbour_volumes(xyz, box, radiusCutOff_);
 
-    std::FILE* out = file_.stream();
+    std::FILE* out = file().stream();
     std::fprintf(out, "#step %lld\n", static_cast<long long>(sim.current_step()));
     for (int64_t i = 0; i < n; ++i) {
-        if (!members_.empty() && !members_[i]) continue;
+        if (!measured(i)) continue;
         std::fprintf(out, "%lld %.10g", static_cast<long long>(i), volumes[i]);
         for (int k = 0; k < 9; ++k) {
             const double s = virials[9 * i + k];
@@ -117,7 +116,7 @@ void StressMeasure::run(Simulation& sim) {
         }
         std::fputc('\n', out);
     }
-    file_.flush();
+    file().flush();
 }
 
 namespace {

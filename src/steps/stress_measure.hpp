@@ -18,13 +18,12 @@
 #include <string>
 #include <vector>
 
-#include "steps/measure_file.hpp"
-#include "steps/simulation_step.hpp"
+#include "steps/group_measure_step.hpp"
 #include "steps/simulation_step_registry.hpp"
 
 namespace structmd {
 
-class StressMeasure : public SimulationStep {
+class StressMeasure : public GroupMeasureStep {
 public:
     // members: by particle id, 1 for the particles written; empty for every particle.
     StressMeasure(std::string name, int64_t interval, int64_t start, int64_t end, std::string outputPath,
@@ -34,9 +33,7 @@ protected:
     void run(Simulation& sim) override;
 
 private:
-    MeasureFile file_;
     double radiusCutOff_;
-    std::vector<uint8_t> members_;
 };
 
 // V_i as above for positions xyz (3n, inside the box [-L/2, L/2)); radiusCutOff must be shorter than
