@@ -20,7 +20,7 @@ struct ForceOutputs {
 
 // Outputs that take each particle's energy alone (a dU/dlambda, an energy probe).
 template <class R>
-ForceOutputs<R> energy_outputs(R* perParticle) {
+SMD_HD SMD_INLINE ForceOutputs<R> energy_outputs(R* perParticle) {
     ForceOutputs<R> out;
     out.energy = perParticle;
     return out;
