@@ -1,10 +1,9 @@
 // Version queries, handle creation and destruction, errors and loading.
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "api/handle.hpp"
+#include "core/regular_file.hpp"
 #include "engines/devices.hpp"
 #include "engines/make_engine.hpp"
 #include "parallel/load_over_ranks.hpp"
@@ -80,14 +79,12 @@ const char* structmd_last_error(const structmd_sim* sim) {
 structmd_status structmd_load_file(structmd_sim* sim, const char* path) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_pointer(path, "path");
-        std::ifstream file(path, std::ios::binary);
-        if (!file) {
+        const FileContents file = read_regular_file(path);
+        if (!file.problem.empty()) {
             s.simulation.reset();
-            throw Error(STRUCTMD_ERR_IO, std::string("cannot open '") + path + "': " + std::strerror(errno));
+            throw Error(STRUCTMD_ERR_IO, std::string("'") + path + "': " + file.problem);
         }
-        std::ostringstream text;
-        text << file.rdbuf();
-        load_text(s, text.str());
+        load_text(s, file.bytes);
     });
 }
 

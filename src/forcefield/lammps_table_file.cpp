@@ -2,10 +2,10 @@
 
 #include <cerrno>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/regular_file.hpp"
 
 namespace structmd {
 
@@ -18,8 +18,9 @@ struct Line {
 };
 
 std::vector<Line> read_lines(const std::string& file, const std::string& path) {
-    std::ifstream in(file);
-    if (!in) throw input_error(path, "cannot open table file '" + file + "'");
+    const FileContents contents = read_regular_file(file);
+    if (!contents.problem.empty()) throw input_error(path, "table file '" + file + "': " + contents.problem);
+    std::istringstream in(contents.bytes);
     std::vector<Line> lines;
     std::string text;
     for (int number = 1; std::getline(in, text); ++number) {

@@ -2,10 +2,10 @@
 
 #include <cerrno>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 
 #include <unistd.h>
+
+#include "core/regular_file.hpp"
 
 namespace structmd {
 
@@ -54,9 +54,9 @@ void write_checkpoint_file(const std::string& path, const std::vector<unsigned c
 }
 
 std::vector<unsigned char> read_checkpoint_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw io_error(path, std::string("cannot open: ") + std::strerror(errno));
-    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const FileContents file = read_regular_file(path);
+    if (!file.problem.empty()) throw io_error(path, file.problem);
+    const std::vector<unsigned char> bytes(file.bytes.begin(), file.bytes.end());
     const size_t header = sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t);
     if (bytes.size() < header || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
         throw io_error(path, "not a structmd checkpoint");

@@ -186,6 +186,26 @@ TEST(BadInputs, AWrongTypeAnywhereFailsNamingItsPath) {
     }
 }
 
+// A directory cannot be read and a device may never end (/dev/zero would be read until memory ran
+// out): the input and a checkpoint are refused as IO, naming the file, before a byte is read (issue
+// 37, defects 3 and 9).
+TEST(BadInputs, ADirectoryOrADeviceIsRefusedUnread) {
+    const std::string good = base_input_text();
+    const std::string directory = ::testing::TempDir();
+    Handle sim(kHandleOptions);
+    for (const auto& [path, why] : {std::pair<std::string, std::string>{directory, "a directory, not a file"},
+                                    {"/dev/zero", "not a regular file"}}) {
+        EXPECT_EQ(structmd_load_file(sim.get(), path.c_str()), STRUCTMD_ERR_IO) << path;
+        const std::string message = structmd_last_error(sim.get());
+        EXPECT_NE(message.find(path), std::string::npos) << message;
+        EXPECT_NE(message.find(why), std::string::npos) << message;
+        expect_usable_after_failure(sim.get(), good);
+        EXPECT_EQ(structmd_load_checkpoint(sim.get(), path.c_str()), STRUCTMD_ERR_IO) << path;
+        EXPECT_NE(std::string(structmd_last_error(sim.get())).find(why), std::string::npos)
+            << structmd_last_error(sim.get());
+    }
+}
+
 TEST(BadInputs, MissingNullAndUnreadableSourcesAreNamed) {
     const std::string good = base_input_text();
     Handle sim(kHandleOptions);

@@ -60,6 +60,18 @@ TEST(TabulatedErrors, MissingFile) {
     expect_input_error(entry, {kRow + "[2]", "cannot open"});
 }
 
+// A device never ends (/dev/urandom) or never holds a table (/dev/zero); a directory cannot be read:
+// each is refused before a byte is read (issue 37, defect 3).
+TEST(TabulatedErrors, NotARegularFile) {
+    Json entry = pair_from_file("");
+    for (const char* device : {"/dev/urandom", "/dev/zero"}) {
+        entry["data"][0][2] = device;
+        expect_input_error(entry, {kRow + "[2]", device, "not a regular file"});
+    }
+    entry["data"][0][2] = STRUCTMD_TEST_TMP_DIR;
+    expect_input_error(entry, {kRow + "[2]", "a directory, not a file"});
+}
+
 TEST(TabulatedErrors, MalformedLine) {
     expect_input_error(pair_from_file("T\nN 3\n\n1 1.0 2.0 3.0\n2 1.5 abc 2.0\n3 2.0 0.5 1.0\n"),
                        {kRow + "[2]", "bad.table:5", "not a number"});
