@@ -1,5 +1,6 @@
 #include "engines/engine_options.hpp"
 
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
@@ -21,8 +22,17 @@ Error option_error(const std::string& key, const std::string& what) {
     return Error(STRUCTMD_ERR_ARGUMENT, "option \"" + key + "\": " + what);
 }
 
+// The value as a message shows it: a number, string, boolean or null as written; an array or an
+// object by its kind alone, since writing out one nested by the caller a hundred thousand deep would
+// recurse that deep.
+std::string shown(const nlohmann::json& value) {
+    if (value.is_array()) return "an array";
+    if (value.is_object()) return "an object";
+    return value.dump();
+}
+
 std::string string_option(const nlohmann::json& value, const std::string& key) {
-    if (!value.is_string()) throw option_error(key, "expected a string, got " + value.dump());
+    if (!value.is_string()) throw option_error(key, "expected a string, got " + shown(value));
     return value.get<std::string>();
 }
 
@@ -32,9 +42,14 @@ std::string compiled_precision_names() {
     return names;
 }
 
+// An int: a value beyond the int's range is refused, not wrapped (4294967297 threads was 1).
 int int_option(const nlohmann::json& value, const std::string& key, int minimum) {
-    if (!value.is_number_integer() || value.get<long long>() < minimum)
-        throw option_error(key, "expected an integer >= " + std::to_string(minimum) + ", got " + value.dump());
+    const int largest = std::numeric_limits<int>::max();
+    const bool fits = value.is_number_unsigned() ? value.get<unsigned long long>() <= static_cast<unsigned long long>(largest)
+                                                 : value.is_number_integer() && value.get<long long>() <= largest;
+    if (!fits || value.get<long long>() < minimum)
+        throw option_error(key, "expected an integer from " + std::to_string(minimum) + " to " +
+                                    std::to_string(largest) + ", got " + shown(value));
     return value.get<int>();
 }
 
@@ -81,12 +96,12 @@ EngineOptions parse_engine_options(const char* text) {
             } else if (key == "log_file") {
                 options.logFile = string_option(value, key);
             } else if (key == "plugins") {
-                if (!value.is_array()) throw option_error(key, "expected an array of paths, got " + value.dump());
+                if (!value.is_array()) throw option_error(key, "expected an array of paths, got " + shown(value));
                 for (const auto& path : value) options.plugins.push_back(string_option(path, key));
             } else if (key == "mpi_comm") {
                 if (!value.is_number_integer())
                     throw option_error(key, "expected an integer (a Fortran communicator handle, MPI_Comm_c2f), got " +
-                                                value.dump());
+                                                shown(value));
                 options.mpiComm = value.get<int64_t>();
             } else if (key == "ghost_exchange") {
                 const std::string how = string_option(value, key);

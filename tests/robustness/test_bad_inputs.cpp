@@ -2,6 +2,7 @@
 // status and a message that starts with where the culprit is, never crash, and leave the handle that
 // failed able to load a good input and step it. The cases live in bad_inputs/cases.json; a second
 // test puts a value of the wrong type in place of every value of bad_inputs/base.json.
+#include <pthread.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -204,6 +205,49 @@ TEST(BadInputs, ADirectoryOrADeviceIsRefusedUnread) {
         EXPECT_NE(std::string(structmd_last_error(sim.get())).find(why), std::string::npos)
             << structmd_last_error(sim.get());
     }
+}
+
+// Handle options out of an int's range are refused, not wrapped (4294967297 threads ran with 1),
+// and a value nested deep is named by its kind, not written out level by level: on a thread with a
+// 256 KiB stack too (issue 37, defects 2 and 9).
+std::string create_status(const std::string& options, structmd_status& status) {
+    structmd_sim* sim = nullptr;
+    status = structmd_create(options.c_str(), &sim);
+    structmd_destroy(sim);
+    return structmd_last_error(nullptr);
+}
+
+TEST(BadInputs, OptionsOutOfRangeOrNestedDeepAreArgumentErrors) {
+    structmd_status status = STRUCTMD_OK;
+    for (const char* threads : {"4294967297", "3000000000", "18446744073709551615", "-1", "0", "2.5"}) {
+        const std::string message = create_status(std::string(R"({"backend": "cpu", "threads": )") + threads + "}", status);
+        EXPECT_EQ(status, STRUCTMD_ERR_ARGUMENT) << threads;
+        EXPECT_NE(message.find("option \"threads\": expected an integer from 1 to 2147483647"), std::string::npos)
+            << message;
+    }
+    struct Nested {
+        std::string options;
+        structmd_status status = STRUCTMD_OK;
+        std::string message;
+    };
+    Nested nested;
+    nested.options = R"({"backend": "cpu", "threads": )" + nested_arrays(100000) + "}";
+    pthread_attr_t attributes;
+    pthread_attr_init(&attributes);
+    pthread_attr_setstacksize(&attributes, 256 * 1024);
+    pthread_t thread;
+    ASSERT_EQ(pthread_create(&thread, &attributes,
+                             [](void* argument) -> void* {
+                                 auto* n = static_cast<Nested*>(argument);
+                                 n->message = create_status(n->options, n->status);
+                                 return nullptr;
+                             },
+                             &nested),
+              0);
+    pthread_join(thread, nullptr);
+    pthread_attr_destroy(&attributes);
+    EXPECT_EQ(nested.status, STRUCTMD_ERR_ARGUMENT);
+    EXPECT_NE(nested.message.find("got an array"), std::string::npos) << nested.message.substr(0, 200);
 }
 
 TEST(BadInputs, MissingNullAndUnreadableSourcesAreNamed) {
