@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev libdlpack-dev libeigen3-dev googletest
           lammps python3 python3-pip ccache
           doxygen  # the API reference rendered from include/structmd.h: test api_reference
+          locales  # localedef and de_DE's definition: robustness.locale makes a decimal-comma locale
           libopenmpi-dev openmpi-bin  # MPI (optional to the build): batches over ranks, tests/mpi
           clang libclang-rt-dev libomp-dev)  # clang, libFuzzer and clang's OpenMP: scripts/fuzz.sh
 missing=()

@@ -34,6 +34,7 @@ void call_host(structmd_sim& sim, const char* which, int64_t step, Call&& call) 
     int32_t status = 0;
     {
         CallbackScope scope(sim);
+        const HostLocaleScope hostLocale;
         try {
             status = call();
         } catch (const std::exception& e) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "api/call_locale.hpp"
 #include "core/error.hpp"
 #include "core/logger.hpp"
 #include "engines/engine_options.hpp"
@@ -60,6 +61,7 @@ std::shared_ptr<const ForceFieldComponents> handle_components(const std::vector<
 
 template <class Body>
 structmd_status guarded(std::string& message, Body&& body) noexcept {
+    const ClassicLocaleScope locale;
     try {
         body();
         return STRUCTMD_OK;
