@@ -1,8 +1,30 @@
 // Reading the state: per-particle arrays in id order, energies, virial, box, step and time.
+#include <cmath>
+#include <string>
+#include <vector>
+
 #include "api/handle.hpp"
 
 using namespace structmd;
 using namespace structmd::api;
+
+namespace {
+
+// A getter hands over finite numbers only: a NaN or inf (two particles on top of each other, a term
+// evaluated outside its domain) is STRUCTMD_ERR_NUMERICAL naming what and where, and the caller's
+// array is left as it was.
+void require_finite(const Simulation& simulation, const double* values, size_t count, const std::string& what,
+                    int width = 0) {
+    for (size_t k = 0; k < count; ++k) {
+        if (std::isfinite(values[k])) continue;
+        const std::string which = width > 0 ? " of particle id " + std::to_string(k / static_cast<size_t>(width)) : "";
+        throw Error(STRUCTMD_ERR_NUMERICAL, "step " + std::to_string(simulation.current_step()) + ": the " + what +
+                                                which + " is not finite (" + std::to_string(values[k]) +
+                                                "): overlapping particles, or a term outside its domain?");
+    }
+}
+
+}  // namespace
 
 extern "C" {
 
@@ -65,7 +87,10 @@ structmd_status structmd_get_forces(structmd_sim* sim, double* f, int64_t n) {
 structmd_status structmd_get_particle_energies(structmd_sim* sim, double* e, int64_t n) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_count(loaded(s), n, e, "e");
-        s.simulation->read(PerParticle::energies, e);
+        std::vector<double> energies(static_cast<size_t>(n));
+        s.simulation->read(PerParticle::energies, energies.data());
+        require_finite(*s.simulation, energies.data(), energies.size(), "energy", 1);
+        std::copy(energies.begin(), energies.end(), e);
     });
 }
 
@@ -88,7 +113,9 @@ structmd_status structmd_get_energy(structmd_sim* sim, const char* term, double*
         Simulation& simulation = loaded(s);
         require_pointer(term, "term");
         require_pointer(value, "value");
-        *value = simulation.energy(term);
+        const double energy = simulation.energy(term);
+        require_finite(simulation, &energy, 1, std::string("\"") + term + "\" energy");
+        *value = energy;
     });
 }
 
@@ -97,6 +124,7 @@ structmd_status structmd_get_virial(structmd_sim* sim, double w[9]) {
         Simulation& simulation = loaded(s);
         require_pointer(w, "w");
         const std::array<double, 9> virial = simulation.virial();
+        require_finite(simulation, virial.data(), virial.size(), "virial");
         std::copy(virial.begin(), virial.end(), w);
     });
 }
@@ -105,7 +133,9 @@ structmd_status structmd_get_pressure(structmd_sim* sim, double* p) {
     return with_handle(sim, [&](structmd_sim& s) {
         Simulation& simulation = loaded(s);
         require_pointer(p, "p");
-        *p = simulation.pressure();
+        const double pressure = simulation.pressure();
+        require_finite(simulation, &pressure, 1, "pressure");
+        *p = pressure;
     });
 }
 

@@ -250,6 +250,45 @@ TEST(BadInputs, OptionsOutOfRangeOrNestedDeepAreArgumentErrors) {
     EXPECT_NE(nested.message.find("got an array"), std::string::npos) << nested.message.substr(0, 200);
 }
 
+// Two particles on top of each other give infinite or NaN energies, and a term outside its domain
+// (log of a negative number) a NaN energy with finite forces: every getter of an energy, the virial
+// or the pressure is then STRUCTMD_ERR_NUMERICAL naming it, and writes nothing (issue 37, defect 4).
+TEST(BadInputs, NonFiniteEnergiesVirialAndPressureAreNumericalErrors) {
+    const double kept = -7.0;  // what the caller's memory held before each call
+    const auto numerical_and_unwritten = [&](structmd_sim* sim, const std::string& what,
+                                             const std::function<structmd_status(double*)>& get, size_t count) {
+        std::vector<double> values(count, kept);
+        EXPECT_EQ(get(values.data()), STRUCTMD_ERR_NUMERICAL) << what;
+        const std::string message = structmd_last_error(sim);
+        EXPECT_NE(message.find(what), std::string::npos) << message;
+        EXPECT_NE(message.find("is not finite"), std::string::npos) << message;
+        for (double v : values) EXPECT_EQ(v, kept) << what;
+    };
+    const auto energies_refused = [&](structmd_sim* sim) {
+        numerical_and_unwritten(sim, "\"potential\" energy", [&](double* v) { return structmd_get_energy(sim, "potential", v); }, 1);
+        numerical_and_unwritten(sim, "\"total\" energy", [&](double* v) { return structmd_get_energy(sim, "total", v); }, 1);
+        numerical_and_unwritten(sim, "energy of particle id ",
+                                [&](double* v) { return structmd_get_particle_energies(sim, v, 4); }, 4);
+    };
+
+    json coincident = json::parse(base_input_text());
+    coincident["state"]["data"][2][1] = coincident["state"]["data"][3][1];
+    Handle sim(kHandleOptions);
+    ASSERT_EQ(structmd_load_string(sim.get(), coincident.dump().c_str()), STRUCTMD_OK) << structmd_last_error(sim.get());
+    energies_refused(sim.get());
+    numerical_and_unwritten(sim.get(), "virial", [&](double* v) { return structmd_get_virial(sim.get(), v); }, 9);
+    numerical_and_unwritten(sim.get(), "pressure", [&](double* v) { return structmd_get_pressure(sim.get(), v); }, 1);
+
+    json outside = json::parse(base_input_text());
+    outside["topology"]["forceField"]["field"] = {{"type", {"External", "Expression"}},
+                                                  {"parameters", {{"energy", "log(x - 100)"}}}};
+    Handle second(kHandleOptions);
+    ASSERT_EQ(structmd_load_string(second.get(), outside.dump().c_str()), STRUCTMD_OK) << structmd_last_error(second.get());
+    std::vector<double> forces(12);
+    EXPECT_EQ(structmd_get_forces(second.get(), forces.data(), 4), STRUCTMD_OK) << structmd_last_error(second.get());
+    energies_refused(second.get());
+}
+
 TEST(BadInputs, MissingNullAndUnreadableSourcesAreNamed) {
     const std::string good = base_input_text();
     Handle sim(kHandleOptions);
