@@ -64,8 +64,15 @@ std::shared_ptr<const ComponentSet> load_plugin_library(const std::string& path)
     set->source = path;
     char message[1024] = "";
     const int status = add(set.get(), message, sizeof message);
-    if (status != STRUCTMD_OK)
-        throw Error(static_cast<structmd_status>(status), where + ": registration failed: " + message);
+    message[sizeof message - 1] = '\0';  // a plugin that filled the buffer to its end wrote no NUL
+    if (status != STRUCTMD_OK) {
+        // The plugin's status is the call's only when the header defines it: a host checks for those.
+        const bool headerStatus = status > STRUCTMD_OK && status <= STRUCTMD_ERR_CALLBACK;
+        throw Error(headerStatus ? static_cast<structmd_status>(status) : STRUCTMD_ERR_ARGUMENT,
+                    where + ": registration failed" +
+                        (headerStatus ? "" : " with status " + std::to_string(status) + ", which is not a structmd status") +
+                        ": " + message);
+    }
     if (set->reader.entries().empty()) throw Error(STRUCTMD_ERR_ARGUMENT, where + ": registers no component");
     return set;
 }
