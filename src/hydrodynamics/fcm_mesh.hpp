@@ -143,6 +143,27 @@ inline int fft_friendly_size(int n) {
     }
 }
 
+// The most points a spectral method's grid may have: 2^30, some 25 GB for its fields in single
+// precision. Only a radius far below the box's scale (or a splitting parameter far above it) asks for
+// more, and the counts would soon overflow an int (a radius of 1e-7 stopped the process at the first
+// step with SIGFPE).
+inline constexpr double kMaxGridPoints = 1073741824.0;
+
+// The FFT-friendly points along each of the first `axes` axes for the counts wanted (not yet
+// rounded), refused as INPUT at `parameter` when the grid would have more than kMaxGridPoints.
+inline void checked_grid_sizes(const double* wanted, int axes, int* sizes, const std::string& parameter,
+                               const std::string& cause) {
+    double total = 1.0;
+    std::string shape;
+    for (int d = 0; d < axes; ++d) {
+        total *= std::max(wanted[d], 2.0);
+        shape += (d ? " x " : "") + std::to_string(static_cast<long long>(std::min(wanted[d], 1e18)));
+    }
+    if (!(total <= kMaxGridPoints))
+        throw input_error(parameter, "the grid would need " + shape + " points, more than 2^30: " + cause);
+    for (int d = 0; d < axes; ++d) sizes[d] = fft_friendly_size(static_cast<int>(wanted[d]));
+}
+
 // The grid and the kernel's support for a hydrodynamic radius and tolerance, as UAMMD's
 // BDHI::FCM chooses them: the grid spacing h = sigma / f(tol), f growing from 0.55 to 1.65 as the
 // tolerance falls (its empirical "upsampling"); the support covers the distance at which the
@@ -154,15 +175,18 @@ inline FcmPlan make_fcm_plan(const double box[3], double radius, double toleranc
     const double upsampling = std::min(0.55 + (-std::log10(3.0 * tolerance) / 10.0) * (1.65 - 0.55), 1.65);
     const double spacing = plan.sigma / upsampling;
     const double reach = plan.sigma * std::sqrt(2.0 * std::log(1.0 / tolerance));
-    int sizes[3];
+    double wanted[3];
     for (int d = 0; d < 3; ++d) {
         plan.box[d] = box[d];
         if (!std::isfinite(box[d]) || !(box[d] > 0.0))
             throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ": the force coupling method needs a periodic box along x, y "
                                                          "and z, but the box is not periodic along " +
                                                          std::string(1, "xyz"[d]));
-        sizes[d] = fft_friendly_size(static_cast<int>(std::ceil(box[d] / spacing)));
+        wanted[d] = std::ceil(box[d] / spacing);
     }
+    int sizes[3];
+    checked_grid_sizes(wanted, 3, sizes, path + ".parameters.hydrodynamicRadius",
+                       "the radius is too small for the box at this tolerance");
     plan.grid = FftGrid{sizes[0], sizes[1], sizes[2]};
     // The same support along every axis: enough points to span 2 reach on the finest one.
     double finest = spacing;

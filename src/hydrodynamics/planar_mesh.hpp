@@ -259,15 +259,18 @@ inline PlanarPlan make_planar_plan(const double box[2], PlanarHydrodynamics kind
     const double upsampling = std::min(0.55 + (-std::log10(3.0 * tolerance) / 10.0) * (1.65 - 0.55), 1.65);
     const double spacing = plan.sigma / upsampling;
     const double reach = plan.sigma * std::sqrt(2.0 * std::log(1.0 / tolerance));
-    int sizes[2];
+    double wanted[2];
     for (int d = 0; d < 2; ++d) {
         plan.box[d] = box[d];
         if (!std::isfinite(box[d]) || !(box[d] > 0.0))
             throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ": [\"BDHIDoublyPeriodic\", \"Quasi2D\"] needs a box periodic "
                                                          "along x and y, but the box is not periodic along " +
                                                          std::string(1, "xy"[d]));
-        sizes[d] = fft_friendly_size(static_cast<int>(std::ceil(box[d] / spacing)));
+        wanted[d] = std::ceil(box[d] / spacing);
     }
+    int sizes[2];
+    checked_grid_sizes(wanted, 2, sizes, path + ".parameters.hydrodynamicRadius",
+                       "the radius is too small for the box at this tolerance");
     plan.grid = FftGrid{sizes[0], sizes[1], 1};
     const double finest = std::min(box[0] / sizes[0], box[1] / sizes[1]);
     plan.support = static_cast<int>(std::ceil(2.0 * reach / finest)) + 1;

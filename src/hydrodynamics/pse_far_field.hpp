@@ -47,15 +47,17 @@ inline FcmPlan make_pse_far_plan(const double box[3], double xi, double toleranc
     const double cutoffWave = 2.0 * xi * std::sqrt(-std::log(tolerance));
     // The shortest wavelength the far field needs: the grid spacing is at most half of it.
     const double cutoffWavelength = 2.0 * M_PI / cutoffWave;
-    int sizes[3];
+    double wanted[3];
     for (int d = 0; d < 3; ++d) {
         plan.box[d] = box[d];
         if (!std::isfinite(box[d]) || !(box[d] > 0.0))
             throw Error(STRUCTMD_ERR_UNSUPPORTED, path + ": the positively split Ewald method needs a periodic box "
                                                          "along x, y and z, but the box is not periodic along " +
                                                          std::string(1, "xyz"[d]));
-        sizes[d] = fft_friendly_size(static_cast<int>(2.0 * box[d] / cutoffWavelength) + 1);
+        wanted[d] = std::floor(2.0 * box[d] / cutoffWavelength) + 1.0;
     }
+    int sizes[3];
+    checked_grid_sizes(wanted, 3, sizes, path + ".parameters.psi", "psi is too large for the box at this tolerance");
     plan.grid = FftGrid{sizes[0], sizes[1], sizes[2]};
     double deviations = 1.0;
     while (std::erfc(deviations / std::sqrt(2.0)) > 0.1 * tolerance) deviations += 0.01;

@@ -263,6 +263,8 @@ def test_unequal_radii_need_a_hydrodynamic_radius(options):
     ({"psi": 0.0}, "psi", "positive"),
     ({"psi": -0.5}, "psi", "positive"),
     ({"psi": 0.3}, "psi", "more than half the box"),
+    ({"psi": 1e6}, "psi", r"more than 2\^30: psi is too large"),  # not SIGFPE (issue 37)
+    ({"psi": 1e4}, "psi", r"more than 2\^30"),
     ({"tolerance": 0.5}, "tolerance", r"\[1e-10, 0.1\]"),
     ({"tolerance": 1e-12}, "tolerance", r"\[1e-10, 0.1\]"),
     ({"tolerance": -1e-3}, "tolerance", "positive"),

@@ -388,6 +388,7 @@ def test_several_batches_are_refused_by_name(options):
     ({"tolerance": -1e-3}, "integrator.bd.parameters.tolerance", "positive"),
     ({"kernel": "Saffman"}, "integrator.bd.parameters.hydrodynamicKernel", "Quasi2D"),
     ({"radius": 2.5}, "integrator.bd.parameters.hydrodynamicRadius", "too small"),
+    ({"radius": 1e-7}, "integrator.bd.parameters.hydrodynamicRadius", r"more than 2\^30"),  # not SIGFPE (issue 37)
 ])
 def test_bad_input_names_its_path(options, parameters, path, message):
     with structmd.Simulation(options) as sim:

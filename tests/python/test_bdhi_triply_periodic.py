@@ -227,6 +227,9 @@ def test_the_immersed_boundary_method_is_refused_by_name(options):
     ({"tolerance": 1e-12}, "integrator.bd.parameters.tolerance", r"\[1e-10, 0.1\]"),
     ({"tolerance": -1e-3}, "integrator.bd.parameters.tolerance", "positive"),
     ({"radius": 2.5}, "integrator.bd.parameters.hydrodynamicRadius", "too small"),
+    # A grid that could never be held: refused by name, not SIGFPE or an 8 GB allocation (issue 37).
+    ({"radius": 1e-7}, "integrator.bd.parameters.hydrodynamicRadius", r"more than 2\^30: the radius is too small"),
+    ({"radius": 1e-5}, "integrator.bd.parameters.hydrodynamicRadius", r"more than 2\^30"),
 ])
 def test_bad_input_names_its_path(options, parameters, path, message):
     with structmd.Simulation(options) as sim:
