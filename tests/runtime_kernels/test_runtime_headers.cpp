@@ -9,14 +9,8 @@
 #include <string>
 #include <vector>
 
-namespace structmd {
-struct RuntimeKernelHeader {
-    const char* name;
-    const char* text;
-};
-extern const RuntimeKernelHeader kRuntimeKernelHeaders[];
-extern const int kRuntimeKernelHeaderCount;
-}  // namespace structmd
+#include "backends/cuda/runtime_kernel_headers.hpp"
+
 
 namespace {
 

@@ -7,17 +7,10 @@
 #include <memory>
 
 #include "backends/cuda/cuda_check.hpp"
+#include "backends/cuda/runtime_kernel_headers.hpp"
 #include "core/error.hpp"
 
 namespace structmd {
-
-// The device headers a runtime kernel may include, by include name (runtime_kernel_headers.cpp).
-struct RuntimeKernelHeader {
-    const char* name;
-    const char* text;
-};
-extern const RuntimeKernelHeader kRuntimeKernelHeaders[];
-extern const int kRuntimeKernelHeaderCount;
 
 namespace {
 
