@@ -1,5 +1,6 @@
 #include "expression/expression.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <utility>
 
@@ -14,13 +15,26 @@ uint64_t bits_of(double x) {
     return bits;
 }
 
-void post_order(const Expression& e, int id, std::vector<char>& seen, std::vector<int>& order) {
-    if (seen[id]) return;
-    seen[id] = 1;
-    const Node& n = e.node(id);
-    for (int operand : {n.a, n.b, n.c})
-        if (operand >= 0) post_order(e, operand, seen, order);
-    order.push_back(id);
+void post_order(const Expression& e, int root, std::vector<char>& seen, std::vector<int>& order) {
+    // Each entry: a node and how many of its operands (a, b, c) have been looked at.
+    std::vector<std::pair<int, int>> stack;
+    if (!seen[root]) stack.push_back({root, 0});
+    seen[root] = 1;
+    while (!stack.empty()) {
+        auto& [id, next] = stack.back();
+        const Node& n = e.node(id);
+        const int operands[3] = {n.a, n.b, n.c};
+        if (next == 3) {
+            order.push_back(id);
+            stack.pop_back();
+            continue;
+        }
+        const int operand = operands[next++];
+        if (operand >= 0 && !seen[operand]) {
+            seen[operand] = 1;
+            stack.push_back({operand, 0});
+        }
+    }
 }
 
 bool commutative(Op op) { return op == Op::add || op == Op::mul || op == Op::min || op == Op::max; }
@@ -34,7 +48,13 @@ std::vector<int> nodes_in_order(const Expression& e, const std::vector<int>& roo
     return order;
 }
 
-int Expression::make(const Node& n) {
+int Expression::make(const Node& given) {
+    Node n = given;
+    for (int operand : {n.a, n.b, n.c})
+        if (operand >= 0) n.depth = std::max(n.depth, nodes_[operand].depth + 1);
+    if (n.depth > kMaxExpressionDepth)
+        throw ExpressionError(0, "nested more than " + std::to_string(kMaxExpressionDepth) +
+                                     " operations deep with its derivative: split it into several terms");
     const auto key = std::make_tuple(static_cast<int>(n.op), n.a, n.b, n.c, n.index,
                                      n.op == Op::constant ? bits_of(n.value) : 0);
     const auto found = known_.find(key);

@@ -22,7 +22,17 @@ struct Node {
     int a = -1, b = -1, c = -1;  // operands (node ids)
     double value = 0.0;          // constant
     int index = 0;               // input or column slot; powi exponent
+    int depth = 1;               // 1 + the deepest operand's
 };
+
+// The deepest a node may sit: the walks over an expression (its derivative, the compilers) recurse
+// this deep at most, on any thread's stack. The parser keeps what it reads to a quarter of it, so
+// that derivatives fit too.
+inline constexpr int kMaxExpressionDepth = 2000;
+inline constexpr int kMaxParsedDepth = kMaxExpressionDepth / 4;
+// How deep parentheses, signs, powers and calls may nest in the text: the parser recurses through
+// a few frames per level.
+inline constexpr int kMaxParsedNesting = 100;
 
 // An error in an expression, at a 1-based character position of its text (0: no one position).
 class ExpressionError : public Error {
@@ -59,7 +69,8 @@ private:
     std::map<std::tuple<int, int, int, int, int, uint64_t>, int> known_;
 };
 
-// Every node the roots depend on, each once and after its operands (depth-first, roots in order).
+// Every node the roots depend on, each once and after its operands (depth-first, roots in order;
+// iterative, so any depth).
 std::vector<int> nodes_in_order(const Expression& e, const std::vector<int>& roots);
 
 }  // namespace structmd::expression

@@ -58,14 +58,41 @@ private:
                                                 (at_end() ? " at the end" : std::string(", got '") + text_[pos_] + "'"));
     }
 
+    // Every recursion of the parser ('(', a sign, '^', a function's arguments) passes through
+    // unary(): the text decides how deep, so the depth is bounded there (30,000 nested parentheses
+    // overflowed the stack).
+    class Nested {
+    public:
+        explicit Nested(Parser& p) : p_(p) {
+            if (++p_.nesting_ > kMaxParsedNesting)
+                throw ExpressionError(p_.column(), "nested more than " + std::to_string(kMaxParsedNesting) + " deep");
+        }
+        ~Nested() { --p_.nesting_; }
+        Nested(const Nested&) = delete;
+        Nested& operator=(const Nested&) = delete;
+
+    private:
+        Parser& p_;
+    };
+
+    // A node as deep as the walks over the expression allow (a sum of 100,000 terms is a chain that
+    // deep), or an error at the column reached.
+    int within_depth(int id) {
+        if (e_.node(id).depth > kMaxParsedDepth)
+            throw ExpressionError(column(), "more than " + std::to_string(kMaxParsedDepth) +
+                                                " operations deep (each term of a long sum or product counts): split "
+                                                "it into several terms");
+        return id;
+    }
+
     // A left-associative chain of `next` joined by the operators `first` and `second`.
     int chain(int (Parser::*next)(), char first, Op firstOp, char second, Op secondOp) {
         int left = (this->*next)();
         for (;;) {
             if (accept(first))
-                left = e_.binary(firstOp, left, (this->*next)());
+                left = within_depth(e_.binary(firstOp, left, (this->*next)()));
             else if (accept(second))
-                left = e_.binary(secondOp, left, (this->*next)());
+                left = within_depth(e_.binary(secondOp, left, (this->*next)()));
             else
                 return left;
         }
@@ -74,14 +101,15 @@ private:
     int product() { return chain(&Parser::unary, '*', Op::mul, '/', Op::div); }
 
     int unary() {
-        if (accept('-')) return e_.unary(Op::neg, unary());
+        const Nested nested(*this);
+        if (accept('-')) return within_depth(e_.unary(Op::neg, unary()));
         if (accept('+')) return unary();
         return power();
     }
 
     int power() {
         const int base = primary();
-        if (accept('^')) return e_.binary(Op::pow, base, unary());
+        if (accept('^')) return within_depth(e_.binary(Op::pow, base, unary()));
         return base;
     }
 
@@ -145,15 +173,16 @@ private:
         if (static_cast<int>(args.size()) != f->arguments)
             throw ExpressionError(start, name + "() takes " + std::to_string(f->arguments) + " argument" +
                                              (f->arguments == 1 ? "" : "s") + ", got " + std::to_string(args.size()));
-        if (f->arguments == 1) return e_.unary(f->op, args[0]);
-        if (f->arguments == 2) return e_.binary(f->op, args[0], args[1]);
-        return e_.select(args[0], args[1], args[2]);
+        if (f->arguments == 1) return within_depth(e_.unary(f->op, args[0]));
+        if (f->arguments == 2) return within_depth(e_.binary(f->op, args[0], args[1]));
+        return within_depth(e_.select(args[0], args[1], args[2]));
     }
 
     const std::string& text_;
     const Resolver& resolve_;
     Expression& e_;
     size_t pos_ = 0;
+    int nesting_ = 0;
 };
 
 }  // namespace

@@ -253,6 +253,62 @@ TEST(BadInputs, OptionsOutOfRangeOrNestedDeepAreArgumentErrors) {
 // Two particles on top of each other give infinite or NaN energies, and a term outside its domain
 // (log of a negative number) a NaN energy with finite forces: every getter of an energy, the virial
 // or the pressure is then STRUCTMD_ERR_NUMERICAL naming it, and writes nothing (issue 37, defect 4).
+// Loads `document` and steps it twice on a thread with a 256 KiB stack; the status of the first call
+// that failed (or OK) and its message.
+std::pair<structmd_status, std::string> load_and_step_on_a_small_stack(const std::string& document) {
+    struct Run {
+        std::string text;
+        structmd_status status = STRUCTMD_OK;
+        std::string message;
+    } run{document};
+    pthread_attr_t attributes;
+    pthread_attr_init(&attributes);
+    pthread_attr_setstacksize(&attributes, 256 * 1024);
+    pthread_t thread;
+    if (pthread_create(&thread, &attributes,
+                       [](void* argument) -> void* {
+                           auto* r = static_cast<Run*>(argument);
+                           Handle sim(kHandleOptions);
+                           r->status = structmd_load_string(sim.get(), r->text.c_str());
+                           if (r->status == STRUCTMD_OK) r->status = structmd_step(sim.get(), 2);
+                           r->message = structmd_last_error(sim.get());
+                           return nullptr;
+                       },
+                       &run) != 0)
+        return {STRUCTMD_ERR_INTERNAL, "pthread_create failed"};
+    pthread_join(thread, nullptr);
+    pthread_attr_destroy(&attributes);
+    return {run.status, run.message};
+}
+
+std::string with_field_energy(const std::string& energy) {
+    json document = json::parse(base_input_text());
+    document["topology"]["forceField"]["field"] = {{"type", {"External", "Expression"}},
+                                                   {"parameters", {{"energy", energy}}}};
+    return document.dump();
+}
+
+// An Expression nested 30,000 parentheses deep, and a flat sum of 100,000 terms (a chain as deep),
+// are INPUT errors at the entry's energy on a thread with a 256 KiB stack: the parser and the walks
+// over the expression recurse no deeper than a bound, which still leaves room for 90 nested
+// parentheses and a sum of 450 terms, with their derivatives (issue 37, defect 2).
+TEST(BadInputs, AnExpressionNestedTooDeepIsAnInputError) {
+    std::string sum = "x";
+    for (int k = 0; k < 100000; ++k) sum += " + x";
+    for (const std::string& energy : {std::string(30000, '(') + "x" + std::string(30000, ')'), sum}) {
+        const auto [status, message] = load_and_step_on_a_small_stack(with_field_energy(energy));
+        EXPECT_EQ(status, STRUCTMD_ERR_INPUT) << energy.substr(0, 20);
+        EXPECT_EQ(message.rfind("topology.forceField.field.parameters.energy", 0), 0u) << message.substr(0, 300);
+        EXPECT_NE(message.find("deep"), std::string::npos) << message.substr(0, 300);
+    }
+    std::string moderate = "0.001 * x^2";
+    for (int k = 0; k < 450; ++k) moderate += " + 0.001 * sin(y)";
+    for (const std::string& energy : {std::string(90, '(') + "0.5 * x^2" + std::string(90, ')'), moderate}) {
+        const auto [status, message] = load_and_step_on_a_small_stack(with_field_energy(energy));
+        EXPECT_EQ(status, STRUCTMD_OK) << message.substr(0, 300);
+    }
+}
+
 TEST(BadInputs, NonFiniteEnergiesVirialAndPressureAreNumericalErrors) {
     const double kept = -7.0;  // what the caller's memory held before each call
     const auto numerical_and_unwritten = [&](structmd_sim* sim, const std::string& what,
