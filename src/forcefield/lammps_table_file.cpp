@@ -1,6 +1,7 @@
 #include "forcefield/lammps_table_file.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 
@@ -34,11 +35,13 @@ std::vector<Line> read_lines(const std::string& file, const std::string& path) {
     return lines;
 }
 
+// A finite number: strtod also reads "nan" and "inf", which no table means (FPRIME nan 0 loaded and
+// gave NaN energies).
 bool parse_double(const std::string& word, double& value) {
     errno = 0;
     char* end = nullptr;
     value = std::strtod(word.c_str(), &end);
-    return end != word.c_str() && *end == '\0' && errno != ERANGE;
+    return end != word.c_str() && *end == '\0' && errno != ERANGE && std::isfinite(value);
 }
 
 bool parse_int(const std::string& word, long& value) {

@@ -92,6 +92,15 @@ TEST(TabulatedErrors, ACutoffTooLongForTheBoxNamesTheRowThatSetsIt) {
     expect_input_error(pair_from_file("T\nN 3\n\n" + rows, "T", 4.5), {kRow + "[4]", "not shorter than half the box"});
 }
 
+// strtod reads "nan" and "inf"; a table's numbers must be finite, in its rows and its keywords
+// (FPRIME nan 0 loaded and gave NaN energies; issue 37, defect 9).
+TEST(TabulatedErrors, NonFiniteNumbers) {
+    expect_input_error(pair_from_file("T\nN 3 FPRIME nan 0\n\n" + kGoodRows), {kRow + "[2]", "FPRIME", "'nan'"});
+    expect_input_error(pair_from_file("T\nN 3 FPRIME 0 inf\n\n" + kGoodRows), {kRow + "[2]", "FPRIME", "'inf'"});
+    expect_input_error(pair_from_file("T\nN 3\n\n1 1.0 2.0 3.0\n2 1.5 nan 2.0\n3 2.0 0.5 1.0\n"),
+                       {kRow + "[2]", "bad.table:5", "not a number: 'nan'"});
+}
+
 TEST(TabulatedErrors, UnknownOrUnsupportedKeyword) {
     expect_input_error(pair_from_file("T\nN 3 FOO 1\n\n" + kGoodRows), {kRow + "[2]", "unknown keyword 'FOO'"});
     expect_input_error(pair_from_file("T\nN 3 BITMAP 1 2\n\n" + kGoodRows), {kRow + "[2]", "BITMAP"});
