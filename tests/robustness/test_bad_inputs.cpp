@@ -207,6 +207,22 @@ TEST(BadInputs, ADirectoryOrADeviceIsRefusedUnread) {
     }
 }
 
+// Runs body on a thread with a 256 KiB stack, as a host's worker thread may have: whatever the
+// input decides must not recurse deeper than that allows.
+void on_a_small_stack(const std::function<void()>& body) {
+    pthread_attr_t attributes;
+    pthread_attr_init(&attributes);
+    pthread_attr_setstacksize(&attributes, 256 * 1024);
+    pthread_t thread;
+    const auto run = [](void* argument) -> void* {
+        (*static_cast<const std::function<void()>*>(argument))();
+        return nullptr;
+    };
+    ASSERT_EQ(pthread_create(&thread, &attributes, run, const_cast<std::function<void()>*>(&body)), 0);
+    pthread_join(thread, nullptr);
+    pthread_attr_destroy(&attributes);
+}
+
 // Handle options out of an int's range are refused, not wrapped (4294967297 threads ran with 1),
 // and a value nested deep is named by its kind, not written out level by level: on a thread with a
 // 256 KiB stack too (issue 37, defects 2 and 9).
@@ -225,60 +241,25 @@ TEST(BadInputs, OptionsOutOfRangeOrNestedDeepAreArgumentErrors) {
         EXPECT_NE(message.find("option \"threads\": expected an integer from 1 to 2147483647"), std::string::npos)
             << message;
     }
-    struct Nested {
-        std::string options;
-        structmd_status status = STRUCTMD_OK;
-        std::string message;
-    };
-    Nested nested;
-    nested.options = R"({"backend": "cpu", "threads": )" + nested_arrays(100000) + "}";
-    pthread_attr_t attributes;
-    pthread_attr_init(&attributes);
-    pthread_attr_setstacksize(&attributes, 256 * 1024);
-    pthread_t thread;
-    ASSERT_EQ(pthread_create(&thread, &attributes,
-                             [](void* argument) -> void* {
-                                 auto* n = static_cast<Nested*>(argument);
-                                 n->message = create_status(n->options, n->status);
-                                 return nullptr;
-                             },
-                             &nested),
-              0);
-    pthread_join(thread, nullptr);
-    pthread_attr_destroy(&attributes);
-    EXPECT_EQ(nested.status, STRUCTMD_ERR_ARGUMENT);
-    EXPECT_NE(nested.message.find("got an array"), std::string::npos) << nested.message.substr(0, 200);
+    const std::string nested = R"({"backend": "cpu", "threads": )" + nested_arrays(100000) + "}";
+    std::string message;
+    on_a_small_stack([&] { message = create_status(nested, status); });
+    EXPECT_EQ(status, STRUCTMD_ERR_ARGUMENT);
+    EXPECT_NE(message.find("got an array"), std::string::npos) << message.substr(0, 200);
 }
 
-// Two particles on top of each other give infinite or NaN energies, and a term outside its domain
-// (log of a negative number) a NaN energy with finite forces: every getter of an energy, the virial
-// or the pressure is then STRUCTMD_ERR_NUMERICAL naming it, and writes nothing (issue 37, defect 4).
 // Loads `document` and steps it twice on a thread with a 256 KiB stack; the status of the first call
 // that failed (or OK) and its message.
 std::pair<structmd_status, std::string> load_and_step_on_a_small_stack(const std::string& document) {
-    struct Run {
-        std::string text;
-        structmd_status status = STRUCTMD_OK;
-        std::string message;
-    } run{document};
-    pthread_attr_t attributes;
-    pthread_attr_init(&attributes);
-    pthread_attr_setstacksize(&attributes, 256 * 1024);
-    pthread_t thread;
-    if (pthread_create(&thread, &attributes,
-                       [](void* argument) -> void* {
-                           auto* r = static_cast<Run*>(argument);
-                           Handle sim(kHandleOptions);
-                           r->status = structmd_load_string(sim.get(), r->text.c_str());
-                           if (r->status == STRUCTMD_OK) r->status = structmd_step(sim.get(), 2);
-                           r->message = structmd_last_error(sim.get());
-                           return nullptr;
-                       },
-                       &run) != 0)
-        return {STRUCTMD_ERR_INTERNAL, "pthread_create failed"};
-    pthread_join(thread, nullptr);
-    pthread_attr_destroy(&attributes);
-    return {run.status, run.message};
+    structmd_status status = STRUCTMD_OK;
+    std::string message;
+    on_a_small_stack([&] {
+        Handle sim(kHandleOptions);
+        status = structmd_load_string(sim.get(), document.c_str());
+        if (status == STRUCTMD_OK) status = structmd_step(sim.get(), 2);
+        message = structmd_last_error(sim.get());
+    });
+    return {status, message};
 }
 
 std::string with_field_energy(const std::string& energy) {
@@ -309,6 +290,9 @@ TEST(BadInputs, AnExpressionNestedTooDeepIsAnInputError) {
     }
 }
 
+// Two particles on top of each other give infinite or NaN energies, and a term outside its domain
+// (log of a negative number) a NaN energy with finite forces: every getter of an energy, the virial
+// or the pressure is then STRUCTMD_ERR_NUMERICAL naming it, and writes nothing (issue 37, defect 4).
 TEST(BadInputs, NonFiniteEnergiesVirialAndPressureAreNumericalErrors) {
     const double kept = -7.0;  // what the caller's memory held before each call
     const auto numerical_and_unwritten = [&](structmd_sim* sim, const std::string& what,
