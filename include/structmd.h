@@ -683,7 +683,8 @@ STRUCTMD_API structmd_status structmd_get_parameter(structmd_sim* sim, const cha
  *  the whole system, of no batch and not of the per-particle energies) and of the virial. A host
  *  callback and a device callback may be set at once; both are called. They are called on the
  *  thread that made the structmd call, never concurrently, and must not call structmd functions on
- *  the same handle other than structmd_set_callback_error. A failure (a non-zero return, a C++
+ *  the same handle other than structmd_set_callback_error: such a call is STRUCTMD_ERR_STATE, and
+ *  structmd_destroy of that handle does nothing. A failure (a non-zero return, a C++
  *  exception, a non-finite value) stops the call with STRUCTMD_ERR_CALLBACK; inside structmd_step the
  *  state goes back to where the call started, as for a blow-up. A new load clears both callbacks;
  *  checkpoints do not hold them.

@@ -87,10 +87,13 @@ structmd_status structmd_set_device_force_callback(structmd_sim* sim, structmd_d
 }
 
 structmd_status structmd_set_callback_error(structmd_sim* sim, const char* message) {
-    return with_handle(sim, [&](structmd_sim& s) {
-        require_pointer(message, "message");
-        if (s.inCallback) s.callbackError = message;
-    });
+    return with_handle(
+        sim,
+        [&](structmd_sim& s) {
+            require_pointer(message, "message");
+            if (s.inCallback) s.callbackError = message;
+        },
+        true);
 }
 
 }  // extern "C"

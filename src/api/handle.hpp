@@ -80,14 +80,25 @@ structmd_status guarded(std::string& message, Body&& body) noexcept {
     }
 }
 
-// Runs body(handle) behind the barrier; a NULL handle is STRUCTMD_ERR_ARGUMENT.
+// What a call on a handle says while one of its force callbacks runs: the engine is in the middle
+// of an evaluation, which a load, a step, a getter that evaluates or a destroy would pull away.
+inline const char* const kInsideCallback =
+    "not available inside a force callback of this handle (only structmd_set_callback_error is)";
+
+// Runs body(handle) behind the barrier; a NULL handle is STRUCTMD_ERR_ARGUMENT, a call from inside
+// one of the handle's force callbacks STRUCTMD_ERR_STATE (unless insideCallbackAllowed).
 template <class Handle, class Body>
-structmd_status with_handle(Handle* sim, Body&& body) noexcept {
+structmd_status with_handle(Handle* sim, Body&& body, bool insideCallbackAllowed = false) noexcept {
     if (!sim) {
         thread_error() = "sim: NULL handle";
         return STRUCTMD_ERR_ARGUMENT;
     }
-    return guarded(const_cast<structmd_sim*>(sim)->lastError, [&] { body(*sim); });
+    structmd_sim& handle = *const_cast<structmd_sim*>(sim);
+    if (handle.inCallback && !insideCallbackAllowed) {
+        handle.lastError = kInsideCallback;
+        return STRUCTMD_ERR_STATE;
+    }
+    return guarded(handle.lastError, [&] { body(*sim); });
 }
 
 // The loaded simulation, or ERR_STATE.

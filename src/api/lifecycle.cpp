@@ -69,6 +69,11 @@ structmd_status structmd_create(const char* options_json, structmd_sim** out) {
 
 void structmd_destroy(structmd_sim* sim) {
     // Destructors release device memory; a failing CUDA call there must not escape either.
+    if (sim && sim->inCallback) {
+        // Deleting the engine that is calling the host would leave it running on freed memory.
+        sim->lastError = thread_error() = std::string("structmd_destroy: ") + kInsideCallback;
+        return;
+    }
     guarded(thread_error(), [&] { delete sim; });
 }
 

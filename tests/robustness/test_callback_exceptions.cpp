@@ -70,3 +70,41 @@ TEST_F(Loaded, DeviceCallbackExceptionIsCaughtToo) {
 }
 
 }  // namespace
+
+// A callback that calls back into its own handle: a load, a step, a getter that would evaluate the
+// forces again and a destroy are each refused (STATE; destroy does nothing), so the engine is never
+// pulled away under its own evaluation; only structmd_set_callback_error is taken (issue 37,
+// defect 11).
+namespace {
+
+struct Reentry {
+    structmd_sim* sim = nullptr;
+    std::vector<structmd_status> statuses;
+    std::string message;
+};
+
+int32_t calls_its_own_handle(const double*, double*, int64_t n, double*, double*, int64_t, void* data) {
+    auto* r = static_cast<Reentry*>(data);
+    std::vector<double> xyz(3 * n);
+    r->statuses = {structmd_get_positions(r->sim, xyz.data(), n), structmd_step(r->sim, 1),
+                   structmd_load_string(r->sim, "{}"), structmd_set_callback_error(r->sim, "unused")};
+    r->message = structmd_last_error(r->sim);
+    structmd_destroy(r->sim);
+    return 0;
+}
+
+}  // namespace
+
+TEST_F(Loaded, ACallbackCallingItsOwnHandleIsRefusedAndTheHandleLivesOn) {
+    Reentry reentry{sim, {}, {}};
+    ASSERT_EQ(structmd_set_force_callback(sim, calls_its_own_handle, &reentry), STRUCTMD_OK);
+    ASSERT_EQ(structmd_step(sim, 2), STRUCTMD_OK) << structmd_last_error(sim);
+    EXPECT_EQ(reentry.statuses, (std::vector<structmd_status>{STRUCTMD_ERR_STATE, STRUCTMD_ERR_STATE,
+                                                              STRUCTMD_ERR_STATE, STRUCTMD_OK}));
+    EXPECT_NE(reentry.message.find("inside a force callback"), std::string::npos) << reentry.message;
+    EXPECT_NE(std::string(structmd_last_error(nullptr)).find("structmd_destroy: not available inside a force callback"),
+              std::string::npos);
+    ASSERT_EQ(structmd_set_force_callback(sim, nullptr, nullptr), STRUCTMD_OK);
+    EXPECT_EQ(structmd_step(sim, 3), STRUCTMD_OK);
+    EXPECT_EQ(step(), 5);
+}
