@@ -5,8 +5,7 @@
 // subset or a domain takes its particles' values. A new column is one row in each list below and
 // the code that reads it.
 #include <array>
-#include <optional>
-#include <string>
+#include <cstddef>
 
 namespace structmd {
 
@@ -39,12 +38,6 @@ inline const StateColumnTraits& traits(StateColumn c) {
     };
     static_assert(sizeof(kTable) / sizeof(kTable[0]) == kStateColumns, "one row per column");
     return kTable[static_cast<int>(c)];
-}
-
-inline std::optional<StateColumn> state_column_labelled(const std::string& label) {
-    for (int k = 0; k < kStateColumns; ++k)
-        if (label == traits(StateColumn(k)).label) return StateColumn(k);
-    return std::nullopt;
 }
 
 // One T per column, indexed by the column.

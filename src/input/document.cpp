@@ -288,8 +288,7 @@ std::vector<double> read_state_column(const Table& table, const std::vector<int6
     for (size_t row = 0; row < table.rows(); ++row) {
         const TrackedNode cell = table.cell(row, c.label);
         double& value = values[static_cast<size_t>(idOfRow[row])];
-        value = cell.as<double>();
-        if (c.values == ColumnValues::atLeastZero) value = read_at_least(cell, 0.0, c.label);
+        value = c.values == ColumnValues::atLeastZero ? read_at_least(cell, 0.0, c.label) : cell.as<double>();
         if (c.values == ColumnValues::positive && !(value > 0.0))
             throw input_error(cell.path(), std::string(c.label) + " must be > 0");
     }
