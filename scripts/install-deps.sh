@@ -1,14 +1,22 @@
 #!/usr/bin/env bash
 # Installs what building and testing structmd needs on a Debian machine (idempotent). CUDA is used
-# when nvcc is already installed; without it the build is CPU-only.
+# when nvcc is already installed; without it the build is CPU-only. With the argument "build", only
+# what the library and the launcher need (scripts/example.sh): a first run should not wait for
+# LAMMPS, clang or MPI, which only the tests use.
 set -euo pipefail
 
-packages=(cmake g++ gfortran make nlohmann-json3-dev librandom123-dev libcli11-dev libdlpack-dev libeigen3-dev googletest
-          lammps python3 python3-pip ccache
-          doxygen  # the API reference rendered from include/structmd.h: test api_reference
-          locales  # localedef and de_DE's definition: robustness.locale makes a decimal-comma locale
-          libopenmpi-dev openmpi-bin  # MPI (optional to the build): batches over ranks, tests/mpi
-          clang libclang-rt-dev libomp-dev)  # clang, libFuzzer and clang's OpenMP: scripts/fuzz.sh
+build_packages=(cmake g++ make nlohmann-json3-dev librandom123-dev libcli11-dev libdlpack-dev libeigen3-dev ccache)
+test_packages=(googletest gfortran lammps python3 python3-pip
+               doxygen  # the API reference rendered from include/structmd.h: test api_reference
+               locales  # localedef and de_DE's definition: robustness.locale makes a decimal-comma locale
+               libopenmpi-dev openmpi-bin  # MPI (optional to the build): batches over ranks, tests/mpi
+               clang libclang-rt-dev libomp-dev)  # clang, libFuzzer and clang's OpenMP: scripts/fuzz.sh
+profile=${1:-test}
+case "$profile" in
+  build) packages=("${build_packages[@]}") ;;
+  test) packages=("${build_packages[@]}" "${test_packages[@]}") ;;
+  *) echo "install-deps: unknown profile '$profile' (build or test)" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
@@ -21,7 +29,7 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 # ase: the reference and the i-PI server of tests/python/test_ase.py and test_ipi.py.
-if ! python3 -c "import numpy, cffi, pytest, ase" >/dev/null 2>&1; then
+if [ "$profile" = test ] && ! python3 -c "import numpy, cffi, pytest, ase" >/dev/null 2>&1; then
   python3 -m pip install -q numpy cffi pytest ase 2>/dev/null \
     || python3 -m pip install -q --break-system-packages numpy cffi pytest ase
 fi

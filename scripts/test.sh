@@ -11,7 +11,9 @@ cuda=${STRUCTMD_CUDA:-}
 if [ -z "$cuda" ]; then
   if nvidia-smi -L > /dev/null 2>&1; then cuda=AUTO; else cuda=OFF; fi
 fi
-bash scripts/build.sh -DSTRUCTMD_CUDA="$cuda"
+# The whole configuration is named, since scripts/example.sh leaves a lean one in build/'s cache.
+bash scripts/build.sh -DSTRUCTMD_CUDA="$cuda" -DSTRUCTMD_MPI=AUTO -DSTRUCTMD_PRECISIONS="single;mixed;double" \
+  -DSTRUCTMD_TESTS=ON -DSTRUCTMD_EXAMPLES=ON
 # Without a GPU, nvcc still compiles the CUDA engines (one precision, the library's engines only), so
 # that device code that does not compile cannot land; its tests run where a GPU is.
 if [ "$cuda" = OFF ] && command -v nvcc > /dev/null; then
