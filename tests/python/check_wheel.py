@@ -3,8 +3,9 @@
 to keep it short; the precision a handle then gets by default and the refusal of the others are checked),
 installs it into a fresh virtual environment with numpy from pip, and there, away from the source tree
 and without STRUCTMD_LIBRARY or PYTHONPATH, imports structmd, loads an example, steps and reads
-forces, then runs tests/python/test_binding.py against the installed package. The installed package
-must be the venv's, with the library bundled inside it.
+forces, runs the `structmd` command and `python -m structmd` (the bundled launcher), then runs
+tests/python/test_binding.py against the installed package. The installed package must be the
+venv's, with the library and the launcher bundled inside it.
 
 usage: check_wheel.py SOURCE_DIR BUILD_DIR EXAMPLE.json
 Exit status 77 (skipped) only when a virtual environment with pip cannot be made here; a wheel that
@@ -81,15 +82,18 @@ def main(source, build, example):
         built = run([python, "-m", "pip", "wheel", source, "--no-deps", "--no-build-isolation", "-w", wheelhouse,
                      "-C", "cmake.define.STRUCTMD_CUDA=OFF",
                      "-C", "cmake.define.STRUCTMD_PRECISIONS=double", "-C", f"build-dir={build}"], env=clean_env)
-        wheels = list(wheelhouse.glob("structmd-*.whl"))
+        wheels = list(wheelhouse.glob("structmd_engine-*.whl"))
         if built.returncode != 0 or len(wheels) != 1:
             print(f"FAILED: pip wheel exited {built.returncode}, wheels: {wheels}")
             return 1
         names = zipfile.ZipFile(wheels[0]).namelist()
         print("wheel holds:", *names, sep="\n  ")
         libraries = [name for name in names if "libstructmd" in name]
-        if libraries != ["structmd/libstructmd.so"]:
-            print(f"FAILED: expected the one library structmd/libstructmd.so in the wheel, found {libraries}")
+        if len(libraries) != 1 or not libraries[0].startswith("structmd/libstructmd.so."):
+            print(f"FAILED: expected the one library structmd/libstructmd.so.MAJOR.MINOR in the wheel, found {libraries}")
+            return 1
+        if "structmd/bin/structmd" not in names:
+            print("FAILED: the launcher structmd/bin/structmd is not in the wheel")
             return 1
         if run([python, "-m", "pip", "install", "-q", "--no-deps", wheels[0]], env=clean_env).returncode != 0:
             print("FAILED: the wheel does not install")
@@ -97,6 +101,21 @@ def main(source, build, example):
         checked = run([python, "-c", INSTALLED_CHECK, example], env=clean_env, cwd=work)
         if checked.returncode != 0:
             print("FAILED: the installed package does not work")
+            return 1
+        # The command pip made, the one a user types: the bundled launcher, finding the bundled
+        # library through its run path, runs the example and prints its summary.
+        command = run([venv / "bin" / "structmd", "run", example, "--steps", "20", "--backend", "cpu",
+                       "--precision", "double"], env=clean_env, cwd=work, capture_output=True, text=True)
+        print(command.stdout, command.stderr)
+        if command.returncode != 0 or "particle-steps/s" not in command.stdout:
+            print(f"FAILED: the structmd command exited {command.returncode} without its run's summary")
+            return 1
+        package_version = run([python, "-c", "import structmd; print(structmd.version())"], env=clean_env, cwd=work,
+                              capture_output=True, text=True).stdout.strip()
+        module = run([python, "-m", "structmd", "--version"], env=clean_env, cwd=work, capture_output=True, text=True)
+        if module.returncode != 0 or module.stdout.strip() != package_version:
+            print(f"FAILED: python -m structmd --version printed {module.stdout!r} (exit {module.returncode}),"
+                  f" the package is {package_version!r}")
             return 1
         # The binding's own tests, with the test helpers on the path but not bindings/python: pytest
         # adds tests/python, so `import structmd` finds the venv's package.

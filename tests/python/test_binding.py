@@ -98,10 +98,13 @@ def test_import_names_a_wrong_library_path(tmp_path):
     assert "ImportError" in result.stderr and str(missing) in result.stderr
 
 
+# An installed package bundles its library (under its soname) and the launcher; copies take its Python files only.
+PACKAGE_FILES_ONLY = shutil.ignore_patterns("__pycache__", "libstructmd.so*", "bin")
+
+
 def test_library_next_to_the_package_is_found(tmp_path):
     copy = tmp_path / "structmd"
-    # An installed package already holds its library: the copy takes the package's Python files only.
-    shutil.copytree(PACKAGE_PARENT / "structmd", copy, ignore=shutil.ignore_patterns("__pycache__", "*.so"))
+    shutil.copytree(PACKAGE_PARENT / "structmd", copy, ignore=PACKAGE_FILES_ONLY)
     (copy / Path(structmd.library_path).name).symlink_to(Path(structmd.library_path).resolve())
     result = run_python("import structmd; print(structmd.library_path)", {"PYTHONPATH": str(tmp_path)})
     assert result.returncode == 0, result.stderr
@@ -113,7 +116,7 @@ def test_a_source_checkout_finds_the_library_of_its_build_tree(tmp_path):
     # scripts/build.sh puts it, build/src; examples/coupling.py relies on this after a plain build.
     checkout = tmp_path / "checkout"
     package = checkout / "bindings" / "python" / "structmd"
-    shutil.copytree(PACKAGE_PARENT / "structmd", package, ignore=shutil.ignore_patterns("__pycache__", "*.so"))
+    shutil.copytree(PACKAGE_PARENT / "structmd", package, ignore=PACKAGE_FILES_ONLY)
     (checkout / "include").mkdir()
     (checkout / "include" / "structmd.h").touch()
     built = checkout / "build" / "src" / "libstructmd.so"

@@ -1,7 +1,7 @@
 """Finds libstructmd, checks its ABI version and declares the C signature of every function.
 
 Search order: the path in the environment variable STRUCTMD_LIBRARY; a library file next to the
-package (inside it, where a wheel from `pip install .` puts it, or in its parent folder); in a source
+package (inside it, where a wheel from `pip install .` puts it under its soname, or in its parent folder); in a source
 checkout (bindings/python/structmd), the build tree of scripts/build.sh, build/src; then
 ctypes.util.find_library("structmd").
 """
@@ -12,7 +12,7 @@ import os
 import sys
 from ctypes import CFUNCTYPE, POINTER, c_char_p, c_double, c_int, c_int32, c_int64, c_size_t, c_uint32, c_void_p
 from pathlib import Path
-from typing import List, Tuple
+from typing import List, Optional, Tuple
 
 from .constants import ABI_VERSION
 
@@ -83,22 +83,29 @@ SIGNATURES = {
 }
 
 
-def _library_file_names() -> List[str]:
+def _library_file_patterns() -> List[str]:
+    """The library's file names, as glob patterns: a wheel holds it under its soname (libstructmd.so.0.1)."""
     if sys.platform == "win32":
         return ["structmd.dll"]
     if sys.platform == "darwin":
         return ["libstructmd.dylib"]
-    return ["libstructmd.so"]
+    return ["libstructmd.so", "libstructmd.so.*"]
 
 
-def _checkout_build_folders(package_dir: Path) -> List[Path]:
-    """build/src of the repository when the package is the one of a source checkout, else nothing."""
+def checkout_repository(package_dir: Path) -> Optional[Path]:
+    """The repository when the package is the one of a source checkout (bindings/python/structmd), else None."""
     bindings = package_dir.parent.parent
     repository = bindings.parent
     in_checkout = (package_dir.parent.name, bindings.name) == ("python", "bindings")
     if in_checkout and (repository / "include" / "structmd.h").is_file():
-        return [repository / "build" / "src"]
-    return []
+        return repository
+    return None
+
+
+def _checkout_build_folders(package_dir: Path) -> List[Path]:
+    """build/src of the repository when the package is the one of a source checkout, else nothing."""
+    repository = checkout_repository(package_dir)
+    return [] if repository is None else [repository / "build" / "src"]
 
 
 def find_library_path() -> str:
@@ -110,9 +117,10 @@ def find_library_path() -> str:
         return explicit
     package_dir = Path(__file__).resolve().parent
     for folder in (package_dir, package_dir.parent, *_checkout_build_folders(package_dir)):
-        for name in _library_file_names():
-            if (folder / name).is_file():
-                return str(folder / name)
+        for pattern in _library_file_patterns():
+            for candidate in sorted(folder.glob(pattern)):
+                if candidate.is_file():
+                    return str(candidate)
     found = ctypes.util.find_library("structmd")
     if found:
         return found
