@@ -28,10 +28,12 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
-# ase: the reference and the i-PI server of tests/python/test_ase.py and test_ipi.py.
-if [ "$profile" = test ] && ! python3 -c "import numpy, cffi, pytest, ase" >/dev/null 2>&1; then
-  python3 -m pip install -q numpy cffi pytest ase 2>/dev/null \
-    || python3 -m pip install -q --break-system-packages numpy cffi pytest ase
+# ase: the reference and the i-PI server of tests/python/test_ase.py and test_ipi.py; mkdocs and its
+# extensions: the documentation site (scripts/docs_site.py, test docs_site).
+python_packages=(numpy cffi pytest ase mkdocs pymdown-extensions "mkdocstrings[python]" mdx-truly-sane-lists)
+if [ "$profile" = test ] && ! python3 -c "import numpy, cffi, pytest, ase, mkdocs, pymdownx, mkdocstrings, mdx_truly_sane_lists" >/dev/null 2>&1; then
+  python3 -m pip install -q "${python_packages[@]}" 2>/dev/null \
+    || python3 -m pip install -q --break-system-packages "${python_packages[@]}"
 fi
 
 # pocketfft (the CPU backend's FFT, header only) into .deps/include, the git-ignored folder the build
