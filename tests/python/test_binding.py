@@ -102,10 +102,21 @@ def test_import_names_a_wrong_library_path(tmp_path):
 PACKAGE_FILES_ONLY = shutil.ignore_patterns("__pycache__", "libstructmd.so*", "bin")
 
 
+def link_library(link):
+    """Makes `link` name the loaded library. A wheel repaired by auditwheel keeps the libraries it
+    bundles (libgomp) in structmd_engine.libs beside the package, found through $ORIGIN/.., and
+    $ORIGIN is the folder of the link: that folder is linked beside it too."""
+    library = Path(structmd.library_path).resolve()
+    link.symlink_to(library)
+    bundled = library.parent.parent / "structmd_engine.libs"
+    if bundled.is_dir() and not (link.parent.parent / bundled.name).exists():
+        (link.parent.parent / bundled.name).symlink_to(bundled)
+
+
 def test_library_next_to_the_package_is_found(tmp_path):
     copy = tmp_path / "structmd"
     shutil.copytree(PACKAGE_PARENT / "structmd", copy, ignore=PACKAGE_FILES_ONLY)
-    (copy / Path(structmd.library_path).name).symlink_to(Path(structmd.library_path).resolve())
+    link_library(copy / Path(structmd.library_path).name)
     result = run_python("import structmd; print(structmd.library_path)", {"PYTHONPATH": str(tmp_path)})
     assert result.returncode == 0, result.stderr
     assert Path(result.stdout.strip()).parent == copy
@@ -121,7 +132,7 @@ def test_a_source_checkout_finds_the_library_of_its_build_tree(tmp_path):
     (checkout / "include" / "structmd.h").touch()
     built = checkout / "build" / "src" / "libstructmd.so"
     built.parent.mkdir(parents=True)
-    built.symlink_to(Path(structmd.library_path).resolve())
+    link_library(built)
     code = "import structmd; print(structmd.library_path)"
     result = run_python(code, {"PYTHONPATH": str(package.parent)})
     assert result.returncode == 0, result.stderr
