@@ -10,16 +10,24 @@
   minimises the energy (SteepestDescent), then equilibrates at T = 1 (Langevin BBK), writing a DCD
   trajectory and the thermodynamics.
 
-The output is deterministic (fixed seeds, Python's own Mersenne Twister, no numpy), so running the
-script again reproduces the committed files byte for byte.
+Each is written through structmd.builder.Input, the input builder of the Python package. The output
+is deterministic (fixed seeds, Python's own Mersenne Twister), so running the script again
+reproduces the committed files byte for byte.
 
 usage: make_inputs.py [OUTPUT_DIR]
 """
-import json
 import math
 import os
 import random
 import sys
+from pathlib import Path
+
+try:
+    from structmd.builder import Input
+except ImportError:
+    # Running from a source checkout: the package lives in bindings/python.
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bindings" / "python"))
+    from structmd.builder import Input
 
 LJ_EPSILON = 1.0
 LJ_SIGMA = 1.0
@@ -30,7 +38,6 @@ VERLET_SKIN = 0.3
 CUT_OFF_VERLET_FACTOR = round((LJ_CUTOFF_FACTOR * LJ_SIGMA + VERLET_SKIN) / (LJ_CUTOFF_FACTOR * LJ_SIGMA), 12)
 
 POSITION_DIGITS = 10
-LINE_WIDTH = 100
 
 
 def rounded(x, digits=POSITION_DIGITS):
@@ -54,33 +61,26 @@ def gaussian(rng):
     return math.sqrt(-2.0 * math.log(u1)) * math.cos(2.0 * math.pi * u2)
 
 
-def single_type():
-    return {"type": ["Types", "Basic"], "labels": ["name", "mass", "radius", "charge"],
-            "data": [["A", 1.0, 0.5, 0.0]]}
+def new_input(name, seed, box_length, temperature):
+    """An input of one type A (mass 1, radius 0.5) in a cubic box at the given temperature."""
+    system = Input(name, seed=seed)
+    system.add_type("A", mass=1.0, radius=0.5, charge=0.0)
+    system.set_ensemble(box_length, temperature)
+    return system
 
 
-def lennard_jones_force_field():
-    return {
-        "nl": {"type": ["VerletConditionalListSet", "all"],
-               "parameters": {"cutOffVerletFactor": CUT_OFF_VERLET_FACTOR}},
-        "lj": {"type": ["NonBonded", "LennardJonesType1"],
-               "parameters": {"cutOffFactor": LJ_CUTOFF_FACTOR, "condition": "all"},
-               "labels": ["name_i", "name_j", "epsilon", "sigma"],
-               "data": [["A", "A", LJ_EPSILON, LJ_SIGMA]]},
-    }
+def add_neighbour_list(system, factor=CUT_OFF_VERLET_FACTOR):
+    system.add_interaction("nl", ["VerletConditionalListSet", "all"], {"cutOffVerletFactor": factor})
 
 
-def velocity_verlet(time_step, steps):
-    return {
-        "vv": {"type": ["Verlet", "VelocityVerlet"], "parameters": {"timeStep": time_step}},
-        "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
-                     "data": [[1, "vv", steps]]},
-    }
+def add_pair_term(system, name, kind, cutoff_factor):
+    system.add_interaction(name, ["NonBonded", kind], {"cutOffFactor": cutoff_factor, "condition": "all"},
+                           labels=["name_i", "name_j", "epsilon", "sigma"], data=[["A", "A", LJ_EPSILON, LJ_SIGMA]])
 
 
-def thermo_every(interval, path):
-    return {"thermo": {"type": ["ThermodynamicMeasure", "ThermodynamicQuantityMeasure"],
-                       "parameters": {"intervalStep": interval, "outputFilePath": path}}}
+def add_thermo(system, interval, path):
+    system.add_step("thermo", ["ThermodynamicMeasure", "ThermodynamicQuantityMeasure"],
+                    {"intervalStep": interval, "outputFilePath": path})
 
 
 def lj_liquid():
@@ -101,25 +101,13 @@ def lj_liquid():
                     positions.append([wrapped(-box_length / 2 + lattice_constant * (c + b + 0.25), box_length)
                                       for c, b in ((i, bx), (j, by), (k, bz))])
 
-    return {
-        "system": {"info": {"type": ["Simulation", "Information"],
-                            "parameters": {"name": "lj_liquid", "seed": 20240611}}},
-        "global": {
-            "units": {"type": ["Units", "None"]},
-            "types": single_type(),
-            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
-                         "data": [[[box_length] * 3, temperature]]},
-        },
-        "integrator": velocity_verlet(0.005, 1000),
-        "state": {"labels": ["id", "position"],
-                  "data": [[index, position] for index, position in enumerate(positions)]},
-        "topology": {
-            "structure": {"labels": ["id", "type"], "data": [[index, "A"] for index in range(n)]},
-            "forceField": lennard_jones_force_field(),
-        },
-        "simulationStep": thermo_every(100, "lj_liquid_thermo.dat"),
-    }
-
+    system = new_input("lj_liquid", 20240611, box_length, temperature)
+    system.add_integrator("vv", ["Verlet", "VelocityVerlet"], {"timeStep": 0.005}, steps=1000)
+    system.add_particles(positions, "A")
+    add_neighbour_list(system)
+    add_pair_term(system, "lj", "LennardJonesType1", LJ_CUTOFF_FACTOR)
+    add_thermo(system, 100, "lj_liquid_thermo.dat")
+    return system
 
 def minimum_image_distance2(a, b, box_length):
     total = 0.0
@@ -197,29 +185,16 @@ def bead_spring():
     bonds = [[chain * beads_per_chain + bead, chain * beads_per_chain + bead + 1]
              for chain in range(chains) for bead in range(beads_per_chain - 1)]
 
-    force_field = lennard_jones_force_field()
-    force_field["bonds"] = {"type": ["Bond2", "HarmonicCommon_K_r0"], "parameters": {"K": 100.0, "r0": 1.0},
-                            "labels": ["id_i", "id_j"], "data": bonds}
-    return {
-        "system": {"info": {"type": ["Simulation", "Information"],
-                            "parameters": {"name": "bead_spring", "seed": 20240612}}},
-        "global": {
-            "units": {"type": ["Units", "None"]},
-            "types": single_type(),
-            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
-                         "data": [[[box_length] * 3, temperature]]},
-        },
-        "integrator": velocity_verlet(0.002, 2000),
-        "state": {"labels": ["id", "position", "velocity"],
-                  "data": [[index, positions[index], velocities[index]] for index in range(n)]},
-        "topology": {
-            "structure": {"labels": ["id", "type", "chainId"],
-                          "data": [[index, "A", index // beads_per_chain] for index in range(n)]},
-            "forceField": force_field,
-        },
-        "simulationStep": thermo_every(200, "bead_spring_thermo.dat"),
-    }
-
+    system = new_input("bead_spring", 20240612, box_length, temperature)
+    system.add_integrator("vv", ["Verlet", "VelocityVerlet"], {"timeStep": 0.002}, steps=2000)
+    system.add_particles(positions, "A", velocities=velocities,
+                         structure_columns={"chainId": [index // beads_per_chain for index in range(n)]})
+    add_neighbour_list(system)
+    add_pair_term(system, "lj", "LennardJonesType1", LJ_CUTOFF_FACTOR)
+    system.add_interaction("bonds", ["Bond2", "HarmonicCommon_K_r0"], {"K": 100.0, "r0": 1.0},
+                           labels=["id_i", "id_j"], data=bonds)
+    add_thermo(system, 200, "bead_spring_thermo.dat")
+    return system
 
 def polymer_melt():
     chains = 40
@@ -235,70 +210,27 @@ def polymer_melt():
     bonds = [[chain * beads_per_chain + bead, chain * beads_per_chain + bead + 1]
              for chain in range(chains) for bead in range(beads_per_chain - 1)]
     wca_cut = round(2.0 ** (1.0 / 6.0), 12)
-    return {
-        "system": {"info": {"type": ["Simulation", "Information"],
-                            "parameters": {"name": "polymer_melt", "seed": 1986}}},
-        "global": {
-            "units": {"type": ["Units", "None"]},
-            "types": single_type(),
-            "ensemble": {"type": ["Ensemble", "NVT"], "labels": ["box", "temperature"],
-                         "data": [[[box_length] * 3, 1.0]]},
-        },
-        "integrator": {
-            "minimise": {"type": ["SteepestDescent", "SteepestDescent"],
-                         "parameters": {"h": 0.01, "maxObjectiveForce": 10.0}},
-            "langevin": {"type": ["Langevin", "BBK"], "parameters": {"timeStep": 0.005, "frictionConstant": 0.5}},
-            "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
-                         "data": [[1, "minimise", 500], [2, "langevin", 5000]]},
-        },
-        "state": {"labels": ["id", "position"], "data": [[index, positions[index]] for index in range(n)]},
-        "topology": {
-            "structure": {"labels": ["id", "type", "chainId"],
-                          "data": [[index, "A", index // beads_per_chain] for index in range(n)]},
-            "forceField": {
-                # Kremer-Grest: WCA between every pair, bonded ones included (it keeps bonds near 0.97).
-                "nl": {"type": ["VerletConditionalListSet", "all"], "parameters": {"cutOffVerletFactor": 1.3}},
-                "wca": {"type": ["NonBonded", "WCAType1"], "parameters": {"cutOffFactor": wca_cut,
-                                                                          "condition": "all"},
-                        "labels": ["name_i", "name_j", "epsilon", "sigma"], "data": [["A", "A", 1.0, 1.0]]},
-                "fene": {"type": ["Bond2", "FeneCommon_r0_K_R0"], "parameters": {"r0": 0.0, "K": 30.0, "R0": 1.5},
-                         "labels": ["id_i", "id_j"], "data": bonds},
-            },
-        },
-        "simulationStep": {
-            "trajectory": {"type": ["WriteStep", "WriteStep"],
-                           "parameters": {"intervalStep": 500, "outputFilePath": "polymer_melt",
-                                          "outputFormat": "dcd"}},
-            **thermo_every(100, "polymer_melt_thermo.dat"),
-        },
-    }
-
-
-def to_text(value, indent=0):
-    """JSON with long objects spread over lines and each row of a "data" table on a line of its own."""
-    pad = "  " * indent
-    inner = "  " * (indent + 1)
-    if isinstance(value, dict):
-        items = []
-        for key, item in value.items():
-            if key == "data" and len(item) > 1:
-                rows = (",\n" + inner + "  ").join(json.dumps(row) for row in item)
-                items.append(f"{inner}{json.dumps(key)}: [\n{inner}  {rows}\n{inner}]")
-            elif isinstance(item, dict) and len(json.dumps(item)) > LINE_WIDTH:
-                items.append(f"{inner}{json.dumps(key)}: {to_text(item, indent + 1)}")
-            else:
-                items.append(f"{inner}{json.dumps(key)}: {json.dumps(item)}")
-        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
-    return json.dumps(value)
-
+    system = new_input("polymer_melt", 1986, box_length, 1.0)
+    system.add_integrator("minimise", ["SteepestDescent", "SteepestDescent"], {"h": 0.01, "maxObjectiveForce": 10.0},
+                          steps=500)
+    system.add_integrator("langevin", ["Langevin", "BBK"], {"timeStep": 0.005, "frictionConstant": 0.5}, steps=5000)
+    system.add_particles(positions, "A", structure_columns={"chainId": [index // beads_per_chain for index in range(n)]})
+    # Kremer-Grest: WCA between every pair, bonded ones included (it keeps bonds near 0.97).
+    add_neighbour_list(system, 1.3)
+    add_pair_term(system, "wca", "WCAType1", wca_cut)
+    system.add_interaction("fene", ["Bond2", "FeneCommon_r0_K_R0"], {"r0": 0.0, "K": 30.0, "R0": 1.5},
+                           labels=["id_i", "id_j"], data=bonds)
+    system.add_step("trajectory", ["WriteStep", "WriteStep"],
+                    {"intervalStep": 500, "outputFilePath": "polymer_melt", "outputFormat": "dcd"})
+    add_thermo(system, 100, "polymer_melt_thermo.dat")
+    return system
 
 def main():
     output_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
-    for name, document in (("lj_liquid.json", lj_liquid()), ("bead_spring.json", bead_spring()),
-                           ("polymer_melt.json", polymer_melt())):
+    for name, system in (("lj_liquid.json", lj_liquid()), ("bead_spring.json", bead_spring()),
+                         ("polymer_melt.json", polymer_melt())):
         path = os.path.join(output_dir, name)
-        with open(path, "w") as f:
-            f.write(to_text(document) + "\n")
+        system.write(path)
         print(f"wrote {path}")
 
 

@@ -42,7 +42,7 @@ NOT_ON_SITE = ("Doxyfile",)
 
 
 # The Python package's reference, rendered by mkdocstrings from its docstrings and annotations.
-PYTHON_MODULES = ["structmd.simulation", "structmd.errors", "structmd.ase", "structmd.ipi", "structmd.dlpack",
+PYTHON_MODULES = ["structmd.simulation", "structmd.builder", "structmd.errors", "structmd.ase", "structmd.ipi", "structmd.dlpack",
                   "structmd.plot"]
 PYTHON_API_PAGE = "# Python API\n\nThe package `structmd`, from its docstrings ([python.md](python.md) is the guide).\n\n" + \
     "".join(f"## `{module}`\n\n::: {module}\n\n" for module in PYTHON_MODULES)

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Checks that examples/make_inputs.py reproduces the committed example inputs byte for byte, so the
-generator and the bundled files cannot drift apart.
+generator and the bundled files cannot drift apart; the generator writes them through the Python
+package's input builder (structmd.Input), so this also holds the builder to the format.
 
 usage: check_inputs_regenerate.py EXAMPLES_DIR
 """

@@ -12,8 +12,8 @@ The shared library is found through the environment variable STRUCTMD_LIBRARY, e
 this package (pip install . bundles it inside), else in a source checkout's build/src, else on the
 system's library path; importing fails with ImportError if its ABI version is not ABI_VERSION.
 
-structmd.ase (an ASE calculator) and structmd.ipi (an i-PI client) are imported on demand: see
-docs/python.md.
+structmd.Input builds inputs from Python values (structmd/builder.py). structmd.ase (an ASE
+calculator) and structmd.ipi (an i-PI client) are imported on demand: see docs/python.md.
 """
 
 import os as _os
@@ -25,6 +25,7 @@ from .constants import ABI_VERSION, COMPUTE_FLAGS, STATUS
 from .errors import (ArgumentError, CallbackError, DeviceError, InputError, InternalError, NumericalError, StateError,
                      StructmdError, StructmdIOError, StructmdMemoryError, UnsupportedError,
                      error_for_status)
+from .builder import Input
 from .simulation import Simulation
 
 
@@ -51,7 +52,7 @@ def load_plugin(path: Union[str, "_os.PathLike[str]"]) -> None:
 __version__ = version()
 
 __all__ = [
-    "ABI_VERSION", "COMPUTE_FLAGS", "STATUS", "Simulation", "abi_version", "version", "library_path",
+    "ABI_VERSION", "COMPUTE_FLAGS", "STATUS", "Input", "Simulation", "abi_version", "version", "library_path",
     "load_plugin",
     "StructmdError", "ArgumentError", "InputError", "StateError", "NumericalError", "StructmdIOError",
     "DeviceError", "StructmdMemoryError", "UnsupportedError", "InternalError", "CallbackError", "error_for_status",
