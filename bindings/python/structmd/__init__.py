@@ -31,12 +31,12 @@ from .simulation import Simulation
 
 def abi_version() -> int:
     """STRUCTMD_ABI_VERSION of the library actually loaded."""
-    return _lib.structmd_abi_version()
+    return int(_lib.structmd_abi_version())
 
 
 def version() -> str:
     """The library version, "MAJOR.MINOR.PATCH"."""
-    return _lib.structmd_version().decode()
+    return str(_lib.structmd_version().decode())
 
 
 def load_plugin(path: Union[str, "_os.PathLike[str]"]) -> None:

@@ -115,15 +115,17 @@ class Input:
             raise ValueError(f"type {name!r} is added twice")
         self._types.append([name, float(mass), float(radius), float(charge)])
 
-    def set_ensemble(self, box: Union[float, Sequence[float]], temperature: float, kind: str = "NVT",
+    def set_ensemble(self, box: Union[float, Sequence[float], np.ndarray], temperature: float, kind: str = "NVT",
                      columns: Optional[Mapping[str, Any]] = None) -> None:
         """["Ensemble", kind] with the box (one edge for a cube, or three) and the temperature, and
         the other columns its kind takes (NVTlambda: {"lambda": 0.5})."""
-        edges = [float(box)] * 3 if np.ndim(box) == 0 else [float(edge) for edge in np.asarray(box).ravel()]
-        if len(edges) != 3:
-            raise ValueError(f"the box is one edge or three, not {len(edges)}")
+        edges = np.asarray(box, dtype=float).ravel()
+        if edges.size == 1:
+            edges = np.repeat(edges, 3)
+        if edges.size != 3:
+            raise ValueError(f"the box is one edge or three, not {edges.size}")
         labels = ["box", "temperature", *(columns or {})]
-        row = [edges, float(temperature), *(_plain(value) for value in (columns or {}).values())]
+        row = [[float(edge) for edge in edges], float(temperature), *(_plain(value) for value in (columns or {}).values())]
         self._ensemble = {"type": ["Ensemble", kind], "labels": labels, "data": [row]}
 
     # ---- particles ---------------------------------------------------------------------------

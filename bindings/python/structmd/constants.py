@@ -4,6 +4,8 @@ tests/python/test_binding.py checks that these equal the header's #defines, so a
 that is not mirrored here fails the tests instead of silently drifting.
 """
 
+from typing import Dict
+
 ABI_VERSION = 4
 
 STATUS = {
@@ -27,6 +29,6 @@ COMPUTE_FLAGS = {
 }
 
 
-def header_defines():
+def header_defines() -> Dict[str, int]:
     """Every #define of structmd.h that this package mirrors, by its C name."""
     return {"STRUCTMD_ABI_VERSION": ABI_VERSION, **STATUS, **COMPUTE_FLAGS}
