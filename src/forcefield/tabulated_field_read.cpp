@@ -1,6 +1,6 @@
 // Reading ["External","ExternalTabulated"] and ["External","PolarizationTabulated"] (tabulated_field.hpp):
-// the grid's size from "parameters" (nx, ny, nz, scale; dielectricConstant for the polarization
-// field) and its cells from the entry's table (i, j, k, energy, and optionally force), every cell given
+// the grid's size from "parameters" (nx, ny, nz, scale; the optional dielectricConstant of the
+// polarization field) and its cells from the entry's table (i, j, k, energy, and optionally force), every cell given
 // exactly once. The force column, which UAMMD-structured interpolates, is checked but not used: the
 // force is the gradient of the interpolated energy.
 #include <cmath>
@@ -22,7 +22,10 @@ namespace {
 std::vector<Parameter> field_parameters(bool polarization) {
     std::vector<Parameter> p = {number("nx", "1", Must::be_positive_integer), number("ny", "1", Must::be_positive_integer),
                                 number("nz", "1", Must::be_positive_integer), with_default(number("scale", "1"), 1.0)};
-    if (polarization) p.push_back(number("dielectricConstant", "1", Must::be_positive));
+    // Optional: UAMMD-structured's current source scales the table by the polarizability alone, and
+    // its generators write no dielectricConstant. The fallback 0, which no input may give (it must
+    // be positive), stands for "absent".
+    if (polarization) p.push_back(with_default(number("dielectricConstant", "1", Must::be_positive), 0.0));
     return p;
 }
 
@@ -70,7 +73,9 @@ ForceFieldComponent configure(const ForceFieldComponent& c, bool polarization, c
             throw input_error(entry.node.path() + ".type", c.key.text() +
                                                                " scales the field by each particle's polarizability: "
                                                                "the state needs a \"polarizability\" column");
-        const double eps = values["dielectricConstant"] / (4.0 * M_PI * system.units.electricConversion);
+        const double dielectricConstant = values["dielectricConstant"];
+        const double eps =
+            dielectricConstant > 0.0 ? dielectricConstant / (4.0 * M_PI * system.units.electricConversion) : 1.0;
         for (double alpha : polarizability) config->factor.push_back(eps * alpha);
     }
     ForceFieldComponent configured = c;

@@ -371,6 +371,20 @@ def test_polarization_field_is_scaled_by_eps_times_each_polarizability(options):
         assert np.max(np.abs(forces - numerical)) / np.max(np.abs(numerical)) < 1e-6
 
 
+def test_polarization_field_without_a_dielectric_constant_is_scaled_by_the_polarizability_alone(options):
+    """UAMMD-structured's current source and generators: no dielectricConstant, U_i = alpha_i U_tab."""
+    rng = np.random.default_rng(9)
+    n = (8, 8, 8)
+    x = random_positions(5, rng)
+    alpha = rng.uniform(0.5, 2.0, len(x))
+    entry = field_entry(periodic_field, n, subclass="PolarizationTabulated", scale=3.0)
+    assert "dielectricConstant" not in entry["parameters"]
+    with structmd.Simulation(options) as sim:
+        sim.load(document(x, {"pol": entry}, extra_columns={"polarizability": alpha}, units="KcalMol_A"))
+        expected = sum(3.0 * a * interpolated(periodic_field, n, p) for a, p in zip(alpha, x))
+        assert sim.energy("pol") == pytest.approx(expected, rel=1e-12)
+
+
 @pytest.mark.parametrize("name, polarizability_column", [("External-ExternalTabulated.json", None),
                                                           ("External-PolarizationTabulated.json", 2)])
 def test_uammd_structured_inputs_give_the_energies_their_analysis_expects(options, name, polarizability_column):

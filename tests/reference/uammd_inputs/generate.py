@@ -75,9 +75,10 @@ PARAMETER_OVERRIDES = {
 # Reductions of generators that keep their parameters in their source: (regex, replacement); also the
 # repairs of generators that lag behind UAMMD-structured's own code.
 SOURCE_OVERRIDES = {
-    # PolarizationTabulated reads a required dielectricConstant (eps = dielectricConstant / (4 pi f)),
-    # which the generator predates; 4 pi in units None (f = 1) gives eps = 1, the energies its analysis
-    # script expects (tabulated x scale x polarizability).
+    # PolarizationTabulated's dielectricConstant (eps = dielectricConstant / (4 pi f)), which the
+    # generator predates, was required when this input was made; 4 pi in units None (f = 1) gives
+    # eps = 1, the energies its analysis script expects (tabulated x scale x polarizability), the same
+    # as leaving it out now.
     "Tests/External/PolarizationTabulated/scripts/generateExternalTabulated.py": [
         (r'\{"nx":Nx,"ny":Ny,"nz":Nz,"scale":scale\}',
          '{"nx":Nx,"ny":Ny,"nz":Nz,"scale":scale,"dielectricConstant":4.0*np.pi}')],
