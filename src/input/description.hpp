@@ -57,6 +57,10 @@ struct ScheduleRow {
 constexpr uint64_t kDefaultSeed = 0x5EED;
 
 struct SystemDescription {
+    // What the reader accepted but a user should hear of, each naming its path: logged as warnings
+    // when the simulation is read.
+    std::vector<std::string> warnings;
+
     // system
     std::string name;
     uint64_t seed = 0;

@@ -298,7 +298,15 @@ std::vector<double> read_state_column(const Table& table, const std::vector<int6
 StateTable read_state(const TrackedNode& state, SystemDescription& description) {
     std::vector<std::string> optional{"velocity", "mass", "radius", "charge", "direction", "magnetization"};
     for_each_state_column([&](StateColumn c) { optional.push_back(traits(c).label); });
-    Table table = read_table(state, {"id", "position"}, optional);
+    // UAMMD-structured reads a state row's cells by its labels and ignores any past them; two of its
+    // own generators (Magnetism-Dipolar*) write such rows.
+    Table table = read_table(state, {"id", "position"}, optional, TrailingCells::ignored);
+    const size_t labelCount = state.at("labels").size();
+    if (const TrailingCellRows trailing = rows_with_trailing_cells(state, labelCount); trailing.count > 0)
+        description.warnings.push_back(trailing.firstPath + ": row has " + std::to_string(trailing.firstCells) +
+                                       " cells, labels has " + std::to_string(labelCount) + " (" +
+                                       std::to_string(trailing.count) +
+                                       " rows like it): the cells past the labels are ignored, as UAMMD-structured does");
     const size_t count = table.rows();
     const auto particleCount = static_cast<int64_t>(count);
     std::vector<int64_t> idOfRow =

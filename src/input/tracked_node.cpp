@@ -374,7 +374,7 @@ TrackedNode Table::cell(size_t row, const std::string& label) const {
 TrackedNode Table::row(size_t row) const { return data_.at(row); }
 
 Table read_table(const TrackedNode& entry, const std::vector<std::string>& required,
-                 const std::vector<std::string>& optional) {
+                 const std::vector<std::string>& optional, TrailingCells trailing) {
     std::vector<std::string> known = required;
     known.insert(known.end(), optional.begin(), optional.end());
 
@@ -405,7 +405,9 @@ Table read_table(const TrackedNode& entry, const std::vector<std::string>& requi
     const size_t rowCount = data.size();
     for (size_t r = 0; r < rowCount; ++r) {
         const json& rowValue = data.json()[r];
-        if (rowValue.is_array() && rowValue.size() == labels.size()) continue;
+        if (rowValue.is_array() && (rowValue.size() == labels.size() ||
+                                    (trailing == TrailingCells::ignored && rowValue.size() > labels.size())))
+            continue;
         const TrackedNode rowNode = data.at(r);
         if (!rowValue.is_array())
             throw_expected(rowNode, "a row (a list of " + std::to_string(labels.size()) + " cells)");
@@ -413,6 +415,20 @@ Table read_table(const TrackedNode& entry, const std::vector<std::string>& requi
                                               std::to_string(labels.size()));
     }
     return Table(entry, std::move(labels), data);
+}
+
+TrailingCellRows rows_with_trailing_cells(const TrackedNode& entry, size_t labels) {
+    TrailingCellRows found;
+    const TrackedNode data = entry.at("data");
+    for (size_t r = 0; r < data.size(); ++r) {
+        const json& row = data.json()[r];
+        if (!row.is_array() || row.size() <= labels) continue;
+        if (found.count++ == 0) {
+            found.firstPath = data.at(r).path();
+            found.firstCells = row.size();
+        }
+    }
+    return found;
 }
 
 }  // namespace structmd::input

@@ -97,7 +97,19 @@ private:
     TrackedNode data_;
 };
 
+// Rows with more cells than labels: refused (every table but one), or read without the cells past the
+// labels (the state's, which UAMMD-structured's own generators write so and it reads; the caller says so).
+enum class TrailingCells { refused, ignored };
+
 Table read_table(const TrackedNode& entry, const std::vector<std::string>& required,
-                 const std::vector<std::string>& optional = {});
+                 const std::vector<std::string>& optional = {}, TrailingCells trailing = TrailingCells::refused);
+
+// The first row of the table with more cells than labels, and how many rows have them; none: count 0.
+struct TrailingCellRows {
+    size_t count = 0;
+    std::string firstPath;
+    size_t firstCells = 0;
+};
+TrailingCellRows rows_with_trailing_cells(const TrackedNode& entry, size_t labels);
 
 }  // namespace structmd::input

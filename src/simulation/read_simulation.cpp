@@ -19,6 +19,7 @@ SimulationSpec read_simulation(const std::string& text, const Logger& log,
 SimulationSpec read_simulation(const input::ParsedDocument& doc, const Logger& log,
                                const Registry<ForceFieldComponent>& components) {
     const input::SystemDescription& system = doc.system;
+    for (const std::string& warning : system.warnings) log.warning(warning);
 
     SimulationSpec spec;
     spec.forceField = read_forcefield(system, log, components);

@@ -460,6 +460,26 @@ TEST(Document, TableRowWithWrongCellCount) {
     expect_input_error(document, {"state.data[1]: row has 2 cells, labels has 3"});
 }
 
+// UAMMD-structured's Magnetism-Dipolar generators write 5 cells under 4 state labels, which it reads
+// by label: the cells past the labels are ignored, with one warning naming the first such row. Other
+// tables still refuse them.
+TEST(Document, StateRowsWithCellsPastTheLabelsAreReadByLabelWithAWarning) {
+    json document = valid_document();
+    document["state"] = {{"labels", {"id", "position", "velocity"}},
+                         {"data", {{0, {0, 0, 0}, {1, 2, 3}}, {1, {1, 1, 1}, {0, 0, 0}, 4.5}, {2, {2, 2, 2}, {0, 1, 0}, 5.5}}}};
+    const SystemDescription system = parse_document(document.dump()).system;
+    ASSERT_EQ(system.velocities.size(), 3u);
+    EXPECT_EQ(system.velocities[2], (Vec3d{0, 1, 0}));
+    ASSERT_EQ(system.warnings.size(), 1u);
+    EXPECT_NE(system.warnings[0].find("state.data[1]: row has 4 cells, labels has 3 (2 rows like it)"), std::string::npos)
+        << system.warnings[0];
+    EXPECT_TRUE(parse_document(valid_document().dump()).system.warnings.empty());
+
+    json structure = valid_document();
+    structure["topology"]["structure"]["data"][0].push_back(7);
+    expect_input_error(structure, {"topology.structure.data[0]: row has 4 cells, labels has 3"});
+}
+
 TEST(Document, UnknownStateLabel) {
     json document = valid_document();
     document["state"]["labels"][2] = "colour";
