@@ -821,9 +821,14 @@ STRUCTMD_API structmd_status structmd_save_checkpoint(structmd_sim* sim, const c
  *
  * @param sim   the handle.
  * @param path  the file.
+ * The values are checked as the load and the setters check them, since a file can be edited and its
+ * checksum recomputed: each box length finite, > 0, <= 1e15 and more than twice the largest cutoff;
+ * a finite time, positions (within 1e8 box lengths), velocities, masses, orientations and
+ * magnetic moments; type indices of this simulation.
+ *
  * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_IO for a missing, truncated or
- *         corrupt file, another format version, or a checkpoint of another simulation (the message
- *         says which).
+ *         corrupt file, another format version, a checkpoint of another simulation, or values the
+ *         checks above refuse (the message says which, naming the particle id).
  */
 STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const char* path);
 
