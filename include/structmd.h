@@ -247,7 +247,11 @@ STRUCTMD_API structmd_status structmd_load_plugin(const char* path);
  *         or force became non-finite or a particle moved farther than the neighbour-list skin in
  *         one step: the message names the step, particle id and quantity, and the state (positions,
  *         velocities, step, time, the integrators' own state) is back where the call started; files
- *         that measures wrote during the call stay written.
+ *         that measures wrote during the call stay written; STRUCTMD_ERR_INPUT, naming the
+ *         parameter's path, for the few parameters that can only be judged against the state when
+ *         their integrator starts (a hydrodynamics integrator without a radius takes its group's
+ *         radii, whose near field may reach beyond half the box); STRUCTMD_ERR_UNSUPPORTED when a
+ *         hydrodynamics integrator finds the box changed since it started.
  */
 STRUCTMD_API structmd_status structmd_step(structmd_sim* sim, int64_t nsteps);
 
