@@ -16,6 +16,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/precise.hpp"
@@ -138,6 +139,20 @@ struct ShiftPositions {
     }
 };
 
+// 1 for a group particle on a wall of the slab or beyond it, else 0.
+template <class R>
+struct OnSlabWall {
+    const Real4<R>* pos;
+    const uint8_t* group;
+    R bottom, top;
+    bool slit;
+    SMD_HD double operator()(int64_t i) const {
+        if (group && !group[i]) return 0.0;
+        const R z = pos[i].z;
+        return z <= bottom || (slit && z >= top) ? 1.0 : 0.0;
+    }
+};
+
 // drift += c (plus - minus)
 template <class R>
 struct AddFiniteDifference {
@@ -172,6 +187,7 @@ public:
         const bool thermal = s.kT > 0.0;
         if (thermal) {
             backend_.for_each(n, DrawHydrodynamicNoise<R>{s.group, p.noise, p.now(), gaussian_.data()});
+            refuse_particles_on_a_wall(p);
             lanczos_.apply_sqrt(3 * n, gaussian_.data(), noise_.data(),
                                 [&](const R* v, R* out) { mesh_->apply(v, out, viscosity_); });
             thermal_drift(p, s.kT);
@@ -183,6 +199,28 @@ public:
     }
 
 private:
+    // A particle on a wall (or beyond it) spreads nothing, so M has a zero row: the Lanczos square
+    // root then either fails ("not positive definite", alone) or moves it off the wall by its
+    // truncation error (among others). Refused, naming the lowest such id and the step; the count
+    // is one reduction, the positions are read only when there is one.
+    void refuse_particles_on_a_wall(const Particles<B, R>& p) {
+        if (plan_.walls == SlabWalls::none) return;
+        const R bottom = R(-0.5 * plan_.height), top = R(0.5 * plan_.height);
+        const bool slit = plan_.walls == SlabWalls::slit;
+        const uint8_t* group = this->scope().group;
+        if (backend_.reduce(p.count, OnSlabWall<R>{p.pos.data(), group, bottom, top, slit}, 0.0) == 0.0) return;
+        std::vector<Real4<R>> positions(static_cast<size_t>(p.count));
+        backend_.download(p.pos, positions.data(), positions.size());
+        const OnSlabWall<R> onWall{positions.data(), nullptr, bottom, top, slit};
+        for (int64_t i = 0; i < p.count; ++i)
+            if (onWall(i) > 0.0)
+                throw Error(STRUCTMD_ERR_NUMERICAL,
+                            "step " + std::to_string(p.timeline.step() + 1) + ", particle id " + std::to_string(i) +
+                                ": it lies on the wall at z = " + precise(positions[i].z <= bottom ? bottom : top) +
+                                " (z = " + precise(positions[i].z) + "), where the slab's mobility vanishes and " +
+                                "its noise cannot be drawn; keep the particles inside the slab (a wall potential)");
+    }
+
     // drift_ += kT div M by the random finite difference.
     void thermal_drift(Particles<B, R>& p, double kT) {
         const IntegratorScope& s = this->scope();

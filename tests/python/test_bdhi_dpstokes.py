@@ -357,3 +357,18 @@ def test_bad_input_names_its_path(options, change, path, message):
     with structmd.Simulation(options) as sim:
         with pytest.raises(structmd.InputError, match=r"integrator\.bd\.parameters\." + path + ".*" + message):
             sim.load(document([[0.0, 0.0, 0.0]], 12.0, 8.0, entry))  # the load alone refuses (Lx, H: issue 37)
+
+
+@pytest.mark.parametrize("mode, wall", [("bottom", -4.0), ("slit", -4.0), ("slit", 4.0)])
+def test_a_particle_on_a_wall_is_named_with_its_step(options, mode, wall):
+    """A particle on a wall has a zero row of M: alone it failed the Lanczos square root as "not
+    positive definite" with neither step nor particle (issue 37), among others the noise moved it
+    across the wall. Refused, named; just inside the wall the step runs."""
+    positions = [[0.0, 0.0, 0.0], [1.5, 0.0, 2.0], [3.0, 1.0, wall]]
+    with structmd.Simulation(options) as sim:
+        sim.load(document(positions, 12.0, 8.0, dpstokes(12.0, 8.0, 24, mode), temperature=1.0))
+        with pytest.raises(structmd.NumericalError, match=f"step 1, particle id 2: it lies on the wall at z = {wall:g}"):
+            sim.step(1)
+        positions[2][2] = 0.999 * wall
+        sim.positions = np.array(positions)
+        sim.step(1)
