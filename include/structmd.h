@@ -148,6 +148,11 @@ STRUCTMD_API structmd_status structmd_create(const char* options_json, structmd_
 /**
  * Releases the handle and everything it owns (host and device memory, open files, flushed and
  * closed). The handle must not be used afterwards, and no other thread may be using it meanwhile.
+ * C cannot tell a destroyed handle from a live one in general: its memory may already hold something
+ * else. As a courtesy, the handle is marked on destroy, so that a second destroy, or a call on the
+ * handle, made before its memory is reused is refused (destroy does nothing; other calls return
+ * STRUCTMD_ERR_ARGUMENT, saying so under structmd_last_error(NULL)) rather than crashing. Do not rely
+ * on it: set the pointer to NULL after destroying.
  *
  * @param sim  the handle; NULL does nothing.
  */
