@@ -21,8 +21,9 @@ class ForceFieldComponents;  // forcefield/component_set.hpp, reached through en
 class Communicator;          // parallel/communicator.hpp
 }
 
-// A live handle's first word; structmd_destroy overwrites it (and the allocator then reuses the
-// word), so that a handle used after destroy is refused while its memory is not yet reused.
+// A live handle's first word. structmd_destroy clears it before freeing the memory (where the
+// allocator then keeps its own pointers), so that a handle used after destroy is refused for as long
+// as the memory is not given to something else.
 inline constexpr uint64_t kLiveHandle = 0x444d544355525453ull;  // the bytes "STRUCTMD"
 
 struct structmd_sim {

@@ -93,6 +93,7 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         for (const TextOption& option : component.textOptions)
             spec.parameters.set(option.name, {read_text_option(params, option, spec.path)});
         component.validate(spec.parameters, spec.path);
+        // Entries added at run time may leave it out, as they may the later fields.
         if (component.validateInBox) component.validateInBox(spec.parameters, system.box, spec.path);
         if (component.magnetic && system.magnetizations.empty())
             throw input_error(spec.path + ".type", entry.cls + " " + entry.subclass +
