@@ -148,6 +148,11 @@ STRUCTMD_API structmd_status structmd_create(const char* options_json, structmd_
 /**
  * Releases the handle and everything it owns (host and device memory, open files, flushed and
  * closed). The handle must not be used afterwards, and no other thread may be using it meanwhile.
+ * C cannot tell a destroyed handle from a live one in general: its memory may already hold something
+ * else. As a courtesy, the handle is marked on destroy, so that a second destroy, or a call on the
+ * handle, made before its memory is reused is refused (destroy does nothing; other calls return
+ * STRUCTMD_ERR_ARGUMENT, saying so under structmd_last_error(NULL)) rather than crashing. Do not rely
+ * on it: set the pointer to NULL after destroying.
  *
  * @param sim  the handle; NULL does nothing.
  */
@@ -247,7 +252,11 @@ STRUCTMD_API structmd_status structmd_load_plugin(const char* path);
  *         or force became non-finite or a particle moved farther than the neighbour-list skin in
  *         one step: the message names the step, particle id and quantity, and the state (positions,
  *         velocities, step, time, the integrators' own state) is back where the call started; files
- *         that measures wrote during the call stay written.
+ *         that measures wrote during the call stay written; STRUCTMD_ERR_INPUT, naming the
+ *         parameter's path, for the few parameters that can only be judged against the state when
+ *         their integrator starts (a hydrodynamics integrator without a radius takes its group's
+ *         radii, whose near field may reach beyond half the box); STRUCTMD_ERR_UNSUPPORTED when a
+ *         hydrodynamics integrator finds the box changed since it started.
  */
 STRUCTMD_API structmd_status structmd_step(structmd_sim* sim, int64_t nsteps);
 
@@ -821,9 +830,14 @@ STRUCTMD_API structmd_status structmd_save_checkpoint(structmd_sim* sim, const c
  *
  * @param sim   the handle.
  * @param path  the file.
+ * The values are checked as the load and the setters check them, since a file can be edited and its
+ * checksum recomputed: each box length finite, > 0, <= 1e15 and more than twice the largest cutoff;
+ * a finite time, positions (within 1e8 box lengths), velocities, masses, orientations and
+ * magnetic moments; type indices of this simulation.
+ *
  * @return STRUCTMD_OK; STRUCTMD_ERR_STATE before a load; STRUCTMD_ERR_IO for a missing, truncated or
- *         corrupt file, another format version, or a checkpoint of another simulation (the message
- *         says which).
+ *         corrupt file, another format version, a checkpoint of another simulation, or values the
+ *         checks above refuse (the message says which, naming the particle id).
  */
 STRUCTMD_API structmd_status structmd_load_checkpoint(structmd_sim* sim, const char* path);
 

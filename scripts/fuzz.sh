@@ -17,7 +17,7 @@ root=$(pwd)
 build="$root/build-fuzz"
 seconds=${FUZZ_SECONDS:-60}
 jobs=${JOBS:-1}
-targets=(fuzz_load_string fuzz_api_sequence)
+targets=(fuzz_load_string fuzz_api_sequence fuzz_expression fuzz_create_options)
 
 if ! command -v clang++ > /dev/null; then
   echo "fuzz: clang++ not found (bash scripts/install-deps.sh installs it)" >&2

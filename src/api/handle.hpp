@@ -21,7 +21,14 @@ class ForceFieldComponents;  // forcefield/component_set.hpp, reached through en
 class Communicator;          // parallel/communicator.hpp
 }
 
+// A live handle's first word. structmd_destroy clears it before freeing the memory (where the
+// allocator then keeps its own pointers), so that a handle used after destroy is refused for as long
+// as the memory is not given to something else.
+inline constexpr uint64_t kLiveHandle = 0x444d544355525453ull;  // the bytes "STRUCTMD"
+
 struct structmd_sim {
+    // volatile: the store of destroy, just before the memory is freed, must not be elided.
+    volatile uint64_t liveness = kLiveHandle;
     structmd::EngineOptions options;
     // Built-ins, the plugins loaded process-wide before the handle was created, and those of its
     // "plugins" option. Fixed at creation; shared by every load of the handle.
@@ -85,12 +92,18 @@ structmd_status guarded(std::string& message, Body&& body) noexcept {
 inline const char* const kInsideCallback =
     "not available inside a force callback of this handle (only structmd_set_callback_error is)";
 
-// Runs body(handle) behind the barrier; a NULL handle is STRUCTMD_ERR_ARGUMENT, a call from inside
-// one of the handle's force callbacks STRUCTMD_ERR_STATE (unless insideCallbackAllowed).
+inline const char* const kNotLive = "sim: not a live handle (destroyed already?)";
+
+// Runs body(handle) behind the barrier; a NULL or destroyed handle is STRUCTMD_ERR_ARGUMENT, a call
+// from inside one of the handle's force callbacks STRUCTMD_ERR_STATE (unless insideCallbackAllowed).
 template <class Handle, class Body>
 structmd_status with_handle(Handle* sim, Body&& body, bool insideCallbackAllowed = false) noexcept {
     if (!sim) {
         thread_error() = "sim: NULL handle";
+        return STRUCTMD_ERR_ARGUMENT;
+    }
+    if (sim->liveness != kLiveHandle) {
+        thread_error() = kNotLive;
         return STRUCTMD_ERR_ARGUMENT;
     }
     structmd_sim& handle = *const_cast<structmd_sim*>(sim);

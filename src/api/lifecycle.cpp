@@ -69,15 +69,21 @@ structmd_status structmd_create(const char* options_json, structmd_sim** out) {
 
 void structmd_destroy(structmd_sim* sim) {
     // Destructors release device memory; a failing CUDA call there must not escape either.
+    if (sim && sim->liveness != kLiveHandle) {
+        thread_error() = std::string("structmd_destroy: ") + kNotLive;
+        return;
+    }
     if (sim && sim->inCallback) {
         // Deleting the engine that is calling the host would leave it running on freed memory.
         sim->lastError = thread_error() = std::string("structmd_destroy: ") + kInsideCallback;
         return;
     }
+    if (sim) sim->liveness = 0;
     guarded(thread_error(), [&] { delete sim; });
 }
 
 const char* structmd_last_error(const structmd_sim* sim) {
+    if (sim && sim->liveness != kLiveHandle) return kNotLive;
     return sim ? sim->lastError.c_str() : thread_error().c_str();
 }
 

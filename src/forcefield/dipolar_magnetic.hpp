@@ -48,7 +48,9 @@ struct DipolarMagneticKernel {
             if (group && !group[j]) return;
             const Vec3<R> r = v.box.minimum_image(xyz(v.positions[s]) - ri);
             const R r2 = dot(r, r);
-            if (!(r2 < cutoff2) || !(r2 > R(0))) return;
+            // A coincident pair (r2 = 0) is not skipped: its terms come out NaN, which the step and
+            // the getters report as NUMERICAL, as for every pair term.
+            if (!(r2 < cutoff2)) return;
             const Vec3<R> muj = magnetic_moment(magnetization, dir, j);
             const R invR2 = R(1) / r2;
             const R invR3 = sqrt(invR2) * invR2;

@@ -11,12 +11,16 @@
 // rounding of the difference against its truncation. Only the integrator's group takes part;
 // rotations are not coupled (w_d, beta_d and alpha_d, UAMMD's torque kernel, are read and unused).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
+#include "core/precise.hpp"
+#include "hydrodynamics/fcm_mesh.hpp"
 #include "hydrodynamics/lanczos_sqrt.hpp"
 #include "hydrodynamics/slab_mesh.hpp"
 #include "integrators/bdhi_grid.hpp"
@@ -61,10 +65,20 @@ struct BdhiDPStokesInputs : IntegratorInputs {
         const double nz = v["nz"];
         if (nz != 0.0 && !(nz >= 3.0 && nz == std::floor(nz)))
             throw input_error(at + "nz", "expected an integer >= 3 (or leave it out), got " + std::to_string(nz));
+        // Before any count becomes an int: nx = 2^31 wrapped to a negative grid and was blamed on
+        // the radius.
+        const double points[3] = {v["nx"], v["ny"], nz_wanted(v)};
+        const char* names[3] = {"nx", "ny", "nz"};
+        for (int d = 0; d < 3; ++d)
+            if (!(points[d] <= kMaxGridPoints))
+                throw input_error(at + names[d], "expected at most 2^30 grid points, got " + precise(points[d]));
+        if (!(points[0] * points[1] * points[2] <= kMaxGridPoints))
+            throw input_error(at + names[std::max_element(points, points + 3) - points],
+                              "the grid would need " + precise(points[0]) + " x " + precise(points[1]) + " x " +
+                                  precise(points[2]) + " points, more than 2^30");
         const SlabPlan plan = slab_plan(v);
         // A coarser grid than 2 sigma does not resolve the Gaussian (sigma = a / sqrt(pi)).
         const double spacings[3] = {v["Lx"] / v["nx"], v["Ly"] / v["ny"], v["H"] / (plan.grid.nz - 1)};
-        const char* names[3] = {"nx", "ny", "nz"};
         for (int d = 0; d < 3; ++d)
             if (spacings[d] > 2.0 * plan.sigma)
                 throw input_error(at + names[d], "the grid spacing " + std::to_string(spacings[d]) +
@@ -78,12 +92,31 @@ struct BdhiDPStokesInputs : IntegratorInputs {
             throw input_error(at + "H", "the slab must be at least one diameter high");
     }
 
-    // The grid: nz (where not given) makes the z spacing the finer of x's and y's.
+    // The slab in the input's box, at the load and at every parameter change.
+    static void validate_in_box(const ParameterValues& v, const std::array<double, 3>& box, const std::string& path) {
+        check_fits_box(v["Lx"], v["Ly"], v["H"], box.data(), path);
+    }
+
+    // Lx and Ly are the box's x and y; the slab fits in its z.
+    static void check_fits_box(double lx, double ly, double height, const double box[3], const std::string& path) {
+        const double lengths[2] = {lx, ly};
+        for (int d = 0; d < 2; ++d)
+            if (!(std::fabs(box[d] - lengths[d]) <= 1e-6 * lengths[d]))
+                throw input_error(path + ".parameters.L" + std::string(1, "xy"[d]),
+                                  "is " + std::to_string(lengths[d]) + " but the box's " + std::string(1, "xy"[d]) +
+                                      " length is " + std::to_string(box[d]) + " (the box may not change either)");
+        if (!(box[2] >= height))
+            throw input_error(path + ".parameters.H", "the slab of height " + std::to_string(height) +
+                                                          " does not fit in the box's z length " + std::to_string(box[2]));
+    }
+
+    // The z nodes: nz where given, else as many as make the z spacing the finer of x's and y's.
+    static double nz_wanted(const ParameterValues& v) {
+        return v["nz"] > 0.0 ? v["nz"] : std::ceil(v["H"] / std::min(v["Lx"] / v["nx"], v["Ly"] / v["ny"])) + 1.0;
+    }
+
     static SlabPlan slab_plan(const ParameterValues& v) {
-        const double spacing = std::min(v["Lx"] / v["nx"], v["Ly"] / v["ny"]);
-        const int sizes[3] = {static_cast<int>(v["nx"]), static_cast<int>(v["ny"]),
-                              v["nz"] > 0.0 ? static_cast<int>(v["nz"])
-                                            : static_cast<int>(std::ceil(v["H"] / spacing)) + 1};
+        const int sizes[3] = {static_cast<int>(v["nx"]), static_cast<int>(v["ny"]), static_cast<int>(nz_wanted(v))};
         const double box[2] = {v["Lx"], v["Ly"]};
         return make_slab_plan(sizes, box, v["H"], v["hydrodynamicRadius"],
                               static_cast<SlabWalls>(static_cast<int>(v["mode"])));
@@ -103,6 +136,20 @@ struct ShiftPositions {
         r.y += c * w[3 * i + 1];
         r.z += c * w[3 * i + 2];
         shifted[i] = r;
+    }
+};
+
+// 1 for a group particle on a wall of the slab or beyond it, else 0.
+template <class R>
+struct OnSlabWall {
+    const Real4<R>* pos;
+    const uint8_t* group;
+    R bottom, top;
+    bool slit;
+    SMD_HD double operator()(int64_t i) const {
+        if (group && !group[i]) return 0.0;
+        const R z = pos[i].z;
+        return z <= bottom || (slit && z >= top) ? 1.0 : 0.0;
     }
 };
 
@@ -140,6 +187,7 @@ public:
         const bool thermal = s.kT > 0.0;
         if (thermal) {
             backend_.for_each(n, DrawHydrodynamicNoise<R>{s.group, p.noise, p.now(), gaussian_.data()});
+            refuse_particles_on_a_wall(p);
             lanczos_.apply_sqrt(3 * n, gaussian_.data(), noise_.data(),
                                 [&](const R* v, R* out) { mesh_->apply(v, out, viscosity_); });
             thermal_drift(p, s.kT);
@@ -151,6 +199,28 @@ public:
     }
 
 private:
+    // A particle on a wall (or beyond it) spreads nothing, so M has a zero row: the Lanczos square
+    // root then either fails ("not positive definite", alone) or moves it off the wall by its
+    // truncation error (among others). Refused, naming the lowest such id and the step; the count
+    // is one reduction, the positions are read only when there is one.
+    void refuse_particles_on_a_wall(const Particles<B, R>& p) {
+        if (plan_.walls == SlabWalls::none) return;
+        const R bottom = R(-0.5 * plan_.height), top = R(0.5 * plan_.height);
+        const bool slit = plan_.walls == SlabWalls::slit;
+        const uint8_t* group = this->scope().group;
+        if (backend_.reduce(p.count, OnSlabWall<R>{p.pos.data(), group, bottom, top, slit}, 0.0) == 0.0) return;
+        std::vector<Real4<R>> positions(static_cast<size_t>(p.count));
+        backend_.download(p.pos, positions.data(), positions.size());
+        const OnSlabWall<R> onWall{positions.data(), nullptr, bottom, top, slit};
+        for (int64_t i = 0; i < p.count; ++i)
+            if (onWall(i) > 0.0)
+                throw Error(STRUCTMD_ERR_NUMERICAL,
+                            "step " + std::to_string(p.timeline.step() + 1) + ", particle id " + std::to_string(i) +
+                                ": it lies on the wall at z = " + precise(positions[i].z <= bottom ? bottom : top) +
+                                " (z = " + precise(positions[i].z) + "), where the slab's mobility vanishes and " +
+                                "its noise cannot be drawn; keep the particles inside the slab (a wall potential)");
+    }
+
     // drift_ += kT div M by the random finite difference.
     void thermal_drift(Particles<B, R>& p, double kT) {
         const IntegratorScope& s = this->scope();
@@ -172,15 +242,7 @@ private:
     void prepare(const Particles<B, R>& p) override {
         const IntegratorScope& s = this->scope();
         const double box[3] = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
-        for (int d = 0; d < 2; ++d)
-            if (!(std::fabs(box[d] - plan_.box[d]) <= 1e-6 * plan_.box[d]))
-                throw input_error(s.path + ".parameters.L" + std::string(1, "xy"[d]),
-                                  "is " + std::to_string(plan_.box[d]) + " but the box's " + std::string(1, "xy"[d]) +
-                                      " length is " + std::to_string(box[d]) + " (the box may not change either)");
-        if (!(box[2] >= plan_.height))
-            throw input_error(s.path + ".parameters.H", "the slab of height " + std::to_string(plan_.height) +
-                                                             " does not fit in the box's z length " +
-                                                             std::to_string(box[2]));
+        BdhiDPStokesInputs::check_fits_box(plan_.box[0], plan_.box[1], plan_.height, box, s.path);
         if (!mesh_) mesh_ = std::make_unique<SlabMesh<B, R>>(backend_, plan_);
         const size_t flat = static_cast<size_t>(3 * p.count);
         for (auto* buffer : {&flatForce_, &drift_, &gaussian_, &noise_, &rfdNoise_, &plus_, &minus_})

@@ -13,7 +13,11 @@
 
 namespace structmd {
 
-using BdhiForceCouplingInputs = GridBdhiInputs;
+struct BdhiForceCouplingInputs : GridBdhiInputs {
+    static void validate_in_box(const ParameterValues& v, const std::array<double, 3>& box, const std::string& path) {
+        make_fcm_plan(box.data(), v["hydrodynamicRadius"], v["tolerance"], path);
+    }
+};
 
 template <class B, class R>
 class BdhiForceCoupling : public GridBdhi<B, R> {

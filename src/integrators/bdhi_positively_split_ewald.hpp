@@ -35,6 +35,21 @@ struct BdhiPositivelySplitEwaldInputs : IntegratorInputs {
     static constexpr bool overdamped = true;
     static constexpr const char* radiusParameter = "hydrodynamicRadius";
     static void validate(const ParameterValues& v, const std::string& path) { validate_grid_tolerance(v, path); }
+    // The far field's grid; the near field's reach where the radius is given (else it is the
+    // group's, known at the first step).
+    static void validate_in_box(const ParameterValues& v, const std::array<double, 3>& box, const std::string& path) {
+        make_pse_far_plan(box.data(), v["psi"], v["tolerance"], path);
+        if (v["hydrodynamicRadius"] > 0.0)
+            check_near_field_fits(pse_near_cutoff(v["hydrodynamicRadius"], v["psi"], v["tolerance"]), box.data(), path);
+    }
+    static void check_near_field_fits(double cutoff, const double box[3], const std::string& path) {
+        for (int d = 0; d < 3; ++d)
+            if (cutoff > 0.5 * box[d])
+                throw input_error(path + ".parameters.psi",
+                                  "the near field reaches 2 a + sqrt(-ln tolerance) / psi = " + std::to_string(cutoff) +
+                                      ", more than half the box along " + std::string(1, "xyz"[d]) + " (" +
+                                      std::to_string(0.5 * box[d]) + "): give a larger psi");
+    }
 };
 
 // out = M_near v (flat vectors by particle), one list slot per call: the self block and the pairs
@@ -139,12 +154,7 @@ private:
             const FcmPlan plan = make_pse_far_plan(box, xi_, tolerance_, path);
             const double radius = radius_ > 0.0 ? radius_ : group_radius(p);
             const double cutoff = pse_near_cutoff(radius, xi_, tolerance_);
-            for (int d = 0; d < 3; ++d)
-                if (cutoff > 0.5 * box[d])
-                    throw input_error(path + ".parameters.psi",
-                                      "the near field reaches 2 a + sqrt(-ln tolerance) / psi = " + std::to_string(cutoff) +
-                                          ", more than half the box along " + std::string(1, "xyz"[d]) + " (" +
-                                          std::to_string(0.5 * box[d]) + "): give a larger psi");
+            BdhiPositivelySplitEwaldInputs::check_near_field_fits(cutoff, box, path);
             near_ = make_pse_near_tensor<R>(radius, xi_, viscosity_, tolerance_);
             green_ = PseFarGreen<R>{R(1.0 / viscosity_), R(radius), R(0.25 / (xi_ * xi_)), R(plan.sigma * plan.sigma)};
             mesh_ = std::make_unique<FcmMesh<B, R, PseFarGreen<R>>>(backend_, plan);

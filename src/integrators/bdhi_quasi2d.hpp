@@ -18,6 +18,10 @@ namespace structmd {
 struct BdhiQuasi2DInputs : GridBdhiInputs {
     // Which fluid the plane is in (the order of PlanarHydrodynamics).
     static std::vector<TextOption> text_options() { return {{"hydrodynamicKernel", "Quasi2D", {"Quasi2D", "True2D"}, {}, ""}}; }
+    static void validate_in_box(const ParameterValues& v, const std::array<double, 3>& box, const std::string& path) {
+        make_planar_plan(box.data(), static_cast<PlanarHydrodynamics>(static_cast<int>(v["hydrodynamicKernel"])),
+                         v["hydrodynamicRadius"], v["tolerance"], path);
+    }
 };
 
 template <class B, class R>

@@ -1,6 +1,7 @@
 #pragma once
 // An integrator advances the particles by one step; it asks the engine for forces (and, for a
 // minimiser, energies) at the positions it needs them, and the engine evaluates only what is stale.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -111,6 +112,9 @@ struct IntegratorInputs {
     static constexpr const char* radiusParameter = nullptr;
     // Rejects values the integrator cannot run with (beyond each parameter's own rule).
     static void validate(const ParameterValues&, const std::string&) {}
+    // Rejects values that cannot run in the input's box (a spectral grid that could never be held),
+    // at the load and at every parameter change rather than at the first step.
+    static void validate_in_box(const ParameterValues&, const std::array<double, 3>&, const std::string&) {}
 };
 
 // What every integrator is given: its time step, its thermal energy, the particles it moves, and

@@ -1,6 +1,7 @@
 #pragma once
 // Integrators and their schedule as read from the integrator section: plain data, each integrator
 // naming its component by key and holding its own parameters by name.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -47,6 +48,8 @@ struct IntegratorComponent {
     bool underDomains = false;              // IntegratorInputs::underDomains
     const char* wholeSystemParameter = nullptr;  // IntegratorInputs::wholeSystemParameter and wholeSystemEffect
     const char* wholeSystemEffect = nullptr;
+    std::function<void(const ParameterValues&, const std::array<double, 3>& box, const std::string& path)>
+        validateInBox;  // IntegratorInputs::validate_in_box
 };
 
 const Registry<IntegratorComponent>& integrator_registry();

@@ -20,7 +20,8 @@ struct ReaderEntries {
         registry.add({std::move(key), Inputs::parameters(), Inputs::minimiser, Inputs::needsRadius, &Inputs::validate,
                       Inputs::overdamped, Inputs::fallbackParameter, Inputs::fallbackColumn, Inputs::rotates,
                       Inputs::text_options(), Inputs::magnetic, Inputs::radiusParameter, Inputs::oneFluid,
-                      Inputs::underDomains, Inputs::wholeSystemParameter, Inputs::wholeSystemEffect});
+                      Inputs::underDomains, Inputs::wholeSystemParameter, Inputs::wholeSystemEffect,
+                      &Inputs::validate_in_box});
     }
 };
 
@@ -92,6 +93,8 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         for (const TextOption& option : component.textOptions)
             spec.parameters.set(option.name, {read_text_option(params, option, spec.path)});
         component.validate(spec.parameters, spec.path);
+        // Entries added at run time may leave it out, as they may the later fields.
+        if (component.validateInBox) component.validateInBox(spec.parameters, system.box, spec.path);
         if (component.magnetic && system.magnetizations.empty())
             throw input_error(spec.path + ".type", entry.cls + " " + entry.subclass +
                                                        " turns magnetic moments: the state needs a 'magnetization' column");

@@ -8,6 +8,7 @@
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <sys/un.h>
 #include <unistd.h>
 
@@ -37,6 +38,9 @@ using structmd::host::Handle;
 constexpr double kBohrInAngstrom = 0.5291772105638411;
 constexpr double kHartreeInEv = 27.211386024367243;
 constexpr size_t kHeaderSize = 12;
+// The longest INIT string accepted (i-PI's are a few bytes): a server announcing 2^31 - 1 bytes would
+// otherwise have the client allocate them, then wait for them.
+constexpr int32_t kMaxInitLength = 1 << 20;
 const char* const kUnixSocketPrefix = "/tmp/ipi_";
 
 // A failure of the connection or of the server's side of the protocol.
@@ -47,6 +51,16 @@ class ConnectionFailure : public std::runtime_error {
 class Socket {
 public:
     explicit Socket(int fd) : fd_(fd) {}
+
+    // Each read then fails after seconds without data (0: waits forever).
+    void set_read_timeout(double seconds) {
+        readTimeout_ = seconds;
+        timeval limit{};
+        limit.tv_sec = static_cast<time_t>(seconds);
+        limit.tv_usec = static_cast<suseconds_t>((seconds - static_cast<double>(limit.tv_sec)) * 1e6);
+        if (setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &limit, sizeof limit) != 0)
+            throw ConnectionFailure(std::string("setting the read timeout: ") + std::strerror(errno));
+    }
     ~Socket() {
         if (fd_ >= 0) close(fd_);
     }
@@ -63,6 +77,11 @@ public:
         while (done < size) {
             const ssize_t got = recv(fd_, bytes + done, size - done, 0);
             if (got < 0 && errno == EINTR) continue;
+            if (got < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+                char seconds[32];
+                std::snprintf(seconds, sizeof seconds, "%g", readTimeout_);
+                throw ConnectionFailure(std::string("no data from the server for ") + seconds + " s (--read-timeout)");
+            }
             if (got < 0) throw ConnectionFailure(std::string("reading from the server: ") + std::strerror(errno));
             if (got == 0) {
                 if (at_boundary && done == 0) return false;
@@ -107,6 +126,7 @@ public:
 
 private:
     int fd_;
+    double readTimeout_ = 0.0;
 };
 
 // One attempt each; an invalid socket, with the reason in error, when the server is not (yet) there.
@@ -227,6 +247,9 @@ public:
                 server.read_int32();  // the bead index
                 const int32_t length = server.read_int32();
                 if (length < 0) throw ConnectionFailure("INIT with a negative length");
+                if (length > kMaxInitLength)
+                    throw ConnectionFailure("INIT announces a string of " + std::to_string(length) +
+                                            " bytes, more than the " + std::to_string(kMaxInitLength) + " accepted");
                 std::vector<char> ignored(static_cast<size_t>(length));
                 server.read(ignored.data(), ignored.size());
                 initialised = true;
@@ -257,10 +280,16 @@ private:
         std::vector<double> positions = server.read_doubles(3 * static_cast<size_t>(count));
         for (double& x : positions) x *= bohr_;
 
-        // A NaN would pass the tilt test below, since no comparison with it holds.
+        // A NaN would pass the tilt test below, since no comparison with it holds, and a negative
+        // edge would fail it for the wrong reason.
         if (!std::all_of(cell.begin(), cell.end(), [](double x) { return std::isfinite(x); }))
             throw Failure("POSDATA", STRUCTMD_ERR_ARGUMENT, "the cell must have finite entries");
         double box[3] = {cell[0] * bohr_, cell[4] * bohr_, cell[8] * bohr_};
+        for (int d = 0; d < 3; ++d)
+            if (!(box[d] > 0.0))
+                throw Failure("POSDATA", STRUCTMD_ERR_ARGUMENT,
+                              "the cell must have positive edges along x, y and z, but its edge along " +
+                                  std::string(1, "xyz"[d]) + " is " + std::to_string(cell[4 * d]) + " bohr");
         const double largest = std::max({box[0], box[1], box[2]});
         for (int k : {1, 2, 3, 5, 6, 7})
             if (std::abs(cell[k] * bohr_) > 1e-12 * largest)
@@ -315,6 +344,7 @@ int run_ipi_client(const IpiClientOptions& options) {
         check(structmd_load_file(sim, options.input.c_str()), sim, "structmd_load_file");
         IpiClient client(sim, options);
         Socket server = connect_to(address, options.connectTimeout);
+        server.set_read_timeout(options.readTimeout);
         if (!options.quiet) std::fprintf(stderr, "structmd client: connected to %s\n", options.address.c_str());
         const int64_t evaluations = client.serve(server);
         if (!options.quiet)

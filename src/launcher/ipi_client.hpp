@@ -15,6 +15,9 @@ struct IpiClientOptions {
     double lengthUnit = 1.0;       // one input length in Å
     double energyUnit = 1.0;       // one input energy in eV
     double connectTimeout = 60.0;  // seconds to keep trying while no server listens yet
+    // Seconds to wait for each read from the server (0: forever), so that a server gone silent
+    // ends the client. An hour: i-PI may wait long on its other clients between two requests.
+    double readTimeout = 3600.0;
     bool quiet = false;
 };
 

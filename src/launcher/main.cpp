@@ -5,7 +5,8 @@
 //                [--plugin LIBRARY.so]... [--steps N] [--thermo K] [--progress SECONDS] [--quiet] [--mpi]
 //   mpirun -np K structmd run INPUT.json ...   (the input's batches spread over K ranks)
 //   structmd client --ipi HOST:PORT|unix:NAME INPUT.json [--backend ...] [--precision ...] [--threads N]
-//                   [--plugin LIBRARY.so]... [--length-unit A] [--energy-unit EV] [--connect-timeout S] [--quiet]
+//                   [--plugin LIBRARY.so]... [--length-unit A] [--energy-unit EV] [--connect-timeout S]
+//                   [--read-timeout S] [--quiet]
 //   structmd --version
 //
 // Progress goes to standard error: a line redrawn in place on a terminal, one line every
@@ -385,6 +386,11 @@ int main(int argc, char** argv) {
     client
         ->add_option("--connect-timeout", clientOptions.connectTimeout,
                      "Seconds to keep trying while no server listens")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    client
+        ->add_option("--read-timeout", clientOptions.readTimeout,
+                     "Seconds to wait for each message from the server before giving up (0: forever)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     client->add_flag("--quiet", clientEngine.quiet, "No connection messages, engine log at warning level");

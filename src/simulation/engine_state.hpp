@@ -122,8 +122,14 @@ void Engine<B, R, PairR>::save_checkpoint(const std::string& path) {
 
 template <class B, class R, class PairR>
 void Engine<B, R, PairR>::load_checkpoint(const std::string& path) {
-    const StateShape shape{precision_label<R, PairR>(), p_.count,         schedule_.first_step(),
-                           final_step(),                schedule_.stages(), integrators_.size()};
+    const StateShape shape{precision_label<R, PairR>(),
+                           p_.count,
+                           schedule_.first_step(),
+                           final_step(),
+                           schedule_.stages(),
+                           integrators_.size(),
+                           static_cast<int>(host_.typeNames.size()),
+                           largestCutoff_};
     const DynamicState<R> s = decode_state<R>(read_checkpoint_file(path), path, shape);
     // Everything read and checked: now the state changes.
     backend_.activate();

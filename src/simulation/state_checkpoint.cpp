@@ -1,6 +1,10 @@
 #include "simulation/state_checkpoint.hpp"
 
+#include <cmath>
+
 #include "core/error.hpp"
+#include "core/precise.hpp"
+#include "forcefield/forcefield_spec.hpp"
 #include "simulation/checkpoint_file.hpp"
 
 namespace structmd {
@@ -20,6 +24,45 @@ std::vector<T> get_vector(ByteReader& in, size_t count) {
     std::vector<T> values(count);
     in.get_bytes(values.data(), count * sizeof(T));
     return values;
+}
+
+// The values of a checkpoint pass the checks of the load and of the setters: a file with a valid
+// checksum may still have been edited, and a box shorter than twice the cutoff or a NaN position
+// would otherwise run (energies of 1e12, NaN forces) or index past the type tables.
+template <class R>
+void check_state_values(const DynamicState<R>& s, const std::string& path, const StateShape& shape) {
+    const auto invalid = [&](const std::string& what) {
+        return Error(STRUCTMD_ERR_IO, "checkpoint '" + path + "' holds a state this simulation refuses: " + what);
+    };
+    for (int d = 0; d < 3; ++d)
+        if (!(s.box[d] > 0.0 && s.box[d] <= kLargestBoxLength))
+            throw invalid("box length " + std::to_string(d) + " is " + precise(s.box[d]) +
+                          ", expected > 0 and <= 1e15");
+    if (!cutoff_fits_box(shape.largestCutoff, s.box))
+        throw invalid("the largest cutoff (" + precise(shape.largestCutoff) + ") must be shorter than half the box (" +
+                      precise(half_shortest_edge(s.box[0], s.box[1], s.box[2])) + ")");
+    if (!std::isfinite(s.time)) throw invalid("the time is " + precise(s.time));
+    const auto finite = [](const Real4<R>& v) {
+        return std::isfinite(double(v.x)) && std::isfinite(double(v.y)) && std::isfinite(double(v.z));
+    };
+    for (size_t i = 0; i < s.pos.size(); ++i) {
+        const std::string particle = "particle id " + std::to_string(i);
+        bool inRange = finite(s.pos[i]);
+        for (int d = 0; d < 3 && inRange; ++d)
+            inRange = std::fabs(double((&s.pos[i].x)[d])) <= 1e8 * s.box[d];
+        if (!inRange) throw invalid("the position of " + particle + " is not finite or lies beyond 1e8 box lengths");
+        const double type = s.pos[i].w;
+        if (!(type >= 0 && type < shape.types && type == std::floor(type)))
+            throw invalid("the type of " + particle + " is " + precise(type) + ", expected an index below " +
+                          std::to_string(shape.types));
+        if (!finite(s.vel[i]) || !(s.vel[i].w >= 0 && std::isfinite(double(s.vel[i].w))))
+            throw invalid("the velocity or mass of " + particle + " is not finite");
+    }
+    for (const auto* perParticle : {&s.externalForce, &s.dir, &s.magnetization})
+        for (size_t i = 0; i < perParticle->size(); ++i)
+            if (!finite((*perParticle)[i]) || !std::isfinite(double((*perParticle)[i].w)))
+                throw invalid("the external force, orientation or magnetic moment of particle id " + std::to_string(i) +
+                              " is not finite");
 }
 
 // The optional per-particle arrays after the integrators' state, in this order.
@@ -85,8 +128,8 @@ DynamicState<R> decode_state(const std::vector<unsigned char>& payload, const st
     for (double& length : s.box) length = in.get<double>();
     s.lambda = in.get<double>();
     if (s.step < shape.firstStep || s.step > shape.finalStep || s.activeStage < -1 || s.activeStage >= shape.stages ||
-        !(s.box[0] > 0 && s.box[1] > 0 && s.box[2] > 0) || !(s.lambda >= 0.0 && s.lambda <= 1.0))
-        throw mismatch("its step, schedule stage, box or lambda is out of range");
+        !(s.lambda >= 0.0 && s.lambda <= 1.0))
+        throw mismatch("its step, schedule stage or lambda is out of range");
     s.pos = get_vector<Real4<R>>(in, count);
     s.image = get_vector<Image>(in, count);
     s.vel = get_vector<Real4<R>>(in, count);
@@ -102,6 +145,7 @@ DynamicState<R> decode_state(const std::vector<unsigned char>& payload, const st
         else
             throw mismatch("it has more data than this simulation's integrators hold");
     }
+    check_state_values(s, path, shape);
     return s;
 }
 

@@ -30,8 +30,10 @@ struct DynamicState {
 template <class R>
 std::vector<unsigned char> encode_state(const DynamicState<R>& state);
 
-// What the simulation a checkpoint is loaded into looks like; a checkpoint that does not fit it is
-// ERR_IO naming the path and the mismatch, before anything changes.
+// What the simulation a checkpoint is loaded into looks like; a checkpoint that does not fit it, or
+// holds a state the load and the setters would refuse (a box beyond range or shorter than twice the
+// cutoff, a type out of range, a time, position, velocity or mass that is not finite), is ERR_IO
+// naming the path and what is wrong, before anything changes.
 struct StateShape {
     std::string precision;  // "single", "mixed" or "double", for the message
     int64_t particles = 0;
@@ -39,6 +41,8 @@ struct StateShape {
     int64_t finalStep = 0;
     int stages = 0;
     size_t integrators = 0;
+    int types = 0;
+    double largestCutoff = 0.0;  // of the pair terms
 };
 
 template <class R>

@@ -272,5 +272,17 @@ def test_unequal_radii_need_a_hydrodynamic_radius(options):
 def test_bad_input_names_its_path(options, parameters, path, message):
     with structmd.Simulation(options) as sim:
         with pytest.raises(structmd.InputError, match=r"integrator\.bd\.parameters\." + path + ".*" + message):
-            sim.load(document([[0.0, 0.0, 0.0]], 12.0, pse(**parameters)))
-            sim.step(1)
+            sim.load(document([[0.0, 0.0, 0.0]], 12.0, pse(**parameters)))  # the load alone refuses
+
+
+@pytest.mark.parametrize("psi, message", [(1e6, r"more than 2\^30"), (0.3, "more than half the box")])
+def test_set_parameter_refuses_a_psi_the_box_cannot_hold(options, psi, message):
+    """psi 1e6 by set_parameter stopped the process at the next step (issue 37)."""
+    path = "integrator.bd.parameters.psi"
+    with structmd.Simulation(options) as sim:
+        sim.load(document([[0.0, 0.0, 0.0], [3.0, 0.0, 0.0]], 12.0, pse()))
+        sim.step(1)
+        with pytest.raises(structmd.ArgumentError, match=path.replace(".", r"\.") + ".*" + message):
+            sim.set_parameter(path, psi)
+        assert sim.get_parameter(path) == 1.0
+        sim.step(1)

@@ -393,5 +393,15 @@ def test_several_batches_are_refused_by_name(options):
 def test_bad_input_names_its_path(options, parameters, path, message):
     with structmd.Simulation(options) as sim:
         with pytest.raises(structmd.InputError, match=path.replace(".", r"\.") + ".*" + message):
-            sim.load(document([[0.0, 0.0, 0.0]], 6.0, q2d(**parameters)))
-            sim.step(1)
+            sim.load(document([[0.0, 0.0, 0.0]], 6.0, q2d(**parameters)))  # the load alone refuses
+
+
+def test_set_parameter_refuses_a_radius_whose_grid_cannot_be(options):
+    path = "integrator.bd.parameters.hydrodynamicRadius"
+    with structmd.Simulation(options) as sim:
+        sim.load(document([[0.0, 0.0, 0.0]], 12.0, q2d()))
+        sim.step(1)
+        with pytest.raises(structmd.ArgumentError, match=path.replace(".", r"\.") + r".*more than 2\^30"):
+            sim.set_parameter(path, 1e-7)
+        assert sim.get_parameter(path) == RADIUS
+        sim.step(1)

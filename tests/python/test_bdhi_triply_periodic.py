@@ -232,7 +232,22 @@ def test_the_immersed_boundary_method_is_refused_by_name(options):
     ({"radius": 1e-5}, "integrator.bd.parameters.hydrodynamicRadius", r"more than 2\^30"),
 ])
 def test_bad_input_names_its_path(options, parameters, path, message):
+    """Refused by the load itself: the grid is judged against the input's box (issue 37 refused some
+    only at the first step)."""
     with structmd.Simulation(options) as sim:
         with pytest.raises(structmd.InputError, match=path.replace(".", r"\.") + ".*" + message):
             sim.load(document([[0.0, 0.0, 0.0]], 6.0, fcm(**parameters)))
-            sim.step(1)
+
+
+@pytest.mark.parametrize("radius, message", [(1e-7, r"more than 2\^30"), (6.0, "too small")])
+def test_set_parameter_refuses_a_radius_whose_grid_cannot_be(options, radius, message):
+    """Once SIGFPE at the next step (issue 37): now refused by set_parameter (ARGUMENT, as every value
+    the input's rules refuse, naming the path), which keeps the old value."""
+    path = "integrator.bd.parameters.hydrodynamicRadius"
+    with structmd.Simulation(options) as sim:
+        sim.load(document([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]], 12.0, fcm()))
+        sim.step(1)
+        with pytest.raises(structmd.ArgumentError, match=path.replace(".", r"\.") + ".*" + message):
+            sim.set_parameter(path, radius)
+        assert sim.get_parameter(path) == RADIUS
+        sim.step(1)

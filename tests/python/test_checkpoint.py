@@ -4,6 +4,7 @@ and foreign files are refused with the reason and leave the handle as it was, a 
 replaces a good file, and ["Simulation","Backup"] writes checkpoints on its own."""
 
 import json
+import struct
 
 import numpy as np
 import pytest
@@ -146,6 +147,50 @@ def test_a_checkpoint_of_another_simulation_is_refused(saved, options, tmp_path)
     with structmd.Simulation(dict(options, precision="double")) as fewer:
         fewer.load(smaller)
         refused(fewer, path, "particles")
+
+
+# The layout of structmd's checkpoint (src/simulation/checkpoint_file.cpp, state_checkpoint.cpp): a
+# 20-byte header (magic, version, length), the payload, and an FNV-1a checksum of all before it. In
+# the payload (double precision): the box at 40, the time at 28, then Real4 positions (32 bytes
+# each), images (12 bytes) and Real4 velocities.
+HEADER = 20
+TIME, BOX, POSITIONS = 28, 40, 72
+PARTICLES = N_SIDE ** 3
+VELOCITIES = POSITIONS + PARTICLES * (32 + 12)
+
+
+def fnv1a(data):
+    value = 1469598103934665603
+    for byte in data:
+        value = ((value ^ byte) * 1099511628211) % 2 ** 64
+    return value
+
+
+def edited(path, out, changes):
+    """The checkpoint at path with doubles written at payload offsets and the checksum recomputed,
+    as one who edits a checkpoint by hand would: only its values can refuse it."""
+    data = bytearray(path.read_bytes()[:-8])
+    for offset, value in changes.items():
+        struct.pack_into("<d", data, HEADER + offset, value)
+    out.write_bytes(bytes(data) + struct.pack("<Q", fnv1a(data)))
+    return out
+
+
+@pytest.mark.parametrize("changes, reason", [
+    ({BOX: float("inf")}, "box length 0 is inf"),
+    ({BOX + 8: 1e300}, "box length 1 is 1.0000000000000001e\\+300"),
+    ({BOX: 1.0, BOX + 8: 1.0, BOX + 16: 1.0}, "largest cutoff \\(2\\) must be shorter than half the box \\(0.5\\)"),
+    ({BOX + 16: 3.9}, "largest cutoff \\(2\\) must be shorter than half the box \\(1.95\\)"),  # below 2 cutoffs
+    ({TIME: float("nan")}, "time is nan"),
+    ({POSITIONS + 5 * 32 + 8: float("nan")}, "position of particle id 5"),
+    ({POSITIONS + 7 * 32 + 24: 3.0}, "type of particle id 7 is 3"),           # there is one type
+    ({VELOCITIES + 3 * 32 + 16: float("inf")}, "velocity or mass of particle id 3"),
+])
+def test_an_edited_checkpoint_with_values_the_setters_refuse_is_refused(saved, tmp_path, changes, reason):
+    sim, path = saved
+    refused(sim, edited(path, tmp_path / "edited.chk", changes), "refuses: (the )?" + reason)
+    sim.load_checkpoint(edited(path, tmp_path / "same.chk", {}))  # the edit alone is not what is refused
+    assert sim.step_number == 50
 
 
 def test_a_failed_save_leaves_the_previous_checkpoint_intact(saved, tmp_path):

@@ -148,6 +148,19 @@ def test_views_share_the_engines_memory_on_the_cpu_backend(make):
         sim.view("masses")
 
 
+def test_a_view_of_a_closed_simulation_raises_instead_of_reading_freed_memory(make):
+    if BACKEND != "cpu":
+        pytest.skip("numpy reads only host memory")
+    sim = make(lattice(side=5, steps=100))
+    view, unread = sim.positions_view(), sim.forces_view()
+    np.testing.assert_array_equal(view.numpy(), sim.positions)
+    sim.close()
+    with pytest.raises(structmd.StateError, match="closed"):
+        view.numpy()
+    with pytest.raises(structmd.StateError, match="closed"):
+        np.from_dlpack(unread)
+
+
 def cuda_module(name):
     if BACKEND != "cuda":
         pytest.skip("needs the CUDA backend")

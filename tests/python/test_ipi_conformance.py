@@ -26,6 +26,7 @@ from systems import SIGMA, EPSILON, lj_input, rattled_argon
 
 LAUNCHER = os.environ.get("STRUCTMD_LAUNCHER")
 TIMEOUT = 30.0  # s; the longest any side waits for the other, so that a client that hangs fails the test
+READ_TIMEOUT = 2.0  # s; the clients' own limit on a silent server, well within TIMEOUT
 HEADER_SIZE = 12
 # The input is in reduced Lennard-Jones units, so that the unit conversions are not the identity.
 LENGTH_UNIT, ENERGY_UNIT = SIGMA, EPSILON  # one input length in Å, one input energy in eV
@@ -48,7 +49,8 @@ class PythonClient:
         def serve():
             try:
                 evaluations = structmd.ipi.run(address, self.document, options=self.options, length_unit=LENGTH_UNIT,
-                                               energy_unit=ENERGY_UNIT, connect_timeout=TIMEOUT)
+                                               energy_unit=ENERGY_UNIT, connect_timeout=TIMEOUT,
+                                               read_timeout=READ_TIMEOUT)
                 self.outcome = Outcome("STRUCTMD_OK", "", evaluations)
             except structmd.StructmdError as error:
                 self.outcome = Outcome(error.status_name, str(error), None)
@@ -76,7 +78,7 @@ class LauncherClient:
         self.process = subprocess.Popen(
             [LAUNCHER, "client", "--ipi", address, str(self.input_path), "--backend", self.options["backend"],
              "--precision", self.options["precision"], "--length-unit", repr(LENGTH_UNIT), "--energy-unit",
-             repr(ENERGY_UNIT), "--connect-timeout", repr(TIMEOUT)],
+             repr(ENERGY_UNIT), "--connect-timeout", repr(TIMEOUT), "--read-timeout", repr(READ_TIMEOUT)],
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 
     def finish(self):
@@ -291,6 +293,22 @@ def negative_init_length(server, atoms):
     server.init(length=-1)
 
 
+def absurd_init_length(server, atoms):
+    # Only the length: a client that believed it allocated 2 GiB, then waited for them.
+    server.send_header("INIT")
+    server.send(struct.pack("i", 0), struct.pack("i", 2**31 - 1))
+
+
+def silent_server(server, atoms):
+    server.init()  # then nothing: the client must not wait forever
+
+
+def negative_cell_edge(server, atoms):
+    cell, positions = in_bohr(atoms)
+    cell[1, 1] = -cell[1, 1]
+    server.posdata(cell, positions)
+
+
 def getforce_before_posdata(server, atoms):
     server.init()
     server.send_header("GETFORCE")
@@ -342,6 +360,8 @@ TRUNCATED = [truncated_header, truncated_cell, truncated_positions]
     (unknown_header, "STRUCTMD_ERR_IO", "unknown i-PI message 'HELLO'"),
     (header_padded_on_the_left, "STRUCTMD_ERR_IO", "unknown i-PI message"),
     (negative_init_length, "STRUCTMD_ERR_IO", "INIT with a negative length"),
+    (absurd_init_length, "STRUCTMD_ERR_IO", f"INIT announces a string of {2**31 - 1} bytes, more than the"),
+    (silent_server, "STRUCTMD_ERR_IO", "no data from the server for 2"),
     (getforce_before_posdata, "STRUCTMD_ERR_IO", "GETFORCE before any POSDATA"),
     (one_atom_fewer, "STRUCTMD_ERR_ARGUMENT", "the input has 256 particles, but the server sent 255 atoms"),
     (absurd_atom_count, "STRUCTMD_ERR_ARGUMENT", f"but the server sent {2**31 - 1} atoms"),
@@ -349,6 +369,7 @@ TRUNCATED = [truncated_header, truncated_cell, truncated_positions]
     (tilted_cell, "STRUCTMD_ERR_UNSUPPORTED", "tilted"),
     (cell_with_nan, "STRUCTMD_ERR_ARGUMENT", "finite"),
     (flat_cell, "STRUCTMD_ERR_ARGUMENT", "positive"),
+    (negative_cell_edge, "STRUCTMD_ERR_ARGUMENT", "positive"),  # the launcher called it tilted
 ], ids=lambda value: value.__name__ if callable(value) else None)
 def test_a_malformed_server_is_refused_at_once(client_type, malformed, status, message, options, tmp_path):
     def script(server, atoms):

@@ -168,6 +168,21 @@ def test_bad_magnetizations_and_terms_without_them_are_input_errors(options):
             sim.load(document([[0, 0, 0]], ["A"], integrators={"llg": fixed(0.01)}, schedule=[("llg", 1)]))
 
 
+def test_coincident_dipoles_are_numerical_errors_not_a_dropped_pair(options):
+    """Two dipoles on one point have no finite energy; the pair used to be skipped (energy 0, OK)."""
+    positions = [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]
+    magnetizations = [[0.0, 0.0, 1.0, 1.0]] * 3
+    with structmd.Simulation(options) as sim:
+        sim.load(document(positions, ["A"] * 3, magnetizations=magnetizations,
+                          force_field={"nl": NEIGHBOUR_LIST, "dipoles": dipolar(1.0, 4.0)}))
+        with pytest.raises(structmd.NumericalError):
+            sim.energy("dipoles")
+        with pytest.raises(structmd.NumericalError):
+            sim.forces
+        sim.positions = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 1.5], [2.0, 0.0, 0.0]])
+        assert np.isfinite(sim.energy("dipoles"))  # the handle lives on once the particles are apart
+
+
 # ---- the external fields -----------------------------------------------------------------------
 
 def test_zeeman_energy_and_torque_of_a_constant_field(options):

@@ -350,4 +350,30 @@ TEST(BadInputs, MissingNullAndUnreadableSourcesAreNamed) {
     EXPECT_EQ(structmd_load_file(nullptr, missing.c_str()), STRUCTMD_ERR_ARGUMENT);
 }
 
+// Misuse the header forbids: the handle's memory is freed, so what follows reads freed memory on
+// purpose. Before the memory is reused, the mark destroy leaves turns a second destroy (which was
+// SIGABRT) and a step (SIGSEGV) into a refusal. AddressSanitizer rightly reports the read itself.
+#if defined(__SANITIZE_ADDRESS__)
+#define STRUCTMD_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define STRUCTMD_UNDER_ASAN 1
+#endif
+#endif
+TEST(BadInputs, AHandleUsedAfterDestroyIsRefusedWhileItsMemoryIsNotReused) {
+#ifdef STRUCTMD_UNDER_ASAN
+    GTEST_SKIP() << "reads freed memory on purpose";
+#endif
+    const std::string good = base_input_text();
+    structmd_sim* sim = nullptr;
+    ASSERT_EQ(structmd_create(kHandleOptions, &sim), STRUCTMD_OK) << structmd_last_error(nullptr);
+    ASSERT_EQ(structmd_load_string(sim, good.c_str()), STRUCTMD_OK) << structmd_last_error(sim);
+    structmd_destroy(sim);
+    EXPECT_EQ(structmd_step(sim, 1), STRUCTMD_ERR_ARGUMENT);
+    EXPECT_EQ(std::string(structmd_last_error(nullptr)), "sim: not a live handle (destroyed already?)");
+    EXPECT_EQ(std::string(structmd_last_error(sim)), "sim: not a live handle (destroyed already?)");
+    structmd_destroy(sim);
+    EXPECT_EQ(std::string(structmd_last_error(nullptr)), "structmd_destroy: sim: not a live handle (destroyed already?)");
+}
+
 }  // namespace

@@ -9,6 +9,9 @@ arrays a device force callback receives) and speaks the Python DLPack protocol: 
 import ctypes
 from ctypes import CFUNCTYPE, POINTER, Structure, c_char_p, c_int, c_int32, c_int64, c_uint8, c_uint16, c_uint64, c_void_p
 
+from .constants import STATUS
+from .errors import StateError
+
 K_DL_CPU = 1
 K_DL_CUDA = 2
 K_DL_FLOAT = 2
@@ -86,9 +89,12 @@ def make_tensor(data, n, real_size, device):
 class DLPackView:
     """One DLManagedTensor, handed to the first consumer that asks (the DLPack protocol allows one)."""
 
-    def __init__(self, address, stream=None):
+    def __init__(self, address, stream=None, owner=None):
         self._address = address
         self._stream = stream  # the producer's CUDA stream, for information: the data are ready already
+        # The Simulation whose engine holds the data: once it is closed they are freed, and reading
+        # them would read whatever the memory holds next.
+        self._owner = owner
         tensor = DLManagedTensor.from_address(address).dl_tensor
         self.shape = (tensor.shape[0], tensor.shape[1])
         self.device = (tensor.device.device_type, tensor.device.device_id)
@@ -100,11 +106,16 @@ class DLPackView:
         from_dlpack makes read-only arrays, which a device callback on the CPU backend cannot fill."""
         import numpy
 
+        self._require_open_owner()
         if self.device[0] != K_DL_CPU:
             raise BufferError("only a view of host memory (the CPU backend) becomes a numpy array")
         real = ctypes.c_float if self.bits == 32 else ctypes.c_double
         records = numpy.ctypeslib.as_array((real * (4 * self.shape[0])).from_address(self.data_pointer))
         return records.reshape(self.shape[0], 4)[:, :3]
+
+    def _require_open_owner(self):
+        if self._owner is not None and self._owner.closed:
+            raise StateError(STATUS["STRUCTMD_ERR_STATE"], "the Simulation of this view is closed: its memory is freed")
 
     def __dlpack_device__(self):
         return self.device
@@ -113,6 +124,7 @@ class DLPackView:
         # The data are complete when the view is made, so any consumer stream may read them.
         if self._address is None:
             raise BufferError("this DLPack view was consumed already")
+        self._require_open_owner()
         if copy:
             raise BufferError("a structmd view cannot be copied by its producer; copy the consumer's array")
         if dl_device is not None and tuple(dl_device) != self.device:

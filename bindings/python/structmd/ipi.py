@@ -39,6 +39,12 @@ BOHR_IN_ANGSTROM = 0.5291772105638411
 HARTREE_IN_EV = 27.211386024367243
 HEADER_SIZE = 12
 UNIX_SOCKET_PREFIX = "/tmp/ipi_"  # i-PI's and ASE's: unix:NAME is the socket /tmp/ipi_NAME
+# The longest INIT string accepted (i-PI's are a few bytes), as the launcher's client: a server
+# announcing 2^31 - 1 bytes would otherwise have the client wait for them.
+MAX_INIT_LENGTH = 1 << 20
+# Seconds to wait for each read from the server: an hour, since i-PI may wait long on its other
+# clients between two requests, but not forever on a server gone silent.
+DEFAULT_READ_TIMEOUT = 3600.0
 
 Address = Union[str, Tuple[str, int]]
 
@@ -88,15 +94,20 @@ def connect(address: Address, timeout: float) -> socket.socket:
 
 
 class _Channel:
-    def __init__(self, connection: socket.socket) -> None:
+    def __init__(self, connection: socket.socket, read_timeout: Optional[float] = None) -> None:
         self.connection = connection
+        self.read_timeout = read_timeout
+        connection.settimeout(read_timeout or None)  # 0 or None: wait forever
 
     def receive(self, size: int, at_boundary: bool = False) -> bytes:
         """size bytes; b"" when at_boundary and the server closed the connection before the first."""
         chunks = []
         remaining = size
         while remaining > 0:
-            chunk = self.connection.recv(remaining)
+            try:
+                chunk = self.connection.recv(remaining)
+            except socket.timeout as error:
+                raise ProtocolError(f"no data from the server for {self.read_timeout:g} s (read_timeout)") from error
             if not chunk:
                 if at_boundary and remaining == size:
                     return b""
@@ -127,10 +138,11 @@ def _header(text: str) -> bytes:
 
 def run(address: Address, input: Union[str, Mapping[str, Any]], options: Optional[Mapping[str, Any]] = None,
         length_unit: float = 1.0, energy_unit: float = 1.0, connect_timeout: float = 60.0,
-        log: Optional[TextIO] = None) -> int:
+        log: Optional[TextIO] = None, read_timeout: Optional[float] = DEFAULT_READ_TIMEOUT) -> int:
     """Loads input (a path, a JSON string or a dict) with options (structmd_create options over
     DEFAULT_OPTIONS), connects to the server at address and answers its requests until EXIT or
-    until it closes the connection. Returns how many configurations were evaluated. Errors: the
+    until it closes the connection, or until read_timeout seconds pass without data (None or 0:
+    no limit). Returns how many configurations were evaluated. Errors: the
     StructmdError subclass of a failed engine call (e.g. ArgumentError when the server sends another
     number of atoms), ProtocolError, ConnectionError."""
     if not (length_unit > 0.0 and energy_unit > 0.0):
@@ -140,7 +152,7 @@ def run(address: Address, input: Union[str, Mapping[str, Any]], options: Optiona
     with Simulation({**DEFAULT_OPTIONS, **(options or {})}) as sim:
         sim.load(input)  # before connecting, so that a bad input never holds a server waiting
         with connect(address, connect_timeout) as connection:
-            return _serve(sim, _Channel(connection), bohr, hartree, log)
+            return _serve(sim, _Channel(connection, read_timeout), bohr, hartree, log)
 
 
 def _serve(sim: Simulation, channel: _Channel, bohr: float, hartree: float, log: Optional[TextIO]) -> int:
@@ -161,6 +173,8 @@ def _serve(sim: Simulation, channel: _Channel, bohr: float, hartree: float, log:
             length = channel.int32()
             if length < 0:
                 raise ProtocolError("INIT with a negative length")
+            if length > MAX_INIT_LENGTH:
+                raise ProtocolError(f"INIT announces a string of {length} bytes, more than the {MAX_INIT_LENGTH} accepted")
             channel.receive(length)  # the initialisation string
             initialised = True
         elif message == "POSDATA":

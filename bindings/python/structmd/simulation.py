@@ -189,10 +189,11 @@ class Simulation:
 
     def view(self, quantity):
         """The engine's "positions", "velocities" or "forces" as a DLPackView (structmd_get_view):
-        no copy; valid until the next call that steps or sets anything."""
+        no copy; valid until the next call that steps or sets anything. After close(), reading it
+        raises StateError; an array made from it before must not be used then."""
         address = c_void_p()
         self._call(lib.structmd_get_view, quantity.encode(), byref(address))
-        return DLPackView(address.value)
+        return DLPackView(address.value, owner=self)
 
     def positions_view(self):
         return self.view("positions")
