@@ -27,6 +27,7 @@ struct ParticleType {
     double mass = 1.0;
     double radius = 0.5;
     double charge = 0.0;
+    double polarizability = 0.0;  // ["Types","Polarizable"] only
 };
 
 // One forceField, integrator or simulationStep entry, parsed later by the component's own reader.
@@ -69,6 +70,7 @@ struct SystemDescription {
     // global
     Units units;
     std::vector<ParticleType> types;
+    bool typesArePolarizable = false;  // ["Types","Polarizable"]: particles take their type's polarizability
     Vec3d box{0, 0, 0};
     double temperature = 0.0;  // in kelvin-like units: k_B T = units.boltzmann * temperature
     // The coupling parameter of ["Ensemble","NVTlambda"]; empty under NVT, where the terms of lambda

@@ -143,14 +143,34 @@ void read_units(const ComponentEntry& entry, Units& units) {
     } else if (entry.subclass == "KcalMol_A") {
         units.boltzmann = 1.987191e-3;         // kcal/(mol K)
         units.electricConversion = 332.0716;  // kcal A/(mol e^2)
+    } else if (entry.subclass == "lenSI") {
+        // SI with lengths in lengthScale metres (UAMMD-structured's lenSI): masses in lengthScale^3
+        // g and times in lengthScale s, so energies scale as lengthScale^3 J and charges as
+        // lengthScale C, and temperatures are in K.
+        double scale = 1.0;
+        if (const auto parameters = entry.node.find("parameters"))
+            if (const auto lengthScale = parameters->find("lengthScale")) {
+                scale = lengthScale->as<double>();
+                if (!(scale > 0.0 && std::isfinite(scale)))
+                    throw input_error(lengthScale->path(), "lengthScale must be a positive length in metres, got " +
+                                                              lengthScale->json().dump());
+            }
+        units.boltzmann = 1.380649e-23 / (scale * scale * scale);  // J/K over lengthScale^3
+        units.electricConversion = 8.987551e9 * scale * scale;     // N m^2 C^-2 over lengthScale^-2
     } else {
         throw unknown_component(entry.node, {entry.cls, entry.subclass});
     }
 }
 
+// ["Types","Basic"], or ["Types","Polarizable"]: the same with each type's polarizability, which
+// particles of the type take unless the state gives their own (apply_type_polarizabilities).
 void read_types(const ComponentEntry& entry, std::vector<ParticleType>& types) {
-    require_subclass(entry, "Basic");
-    const Table table = read_table(entry.node, {"name", "mass", "radius", "charge"});
+    if (entry.subclass != "Basic" && entry.subclass != "Polarizable")
+        throw unknown_component(entry.node, {entry.cls, entry.subclass});
+    const bool polarizable = entry.subclass == "Polarizable";
+    std::vector<std::string> labels{"name", "mass", "radius", "charge"};
+    if (polarizable) labels.push_back("polarizability");
+    const Table table = read_table(entry.node, labels);
     for (size_t row = 0; row < table.rows(); ++row) {
         const TrackedNode nameCell = table.cell(row, "name");
         ParticleType type;
@@ -162,6 +182,7 @@ void read_types(const ComponentEntry& entry, std::vector<ParticleType>& types) {
         type.mass = read_at_least(table.cell(row, "mass"), 0.0, "mass");
         type.radius = read_at_least(table.cell(row, "radius"), 0.0, "radius");
         type.charge = table.cell(row, "charge").as<double>();
+        if (polarizable) type.polarizability = table.cell(row, "polarizability").as<double>();
         types.push_back(std::move(type));
     }
 }
@@ -217,7 +238,9 @@ void read_global(const TrackedNode& global, SystemDescription& description) {
             throw unknown_component(entry->node, {entry->cls, entry->subclass});
     }
     if (const ComponentEntry* units = entries.find("Units")) read_units(*units, description.units);
-    read_types(entries.at("Types", "Basic"), description.types);
+    const ComponentEntry& types = entries.at("Types", "Basic");
+    read_types(types, description.types);
+    description.typesArePolarizable = types.subclass == "Polarizable";
     read_ensemble(entries.at("Ensemble", "NVT"), description);
     if (const ComponentEntry* fundamental = entries.find("Fundamental")) read_fundamental(*fundamental, description);
 }
@@ -342,6 +365,20 @@ void apply_state_overrides(const StateTable& state, SystemDescription& descripti
         if (table.has("radius")) description.radius[id] = read_at_least(table.cell(row, "radius"), 0.0, "radius");
         if (table.has("charge")) description.charge[id] = table.cell(row, "charge").as<double>();
     }
+}
+
+// ["Types","Polarizable"]: each particle's polarizability from its type, unless the state has the
+// column (then the state's, as UAMMD-structured does, with a warning).
+void apply_type_polarizabilities(const TrackedNode& state, SystemDescription& description) {
+    if (!description.typesArePolarizable) return;
+    std::vector<double>& column = description.stateColumns[StateColumn::polarizability];
+    if (!column.empty()) {
+        description.warnings.push_back(state.path() + ": the state's polarizability column overrides the types' "
+                                                      "([\"Types\",\"Polarizable\"])");
+        return;
+    }
+    for (int32_t type : description.typeIndex)
+        column.push_back(description.types[static_cast<size_t>(type)].polarizability);
 }
 
 std::string type_names(const std::vector<ParticleType>& types) {
@@ -483,6 +520,7 @@ ParsedDocument parse_document(const std::string& text) {
     const TrackedNode structure = topology.at("structure");
     read_structure(structure, description);
     apply_state_overrides(stateTable, description);
+    apply_type_polarizabilities(state, description);
     if (const auto forceField = topology.find("forceField")) description.forceField = read_components(*forceField);
     if (const auto integrator = root.find("integrator")) read_integrators(*integrator, description);
     if (const auto steps = root.find("simulationStep"))

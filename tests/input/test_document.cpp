@@ -480,6 +480,45 @@ TEST(Document, StateRowsWithCellsPastTheLabelsAreReadByLabelWithAWarning) {
     expect_input_error(structure, {"topology.structure.data[0]: row has 4 cells, labels has 3"});
 }
 
+// UAMMD-structured's ["Units","lenSI"]: SI with lengths in lengthScale metres (default 1).
+TEST(Document, LenSIUnitsScaleBoltzmannAndCoulombByTheLengthScale) {
+    json document = valid_document();
+    document["global"]["myUnits"] = {{"type", {"Units", "lenSI"}}, {"parameters", {{"lengthScale", 1e-9}}}};
+    const SystemDescription nano = parse_document(document.dump()).system;
+    EXPECT_EQ(nano.units.name, "lenSI");
+    EXPECT_NEAR(nano.units.boltzmann, 1.380649e-23 / 1e-27, 1e-12 * 1.380649e4);
+    EXPECT_NEAR(nano.units.electricConversion, 8.987551e9 * 1e-18, 1e-12 * 8.987551e-9);
+    document["global"]["myUnits"].erase("parameters");
+    EXPECT_DOUBLE_EQ(parse_document(document.dump()).system.units.boltzmann, 1.380649e-23);
+    document["global"]["myUnits"]["parameters"] = {{"lengthScale", -1.0}};
+    expect_input_error(document, {"global.myUnits.parameters.lengthScale: lengthScale must be a positive length"});
+}
+
+// ["Types","Polarizable"]: each particle takes its type's polarizability, unless the state gives its
+// own (which then wins, with a warning, as in UAMMD-structured).
+TEST(Document, PolarizableTypesGiveEachParticleItsTypesPolarizability) {
+    json document = valid_document();
+    document["global"]["types"] = {{"type", {"Types", "Polarizable"}},
+                                   {"labels", {"name", "radius", "mass", "charge", "polarizability"}},
+                                   {"data", {{"A", 0.5, 1.0, 0.0, 1.5}, {"B", 1.0, 2.0, -1.0, 2.5}}}};
+    const SystemDescription system = parse_document(document.dump()).system;
+    // Particles 0, 1, 2 are of types A, B, B.
+    EXPECT_EQ(system.stateColumns[StateColumn::polarizability], (std::vector<double>{1.5, 2.5, 2.5}));
+    EXPECT_TRUE(system.warnings.empty());
+
+    document["state"]["labels"].push_back("polarizability");
+    for (json& row : document["state"]["data"]) row.push_back(9.0);
+    const SystemDescription overridden = parse_document(document.dump()).system;
+    EXPECT_EQ(overridden.stateColumns[StateColumn::polarizability], (std::vector<double>{9.0, 9.0, 9.0}));
+    ASSERT_EQ(overridden.warnings.size(), 1u);
+    EXPECT_NE(overridden.warnings[0].find("overrides the types'"), std::string::npos);
+
+    json basic = valid_document();
+    EXPECT_TRUE(parse_document(basic.dump()).system.stateColumns[StateColumn::polarizability].empty());
+    basic["global"]["types"]["labels"].push_back("polarizability");
+    expect_input_error(basic, {"global.types.labels[4]: unknown label 'polarizability'"});
+}
+
 TEST(Document, UnknownStateLabel) {
     json document = valid_document();
     document["state"]["labels"][2] = "colour";

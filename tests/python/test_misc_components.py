@@ -385,6 +385,23 @@ def test_polarization_field_without_a_dielectric_constant_is_scaled_by_the_polar
         assert sim.energy("pol") == pytest.approx(expected, rel=1e-12)
 
 
+def test_polarization_field_takes_the_polarizability_of_polarizable_types(options):
+    """["Types","Polarizable"]: without a state column, each particle's alpha is its type's."""
+    rng = np.random.default_rng(10)
+    n = (8, 8, 8)
+    x = random_positions(4, rng)
+    type_alpha = {"A": 1.5, "B": 0.25}
+    types = ["A", "B", "B", "A"]
+    doc = document(x, {"pol": field_entry(periodic_field, n, subclass="PolarizationTabulated")}, types=types)
+    doc["global"]["types"] = {"type": ["Types", "Polarizable"],
+                              "labels": ["name", "mass", "radius", "charge", "polarizability"],
+                              "data": [[name, 1.0, 0.5, 0.0, alpha] for name, alpha in type_alpha.items()]}
+    with structmd.Simulation(options) as sim:
+        sim.load(doc)
+        expected = sum(type_alpha[t] * interpolated(periodic_field, n, p) for t, p in zip(types, x))
+        assert sim.energy("pol") == pytest.approx(expected, rel=1e-12)
+
+
 @pytest.mark.parametrize("name, polarizability_column", [("External-ExternalTabulated.json", None),
                                                           ("External-PolarizationTabulated.json", 2)])
 def test_uammd_structured_inputs_give_the_energies_their_analysis_expects(options, name, polarizability_column):
