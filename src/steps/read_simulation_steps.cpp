@@ -1,6 +1,7 @@
 #include "steps/read_simulation_steps.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "core/error.hpp"
@@ -141,6 +142,19 @@ nlohmann::json read_value(const input::TrackedNode& node, const StepParameter& p
     throw Error(STRUCTMD_ERR_INTERNAL, node.path() + ": parameter of no known kind");
 }
 
+// The folder of an output file must exist when the input is loaded, not only when the step first
+// writes, which may be hours into the run. Files themselves are opened at that first write, so a
+// failed load creates none.
+void require_output_folder(const input::TrackedNode& node, const std::string& file) {
+    const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+    std::error_code error;
+    if (folder.empty() || std::filesystem::is_directory(folder, error)) return;
+    const bool exists = std::filesystem::exists(folder, error);
+    throw Error(STRUCTMD_ERR_IO, node.path() + (exists ? ": '" + folder.string() + "' is not a folder"
+                                                       : ": the folder '" + folder.string() +
+                                                             "' does not exist (structmd creates no folders)"));
+}
+
 }  // namespace
 
 StepParameters::StepParameters(const input::TrackedNode& entry, const std::vector<StepParameter>& schema)
@@ -148,10 +162,13 @@ StepParameters::StepParameters(const input::TrackedNode& entry, const std::vecto
     const input::TrackedNode params = input::parameters_of(entry);
     for (const StepParameter& parameter : schema) {
         const auto node = params.valid() ? params.find(parameter.name) : std::nullopt;
-        if (node)
+        if (node) {
             values_.push_back({&parameter, read_value(*node, parameter)});
-        else if (parameter.required())
-            throw input_error(path(parameter.name), "missing required parameter");
+            if (std::string(parameter.name) == "outputFilePath")
+                require_output_folder(*node, values_.back().value.get<std::string>());
+        } else if (parameter.required())
+            throw params.valid() ? params.missing(parameter.name, "missing required parameter")
+                                 : input_error(path(parameter.name), "missing required parameter");
         else
             values_.push_back({&parameter, parameter.fallback});
     }

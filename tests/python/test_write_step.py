@@ -502,9 +502,20 @@ def test_an_unknown_format_names_the_parameter_and_the_known_ones(sim, tmp_path)
         sim.load(document({"traj": writer(tmp_path / "traj", "gro")}))
 
 
-def test_an_unwritable_path_is_an_io_error_at_the_first_firing(sim, tmp_path):
+def test_a_path_in_a_missing_folder_is_refused_at_load(sim, tmp_path):
     target = tmp_path / "no_such_folder" / "traj"
+    with pytest.raises(structmd.StructmdIOError) as error:
+        sim.load(document({"traj": writer(target, "xyz")}))
+    assert str(error.value).startswith("simulationStep.traj.parameters.outputFilePath: ")
+    assert f"'{tmp_path / 'no_such_folder'}' does not exist" in str(error.value)
+
+
+def test_an_unwritable_path_is_an_io_error_at_the_first_firing(sim, tmp_path):
+    folder = tmp_path / "folder"
+    folder.mkdir()
+    target = folder / "traj"
     sim.load(document({"traj": writer(target, "xyz")}))  # nothing is opened at load
+    folder.rmdir()
     with pytest.raises(structmd.StructmdIOError) as error:
         sim.step(1)
     assert str(target) + ".xyz" in str(error.value)

@@ -138,6 +138,19 @@ TEST(BadInputs, EveryCaseOfTheCorpusFailsNamingWhere) {
     }
 }
 
+// An unknown component is answered with the few registered names nearest to it, on one line, not
+// with the registry's hundred-odd entries.
+TEST(BadInputs, AnUnknownComponentIsAnsweredOnOneShortLine) {
+    json document = json::parse(base_input_text());
+    document["topology"]["forceField"]["bonds"]["type"] = {"Bond2", "Harmonic_K_r0"};
+    Handle sim(kHandleOptions);
+    EXPECT_EQ(structmd_load_string(sim.get(), document.dump().c_str()), STRUCTMD_ERR_INPUT);
+    const std::string message = structmd_last_error(sim.get());
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_LT(message.size(), 300u) << message;
+    EXPECT_NE(message.find("[\"Bond2\", \"HarmonicCommon_K_r0\"]"), std::string::npos) << message;
+}
+
 // Values of every JSON type but the one the value has (and a fraction in place of an integer).
 std::vector<json> wrong_types(const json& value) {
     const json object = {{"a", 1}};
