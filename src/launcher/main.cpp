@@ -16,7 +16,8 @@
 // Under MPI (mpirun, or --mpi) every rank runs the same calls on its share of the batches, and rank 0
 // alone prints: progress, thermo rows, the summary and failures.
 //
-// Exit status: 0 on success, the structmd_status code (1..10) when the engine reports a failure,
+// Exit status: 0 on success, the structmd_status code (1..10) when the engine reports a failure
+// (5, STRUCTMD_ERR_IO, for an input file that cannot be read: missing, a directory, unreadable),
 // CLI11's own codes for a malformed command line.
 #include <unistd.h>
 
@@ -306,6 +307,8 @@ int run_command(const RunOptions& options) {
             std::fprintf(stderr,
                          "structmd: the system blew up; the state before the failing steps was kept. Try a smaller "
                          "timeStep, a minimisation first, or look for overlapping particles in the input.\n");
+        if (failure.status() == STRUCTMD_ERR_IO && failure.call() == "structmd_load_file")
+            std::fprintf(stderr, "structmd: cannot read the input file %s\n", options.input.c_str());
         if (failure.status() == STRUCTMD_ERR_INPUT)
             std::fprintf(stderr, "structmd: the input was not accepted; the message names the JSON path to fix.\n");
         return failure.status();
@@ -341,9 +344,9 @@ int main(int argc, char** argv) {
 
     RunOptions options;
     CLI::App* run = app.add_subcommand("run", "Run a simulation until its integrator schedule ends (or --steps)");
-    run->add_option("input", options.input, "Input document (UAMMD-structured JSON)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    // No CLI::ExistingFile check: the engine reads the input and says why it cannot, with the
+    // documented status 5 as exit code rather than CLI11's 105.
+    run->add_option("input", options.input, "Input document (UAMMD-structured JSON)")->required();
     add_engine_options(run, options);
     run->add_option("--steps", options.steps,
                     "Steps to run instead of the schedule's; past its end the last integrator goes on")
@@ -373,8 +376,7 @@ int main(int argc, char** argv) {
     client
         ->add_option("input", clientOptions.input,
                      "Input document (UAMMD-structured JSON) whose particles are the server's atoms")
-        ->required()
-        ->check(CLI::ExistingFile);
+        ->required();
     add_engine_options(client, clientEngine);
     client->add_option("--length-unit", clientOptions.lengthUnit, "One input length in Å (the server speaks bohr)")
         ->check(CLI::PositiveNumber)

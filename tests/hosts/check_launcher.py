@@ -13,6 +13,7 @@ import sys
 import tempfile
 
 STRUCTMD_ERR_NUMERICAL = 4  # include/structmd.h
+STRUCTMD_ERR_IO = 5
 problems = []
 
 
@@ -115,6 +116,14 @@ with tempfile.TemporaryDirectory() as work:
     expect(stopped.returncode == 0, f"stopped run exited {stopped.returncode}")
     expect("stopped at step 20 by simulationStep.escape" in stopped.stderr, "no line saying where the run stopped")
     expect(any(line.split() == ["steps", "20"] for line in stopped.stdout.splitlines()), "summary does not say 20 steps")
+
+    # A missing input file: a message naming it and the documented status 5, not CLI11's 105.
+    absent = os.path.join(work, "absent.json")
+    missing = subprocess.run([launcher, "run", absent, "--backend", "cpu"], capture_output=True, text=True,
+                             cwd=work, timeout=60)
+    print(f"--- missing input: exit {missing.returncode}\n{missing.stdout}{missing.stderr}")
+    expect(missing.returncode == STRUCTMD_ERR_IO, f"a missing input exited {missing.returncode}, expected {STRUCTMD_ERR_IO}")
+    expect(f"cannot read the input file {absent}" in missing.stderr, "no message naming the missing input")
 
 if problems:
     sys.exit("\n".join(problems))
