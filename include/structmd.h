@@ -174,8 +174,10 @@ STRUCTMD_API const char* structmd_last_error(const structmd_sim* sim);
  * Builds the simulation from a whole input document (UAMMD-structured JSON, comments allowed) and
  * puts it at its initial state: step and time from global.fundamental, else 0; velocities from the
  * state, else drawn from Maxwell-Boltzmann at the first integrator's temperature. Loading again
- * replaces the previous simulation (closing its output files) and clears the external forces. On
- * failure the handle holds no simulation, says why, and can load again.
+ * replaces the previous simulation (closing its output files) and clears the external forces and
+ * force callbacks. A load is all or nothing: on failure the handle says why and keeps the simulation
+ * it held before, if any, untouched and usable (step, time, state, outputs, callbacks); the new one
+ * is built beside it, so for the duration of the call both occupy memory.
  *
  * @param sim   the handle.
  * @param path  a file path, read during the call.

@@ -182,6 +182,24 @@ def test_load_accepts_dict_json_text_and_paths(sim, tmp_path):
         sim.load(3.5)
 
 
+def test_a_failed_load_keeps_the_simulation_loaded_before(loaded, tmp_path):
+    loaded.step(5)
+    positions = loaded.positions.copy()
+    field = -0.5 * positions
+    loaded.external_forces = field
+    bad = systems.lj_bond_system()
+    bad["topology"]["forceField"]["bonds"]["type"] = ["Bond2", "Harmonic_K_r0"]
+    with pytest.raises(structmd.InputError):
+        loaded.load(bad)
+    with pytest.raises(structmd.StructmdIOError):
+        loaded.load(tmp_path / "absent.json")
+    assert loaded.step_number == 5 and loaded.num_particles == 4
+    np.testing.assert_array_equal(loaded.positions, positions)
+    np.testing.assert_allclose(loaded.external_forces, field)
+    loaded.step(2)
+    assert loaded.step_number == 7
+
+
 def test_step_run_compute_and_clock(sim):
     sim.load(systems.lj_bond_system(steps=30))
     assert (sim.step_number, sim.time) == (0, 0.0)

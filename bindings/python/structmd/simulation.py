@@ -221,7 +221,7 @@ class Simulation:
         """Loads from a dict, a JSON document string, or a file path (str or path-like). Returns self.
 
         A string whose first non-blank characters are "{", "//" or "/*" is a document; any other
-        string is a path.
+        string is a path. A load that raises keeps the simulation loaded before, if any, as it was.
         """
         if isinstance(source, Mapping):
             return self.load_string(json.dumps(source))
