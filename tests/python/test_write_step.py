@@ -450,6 +450,19 @@ def test_the_time_step_written_is_the_one_the_integrator_steps_with(sim, tmp_pat
         assert time == pytest.approx(frame["step"] * TIME_STEP, rel=1e-7)
 
 
+def test_dcd_after_a_minimisation_has_the_time_step_of_the_dynamics(sim, tmp_path):
+    """A schedule that minimises first: DELTA is the dynamics' time step, not the minimiser's none
+    (0 put every frame at time 0 in MDAnalysis)."""
+    doc = document({"dcd": writer(tmp_path / "traj", "dcd")})
+    doc["integrator"]["minimise"] = {"type": ["SteepestDescent", "SteepestDescent"],
+                                     "parameters": {"h": 0.001, "maxObjectiveForce": 10.0}}
+    doc["integrator"]["schedule"]["data"] = [[1, "minimise", 3], [2, "vv", STEPS]]
+    sim.load(doc)
+    sim.run()
+    header, _ = read_dcd(tmp_path / "traj.dcd")
+    assert header["delta"] == np.float32(TIME_STEP)
+
+
 @pytest.mark.parametrize("output_format", FORMATS)
 def test_append_keeps_the_earlier_frames(options, tmp_path, output_format):
     path = tmp_path / f"traj.{output_format}"
