@@ -25,8 +25,13 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <new>
 #include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -97,6 +102,66 @@ int64_t current_step(const structmd_sim* sim) {
     int64_t step = 0;
     check(structmd_get_step(sim, &step), sim, "structmd_get_step");
     return step;
+}
+
+// The input with its integrator schedule cut to `steps` steps (rows in order, each shortened to what
+// is left), or with the last row that runs extended when the schedule is shorter: the engine then
+// ends the schedule at the step --steps asks for, and gives the outputs their final state there as
+// it does at any schedule's end. Empty when the file cannot be read, is not JSON, gives a key twice
+// (which rewriting would hide from the engine) or has no schedule table: structmd_load_file then
+// reads it as it is, and names what is wrong.
+std::optional<std::string> input_cut_to(const std::string& path, int64_t steps) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;  // a device may never end
+    std::ifstream file(path, std::ios::binary);
+    if (!file) return std::nullopt;
+    std::ostringstream text;
+    text << file.rdbuf();
+    std::vector<std::set<std::string>> keysOfOpenObjects;
+    bool repeatedKey = false;
+    const auto noticeRepeatedKeys = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+        using Event = nlohmann::json::parse_event_t;
+        if (event == Event::object_start) keysOfOpenObjects.emplace_back();
+        if (event == Event::object_end) keysOfOpenObjects.pop_back();
+        if (event == Event::key && !keysOfOpenObjects.back().insert(parsed.get<std::string>()).second)
+            repeatedKey = true;
+        return true;
+    };
+    try {
+        auto document = nlohmann::json::parse(text.str(), noticeRepeatedKeys, true, /*ignore_comments=*/true);
+        if (repeatedKey) return std::nullopt;
+        const nlohmann::json schedule_type = {"Schedule", "Integrator"};
+        for (auto& entry : document.at("integrator")) {
+            if (!entry.is_object() || entry.value("type", nlohmann::json()) != schedule_type) continue;
+            const auto& labels = entry.at("labels");
+            const auto column = [&](const char* label) {
+                const auto at = std::find(labels.begin(), labels.end(), label);
+                if (at == labels.end()) throw std::out_of_range(label);
+                return static_cast<size_t>(at - labels.begin());
+            };
+            const size_t order = column("order"), length = column("steps");
+            auto& rows = entry.at("data");
+            std::vector<nlohmann::json*> ordered;
+            for (auto& row : rows) ordered.push_back(&row);
+            std::stable_sort(ordered.begin(), ordered.end(), [&](const nlohmann::json* a, const nlohmann::json* b) {
+                return a->at(order).get<int64_t>() < b->at(order).get<int64_t>();
+            });
+            int64_t left = steps;
+            nlohmann::json* lastRunning = ordered.empty() ? nullptr : ordered.back();
+            for (nlohmann::json* row : ordered) {
+                const int64_t given = row->at(length).get<int64_t>();
+                if (given > 0) lastRunning = row;
+                const int64_t kept = std::clamp<int64_t>(given, 0, left);
+                (*row)[length] = kept;
+                left -= kept;
+            }
+            if (!lastRunning) return std::nullopt;
+            (*lastRunning)[length] = (*lastRunning)[length].get<int64_t>() + left;
+            return document.dump();
+        }
+    } catch (const std::exception&) {
+    }
+    return std::nullopt;
 }
 
 // Picks how many steps the next structmd_step call takes so that one call lasts about
@@ -283,7 +348,12 @@ int run_command(const RunOptions& options) {
     try {
         Handle simulation(create_options(options));
         structmd_sim* sim = simulation.get();
-        check(structmd_load_file(sim, options.input.c_str()), sim, "structmd_load_file");
+        const std::optional<std::string> cut = options.steps >= 0 ? input_cut_to(options.input, options.steps)
+                                                                  : std::nullopt;
+        if (cut)
+            check(structmd_load_string(sim, cut->c_str()), sim, "structmd_load_string");
+        else
+            check(structmd_load_file(sim, options.input.c_str()), sim, "structmd_load_file");
 
         const EngineInfo info = read_info(sim);
         const int64_t first_step = current_step(sim);
@@ -349,7 +419,8 @@ int main(int argc, char** argv) {
     run->add_option("input", options.input, "Input document (UAMMD-structured JSON)")->required();
     add_engine_options(run, options);
     run->add_option("--steps", options.steps,
-                    "Steps to run instead of the schedule's; past its end the last integrator goes on")
+                    "Steps to run instead of the schedule's (cut there, or its last integrator goes on); "
+                    "the outputs write their final state at that step")
         ->check(CLI::NonNegativeNumber);
     run->add_option("--thermo", options.thermo, "Print kinetic, potential and total energy every K steps")
         ->check(CLI::PositiveNumber);

@@ -94,6 +94,20 @@ with tempfile.TemporaryDirectory() as work:
     expect("\r" not in calm.stderr, "a carriage return in a log that is not a terminal")
     expect(any(line.split() == ["steps", "50"] for line in calm.stdout.splitlines()), "summary does not say 50 steps")
 
+    # --steps ends the run where it says, past the schedule's end or before it, and the outputs get
+    # the final state there as at a schedule's end, though their interval does not land on it.
+    for name, schedule_steps, steps, expected in (("longer", 20, 50, [0, 15, 30, 45, 50]),
+                                                  ("shorter", 2000, 25, [0, 15, 25])):
+        doc = lattice_input(5, 1.12, 0.002, schedule_steps)
+        doc["simulationStep"] = {"thermo": {"type": ["ThermodynamicMeasure", "ThermodynamicQuantityMeasure"],
+                                            "parameters": {"intervalStep": 15, "outputFilePath": name + ".dat"}}}
+        result = run(launcher, work, name, doc, "--steps", str(steps))
+        expect(result.returncode == 0, f"{name}: exited {result.returncode}")
+        path = os.path.join(work, name + ".dat")
+        with open(path) if os.path.exists(path) else open(os.devnull) as f:
+            written = [int(line.split()[0]) for line in f if not line.startswith("#")]
+        expect(written == expected, f"{name}: thermo file rows at steps {written}, expected {expected}")
+
     # Two particles 0.3 sigma apart at a large time step: the engine reports a blow-up, the launcher
     # stops there with its message and a hint, having printed no NaN.
     blow = run(launcher, work, "blow", lattice_input(5, 1.12, 0.01, 2000, squeeze=(0, 1)), "--thermo", "1")
