@@ -432,6 +432,16 @@ STRUCTMD_API structmd_status structmd_get_virial(structmd_sim* sim, double w[9])
 STRUCTMD_API structmd_status structmd_get_pressure(structmd_sim* sim, double* p);
 
 /**
+ * @param sim      the handle.
+ * @param[out] t   temperature T = 2K / (3 N k_B), K the kinetic energy, N the particles of mass > 0,
+ *                 k_B the input units' Boltzmann constant. While the next step runs an overdamped
+ *                 (Brownian) integrator, which has no velocities, the bath temperature of that
+ *                 integrator (the T of structmd_get_pressure).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_get_temperature(structmd_sim* sim, double* t);
+
+/**
  * @param sim            the handle.
  * @param[out] lengths   box edge lengths Lx, Ly, Lz; the box is orthorhombic, periodic in x, y and
  *                       z, and spans [-L/2, L/2).

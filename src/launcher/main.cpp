@@ -9,9 +9,9 @@
 //   structmd --version
 //
 // Progress goes to standard error: a line redrawn in place on a terminal, one line every
-// --progress seconds (default 10) otherwise, as in a batch job's log. --thermo K prints the energies
-// every K steps on standard output. A run stops at the first failure (a blow-up included) with the
-// engine's message and a hint.
+// --progress seconds (default 10) otherwise, as in a batch job's log. --thermo K prints the energies,
+// temperature and pressure every K steps on standard output. A run stops at the first failure (a
+// blow-up included) with the engine's message and a hint.
 //
 // Under MPI (mpirun, or --mpi) every rank runs the same calls on its share of the batches, and rank 0
 // alone prints: progress, thermo rows, the summary and failures.
@@ -270,7 +270,7 @@ double energy(structmd_sim* sim, const char* term) {
     return value;
 }
 
-// The energies on standard output, a header first, one row per call.
+// The energies, temperature and pressure on standard output, a header first, one row per call.
 class ThermoTable {
 public:
     explicit ThermoTable(bool prints) : prints_(prints) {}
@@ -279,12 +279,17 @@ public:
     void print(structmd_sim* sim, int64_t step) {
         const double kinetic = energy(sim, "kinetic"), potential = energy(sim, "potential");
         const double total = energy(sim, "total");
+        double temperature = 0.0, pressure = 0.0;
+        check(structmd_get_temperature(sim, &temperature), sim, "structmd_get_temperature");
+        check(structmd_get_pressure(sim, &pressure), sim, "structmd_get_pressure");
         if (!prints_) return;
         if (!headed_) {
-            std::printf("%12s  %16s  %16s  %16s\n", "step", "kinetic", "potential", "total");
+            std::printf("%12s  %16s  %16s  %16s  %16s  %16s\n", "step", "kinetic", "potential", "total",
+                        "temperature", "pressure");
             headed_ = true;
         }
-        std::printf("%12lld  %16.8g  %16.8g  %16.8g\n", static_cast<long long>(step), kinetic, potential, total);
+        std::printf("%12lld  %16.8g  %16.8g  %16.8g  %16.8g  %16.8g\n", static_cast<long long>(step), kinetic,
+                    potential, total, temperature, pressure);
         std::fflush(stdout);
     }
 
@@ -422,7 +427,8 @@ int main(int argc, char** argv) {
                     "Steps to run instead of the schedule's (cut there, or its last integrator goes on); "
                     "the outputs write their final state at that step")
         ->check(CLI::NonNegativeNumber);
-    run->add_option("--thermo", options.thermo, "Print kinetic, potential and total energy every K steps")
+    run->add_option("--thermo", options.thermo,
+                    "Print kinetic, potential and total energy, temperature and pressure every K steps")
         ->check(CLI::PositiveNumber);
     run->add_option("--progress", options.progressSeconds,
                     "Seconds between progress lines when standard error is not a terminal")

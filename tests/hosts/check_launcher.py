@@ -69,10 +69,11 @@ def run(launcher, work, name, doc, *arguments):
 
 
 def thermo_rows(stdout):
+    """(step, kinetic, potential, total, temperature, pressure) of each --thermo row."""
     rows = []
     for line in stdout.splitlines():
         fields = line.split()
-        if len(fields) == 4 and fields[0].lstrip("-").isdigit():
+        if len(fields) == 6 and fields[0].lstrip("-").isdigit():
             rows.append((int(fields[0]), *map(float, fields[1:])))
     return rows
 
@@ -85,9 +86,14 @@ with tempfile.TemporaryDirectory() as work:
     expect(calm.returncode == 0, f"calm run exited {calm.returncode}")
     rows = thermo_rows(calm.stdout)
     expect([r[0] for r in rows] == [0, 10, 20, 30, 40, 50], f"thermo rows at steps {[r[0] for r in rows]}")
-    for step, kinetic, potential, total in rows:
-        expect(all(math.isfinite(x) for x in (kinetic, potential, total)), f"non-finite thermo row at step {step}")
+    expect("temperature" in calm.stdout and "pressure" in calm.stdout, "no temperature and pressure columns")
+    particles = 6 ** 3
+    for step, kinetic, potential, total, temperature, pressure in rows:
+        expect(all(math.isfinite(x) for x in (kinetic, potential, total, temperature, pressure)),
+               f"non-finite thermo row at step {step}")
         expect(math.isclose(total, kinetic + potential, rel_tol=1e-6, abs_tol=1e-6), f"total at step {step}")
+        # k_B = 1 in the input's units (none given)
+        expect(math.isclose(temperature, 2 * kinetic / (3 * particles), rel_tol=1e-6), f"temperature at step {step}")
     progress = [line for line in calm.stderr.splitlines() if line.startswith("structmd: ") and "steps/s" in line]
     expect(len(progress) >= 2, f"expected progress lines on standard error, got {progress}")
     expect(any("step 50/50" in line for line in progress), "no final progress line at step 50/50")

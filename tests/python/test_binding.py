@@ -250,6 +250,7 @@ def test_scalar_properties(loaded):
     assert virial.shape == (3, 3)
     volume = np.prod(loaded.box)
     assert loaded.pressure == pytest.approx((2 * kinetic + np.trace(virial)) / (3 * volume), rel=1e-10)
+    assert loaded.temperature == pytest.approx(2 * kinetic / (3 * loaded.num_particles), rel=1e-12)  # k_B = 1
     np.testing.assert_allclose(loaded.box, [systems.BASE_BOX] * 3)
     description = loaded.info
     assert description["particles"] == 4 and description["loaded"] is True

@@ -499,6 +499,13 @@ class Simulation:
         return p.value
 
     @property
+    def temperature(self):
+        """T = 2K / (3 N k_B) over the particles of mass > 0; under Brownian dynamics the bath's."""
+        t = c_double()
+        self._call(lib.structmd_get_temperature, byref(t))
+        return t.value
+
+    @property
     def box(self):
         """Box edge lengths (Lx, Ly, Lz); setting them scales the particles with the box."""
         lengths = (c_double * 3)()
