@@ -155,6 +155,16 @@ void require_output_folder(const input::TrackedNode& node, const std::string& fi
                                                              "' does not exist (structmd creates no folders)"));
 }
 
+// Relative output paths are the working directory's (as in LAMMPS, GROMACS and OpenMM): the log
+// says where each file goes, so that loading an input from another folder writes nowhere unseen.
+void log_output_file(const StepParameters& parameters, const std::string& entryPath, const Logger& log) {
+    std::string file = parameters.text("outputFilePath");
+    if (parameters.declares("outputFormat")) file += "." + parameters.text("outputFormat");
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(file, error);
+    log.info(entryPath + " writes " + (error ? file : absolute.lexically_normal().string()));
+}
+
 }  // namespace
 
 StepParameters::StepParameters(const input::TrackedNode& entry, const std::vector<StepParameter>& schema)
@@ -231,6 +241,7 @@ std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registr
         const SimulationStepEntry& step =
             registry.at({entry.cls, entry.subclass}, entry.node.path() + ".type", "simulation step");
         const StepParameters parameters(entry.node, step.parameters);
+        if (parameters.declares("outputFilePath")) log_output_file(parameters, entry.node.path(), log);
         const int group =
             parameters.declares("group") ? group_index(groups, parameters.text("group"), parameters.path("group")) : -1;
         const StepInput input{entry.name,

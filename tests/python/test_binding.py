@@ -200,6 +200,24 @@ def test_a_failed_load_keeps_the_simulation_loaded_before(loaded, tmp_path):
     assert loaded.step_number == 7
 
 
+def test_the_log_says_where_each_output_file_goes(options, tmp_path, monkeypatch):
+    """Relative output paths are the working directory's, as in LAMMPS and OpenMM; loading an input
+    says so in the log instead of writing there unseen."""
+    monkeypatch.chdir(tmp_path)
+    log = tmp_path / "log.txt"
+    doc = systems.lj_bond_system()
+    doc["simulationStep"] = {
+        "thermo": {"type": ["ThermodynamicMeasure", "ThermodynamicQuantityMeasure"],
+                   "parameters": {"intervalStep": 10, "outputFilePath": "thermo.dat"}},
+        "traj": {"type": ["WriteStep", "WriteStep"],
+                 "parameters": {"intervalStep": 10, "outputFilePath": "traj", "outputFormat": "xyz"}}}
+    with structmd.Simulation({**options, "log": "info", "log_file": str(log)}) as sim:
+        sim.load(doc)
+    text = log.read_text()
+    assert f"simulationStep.thermo writes {tmp_path / 'thermo.dat'}" in text, text
+    assert f"simulationStep.traj writes {tmp_path / 'traj.xyz'}" in text, text
+
+
 def test_step_run_compute_and_clock(sim):
     sim.load(systems.lj_bond_system(steps=30))
     assert (sim.step_number, sim.time) == (0, 0.0)
