@@ -179,8 +179,10 @@ STRUCTMD_API const char* structmd_last_error(const structmd_sim* sim);
  * Builds the simulation from a whole input document (UAMMD-structured JSON, comments allowed) and
  * puts it at its initial state: step and time from global.fundamental, else 0; velocities from the
  * state, else drawn from Maxwell-Boltzmann at the first integrator's temperature. Loading again
- * replaces the previous simulation (closing its output files) and clears the external forces. On
- * failure the handle holds no simulation, says why, and can load again.
+ * replaces the previous simulation (closing its output files) and clears the external forces and
+ * force callbacks. A load is all or nothing: on failure the handle says why and keeps the simulation
+ * it held before, if any, untouched and usable (step, time, state, outputs, callbacks); the new one
+ * is built beside it, so for the duration of the call both occupy memory.
  *
  * @param sim   the handle.
  * @param path  a file path, read during the call.
@@ -437,6 +439,16 @@ STRUCTMD_API structmd_status structmd_get_virial(structmd_sim* sim, double w[9])
  * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_get_pressure(structmd_sim* sim, double* p);
+
+/**
+ * @param sim      the handle.
+ * @param[out] t   temperature T = 2K / (3 N k_B), K the kinetic energy, N the particles of mass > 0,
+ *                 k_B the input units' Boltzmann constant. While the next step runs an overdamped
+ *                 (Brownian) integrator, which has no velocities, the bath temperature of that
+ *                 integrator (the T of structmd_get_pressure).
+ * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
+ */
+STRUCTMD_API structmd_status structmd_get_temperature(structmd_sim* sim, double* t);
 
 /**
  * @param sim            the handle.

@@ -44,7 +44,8 @@ module structmd
             structmd_run, structmd_compute, structmd_get_num_particles, structmd_get_ids, &
             structmd_get_positions, structmd_get_velocities, structmd_get_forces, &
             structmd_get_particle_energies, structmd_get_masses, structmd_get_types, &
-            structmd_get_energy, structmd_get_virial, structmd_get_pressure, structmd_get_box, &
+            structmd_get_energy, structmd_get_virial, structmd_get_pressure, structmd_get_temperature, &
+            structmd_get_box, &
             structmd_get_step, structmd_get_time, structmd_set_positions, structmd_set_velocities, &
             structmd_set_box, structmd_set_external_forces, structmd_get_info, &
             structmd_save_checkpoint, structmd_load_checkpoint, structmd_get_counters, &
@@ -260,6 +261,13 @@ module structmd
       import :: c_ptr, c_int32_t, c_double
       type(c_ptr), value :: sim
       real(c_double), intent(out) :: p
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_get_temperature(sim, t) bind(C, name="structmd_get_temperature") result(status)
+      import :: c_ptr, c_int32_t, c_double
+      type(c_ptr), value :: sim
+      real(c_double), intent(out) :: t
       integer(c_int32_t) :: status
     end function
 

@@ -139,6 +139,16 @@ structmd_status structmd_get_pressure(structmd_sim* sim, double* p) {
     });
 }
 
+structmd_status structmd_get_temperature(structmd_sim* sim, double* t) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        Simulation& simulation = loaded(s);
+        require_pointer(t, "t");
+        const double temperature = simulation.thermodynamics().temperature;
+        require_finite(simulation, &temperature, 1, "temperature");
+        *t = temperature;
+    });
+}
+
 structmd_status structmd_get_box(structmd_sim* sim, double lengths[3]) {
     return with_handle(sim, [&](structmd_sim& s) {
         Simulation& simulation = loaded(s);

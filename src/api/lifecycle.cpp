@@ -17,13 +17,15 @@ std::string& thread_error() {
 
 namespace {
 
+// All or nothing: the new simulation is built beside the loaded one, which a failure leaves in place
+// and usable (a host's mistyped reload must not lose a long run). Both are in memory meanwhile.
 void load_text(structmd_sim& sim, const std::string& text) {
-    sim.simulation.reset();  // a failed load leaves no simulation, and the old one's memory is freed first
-    sim.document.clear();
+    std::unique_ptr<Simulation> replacement = load_over_ranks(sim.options, text, *sim.components, sim.log,
+                                                              sim.communicator ? sim.communicator : single_process());
+    std::string document = text;
+    sim.simulation = std::move(replacement);  // moves, which cannot fail: the swap is whole
+    sim.document = std::move(document);
     sim.runtimeDocument.reset();
-    sim.simulation = load_over_ranks(sim.options, text, *sim.components, sim.log,
-                                     sim.communicator ? sim.communicator : single_process());
-    sim.document = text;
     const EngineDescription description = sim.simulation->description();
     sim.log.info("loaded " + std::to_string(sim.simulation->particle_count()) + " particles on " +
                  description.backend + " (" + description.device + "), " + description.precision + " precision");
@@ -91,10 +93,7 @@ structmd_status structmd_load_file(structmd_sim* sim, const char* path) {
     return with_handle(sim, [&](structmd_sim& s) {
         require_pointer(path, "path");
         const FileContents file = read_regular_file(path);
-        if (!file.problem.empty()) {
-            s.simulation.reset();
-            throw Error(STRUCTMD_ERR_IO, std::string("'") + path + "': " + file.problem);
-        }
+        if (!file.problem.empty()) throw Error(STRUCTMD_ERR_IO, std::string("'") + path + "': " + file.problem);
         load_text(s, file.bytes);
     });
 }

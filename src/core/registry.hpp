@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/spelling.hpp"
 
 namespace structmd {
 
@@ -37,12 +38,18 @@ public:
         return nullptr;
     }
 
-    // The entry of `key`, or an input error at `path` naming the known components of this kind.
+    // The entry of `key`, or an input error at `path` naming the few known components of this kind
+    // nearest to it (a registry has over a hundred: the whole list would bury the message).
     const Entry& at(const ComponentKey& key, const std::string& path, const std::string& kind) const {
         if (const Entry* entry = find(key)) return *entry;
-        std::string known;
-        for (const Entry& entry : entries_) known += "\n  " + entry.key.text();
-        throw input_error(path, "unknown " + kind + " " + key.text() + "; known " + kind + "s:" + known);
+        constexpr size_t kSuggestions = 3;
+        std::string suggestions;
+        for (size_t index : nearest(entries_, kSuggestions, [&](const Entry& entry) {
+                 return edit_distance(key.cls, entry.key.cls) + edit_distance(key.subclass, entry.key.subclass);
+             }))
+            suggestions += (suggestions.empty() ? "" : ", ") + entries_[index].key.text();
+        throw input_error(path, "unknown " + kind + " " + key.text() + "; nearest known " + kind + "s: " +
+                                    suggestions + " (docs/input-format.md lists them all)");
     }
 
     const std::vector<Entry>& entries() const { return entries_; }

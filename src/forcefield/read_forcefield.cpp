@@ -480,6 +480,12 @@ void warn_unlisted_types(const SystemDescription& system, const ForceFieldSpec& 
 
 }  // namespace
 
+std::vector<ComponentKey> neighbour_list_keys() {
+    std::vector<ComponentKey> keys;
+    for (const NeighbourCondition& condition : neighbour_conditions().entries()) keys.push_back(condition.key);
+    return keys;
+}
+
 Constants constants_of(const SystemDescription& system) {
     const double largestRadius =
         system.radius.empty() ? 0.0 : *std::max_element(system.radius.begin(), system.radius.end());

@@ -12,6 +12,10 @@ namespace structmd {
 ForceFieldSpec read_forcefield(const input::SystemDescription& system, const Logger& log,
                                const Registry<ForceFieldComponent>& registry = forcefield_registry());
 
+// The ["VerletConditionalListSet", condition] names the reader knows, for the check that each is
+// documented (an unknown one's message names only the nearest few).
+std::vector<ComponentKey> neighbour_list_keys();
+
 // The units' constants, the largest particle radius (its type's or the state's), which potentials
 // of radii scale their range with, and the ensemble's temperature; the reader and the engines must
 // see the same.

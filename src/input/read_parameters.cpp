@@ -66,7 +66,8 @@ ParameterValues read_parameters(const TrackedNode& entry, const std::vector<Para
         if (node)
             values.set(p.name, read_parameter(*node, p));
         else if (p.required())
-            throw input_error(entry.path() + ".parameters." + p.name, "missing required parameter");
+            throw params.valid() ? params.missing(p.name, "missing required parameter")
+                                 : input_error(entry.path() + ".parameters." + p.name, "missing required parameter");
         else
             values.set(p.name, std::vector<double>(p.size, p.fallback));
     }

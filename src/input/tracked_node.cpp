@@ -1,11 +1,11 @@
 #include "input/tracked_node.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/spelling.hpp"
 
 namespace structmd::input {
 namespace {
@@ -51,43 +51,6 @@ void require_object(const TrackedNode& node) {
 void require_array(const TrackedNode& node) {
     require_value(node);
     if (!node.is_array()) throw_expected(node, "an array");
-}
-
-std::string lowercase(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return text;
-}
-
-// Levenshtein distance, ignoring case: "cutoffFactor" is a spelling of "cutOffFactor".
-size_t edit_distance(const std::string& a, const std::string& b) {
-    const std::string x = lowercase(a), y = lowercase(b);
-    std::vector<size_t> previous(y.size() + 1), current(y.size() + 1);
-    for (size_t j = 0; j <= y.size(); ++j) previous[j] = j;
-    for (size_t i = 1; i <= x.size(); ++i) {
-        current[0] = i;
-        for (size_t j = 1; j <= y.size(); ++j) {
-            const size_t substitution = previous[j - 1] + (x[i - 1] == y[j - 1] ? 0 : 1);
-            current[j] = std::min({previous[j] + 1, current[j - 1] + 1, substitution});
-        }
-        std::swap(previous, current);
-    }
-    return previous[y.size()];
-}
-
-// The candidate the user most likely meant, if any is close enough to be worth suggesting.
-std::optional<std::string> closest(const std::string& word, const std::vector<std::string>& candidates) {
-    const size_t tolerance = std::max<size_t>(1, word.size() / 3);
-    std::optional<std::string> best;
-    size_t bestDistance = tolerance + 1;
-    for (const std::string& candidate : candidates) {
-        const size_t distance = edit_distance(word, candidate);
-        if (distance < bestDistance) {
-            best = candidate;
-            bestDistance = distance;
-        }
-    }
-    return best;
 }
 
 std::vector<std::string> ordered_keys(const TrackingState& state, const std::string& path, const json& object) {
@@ -308,8 +271,20 @@ std::optional<TrackedNode> TrackedNode::find(const std::string& key) const {
 
 TrackedNode TrackedNode::at(const std::string& key) const {
     auto member = find(key);
-    if (!member) throw input_error(member_path(path_, key), "missing required entry");
+    if (!member) throw missing(key, "missing required entry");
     return *member;
+}
+
+Error TrackedNode::missing(const std::string& key, const std::string& what) const {
+    require_object(*this);
+    // A key nobody asked for is no other entry's spelling, so it may be this one's.
+    const std::set<std::string>& asked = state_->asked[path_];
+    std::vector<std::string> unasked;
+    for (const std::string& present : ordered_keys(*state_, path_, *value_))
+        if (asked.count(present) == 0) unasked.push_back(present);
+    const std::optional<std::string> misspelt = closest(key, unasked);
+    return input_error(member_path(path_, key),
+                       misspelt ? what + " (found '" + *misspelt + "': a misspelling of " + key + "?)" : what);
 }
 
 std::vector<std::string> TrackedNode::keys() const {

@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.hpp"
+
 namespace structmd::input {
 
 // Shared by every node of one document; owning the document here keeps it alive as long as any node.
@@ -47,6 +49,10 @@ public:
     std::optional<TrackedNode> find(const std::string& key) const;
     TrackedNode at(const std::string& key) const;
     std::vector<std::string> keys() const;  // throws "<path>: expected an object" if not one
+    // The error for a required key absent from this object: "<path>.<key>: <what>", naming a key of
+    // the object nobody asked for that is likely its misspelling ("(found 'timestep': a misspelling
+    // of timeStep?)").
+    Error missing(const std::string& key, const std::string& what) const;
 
     // Array access; throws "<path>: expected an array" if not one.
     size_t size() const;

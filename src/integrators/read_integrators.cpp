@@ -80,8 +80,10 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         const input::TrackedNode params = input::parameters_of(entry.node);
 
         const std::optional<double> dt = input::time_step_of(entry, system);
-        if (!dt && !component.minimiser)
-            throw input_error(spec.path + ".parameters.timeStep", "missing time step (give it here or in global.fundamental)");
+        if (!dt && !component.minimiser) {
+            const std::string what = "missing time step (give it here or in global.fundamental)";
+            throw params.valid() ? params.missing("timeStep", what) : input_error(spec.path + ".parameters.timeStep", what);
+        }
         spec.timeStep = dt.value_or(0.0);
         const double temperature = params.valid() ? params.get_or<double>("temperature", system.temperature)
                                                   : system.temperature;

@@ -10,14 +10,15 @@
 //   structmd --version
 //
 // Progress goes to standard error: a line redrawn in place on a terminal, one line every
-// --progress seconds (default 10) otherwise, as in a batch job's log. --thermo K prints the energies
-// every K steps on standard output. A run stops at the first failure (a blow-up included) with the
-// engine's message and a hint.
+// --progress seconds (default 10) otherwise, as in a batch job's log. --thermo K prints the energies,
+// temperature and pressure every K steps on standard output. A run stops at the first failure (a
+// blow-up included) with the engine's message and a hint.
 //
 // Under MPI (mpirun, or --mpi) every rank runs the same calls on its share of the batches, and rank 0
 // alone prints: progress, thermo rows, the summary and failures.
 //
-// Exit status: 0 on success, the structmd_status code (1..10) when the engine reports a failure,
+// Exit status: 0 on success, the structmd_status code (1..10) when the engine reports a failure
+// (5, STRUCTMD_ERR_IO, for an input file that cannot be read: missing, a directory, unreadable),
 // CLI11's own codes for a malformed command line.
 #include <unistd.h>
 
@@ -25,8 +26,13 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <new>
 #include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -97,6 +103,66 @@ int64_t current_step(const structmd_sim* sim) {
     int64_t step = 0;
     check(structmd_get_step(sim, &step), sim, "structmd_get_step");
     return step;
+}
+
+// The input with its integrator schedule cut to `steps` steps (rows in order, each shortened to what
+// is left), or with the last row that runs extended when the schedule is shorter: the engine then
+// ends the schedule at the step --steps asks for, and gives the outputs their final state there as
+// it does at any schedule's end. Empty when the file cannot be read, is not JSON, gives a key twice
+// (which rewriting would hide from the engine) or has no schedule table: structmd_load_file then
+// reads it as it is, and names what is wrong.
+std::optional<std::string> input_cut_to(const std::string& path, int64_t steps) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;  // a device may never end
+    std::ifstream file(path, std::ios::binary);
+    if (!file) return std::nullopt;
+    std::ostringstream text;
+    text << file.rdbuf();
+    std::vector<std::set<std::string>> keysOfOpenObjects;
+    bool repeatedKey = false;
+    const auto noticeRepeatedKeys = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+        using Event = nlohmann::json::parse_event_t;
+        if (event == Event::object_start) keysOfOpenObjects.emplace_back();
+        if (event == Event::object_end) keysOfOpenObjects.pop_back();
+        if (event == Event::key && !keysOfOpenObjects.back().insert(parsed.get<std::string>()).second)
+            repeatedKey = true;
+        return true;
+    };
+    try {
+        auto document = nlohmann::json::parse(text.str(), noticeRepeatedKeys, true, /*ignore_comments=*/true);
+        if (repeatedKey) return std::nullopt;
+        const nlohmann::json schedule_type = {"Schedule", "Integrator"};
+        for (auto& entry : document.at("integrator")) {
+            if (!entry.is_object() || entry.value("type", nlohmann::json()) != schedule_type) continue;
+            const auto& labels = entry.at("labels");
+            const auto column = [&](const char* label) {
+                const auto at = std::find(labels.begin(), labels.end(), label);
+                if (at == labels.end()) throw std::out_of_range(label);
+                return static_cast<size_t>(at - labels.begin());
+            };
+            const size_t order = column("order"), length = column("steps");
+            auto& rows = entry.at("data");
+            std::vector<nlohmann::json*> ordered;
+            for (auto& row : rows) ordered.push_back(&row);
+            std::stable_sort(ordered.begin(), ordered.end(), [&](const nlohmann::json* a, const nlohmann::json* b) {
+                return a->at(order).get<int64_t>() < b->at(order).get<int64_t>();
+            });
+            int64_t left = steps;
+            nlohmann::json* lastRunning = ordered.empty() ? nullptr : ordered.back();
+            for (nlohmann::json* row : ordered) {
+                const int64_t given = row->at(length).get<int64_t>();
+                if (given > 0) lastRunning = row;
+                const int64_t kept = std::clamp<int64_t>(given, 0, left);
+                (*row)[length] = kept;
+                left -= kept;
+            }
+            if (!lastRunning) return std::nullopt;
+            (*lastRunning)[length] = (*lastRunning)[length].get<int64_t>() + left;
+            return document.dump();
+        }
+    } catch (const std::exception&) {
+    }
+    return std::nullopt;
 }
 
 // Picks how many steps the next structmd_step call takes so that one call lasts about
@@ -205,7 +271,7 @@ double energy(structmd_sim* sim, const char* term) {
     return value;
 }
 
-// The energies on standard output, a header first, one row per call.
+// The energies, temperature and pressure on standard output, a header first, one row per call.
 class ThermoTable {
 public:
     explicit ThermoTable(bool prints) : prints_(prints) {}
@@ -214,12 +280,17 @@ public:
     void print(structmd_sim* sim, int64_t step) {
         const double kinetic = energy(sim, "kinetic"), potential = energy(sim, "potential");
         const double total = energy(sim, "total");
+        double temperature = 0.0, pressure = 0.0;
+        check(structmd_get_temperature(sim, &temperature), sim, "structmd_get_temperature");
+        check(structmd_get_pressure(sim, &pressure), sim, "structmd_get_pressure");
         if (!prints_) return;
         if (!headed_) {
-            std::printf("%12s  %16s  %16s  %16s\n", "step", "kinetic", "potential", "total");
+            std::printf("%12s  %16s  %16s  %16s  %16s  %16s\n", "step", "kinetic", "potential", "total",
+                        "temperature", "pressure");
             headed_ = true;
         }
-        std::printf("%12lld  %16.8g  %16.8g  %16.8g\n", static_cast<long long>(step), kinetic, potential, total);
+        std::printf("%12lld  %16.8g  %16.8g  %16.8g  %16.8g  %16.8g\n", static_cast<long long>(step), kinetic,
+                    potential, total, temperature, pressure);
         std::fflush(stdout);
     }
 
@@ -283,7 +354,12 @@ int run_command(const RunOptions& options) {
     try {
         Handle simulation(create_options(options));
         structmd_sim* sim = simulation.get();
-        check(structmd_load_file(sim, options.input.c_str()), sim, "structmd_load_file");
+        const std::optional<std::string> cut = options.steps >= 0 ? input_cut_to(options.input, options.steps)
+                                                                  : std::nullopt;
+        if (cut)
+            check(structmd_load_string(sim, cut->c_str()), sim, "structmd_load_string");
+        else
+            check(structmd_load_file(sim, options.input.c_str()), sim, "structmd_load_file");
 
         const EngineInfo info = read_info(sim);
         const int64_t first_step = current_step(sim);
@@ -307,6 +383,8 @@ int run_command(const RunOptions& options) {
             std::fprintf(stderr,
                          "structmd: the system blew up; the state before the failing steps was kept. Try a smaller "
                          "timeStep, a minimisation first, or look for overlapping particles in the input.\n");
+        if (failure.status() == STRUCTMD_ERR_IO && failure.call() == "structmd_load_file")
+            std::fprintf(stderr, "structmd: cannot read the input file %s\n", options.input.c_str());
         if (failure.status() == STRUCTMD_ERR_INPUT)
             std::fprintf(stderr, "structmd: the input was not accepted; the message names the JSON path to fix.\n");
         return failure.status();
@@ -342,14 +420,16 @@ int main(int argc, char** argv) {
 
     RunOptions options;
     CLI::App* run = app.add_subcommand("run", "Run a simulation until its integrator schedule ends (or --steps)");
-    run->add_option("input", options.input, "Input document (UAMMD-structured JSON)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    // No CLI::ExistingFile check: the engine reads the input and says why it cannot, with the
+    // documented status 5 as exit code rather than CLI11's 105.
+    run->add_option("input", options.input, "Input document (UAMMD-structured JSON)")->required();
     add_engine_options(run, options);
     run->add_option("--steps", options.steps,
-                    "Steps to run instead of the schedule's; past its end the last integrator goes on")
+                    "Steps to run instead of the schedule's (cut there, or its last integrator goes on); "
+                    "the outputs write their final state at that step")
         ->check(CLI::NonNegativeNumber);
-    run->add_option("--thermo", options.thermo, "Print kinetic, potential and total energy every K steps")
+    run->add_option("--thermo", options.thermo,
+                    "Print kinetic, potential and total energy, temperature and pressure every K steps")
         ->check(CLI::PositiveNumber);
     run->add_option("--progress", options.progressSeconds,
                     "Seconds between progress lines when standard error is not a terminal")
@@ -374,8 +454,7 @@ int main(int argc, char** argv) {
     client
         ->add_option("input", clientOptions.input,
                      "Input document (UAMMD-structured JSON) whose particles are the server's atoms")
-        ->required()
-        ->check(CLI::ExistingFile);
+        ->required();
     add_engine_options(client, clientEngine);
     client->add_option("--length-unit", clientOptions.lengthUnit, "One input length in Å (the server speaks bohr)")
         ->check(CLI::PositiveNumber)

@@ -1,6 +1,7 @@
 #include "steps/read_simulation_steps.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "core/error.hpp"
@@ -141,6 +142,29 @@ nlohmann::json read_value(const input::TrackedNode& node, const StepParameter& p
     throw Error(STRUCTMD_ERR_INTERNAL, node.path() + ": parameter of no known kind");
 }
 
+// The folder of an output file must exist when the input is loaded, not only when the step first
+// writes, which may be hours into the run. Files themselves are opened at that first write, so a
+// failed load creates none.
+void require_output_folder(const input::TrackedNode& node, const std::string& file) {
+    const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+    std::error_code error;
+    if (folder.empty() || std::filesystem::is_directory(folder, error)) return;
+    const bool exists = std::filesystem::exists(folder, error);
+    throw Error(STRUCTMD_ERR_IO, node.path() + (exists ? ": '" + folder.string() + "' is not a folder"
+                                                       : ": the folder '" + folder.string() +
+                                                             "' does not exist (structmd creates no folders)"));
+}
+
+// Relative output paths are the working directory's (as in LAMMPS, GROMACS and OpenMM): the log
+// says where each file goes, so that loading an input from another folder writes nowhere unseen.
+void log_output_file(const StepParameters& parameters, const std::string& entryPath, const Logger& log) {
+    std::string file = parameters.text("outputFilePath");
+    if (parameters.declares("outputFormat")) file += "." + parameters.text("outputFormat");
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(file, error);
+    log.info(entryPath + " writes " + (error ? file : absolute.lexically_normal().string()));
+}
+
 }  // namespace
 
 StepParameters::StepParameters(const input::TrackedNode& entry, const std::vector<StepParameter>& schema)
@@ -148,10 +172,13 @@ StepParameters::StepParameters(const input::TrackedNode& entry, const std::vecto
     const input::TrackedNode params = input::parameters_of(entry);
     for (const StepParameter& parameter : schema) {
         const auto node = params.valid() ? params.find(parameter.name) : std::nullopt;
-        if (node)
+        if (node) {
             values_.push_back({&parameter, read_value(*node, parameter)});
-        else if (parameter.required())
-            throw input_error(path(parameter.name), "missing required parameter");
+            if (std::string(parameter.name) == "outputFilePath")
+                require_output_folder(*node, values_.back().value.get<std::string>());
+        } else if (parameter.required())
+            throw params.valid() ? params.missing(parameter.name, "missing required parameter")
+                                 : input_error(path(parameter.name), "missing required parameter");
         else
             values_.push_back({&parameter, parameter.fallback});
     }
@@ -214,6 +241,7 @@ std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registr
         const SimulationStepEntry& step =
             registry.at({entry.cls, entry.subclass}, entry.node.path() + ".type", "simulation step");
         const StepParameters parameters(entry.node, step.parameters);
+        if (parameters.declares("outputFilePath")) log_output_file(parameters, entry.node.path(), log);
         const int group =
             parameters.declares("group") ? group_index(groups, parameters.text("group"), parameters.path("group")) : -1;
         const StepInput input{entry.name,

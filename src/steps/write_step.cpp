@@ -1,9 +1,11 @@
 #include "steps/write_step.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "core/error.hpp"
 #include "input/time_step.hpp"
+#include "integrators/integrator_spec.hpp"
 
 namespace structmd {
 
@@ -87,6 +89,22 @@ MoleculeLayout molecule_layout(const StepInput& in) {
     return layout;
 }
 
+// What the frames are apart in time per step (DCD's DELTA): the time step of the first integrator of
+// the schedule that moves time forward. A minimisation run first has none, and taking its 0 would
+// put every frame of the dynamics after it at time 0 in a reader.
+double trajectory_time_step(const input::SystemDescription& system) {
+    for (const input::ScheduleRow& row : system.schedule) {
+        if (row.steps == 0) continue;
+        for (const input::ComponentEntry& entry : system.integrators) {
+            if (entry.name != row.integrator) continue;
+            const IntegratorComponent* component = integrator_registry().find({entry.cls, entry.subclass});
+            if (component && component->minimiser) continue;
+            if (const std::optional<double> timeStep = input::time_step_of(entry, system)) return *timeStep;
+        }
+    }
+    return input::first_time_step(system).value_or(0.0);  // 0: DCD's unknown
+}
+
 std::string known_formats() {
     std::string list;
     for (const std::string& format : trajectory_formats()) list += (list.empty() ? "" : ", ") + format;
@@ -108,7 +126,7 @@ std::unique_ptr<TrajectoryWriter> trajectory_writer_of(const StepInput& in) {
     options.owner = in.path;
     options.append = in.parameters.flag("append");
     options.interval = in.interval();
-    options.timeStep = input::first_time_step(in.system).value_or(0.0);  // 0: DCD's unknown
+    options.timeStep = trajectory_time_step(in.system);
     if (format == "pdb") options.molecules = molecule_layout(in);
 
     std::unique_ptr<TrajectoryWriter> writer = make_trajectory_writer(format, std::move(options));

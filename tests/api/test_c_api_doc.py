@@ -53,7 +53,7 @@ def test_c_api_doc_links_to_the_header_and_the_reference():
      "returns int64_t here, structmd_status in the header"),
     ("structmd_status structmd_set_box(structmd_sim* sim, double lengths[3])",
      "parameter 2 is 'double lengths[3]' here, 'const double lengths[3]' in the header"),
-    ("`structmd_get_temperature`", "structmd_get_temperature is not declared in include/structmd.h"),
+    ("`structmd_get_enthalpy`", "structmd_get_enthalpy is not declared in include/structmd.h"),
     ("`structmd_get_mass_f`", "structmd_get_mass_f is not declared in include/structmd.h nor public in the Fortran"),
     ("`STRUCTMD_ERR_TIMEOUT`", "STRUCTMD_ERR_TIMEOUT is defined nowhere"),
     ("[energy](#energies)", "no heading of this page has the anchor #energies"),

@@ -13,6 +13,7 @@ import sys
 import tempfile
 
 STRUCTMD_ERR_NUMERICAL = 4  # include/structmd.h
+STRUCTMD_ERR_IO = 5
 problems = []
 
 
@@ -68,10 +69,11 @@ def run(launcher, work, name, doc, *arguments):
 
 
 def thermo_rows(stdout):
+    """(step, kinetic, potential, total, temperature, pressure) of each --thermo row."""
     rows = []
     for line in stdout.splitlines():
         fields = line.split()
-        if len(fields) == 4 and fields[0].lstrip("-").isdigit():
+        if len(fields) == 6 and fields[0].lstrip("-").isdigit():
             rows.append((int(fields[0]), *map(float, fields[1:])))
     return rows
 
@@ -84,14 +86,33 @@ with tempfile.TemporaryDirectory() as work:
     expect(calm.returncode == 0, f"calm run exited {calm.returncode}")
     rows = thermo_rows(calm.stdout)
     expect([r[0] for r in rows] == [0, 10, 20, 30, 40, 50], f"thermo rows at steps {[r[0] for r in rows]}")
-    for step, kinetic, potential, total in rows:
-        expect(all(math.isfinite(x) for x in (kinetic, potential, total)), f"non-finite thermo row at step {step}")
+    expect("temperature" in calm.stdout and "pressure" in calm.stdout, "no temperature and pressure columns")
+    particles = 6 ** 3
+    for step, kinetic, potential, total, temperature, pressure in rows:
+        expect(all(math.isfinite(x) for x in (kinetic, potential, total, temperature, pressure)),
+               f"non-finite thermo row at step {step}")
         expect(math.isclose(total, kinetic + potential, rel_tol=1e-6, abs_tol=1e-6), f"total at step {step}")
+        # k_B = 1 in the input's units (none given)
+        expect(math.isclose(temperature, 2 * kinetic / (3 * particles), rel_tol=1e-6), f"temperature at step {step}")
     progress = [line for line in calm.stderr.splitlines() if line.startswith("structmd: ") and "steps/s" in line]
     expect(len(progress) >= 2, f"expected progress lines on standard error, got {progress}")
     expect(any("step 50/50" in line for line in progress), "no final progress line at step 50/50")
     expect("\r" not in calm.stderr, "a carriage return in a log that is not a terminal")
     expect(any(line.split() == ["steps", "50"] for line in calm.stdout.splitlines()), "summary does not say 50 steps")
+
+    # --steps ends the run where it says, past the schedule's end or before it, and the outputs get
+    # the final state there as at a schedule's end, though their interval does not land on it.
+    for name, schedule_steps, steps, expected in (("longer", 20, 50, [0, 15, 30, 45, 50]),
+                                                  ("shorter", 2000, 25, [0, 15, 25])):
+        doc = lattice_input(5, 1.12, 0.002, schedule_steps)
+        doc["simulationStep"] = {"thermo": {"type": ["ThermodynamicMeasure", "ThermodynamicQuantityMeasure"],
+                                            "parameters": {"intervalStep": 15, "outputFilePath": name + ".dat"}}}
+        result = run(launcher, work, name, doc, "--steps", str(steps))
+        expect(result.returncode == 0, f"{name}: exited {result.returncode}")
+        path = os.path.join(work, name + ".dat")
+        with open(path) if os.path.exists(path) else open(os.devnull) as f:
+            written = [int(line.split()[0]) for line in f if not line.startswith("#")]
+        expect(written == expected, f"{name}: thermo file rows at steps {written}, expected {expected}")
 
     # Two particles 0.3 sigma apart at a large time step: the engine reports a blow-up, the launcher
     # stops there with its message and a hint, having printed no NaN.
@@ -115,6 +136,14 @@ with tempfile.TemporaryDirectory() as work:
     expect(stopped.returncode == 0, f"stopped run exited {stopped.returncode}")
     expect("stopped at step 20 by simulationStep.escape" in stopped.stderr, "no line saying where the run stopped")
     expect(any(line.split() == ["steps", "20"] for line in stopped.stdout.splitlines()), "summary does not say 20 steps")
+
+    # A missing input file: a message naming it and the documented status 5, not CLI11's 105.
+    absent = os.path.join(work, "absent.json")
+    missing = subprocess.run([launcher, "run", absent, "--backend", "cpu"], capture_output=True, text=True,
+                             cwd=work, timeout=60)
+    print(f"--- missing input: exit {missing.returncode}\n{missing.stdout}{missing.stderr}")
+    expect(missing.returncode == STRUCTMD_ERR_IO, f"a missing input exited {missing.returncode}, expected {STRUCTMD_ERR_IO}")
+    expect(f"cannot read the input file {absent}" in missing.stderr, "no message naming the missing input")
 
 if problems:
     sys.exit("\n".join(problems))

@@ -196,6 +196,42 @@ def test_load_accepts_dict_json_text_and_paths(sim, tmp_path):
         sim.load(3.5)
 
 
+def test_a_failed_load_keeps_the_simulation_loaded_before(loaded, tmp_path):
+    loaded.step(5)
+    positions = loaded.positions.copy()
+    field = -0.5 * positions
+    loaded.external_forces = field
+    bad = systems.lj_bond_system()
+    bad["topology"]["forceField"]["bonds"]["type"] = ["Bond2", "Harmonic_K_r0"]
+    with pytest.raises(structmd.InputError):
+        loaded.load(bad)
+    with pytest.raises(structmd.StructmdIOError):
+        loaded.load(tmp_path / "absent.json")
+    assert loaded.step_number == 5 and loaded.num_particles == 4
+    np.testing.assert_array_equal(loaded.positions, positions)
+    np.testing.assert_allclose(loaded.external_forces, field)
+    loaded.step(2)
+    assert loaded.step_number == 7
+
+
+def test_the_log_says_where_each_output_file_goes(options, tmp_path, monkeypatch):
+    """Relative output paths are the working directory's, as in LAMMPS and OpenMM; loading an input
+    says so in the log instead of writing there unseen."""
+    monkeypatch.chdir(tmp_path)
+    log = tmp_path / "log.txt"
+    doc = systems.lj_bond_system()
+    doc["simulationStep"] = {
+        "thermo": {"type": ["ThermodynamicMeasure", "ThermodynamicQuantityMeasure"],
+                   "parameters": {"intervalStep": 10, "outputFilePath": "thermo.dat"}},
+        "traj": {"type": ["WriteStep", "WriteStep"],
+                 "parameters": {"intervalStep": 10, "outputFilePath": "traj", "outputFormat": "xyz"}}}
+    with structmd.Simulation({**options, "log": "info", "log_file": str(log)}) as sim:
+        sim.load(doc)
+    text = log.read_text()
+    assert f"simulationStep.thermo writes {tmp_path / 'thermo.dat'}" in text, text
+    assert f"simulationStep.traj writes {tmp_path / 'traj.xyz'}" in text, text
+
+
 def test_step_run_compute_and_clock(sim):
     sim.load(systems.lj_bond_system(steps=30))
     assert (sim.step_number, sim.time) == (0, 0.0)
@@ -246,6 +282,7 @@ def test_scalar_properties(loaded):
     assert virial.shape == (3, 3)
     volume = np.prod(loaded.box)
     assert loaded.pressure == pytest.approx((2 * kinetic + np.trace(virial)) / (3 * volume), rel=1e-10)
+    assert loaded.temperature == pytest.approx(2 * kinetic / (3 * loaded.num_particles), rel=1e-12)  # k_B = 1
     np.testing.assert_allclose(loaded.box, [systems.BASE_BOX] * 3)
     description = loaded.info
     assert description["particles"] == 4 and description["loaded"] is True

@@ -450,6 +450,19 @@ def test_the_time_step_written_is_the_one_the_integrator_steps_with(sim, tmp_pat
         assert time == pytest.approx(frame["step"] * TIME_STEP, rel=1e-7)
 
 
+def test_dcd_after_a_minimisation_has_the_time_step_of_the_dynamics(sim, tmp_path):
+    """A schedule that minimises first: DELTA is the dynamics' time step, not the minimiser's none
+    (0 put every frame at time 0 in MDAnalysis)."""
+    doc = document({"dcd": writer(tmp_path / "traj", "dcd")})
+    doc["integrator"]["minimise"] = {"type": ["SteepestDescent", "SteepestDescent"],
+                                     "parameters": {"h": 0.001, "maxObjectiveForce": 10.0}}
+    doc["integrator"]["schedule"]["data"] = [[1, "minimise", 3], [2, "vv", STEPS]]
+    sim.load(doc)
+    sim.run()
+    header, _ = read_dcd(tmp_path / "traj.dcd")
+    assert header["delta"] == np.float32(TIME_STEP)
+
+
 @pytest.mark.parametrize("output_format", FORMATS)
 def test_append_keeps_the_earlier_frames(options, tmp_path, output_format):
     path = tmp_path / f"traj.{output_format}"
@@ -502,9 +515,20 @@ def test_an_unknown_format_names_the_parameter_and_the_known_ones(sim, tmp_path)
         sim.load(document({"traj": writer(tmp_path / "traj", "gro")}))
 
 
-def test_an_unwritable_path_is_an_io_error_at_the_first_firing(sim, tmp_path):
+def test_a_path_in_a_missing_folder_is_refused_at_load(sim, tmp_path):
     target = tmp_path / "no_such_folder" / "traj"
+    with pytest.raises(structmd.StructmdIOError) as error:
+        sim.load(document({"traj": writer(target, "xyz")}))
+    assert str(error.value).startswith("simulationStep.traj.parameters.outputFilePath: ")
+    assert f"'{tmp_path / 'no_such_folder'}' does not exist" in str(error.value)
+
+
+def test_an_unwritable_path_is_an_io_error_at_the_first_firing(sim, tmp_path):
+    folder = tmp_path / "folder"
+    folder.mkdir()
+    target = folder / "traj"
     sim.load(document({"traj": writer(target, "xyz")}))  # nothing is opened at load
+    folder.rmdir()
     with pytest.raises(structmd.StructmdIOError) as error:
         sim.step(1)
     assert str(target) + ".xyz" in str(error.value)

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -95,22 +96,34 @@ structmd_status load_file(structmd_sim* sim, const std::string& text) {
     return status;
 }
 
-// The handle that just failed loads the good input and steps it.
-void expect_usable_after_failure(structmd_sim* sim, const std::string& good) {
-    // A failed load leaves no simulation behind, not the one loaded before it.
-    EXPECT_EQ(structmd_step(sim, 1), STRUCTMD_ERR_STATE) << structmd_last_error(sim);
+int64_t step_of(structmd_sim* sim) {
+    int64_t step = -1;
+    EXPECT_EQ(structmd_get_step(sim, &step), STRUCTMD_OK) << structmd_last_error(sim);
+    return step;
+}
+
+// The handle that just failed still holds the simulation it held before, at heldStep (none when
+// nullopt), which steps on; it then loads the good input and steps it.
+void expect_usable_after_failure(structmd_sim* sim, const std::string& good, std::optional<int64_t> heldStep) {
+    if (heldStep) {
+        EXPECT_EQ(step_of(sim), *heldStep) << "the simulation loaded before the failed load was not kept";
+        EXPECT_EQ(structmd_step(sim, 1), STRUCTMD_OK) << structmd_last_error(sim);
+        EXPECT_EQ(step_of(sim), *heldStep + 1);
+    } else {
+        EXPECT_EQ(structmd_step(sim, 1), STRUCTMD_ERR_STATE) << structmd_last_error(sim);
+    }
     ASSERT_EQ(structmd_load_string(sim, good.c_str()), STRUCTMD_OK) << structmd_last_error(sim);
     ASSERT_EQ(structmd_step(sim, 10), STRUCTMD_OK) << structmd_last_error(sim);
-    int64_t step = -1;
-    ASSERT_EQ(structmd_get_step(sim, &step), STRUCTMD_OK);
-    EXPECT_EQ(step, 10);
+    EXPECT_EQ(step_of(sim), 10);
     for (double x : positions(sim)) EXPECT_TRUE(std::isfinite(x));
 }
 
 void expect_rejected(const BadInput& bad, const Loader& load, const std::string& good) {
     Handle sim(kHandleOptions);
-    // A simulation is loaded first, so the failed load has one to replace.
+    // A simulation is loaded and stepped first: the failed load must leave it as it was.
     check(structmd_load_string(sim.get(), good.c_str()), sim.get(), "structmd_load_string");
+    check(structmd_step(sim.get(), 3), sim.get(), "structmd_step");
+    const std::vector<double> heldPositions = positions(sim.get());
     const structmd_status status = load(sim.get(), bad.text);
     const std::string message = structmd_last_error(sim.get());
     EXPECT_EQ(status, bad.status) << message;
@@ -118,7 +131,8 @@ void expect_rejected(const BadInput& bad, const Loader& load, const std::string&
                                                       << bad.where << ": ";
     EXPECT_NE(message.find(bad.what, bad.where.size()), std::string::npos)
         << "message: " << message << "\nexpected it to contain: " << bad.what;
-    expect_usable_after_failure(sim.get(), good);
+    EXPECT_EQ(positions(sim.get()), heldPositions);
+    expect_usable_after_failure(sim.get(), good, 3);
 }
 
 TEST(BadInputs, EveryCaseOfTheCorpusFailsNamingWhere) {
@@ -136,6 +150,19 @@ TEST(BadInputs, EveryCaseOfTheCorpusFailsNamingWhere) {
             expect_rejected(bad, load_file, good);
         }
     }
+}
+
+// An unknown component is answered with the few registered names nearest to it, on one line, not
+// with the registry's hundred-odd entries.
+TEST(BadInputs, AnUnknownComponentIsAnsweredOnOneShortLine) {
+    json document = json::parse(base_input_text());
+    document["topology"]["forceField"]["bonds"]["type"] = {"Bond2", "Harmonic_K_r0"};
+    Handle sim(kHandleOptions);
+    EXPECT_EQ(structmd_load_string(sim.get(), document.dump().c_str()), STRUCTMD_ERR_INPUT);
+    const std::string message = structmd_last_error(sim.get());
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_LT(message.size(), 300u) << message;
+    EXPECT_NE(message.find("[\"Bond2\", \"HarmonicCommon_K_r0\"]"), std::string::npos) << message;
 }
 
 // Values of every JSON type but the one the value has (and a fraction in place of an integer).
@@ -194,13 +221,15 @@ TEST(BadInputs, ADirectoryOrADeviceIsRefusedUnread) {
     const std::string good = base_input_text();
     const std::string directory = ::testing::TempDir();
     Handle sim(kHandleOptions);
+    std::optional<int64_t> heldStep;  // none at first, then the 10 steps of the good input
     for (const auto& [path, why] : {std::pair<std::string, std::string>{directory, "a directory, not a file"},
                                     {"/dev/zero", "not a regular file"}}) {
         EXPECT_EQ(structmd_load_file(sim.get(), path.c_str()), STRUCTMD_ERR_IO) << path;
         const std::string message = structmd_last_error(sim.get());
         EXPECT_NE(message.find(path), std::string::npos) << message;
         EXPECT_NE(message.find(why), std::string::npos) << message;
-        expect_usable_after_failure(sim.get(), good);
+        expect_usable_after_failure(sim.get(), good, heldStep);
+        heldStep = 10;
         EXPECT_EQ(structmd_load_checkpoint(sim.get(), path.c_str()), STRUCTMD_ERR_IO) << path;
         EXPECT_NE(std::string(structmd_last_error(sim.get())).find(why), std::string::npos)
             << structmd_last_error(sim.get());
@@ -335,7 +364,7 @@ TEST(BadInputs, MissingNullAndUnreadableSourcesAreNamed) {
     const std::string missing = "/nonexistent/structmd/input.json";
     EXPECT_EQ(structmd_load_file(sim.get(), missing.c_str()), STRUCTMD_ERR_IO);
     EXPECT_NE(std::string(structmd_last_error(sim.get())).find(missing), std::string::npos) << structmd_last_error(sim.get());
-    expect_usable_after_failure(sim.get(), good);
+    expect_usable_after_failure(sim.get(), good, std::nullopt);
 
     EXPECT_EQ(structmd_load_file(sim.get(), nullptr), STRUCTMD_ERR_ARGUMENT);
     EXPECT_EQ(std::string(structmd_last_error(sim.get())).rfind("path: ", 0), 0u) << structmd_last_error(sim.get());

@@ -56,6 +56,7 @@ SIGNATURES = {
     "structmd_get_energy": (STATUS_T, [HANDLE_T, c_char_p, POINTER(c_double)]),
     "structmd_get_virial": (STATUS_T, [HANDLE_T, POINTER(c_double)]),
     "structmd_get_pressure": (STATUS_T, [HANDLE_T, POINTER(c_double)]),
+    "structmd_get_temperature": (STATUS_T, [HANDLE_T, POINTER(c_double)]),
     "structmd_get_box": (STATUS_T, [HANDLE_T, POINTER(c_double)]),
     "structmd_get_step": (STATUS_T, [HANDLE_T, POINTER(c_int64)]),
     "structmd_get_time": (STATUS_T, [HANDLE_T, POINTER(c_double)]),

@@ -222,7 +222,7 @@ class Simulation:
         """Loads from a dict, a JSON document string, or a file path (str or path-like). Returns self.
 
         A string whose first non-blank characters are "{", "//" or "/*" is a document; any other
-        string is a path.
+        string is a path. A load that raises keeps the simulation loaded before, if any, as it was.
         """
         if isinstance(source, Mapping):
             return self.load_string(json.dumps(source))
@@ -498,6 +498,13 @@ class Simulation:
         p = c_double()
         self._call(lib.structmd_get_pressure, byref(p))
         return p.value
+
+    @property
+    def temperature(self):
+        """T = 2K / (3 N k_B) over the particles of mass > 0; under Brownian dynamics the bath's."""
+        t = c_double()
+        self._call(lib.structmd_get_temperature, byref(t))
+        return t.value
 
     @property
     def box(self):

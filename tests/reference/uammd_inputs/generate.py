@@ -216,8 +216,8 @@ def try_structmd(path, steps=STEPS):
 
 
 def first_error(message):
-    """The message without the list of known names that follows it, on one line."""
-    return re.sub(r"\s+", " ", message.split("; known")[0]).strip()
+    """The message without the nearest known names that follow it, on one line."""
+    return re.sub(r"\s+", " ", message.split("; nearest known")[0]).strip()
 
 
 def missing_thing(message):
