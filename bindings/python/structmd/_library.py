@@ -12,7 +12,7 @@ import os
 import sys
 from ctypes import CFUNCTYPE, POINTER, c_char_p, c_double, c_int, c_int32, c_int64, c_size_t, c_uint32, c_void_p
 from pathlib import Path
-from typing import List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 from .constants import ABI_VERSION
 
@@ -29,7 +29,7 @@ DEVICE_FORCE_CALLBACK_T = CFUNCTYPE(c_int32, c_void_p, c_void_p, c_int64, c_int3
                                     POINTER(c_double), c_int64, c_void_p, c_void_p)
 
 # name: (restype, argtypes), in the order of include/structmd.h.
-SIGNATURES = {
+SIGNATURES: Dict[str, Tuple[Any, List[Any]]] = {
     "structmd_abi_version": (c_int, []),
     "structmd_version": (c_char_p, []),
     "structmd_create": (STATUS_T, [c_char_p, POINTER(HANDLE_T)]),

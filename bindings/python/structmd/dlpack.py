@@ -6,11 +6,21 @@ arrays a device force callback receives) and speaks the Python DLPack protocol: 
 `cupy.from_dlpack(view)` or `torch.from_dlpack(view)`.
 """
 
+from __future__ import annotations
+
 import ctypes
 from ctypes import CFUNCTYPE, POINTER, Structure, c_char_p, c_int, c_int32, c_int64, c_uint8, c_uint16, c_uint64, c_void_p
 
+from typing import TYPE_CHECKING, Any, Dict, Optional, Tuple
+
 from .constants import STATUS
 from .errors import StateError
+
+if TYPE_CHECKING:
+    import numpy
+    from numpy.typing import NDArray
+
+    from .simulation import Simulation
 
 K_DL_CPU = 1
 K_DL_CUDA = 2
@@ -19,20 +29,26 @@ _CAPSULE_NAME = b"dltensor"
 
 
 class DLDevice(Structure):
+    """DLPack's DLDevice: device_type (K_DL_CPU, K_DL_CUDA) and device_id (the GPU's ordinal)."""
+
     _fields_ = [("device_type", c_int32), ("device_id", c_int32)]
 
 
 class DLDataType(Structure):
+    """DLPack's DLDataType: code (K_DL_FLOAT), bits per lane and lanes."""
+
     _fields_ = [("code", c_uint8), ("bits", c_uint8), ("lanes", c_uint16)]
 
 
 class DLTensor(Structure):
+    """DLPack's DLTensor: data, device, ndim, dtype, shape, strides (in elements) and byte_offset."""
+
     _fields_ = [("data", c_void_p), ("device", DLDevice), ("ndim", c_int32), ("dtype", DLDataType),
                 ("shape", POINTER(c_int64)), ("strides", POINTER(c_int64)), ("byte_offset", c_uint64)]
 
 
 class DLManagedTensor(Structure):
-    pass
+    """DLPack's DLManagedTensor: a DLTensor with the context and deleter that release it."""
 
 
 _DELETER_T = CFUNCTYPE(None, c_void_p)
@@ -49,8 +65,7 @@ _capsule_pointer.restype = c_void_p
 _capsule_pointer.argtypes = [c_void_p, c_char_p]
 
 
-@CFUNCTYPE(None, c_void_p)
-def _capsule_destructor(capsule):
+def _destroy_capsule(capsule: Optional[int]) -> None:
     # A consumer renames the capsule to "used_dltensor" and owns the tensor from then on; a capsule
     # nobody consumed still owns it and releases it here.
     if _capsule_is_valid(capsule, _CAPSULE_NAME):
@@ -59,18 +74,25 @@ def _capsule_destructor(capsule):
             managed.deleter(ctypes.addressof(managed))
 
 
+_capsule_destructor = CFUNCTYPE(None, c_void_p)(_destroy_capsule)
+
+
 # Tensors made in Python stay alive, with their shape and strides, until their deleter runs.
-_made_here = {}
+_made_here: Dict[int, Tuple[DLManagedTensor, Any, Any]] = {}
 
 
-@_DELETER_T
-def _release_made_here(address):
-    _made_here.pop(address, None)
+def _forget_made_here(address: Optional[int]) -> None:
+    if address is not None:
+        _made_here.pop(address, None)
 
 
-def make_tensor(data, n, real_size, device):
-    """A DLManagedTensor of shape (n, 3) and strides (4, 1) over records of four reals at data (an
-    address) on device (-1: host memory), released by its own deleter."""
+_release_made_here = _DELETER_T(_forget_made_here)
+
+
+def make_tensor(data: Optional[int], n: int, real_size: int, device: int) -> int:
+    """The address of a DLManagedTensor of shape (n, 3) and strides (4, 1) over records of four reals
+    (real_size bytes each) at data (an address) on device (-1: host memory, else the CUDA ordinal),
+    released by its own deleter. Raises nothing."""
     shape = (c_int64 * 2)(n, 3)
     strides = (c_int64 * 2)(4, 1)
     managed = DLManagedTensor()
@@ -87,10 +109,14 @@ def make_tensor(data, n, real_size, device):
 
 
 class DLPackView:
-    """One DLManagedTensor, handed to the first consumer that asks (the DLPack protocol allows one)."""
+    """One DLManagedTensor, handed to the first consumer that asks (the DLPack protocol allows one).
 
-    def __init__(self, address, stream=None, owner=None):
-        self._address = address
+    Attributes: shape (n, 3); device (device_type, device_id) as __dlpack_device__ gives it; bits (32 or
+    64, the engine's precision); data_pointer, the address of the first element (0 for none).
+    """
+
+    def __init__(self, address: int, stream: Optional[int] = None, owner: Optional[Simulation] = None) -> None:
+        self._address: Optional[int] = address
         self._stream = stream  # the producer's CUDA stream, for information: the data are ready already
         # The Simulation whose engine holds the data: once it is closed they are freed, and reading
         # them would read whatever the memory holds next.
@@ -101,9 +127,10 @@ class DLPackView:
         self.bits = tensor.dtype.bits
         self.data_pointer = tensor.data or 0
 
-    def numpy(self):
+    def numpy(self) -> NDArray[numpy.floating[Any]]:
         """A writable numpy array (n, 3) over the same host memory (kDLCPU views only); numpy's own
-        from_dlpack makes read-only arrays, which a device callback on the CPU backend cannot fill."""
+        from_dlpack makes read-only arrays, which a device callback on the CPU backend cannot fill.
+        Raises BufferError for a view of GPU memory, StateError when its Simulation is closed."""
         import numpy
 
         self._require_open_owner()
@@ -113,14 +140,18 @@ class DLPackView:
         records = numpy.ctypeslib.as_array((real * (4 * self.shape[0])).from_address(self.data_pointer))
         return records.reshape(self.shape[0], 4)[:, :3]
 
-    def _require_open_owner(self):
+    def _require_open_owner(self) -> None:
         if self._owner is not None and self._owner.closed:
             raise StateError(STATUS["STRUCTMD_ERR_STATE"], "the Simulation of this view is closed: its memory is freed")
 
-    def __dlpack_device__(self):
+    def __dlpack_device__(self) -> Tuple[int, int]:
+        """(device_type, device_id) of the data, as the DLPack protocol asks."""
         return self.device
 
-    def __dlpack__(self, *, stream=None, max_version=None, dl_device=None, copy=None):
+    def __dlpack__(self, *, stream: Optional[int] = None, max_version: Optional[Tuple[int, int]] = None,
+                   dl_device: Optional[Tuple[int, int]] = None, copy: Optional[bool] = None) -> object:
+        """A "dltensor" capsule owning the tensor (the DLPack protocol; once only). Raises BufferError
+        when consumed already, for copy=True or another dl_device; StateError when the Simulation is closed."""
         # The data are complete when the view is made, so any consumer stream may read them.
         if self._address is None:
             raise BufferError("this DLPack view was consumed already")
@@ -132,9 +163,10 @@ class DLPackView:
         address, self._address = self._address, None
         return _capsule_new(address, _CAPSULE_NAME, ctypes.cast(_capsule_destructor, c_void_p))
 
-    def __del__(self):
+    def __del__(self) -> None:
         # Never handed to a consumer: release it here.
-        if getattr(self, "_address", None) is not None:
-            managed = DLManagedTensor.from_address(self._address)
+        address = getattr(self, "_address", None)
+        if address is not None:
+            managed = DLManagedTensor.from_address(address)
             if managed.deleter:
-                managed.deleter(self._address)
+                managed.deleter(address)

@@ -126,7 +126,8 @@ class _Channel:
         return np.frombuffer(self.receive(8 * count), dtype=np.float64).copy()
 
     def int32(self) -> int:
-        return struct.unpack("i", self.receive(4))[0]
+        value: int = struct.unpack("i", self.receive(4))[0]
+        return value
 
     def send(self, *parts: bytes) -> None:
         self.connection.sendall(b"".join(parts))
