@@ -30,12 +30,12 @@ from .simulation import Simulation
 
 
 def abi_version() -> int:
-    """STRUCTMD_ABI_VERSION of the library actually loaded."""
+    """STRUCTMD_ABI_VERSION of the library actually loaded. Raises nothing."""
     return int(_lib.structmd_abi_version())
 
 
 def version() -> str:
-    """The library version, "MAJOR.MINOR.PATCH"."""
+    """The library version, "MAJOR.MINOR.PATCH". Raises nothing."""
     return str(_lib.structmd_version().decode())
 
 

@@ -52,6 +52,9 @@ class Calculator(_AseCalculator):
 
     def calculate(self, atoms: Any = None, properties: Optional[Sequence[str]] = None,
                   system_changes: List[str] = all_changes) -> None:
+        """ASE's calculate: fills self.results with energy and free_energy (eV), forces (eV/Å, (n, 3))
+        and stress (eV/Å^3, Voigt order) for atoms. Raises UnsupportedError for a non-periodic or
+        tilted cell, ArgumentError for another number of atoms than the input's."""
         if properties is None:
             properties = self.implemented_properties
         super().calculate(atoms, properties, system_changes)

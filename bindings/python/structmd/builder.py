@@ -67,7 +67,8 @@ def _entry(kind: ComponentType, parameters: Optional[Mapping[str, Any]], labels:
 
 
 def text(document: Document) -> str:
-    """JSON for people: objects longer than a line spread over lines, each row of a table on its own."""
+    """The document as JSON text for people: objects longer than a line spread over lines, each row of
+    a table on its own. Raises TypeError for a value JSON cannot hold."""
     def written(value: Any, indent: int) -> str:
         pad, inner = "  " * indent, "  " * (indent + 1)
         items = []
@@ -110,7 +111,8 @@ class Input:
     # ---- global ------------------------------------------------------------------------------
 
     def add_type(self, name: str, mass: float = 1.0, radius: float = 0.5, charge: float = 0.0) -> None:
-        """A row of ["Types","Basic"]: a particle type by name."""
+        """A row of ["Types","Basic"]: a particle type by name, its mass, radius and charge in the
+        input's units. Raises ValueError for a name added before."""
         if any(row[0] == name for row in self._types):
             raise ValueError(f"type {name!r} is added twice")
         self._types.append([name, float(mass), float(radius), float(charge)])
@@ -118,7 +120,8 @@ class Input:
     def set_ensemble(self, box: Union[float, Sequence[float], np.ndarray], temperature: float, kind: str = "NVT",
                      columns: Optional[Mapping[str, Any]] = None) -> None:
         """["Ensemble", kind] with the box (one edge for a cube, or three) and the temperature, and
-        the other columns its kind takes (NVTlambda: {"lambda": 0.5})."""
+        the other columns its kind takes (NVTlambda: {"lambda": 0.5}), in the input's units. Raises
+        ValueError for a box of other than one or three edges."""
         edges = np.asarray(box, dtype=float).ravel()
         if edges.size == 1:
             edges = np.repeat(edges, 3)
@@ -137,7 +140,8 @@ class Input:
         `velocities` (n, 3) or None (the engine draws them at the ensemble's temperature);
         `state_columns` more per-particle state ("direction", "magnetization", ...) and
         `structure_columns` per-particle topology ("chainId", "modelId", "batchId", ...), each an
-        array of n values. Every call must give the same columns. Returns the ids given."""
+        array of n values. Every call must give the same columns. Returns the ids given. Raises
+        ValueError for a wrong shape or count, or columns other than the earlier particles'."""
         position_rows = np.asarray(positions, dtype=float)
         if position_rows.ndim != 2 or position_rows.shape[1] != 3:
             raise ValueError(f"positions must have shape (n, 3), not {position_rows.shape}")
@@ -172,12 +176,14 @@ class Input:
 
     def add_interaction(self, name: str, kind: ComponentType, parameters: Optional[Mapping[str, Any]] = None,
                         labels: Optional[Sequence[str]] = None, data: Any = None) -> None:
-        """A topology.forceField entry: a neighbour list, a pair term, bonds, a field, ..."""
+        """A topology.forceField entry: a neighbour list, a pair term, bonds, a field, ... Raises
+        ValueError for a name added before, a kind that is not [Class, SubClass], or labels without data."""
         self._add(self._force_field, "topology.forceField", name, _entry(kind, parameters, labels, data))
 
     def add_integrator(self, name: str, kind: ComponentType, parameters: Optional[Mapping[str, Any]] = None,
                        steps: Optional[int] = None) -> None:
-        """An integrator entry; with `steps`, also the next row of the schedule (run after those before)."""
+        """An integrator entry; with `steps`, also the next row of the schedule (run after those before).
+        Raises ValueError for a name added before, the name "schedule", or a kind not [Class, SubClass]."""
         if name == "schedule":
             raise ValueError("'schedule' is the schedule's own entry: pass steps= instead")
         self._add(self._integrators, "integrator", name, _entry(kind, parameters, None, None))
@@ -186,7 +192,8 @@ class Input:
 
     def add_step(self, name: str, kind: ComponentType, parameters: Optional[Mapping[str, Any]] = None,
                  labels: Optional[Sequence[str]] = None, data: Any = None) -> None:
-        """A simulationStep entry: a measure, a writer, a flow-control step."""
+        """A simulationStep entry: a measure, a writer, a flow-control step. Raises ValueError as
+        add_interaction."""
         self._add(self._steps, "simulationStep", name, _entry(kind, parameters, labels, data))
 
     @staticmethod
@@ -198,7 +205,8 @@ class Input:
     # ---- the document ------------------------------------------------------------------------
 
     def document(self) -> Document:
-        """The document, sections in the format's order; sections with nothing in them left out."""
+        """The document (a dict), sections in the format's order; sections with nothing in them left
+        out. Raises nothing."""
         document: Document = {"system": self._system}
         global_section: Document = {}
         if self._units is not None:
@@ -233,6 +241,8 @@ class Input:
         return text(self.document())
 
     def write(self, path: PathLike) -> None:
+        """Writes the document as text() to the file path (UTF-8), replacing it. Raises OSError when it
+        cannot be written."""
         Path(path).write_text(self.text(), encoding="utf-8")
 
     def check(self, options: Optional[Mapping[str, Any]] = None) -> None:
@@ -252,7 +262,8 @@ class Input:
         """An Input of an ASE Atoms object: one type per chemical symbol (its atoms' mass and initial
         charge, radius 0.5), the box from an orthorhombic cell, the
         positions divided by `length_unit` (one input length in Å, as in structmd.ase). Interactions,
-        integrators and steps are the caller's to add."""
+        integrators and steps are the caller's to add. Raises ValueError for a tilted or non-periodic
+        cell, or atoms of one symbol with different masses or charges."""
         cell = np.asarray(atoms.cell, dtype=float)
         if np.any(np.abs(cell - np.diag(np.diag(cell))) > 1e-12 * max(1.0, float(np.abs(cell).max()))):
             raise ValueError("structmd's boxes are orthorhombic: the cell has off-diagonal terms")

@@ -30,5 +30,5 @@ COMPUTE_FLAGS = {
 
 
 def header_defines() -> Dict[str, int]:
-    """Every #define of structmd.h that this package mirrors, by its C name."""
+    """Every #define of structmd.h that this package mirrors, by its C name. Raises nothing."""
     return {"STRUCTMD_ABI_VERSION": ABI_VERSION, **STATUS, **COMPUTE_FLAGS}

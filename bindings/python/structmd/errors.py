@@ -91,5 +91,6 @@ ERROR_CLASSES = {
 
 
 def error_for_status(status: int, message: str) -> StructmdError:
-    """The exception for a failed call; an unknown status (a newer library) gives StructmdError."""
+    """The exception (returned, not raised) for a failed call; an unknown status (a newer library)
+    gives StructmdError."""
     return ERROR_CLASSES.get(status, StructmdError)(status, message)

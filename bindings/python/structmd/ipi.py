@@ -54,7 +54,8 @@ class ProtocolError(ConnectionError):
 
 
 def parse_address(address: Address) -> Tuple[int, Union[str, Tuple[str, int]]]:
-    """(socket family, socket address) of "host:port", (host, port) or "unix:NAME"."""
+    """(socket family, socket address) of "host:port", (host, port) or "unix:NAME". Raises
+    ArgumentError for an address of another form."""
     if isinstance(address, tuple):
         return socket.AF_INET, (address[0], int(address[1]))
     if address.startswith("unix:"):
@@ -70,8 +71,9 @@ def parse_address(address: Address) -> Tuple[int, Union[str, Tuple[str, int]]]:
 
 
 def connect(address: Address, timeout: float) -> socket.socket:
-    """Connects, retrying until timeout seconds have passed: a client started beside its server may
-    come up first."""
+    """A connected socket to the server at address, retrying until timeout seconds have passed: a
+    client started beside its server may come up first. Raises ConnectionError when no server
+    answered in time, ArgumentError for a malformed address, OSError for other socket failures."""
     family, target = parse_address(address)
     deadline = time.monotonic() + timeout
     while True:

@@ -22,7 +22,9 @@ NOT_ENERGY_TERMS = {"step", "particles", "volume", "temperature", "virial", "pre
 
 
 def read_thermo(path: PathLike) -> Dict[str, np.ndarray]:
-    """The file's columns by the names of its header line (`#step particles volume ...`)."""
+    """The file's columns (numpy arrays, in the input's units) by the names of its header line
+    (`#step particles volume ...`). Raises OSError for an unreadable file, ValueError for one that is
+    not a thermodynamic measure's."""
     with open(path, encoding="utf-8") as stream:
         header = stream.readline()
     if not header.startswith("#"):
@@ -37,7 +39,7 @@ def read_thermo(path: PathLike) -> Dict[str, np.ndarray]:
 
 
 def panels_of(columns: Dict[str, np.ndarray]) -> List[Tuple[str, List[str]]]:
-    """(y label, column names) of each panel, for the columns the file has."""
+    """(y label, column names) of each panel, for the columns the file has. Raises nothing."""
     terms = [name for name in columns if name not in NOT_ENERGY_TERMS and name not in ENERGY_TOTALS]
     energies = [name for name in ENERGY_TOTALS if name in columns] + terms
     if "external" in columns and np.any(columns["external"] != 0.0):
@@ -48,7 +50,9 @@ def panels_of(columns: Dict[str, np.ndarray]) -> List[Tuple[str, List[str]]]:
 
 
 def plot_thermo(path: PathLike, output: Optional[PathLike] = None) -> "Figure":
-    """One figure of stacked panels against the step; saved to `output` when given (format from its suffix)."""
+    """One matplotlib figure of stacked panels against the step; saved to `output` when given (format
+    from its suffix). Raises ImportError without matplotlib, OSError and ValueError as read_thermo, and
+    ValueError for a file without a step column."""
     try:
         import matplotlib
         if output is not None:
@@ -78,7 +82,8 @@ def plot_thermo(path: PathLike, output: Optional[PathLike] = None) -> "Figure":
 
 
 def main(arguments: Optional[Sequence[str]] = None) -> int:
-    """`structmd plot`: draws the file, into a window or (with -o) into a figure file."""
+    """`structmd plot`: draws the file, into a window or (with -o) into a figure file. Returns the exit
+    status 0; a failure exits (SystemExit) with status 1 and the reason on stderr."""
     parser = argparse.ArgumentParser(prog="structmd plot", description=__doc__.splitlines()[0])
     parser.add_argument("thermo_file", help="a ThermodynamicQuantityMeasure output file")
     parser.add_argument("-o", "--output", help="write the figure to this file (png, pdf, svg) instead of showing it")
