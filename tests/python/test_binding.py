@@ -1,6 +1,7 @@
 """The ctypes package bindings/python/structmd: its constants against include/structmd.h (its
 signature table: tests/api/test_python_binding.py), library discovery, every method and property of Simulation, and the exception class of each status."""
 
+import inspect
 import json
 import os
 import pickle
@@ -14,6 +15,9 @@ import numpy as np
 import pytest
 
 import structmd
+import structmd.dlpack
+import structmd.ipi
+import structmd.plot
 import structmd.simulation as simulation_module
 import structmd_header
 import systems
@@ -76,6 +80,48 @@ def test_versions():
     expected = os.environ.get("STRUCTMD_EXPECTED_VERSION")
     if expected:
         assert structmd.version() == expected
+
+
+# Public members held to issue 36's "Typed Python" rule: a docstring, and annotations on every
+# parameter and the return (mypy --strict checks them: the ctest test python_typing).
+def public_functions():
+    """(name, object with the docstring, the functions whose signatures must be annotated)."""
+    classes = [structmd.Simulation, structmd.Input, structmd.dlpack.DLPackView]
+    for cls in classes:
+        for name, member in vars(cls).items():
+            if name.startswith("_"):
+                continue
+            if isinstance(member, property):
+                yield f"{cls.__name__}.{name}", member, [f for f in (member.fget, member.fset) if f is not None]
+            elif isinstance(member, (staticmethod, classmethod)):
+                yield f"{cls.__name__}.{name}", member.__func__, [member.__func__]
+            elif inspect.isfunction(member):
+                yield f"{cls.__name__}.{name}", member, [member]
+    for module in (structmd, structmd.simulation, structmd.builder, structmd.constants, structmd.errors,
+                   structmd.dlpack, structmd.ipi, structmd.plot):
+        for name, member in vars(module).items():
+            if not name.startswith("_") and inspect.isfunction(member) and member.__module__ == module.__name__:
+                yield f"{module.__name__}.{name}", member, [member]
+
+
+def test_every_public_member_is_documented_and_annotated():
+    undocumented, unannotated = [], []
+    for name, member, functions in public_functions():
+        if not (inspect.getdoc(member) or "").strip():
+            undocumented.append(name)
+        for function in functions:
+            signature = inspect.signature(function)
+            parameters = list(signature.parameters.values())
+            if parameters and parameters[0].name in ("self", "cls"):
+                parameters = parameters[1:]  # annotated only where it matters (Self-typed loads)
+            missing = [p.name for p in parameters if p.annotation is inspect.Parameter.empty]
+            if signature.return_annotation is inspect.Signature.empty:
+                missing.append("return")
+            if missing:
+                unannotated.append(f"{name} ({function.__name__}: {', '.join(missing)})")
+    assert not undocumented, f"public members without a docstring: {undocumented}"
+    assert not unannotated, f"public members not fully annotated: {unannotated}"
+    assert "Simulation.step" in {name for name, _, _ in public_functions()}
 
 
 # ---- finding the library -----------------------------------------------------------------------
