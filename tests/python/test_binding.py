@@ -296,6 +296,41 @@ def test_step_run_compute_and_clock(sim):
     assert sim.step_number == 32
 
 
+@pytest.mark.parametrize("steps", [None, 120])
+def test_run_with_progress_ends_in_the_same_step_and_state_and_draws_a_bar_on_stderr(options, capsys, steps):
+    ends = []
+    for progress in (False, True):
+        with structmd.Simulation(options) as sim:
+            sim.load(systems.lj_bond_system(steps=300))
+            sim.run(steps, progress=progress)
+            ends.append((sim.step_number, sim.time, sim.positions, sim.velocities, sim.forces))
+    expected_steps = 300 if steps is None else steps
+    assert ends[0][0] == ends[1][0] == expected_steps
+    for without, with_bar in zip(ends[0][1:], ends[1][1:]):
+        np.testing.assert_array_equal(with_bar, without)
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    last = captured.err.rstrip("\n").split("\r")[-1]
+    assert last.startswith(f"{expected_steps}/{expected_steps} steps [")
+    assert "100%" in last and "steps/s" in last and "ETA 0:00:00" in last
+    assert captured.err.endswith("\n")
+
+
+def test_run_past_the_schedule_and_its_refusals(loaded, options, capsys):
+    loaded.run()
+    assert loaded.step_number == 1000
+    loaded.run(progress=True)  # at the schedule's end: nothing to do
+    loaded.run(5, progress=True)  # past it, as step(5)
+    assert loaded.step_number == 1005
+    assert "0/0 steps" in capsys.readouterr().err
+    with pytest.raises(TypeError):
+        loaded.run("ten")
+    with pytest.raises(structmd.ArgumentError):
+        loaded.run(-1, progress=True)
+    with structmd.Simulation(options) as empty, pytest.raises(structmd.StateError):
+        empty.run(progress=True)
+
+
 # ---- properties --------------------------------------------------------------------------------
 
 def test_array_properties_have_the_documented_shapes_and_values(loaded):

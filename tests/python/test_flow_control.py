@@ -108,8 +108,10 @@ def test_escape_polygon_time_uses_half_spaces_whose_normals_point_inwards(option
     assert sum(s is not None for s in expected) >= 3
 
 
+# run(progress=True) steps in chunks: it too ends where the flow-control step ends the run.
+@pytest.mark.parametrize("progress", [False, True])
 def test_stop_simulation_ends_the_call_at_the_escape_that_completes_the_count_and_the_next_call_steps_on(
-        options, tmp_path):
+        options, tmp_path, progress):
     steps = 600
     entry = {"type": ["GeometricalMeasure", "EscapeSphereTime"],
              "parameters": {"intervalStep": 1, "outputFilePath": str(tmp_path / "escape.dat"),
@@ -119,7 +121,7 @@ def test_stop_simulation_ends_the_call_at_the_escape_that_completes_the_count_an
     third = sorted(s for s in expected if s is not None)[2]
     with structmd.Simulation(options) as sim:
         sim.load(free_flight(POSITIONS, VELOCITIES, steps, {"escape": entry}))
-        sim.run()
+        sim.run(progress=progress)
         assert sim.step_number == third and sim.info["stopped_by"] == "escape"
         np.testing.assert_allclose(sim.positions, np.array(POSITIONS) + np.array(VELOCITIES) * third * DT, atol=1e-12)
         sim.step(5)

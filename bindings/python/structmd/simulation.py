@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import json
+import math
 import operator
 import os
+import sys
+import time as _time
 from collections.abc import Mapping
 from ctypes import POINTER, byref, cast, c_double, c_int32, c_int64, c_size_t, c_void_p, create_string_buffer
 from typing import (TYPE_CHECKING, Any, Callable, Dict, Iterable, Literal, Optional, SupportsIndex,
-                    Tuple, TypeVar, Union)
+                    TextIO, Tuple, TypeVar, Union)
 
 from ._library import DEVICE_FORCE_CALLBACK_T, FORCE_CALLBACK_T, lib
 from .dlpack import K_DL_CUDA, DLPackView, make_tensor
@@ -48,6 +51,8 @@ _Self = TypeVar("_Self", bound="Simulation")
 
 _INFO_FIRST_GUESS = 512  # bytes; structmd_get_info says how much it needs if this is short
 _COUNTERS_SIZE = 512  # bytes; the header promises structmd_get_counters never needs more
+_PROGRESS_INTERVAL = 0.2  # seconds of steps between two redraws of run(progress=True)'s bar
+_PROGRESS_WIDTH = 30  # characters of the bar itself
 
 
 def _decode(text: Optional[bytes]) -> str:
@@ -68,6 +73,37 @@ def ctypes_address(function: _ctypes.CFuncPtr) -> Optional[int]:
 def _raise_for(status: int, message: str) -> None:
     if status != STATUS["STRUCTMD_OK"]:
         raise error_for_status(status, message)
+
+
+def _clock(seconds: float) -> str:
+    """H:MM:SS of a duration in seconds, "?" when unknown."""
+    if not math.isfinite(seconds):
+        return "?"
+    minutes, secs = divmod(int(round(seconds)), 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours}:{minutes:02d}:{secs:02d}"
+
+
+class _ProgressBar:
+    """A one-line progress bar redrawn in place (carriage return) on a text stream; no dependency."""
+
+    def __init__(self, total: int, stream: TextIO) -> None:
+        self.total = total
+        self.stream = stream
+
+    def draw(self, done: int, elapsed: float) -> None:
+        fraction = done / self.total if self.total > 0 else 1.0
+        filled = int(round(_PROGRESS_WIDTH * fraction))
+        rate = done / elapsed if elapsed > 0.0 and done > 0 else math.nan
+        remaining = (self.total - done) / rate if rate > 0.0 else math.nan
+        speed = "?" if not math.isfinite(rate) else f"{rate:.3g}" if rate < 100.0 else f"{rate:,.0f}"
+        self.stream.write(f"\r{done}/{self.total} steps [{'#' * filled}{'.' * (_PROGRESS_WIDTH - filled)}] "
+                          f"{100.0 * fraction:3.0f}% {speed} steps/s ETA {_clock(remaining)}")
+        self.stream.flush()
+
+    def close(self) -> None:
+        self.stream.write("\n")
+        self.stream.flush()
 
 
 class Simulation:
@@ -293,10 +329,53 @@ class Simulation:
         StateError before a load, NumericalError (state restored to the call's start) for a blow-up."""
         self._call(lib.structmd_step, operator.index(n))
 
-    def run(self) -> None:
-        """Advances until the integrator schedule ends, or until a flow-control step ends the run.
-        Raises as step()."""
-        self._call(lib.structmd_run)
+    def run(self, steps: Optional[SupportsIndex] = None, progress: bool = False) -> None:
+        """Advances until the integrator schedule ends (steps None), or by `steps` steps (as step(steps)),
+        stopping early where a flow-control step ends the run. With progress=True a progress bar on
+        stderr shows the steps done of the total, steps per second and the remaining time; the steps
+        are then taken in chunks of about 0.2 s each (at most 1% of the run while the speed is being
+        measured), which ends in the same step and state. Raises as step()."""
+        if not progress:
+            if steps is None:
+                self._call(lib.structmd_run)
+            else:
+                self.step(steps)
+            return
+        if steps is None:
+            info = self.info
+            if not info["loaded"]:
+                self._call(lib.structmd_run)  # raises the library's StateError
+            total = max(0, int(info["final_step"]) - self.step_number)
+        else:
+            total = operator.index(steps)
+            if total < 0:
+                self.step(total)  # raises the library's ArgumentError
+        self._run_with_progress(total, sys.stderr)
+
+    def _run_with_progress(self, total: int, stream: TextIO) -> None:
+        """Takes total steps in chunks, redrawing a progress bar on stream after each."""
+        bar = _ProgressBar(total, stream)
+        done = 0
+        chunk = max(1, min(total // 100, 10))
+        started = _time.perf_counter()
+        try:
+            bar.draw(done, 0.0)
+            while done < total:
+                chunk = min(chunk, total - done)
+                before = _time.perf_counter()
+                start_step = self.step_number
+                self.step(chunk)
+                taken = self.step_number - start_step
+                elapsed = _time.perf_counter() - before
+                done += taken
+                bar.draw(done, _time.perf_counter() - started)
+                if taken < chunk:
+                    break  # a flow-control step ended the run
+                # The next chunk takes about _PROGRESS_INTERVAL seconds, growing at most tenfold at once.
+                rate = chunk / elapsed if elapsed > 0.0 else math.inf
+                chunk = max(1, min(10 * chunk, int(rate * _PROGRESS_INTERVAL) if math.isfinite(rate) else 10 * chunk))
+        finally:
+            bar.close()
 
     def save_checkpoint(self, path: PathLike) -> None:
         """Writes the dynamic state (step, time, box, positions, velocities, ...) to a file, atomically.
