@@ -30,8 +30,8 @@ fi
 
 # ase: the reference and the i-PI server of tests/python/test_ase.py and test_ipi.py; mkdocs and its
 # extensions: the documentation site (scripts/docs_site.py, test docs_site).
-python_packages=(numpy cffi pytest ase mkdocs pymdown-extensions "mkdocstrings[python]" mdx-truly-sane-lists)
-if [ "$profile" = test ] && ! python3 -c "import numpy, cffi, pytest, ase, mkdocs, pymdownx, mkdocstrings, mdx_truly_sane_lists" >/dev/null 2>&1; then
+python_packages=(numpy cffi pytest ase mypy mkdocs pymdown-extensions "mkdocstrings[python]" mdx-truly-sane-lists)
+if [ "$profile" = test ] && ! python3 -c "import numpy, cffi, pytest, ase, mypy, mkdocs, pymdownx, mkdocstrings, mdx_truly_sane_lists" >/dev/null 2>&1; then
   python3 -m pip install -q "${python_packages[@]}" 2>/dev/null \
     || python3 -m pip install -q --break-system-packages "${python_packages[@]}"
 fi
