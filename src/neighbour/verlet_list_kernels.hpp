@@ -262,8 +262,9 @@ struct BuildLists {
         for (int64_t k = begin; k < end; ++k) {
             const Vec3<R> rk = xyz(positions[k]);
             int n = 0;
-            // Candidates s in first .. last - 1: their squared distances first, in a loop the
-            // compiler vectorises, then the accepted ones appended without a branch.
+            // Candidates s in first .. last - 1: their squared distances first, in a loop of their
+            // own (g++ 12 does not vectorise it yet: the strided loads of the positions), then the
+            // accepted ones appended without a branch.
             const auto scan = [&](int first, int last) {
                 if (distance2.size() < static_cast<size_t>(last - first)) distance2.resize(static_cast<size_t>(last - first) * 2);
                 R* const d2 = distance2.data();

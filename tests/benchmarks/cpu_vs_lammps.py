@@ -20,6 +20,7 @@ import argparse
 import csv
 import os
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -91,6 +92,42 @@ def run_structmd(benchmark, n, threads, precisions, skin, warmup, seconds, repea
     return rows
 
 
+def cpu_seconds(command, env, cwd=None):
+    """User plus system time of the command (and its children)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run(command, check=True, env=env, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def cpu_time_rates(args, n, precisions, workdir):
+    """One thread: particle-steps per CPU-second, from two runs of different lengths each (the
+    difference cancels set-up and warm-up). On a shared machine this counts the time the process
+    ran, not the time it waited for a core."""
+    cells = max(1, round((n / 4) ** (1 / 3)))
+    atoms = 4 * cells ** 3
+    long_steps = max(50, int(args.cpu_seconds * 1.5e6 / atoms))
+    short_steps = long_steps // 5
+    rates = {}
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    for p in precisions:
+        seconds = []
+        for steps in (short_steps, long_steps):
+            seconds.append(cpu_seconds([args.benchmark, "--backend", "cpu", "--threads", "1", "--n", str(n),
+                                        "--skin", str(args.skin), "--precision", p, "--warmup", "20",
+                                        "--steps", str(steps), "--repeats", "1"], env))
+        rates[p] = atoms * (long_steps - short_steps) / (seconds[1] - seconds[0])
+    env = dict(env, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    seconds = []
+    for steps in (short_steps, long_steps):
+        path = os.path.join(workdir, f"in.cpu.{cells}.{steps}")
+        with open(path, "w") as f:
+            f.write(lammps_input(cells, args.skin, 20, steps))
+        seconds.append(cpu_seconds([args.lmp, "-in", path, "-log", "none", "-screen", "none"], env, workdir))
+    rates["lammps"] = atoms * (long_steps - short_steps) / (seconds[1] - seconds[0])
+    return atoms, rates
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--benchmark", default="build/tests/benchmarks/structmd_lj_benchmark")
@@ -106,14 +143,19 @@ def main():
     parser.add_argument("--repeats", type=int, default=3, help="structmd: timed calls (median)")
     parser.add_argument("--lammps-seconds", type=float, default=3.0, help="LAMMPS: about this long a run")
     parser.add_argument("--csv", help="also write the best figures here")
+    parser.add_argument("--cpu-time", action="store_true",
+                        help="also one thread in particle-steps per CPU-second (for a loaded machine)")
+    parser.add_argument("--cpu-time-only", action="store_true", help="--cpu-time without the wall-clock table")
+    parser.add_argument("--cpu-seconds", type=float, default=3.0, help="--cpu-time: about this long a run")
     args = parser.parse_args()
     sizes = args.n or [4000, 32000]
     threads = args.threads or [1, 2]
     precisions = args.precision or ["single", "double"]
 
     best = {}
+    args.cpu_time = args.cpu_time or args.cpu_time_only
     with tempfile.TemporaryDirectory() as workdir:
-        for round_ in range(args.rounds):
+        for round_ in range(0 if args.cpu_time_only else args.rounds):
             for n in sizes:
                 cells = max(1, round((n / 4) ** (1 / 3)))
                 for t in threads:
@@ -134,21 +176,44 @@ def main():
                           + ", ".join(f"{p} {best_rate:.3g}" for p, (best_rate, _, _) in rows.items())
                           + f", lammps {rate:.3g}", file=sys.stderr, flush=True)
 
-    header = ["N", "threads"] + [f"structmd {p}" for p in precisions] + ["LAMMPS lj/cut"] + \
-             [f"{p} / LAMMPS" for p in precisions] + ["builds/1000 (structmd, LAMMPS)"]
-    print("| " + " | ".join(header) + " |")
-    print("| " + " | ".join(["---:"] * len(header)) + " |")
     lines = []
-    for n in sorted({k[0] for k in best}):
-        for t in threads:
-            lam = best.get((n, t, "lammps"), (float("nan"), float("nan")))
-            cells = [f"{n:,}", str(t)]
-            cells += [f"{best.get((n, t, p), (float('nan'),))[0]:.3g}" for p in precisions]
-            cells += [f"{lam[0]:.3g}"]
-            cells += [f"{best.get((n, t, p), (float('nan'),))[0] / lam[0]:.2f}x" for p in precisions]
-            cells += [f"{best.get((n, t, precisions[0]), (0, float('nan')))[1]:.0f}, {lam[1]:.0f}"]
+    if not args.cpu_time_only:
+        header = ["N", "threads"] + [f"structmd {p}" for p in precisions] + ["LAMMPS lj/cut"] + \
+                 [f"{p} / LAMMPS" for p in precisions] + ["builds/1000 (structmd, LAMMPS)"]
+        print("| " + " | ".join(header) + " |")
+        print("| " + " | ".join(["---:"] * len(header)) + " |")
+        for n in sorted({k[0] for k in best}):
+            for t in threads:
+                lam = best.get((n, t, "lammps"), (float("nan"), float("nan")))
+                cells = [f"{n:,}", str(t)]
+                cells += [f"{best.get((n, t, p), (float('nan'),))[0]:.3g}" for p in precisions]
+                cells += [f"{lam[0]:.3g}"]
+                cells += [f"{best.get((n, t, p), (float('nan'),))[0] / lam[0]:.2f}x" for p in precisions]
+                cells += [f"{best.get((n, t, precisions[0]), (0, float('nan')))[1]:.0f}, {lam[1]:.0f}"]
+                print("| " + " | ".join(cells) + " |")
+                lines.append([n, t] + [best.get((n, t, p), (float("nan"),))[0] for p in precisions] + [lam[0]])
+    if args.cpu_time:
+        best_cpu = {}
+        with tempfile.TemporaryDirectory() as workdir:
+            for round_ in range(args.rounds):
+                for n in sizes:
+                    atoms, rates = cpu_time_rates(args, n, precisions, workdir)
+                    for key, rate in rates.items():
+                        best_cpu[(atoms, key)] = max(best_cpu.get((atoms, key), 0.0), rate)
+                    print(f"cpu time, round {round_ + 1}: N={atoms}: "
+                          + ", ".join(f"{k} {r:.3g}" for k, r in rates.items()), file=sys.stderr, flush=True)
+        print()
+        print("One thread, particle-steps per CPU-second (best of the rounds):")
+        print()
+        header = ["N"] + [f"structmd {p}" for p in precisions] + ["LAMMPS lj/cut"] + \
+                 [f"{p} / LAMMPS" for p in precisions]
+        print("| " + " | ".join(header) + " |")
+        print("| " + " | ".join(["---:"] * len(header)) + " |")
+        for atoms in sorted({k[0] for k in best_cpu}):
+            lam = best_cpu[(atoms, "lammps")]
+            cells = [f"{atoms:,}"] + [f"{best_cpu[(atoms, p)]:.3g}" for p in precisions] + [f"{lam:.3g}"]
+            cells += [f"{best_cpu[(atoms, p)] / lam:.2f}x" for p in precisions]
             print("| " + " | ".join(cells) + " |")
-            lines.append([n, t] + [best.get((n, t, p), (float("nan"),))[0] for p in precisions] + [lam[0]])
     if args.csv:
         with open(args.csv, "w", newline="") as f:
             w = csv.writer(f)
