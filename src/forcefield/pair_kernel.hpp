@@ -121,7 +121,7 @@ struct PairKernel {
     // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
     // one thread, the sums of operator() in the same order. Each slot's separations and pair terms
     // go first into per-thread arrays, in a loop of independent iterations the compiler vectorises
-    // (a pair beyond the cutoff gets a zero term instead of a branch), then they are summed in list
+    // (a pair beyond the cutoff gets a zero term, a select where vectorised), then they are summed in list
     // order. flatten: every call inlined (the box's minimum image, the potential), which the inliner
     // otherwise declines in a body this size. A slot of a group, or whose list overflowed, takes
     // operator().
@@ -159,8 +159,11 @@ struct PairKernel {
                 const Vec3<R> rj{positions[s].x, positions[s].y, positions[s].z};
                 const Vec3<R> rij = box.minimum_image(rj - ri);
                 const PairR r2 = PairR(dot(rij, rij));
-                const PairTerm<PairR> t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, order[s]);
                 const bool inside = r2 < p.cutoff2;
+                // Evaluated inside the cutoff only: a potential the compiler cannot vectorise (the
+                // interpreted expression) then costs what it did in operator().
+                PairTerm<PairR> t{PairR(0), PairR(0)};
+                if (inside) t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, order[s]);
                 dx[m] = rij.x;
                 dy[m] = rij.y;
                 dz[m] = rij.z;
