@@ -11,6 +11,11 @@
 #include "forcefield/pair_term.hpp"
 #include "neighbour/neighbour_view.hpp"
 
+#if SMD_HOST_CODE
+#include <type_traits>
+#include <vector>
+#endif
+
 namespace structmd {
 
 // Potentials of charges (Debye-Hueckel) declare `static constexpr bool uses_charges = true`, those of
@@ -111,6 +116,79 @@ struct PairKernel {
         if (WantVirial) w = lanes.sum(w);
         if (lanes.leader()) add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
     }
+
+#if SMD_HOST_CODE
+    // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
+    // one thread, the sums of operator() in the same order. Each slot's separations and pair terms
+    // go first into per-thread arrays, in a loop of independent iterations the compiler vectorises
+    // (a pair beyond the cutoff gets a zero term, a select where vectorised), then they are summed in list
+    // order. flatten: every call inlined (the box's minimum image, the potential), which the inliner
+    // otherwise declines in a body this size. A slot of a group, or whose list overflowed, takes
+    // operator().
+    __attribute__((flatten)) void host_rows(int64_t begin, int64_t end) const {
+        const NeighbourView<R>& v = neighbours;
+        const int capacity = v.capacity > 0 ? v.capacity : 0;
+        thread_local std::vector<R> scratch;
+        if (scratch.size() < 5 * static_cast<size_t>(capacity)) scratch.resize(5 * static_cast<size_t>(capacity));
+        R* const dx = scratch.data();
+        R* const dy = dx + capacity;
+        R* const dz = dy + capacity;
+        R* const g = dz + capacity;  // dU/dr / r, 0 beyond the cutoff
+        R* const u = g + capacity;   // U, 0 beyond the cutoff
+        // One type and one table: the same parameters for every pair, kept out of the loop.
+        const bool oneTable = table.ntypes == 1 && table.batch == nullptr;
+        for (int64_t k = begin; k < end; ++k) {
+            const int n = v.count[k];
+            if (group || n > capacity || v.entryStride != 1) {
+                (*this)(k, Lanes{});
+                continue;
+            }
+            const int i = v.order[k];
+            const Real4<R> pi = v.positions[k];
+            const Vec3<R> ri = xyz(pi);
+            const Params* row = table.row_of(i, static_cast<int>(pi.w));
+            const int* entries = v.entries_of(k);
+            const Real4<R>* const positions = v.positions;
+            const int* const order = v.order;
+            const Box<R> box = v.box;
+            const Params first = row[0];
+            // Element by element (no copies of whole structures, which keep the compiler from
+            // turning the minimum image's branches into selects).
+            const auto term = [&](int m, const Params& p) {
+                const int s = entries[m];
+                const Vec3<R> rj{positions[s].x, positions[s].y, positions[s].z};
+                const Vec3<R> rij = box.minimum_image(rj - ri);
+                const PairR r2 = PairR(dot(rij, rij));
+                const bool inside = r2 < p.cutoff2;
+                // Evaluated inside the cutoff only: a potential the compiler cannot vectorise (the
+                // interpreted expression) then costs what it did in operator().
+                PairTerm<PairR> t{PairR(0), PairR(0)};
+                if (inside) t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, order[s]);
+                dx[m] = rij.x;
+                dy[m] = rij.y;
+                dz[m] = rij.z;
+                g[m] = inside ? R(t.dudr_over_r) : R(0);
+                if (WantEnergy) u[m] = inside ? R(t.energy) : R(0);
+            };
+            if (oneTable) {
+#pragma omp simd
+                for (int m = 0; m < n; ++m) term(m, first);
+            } else {
+                for (int m = 0; m < n; ++m) term(m, row[static_cast<int>(positions[entries[m]].w)]);
+            }
+            Vec3<R> f{0, 0, 0};
+            R e = 0;
+            Tensor3<R> w = zero_tensor<R>();
+            for (int m = 0; m < n; ++m) {
+                const Vec3<R> rij{dx[m], dy[m], dz[m]};
+                if (WantForce) f += g[m] * rij;
+                if (WantEnergy) e += R(0.5) * u[m];
+                if (WantVirial) w += (R(-0.5) * g[m]) * outer(rij, rij);
+            }
+            add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
+        }
+    }
+#endif
 };
 
 }  // namespace structmd

@@ -14,6 +14,11 @@
 #include "neighbour/neighbour_view.hpp"
 #include "state/slot_mirror.hpp"
 
+#if SMD_HOST_CODE
+#include <algorithm>
+#include <vector>
+#endif
+
 namespace structmd {
 
 // Slots of the list's small control buffer.
@@ -232,6 +237,80 @@ struct BuildLists {
         v.count[k] = n;
         atomic_max(control + kMaxNeighbours, n);
     }
+
+#if SMD_HOST_CODE
+    // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
+    // one thread, the same lists as operator() with one lane. Each accepted candidate is kept as
+    // (particle, slot) in one 64-bit key, so ordering a list by particle is a sort of plain integers
+    // rather than an insertion sort that looks up both particles at every move. flatten: the
+    // minimum image and the cell arithmetic inlined into the candidate loop.
+    __attribute__((flatten)) void host_rows(int64_t begin, int64_t end) const {
+        if (!control[kRebuild]) return;
+        const NeighbourView<R>& v = view;
+        const int capacity = v.capacity > 0 ? v.capacity : 0;
+        // One spare key past the capacity: a candidate beyond it is written there and dropped.
+        thread_local std::vector<uint64_t> keys;
+        thread_local std::vector<R> distance2;
+        if (keys.size() < static_cast<size_t>(capacity) + 1) keys.resize(static_cast<size_t>(capacity) + 1);
+        uint64_t* const key = keys.data();
+        const Real4<R>* const positions = v.positions;
+        const int* const order = v.order;
+        const Box<R> box = v.box;
+        const R radius2 = listRadius2;
+        const bool trivial = v.filter.trivial();
+        int longest = 0;
+        for (int64_t k = begin; k < end; ++k) {
+            const Vec3<R> rk = xyz(positions[k]);
+            int n = 0;
+            // Candidates s in first .. last - 1: their squared distances first, in a loop of their
+            // own (g++ 12 does not vectorise it yet: the strided loads of the positions), then the
+            // accepted ones appended without a branch.
+            const auto scan = [&](int first, int last) {
+                if (distance2.size() < static_cast<size_t>(last - first)) distance2.resize(static_cast<size_t>(last - first) * 2);
+                R* const d2 = distance2.data();
+                const Real4<R>* const candidate = positions + first;
+                const int candidates = last - first;
+#pragma omp simd
+                for (int m = 0; m < candidates; ++m) {
+                    const R x = candidate[m].x, y = candidate[m].y, z = candidate[m].z;
+                    const Vec3<R> d = box.minimum_image(Vec3<R>{x, y, z} - rk);
+                    d2[m] = dot(d, d);
+                }
+                for (int s = first; s < last; ++s) {
+                    const bool accepted = d2[s - first] < radius2 && (trivial ? s != k : v.accepts(static_cast<int>(k), s));
+                    key[n < capacity ? n : capacity] =
+                        static_cast<uint64_t>(static_cast<uint32_t>(byParticle ? order[s] : 0)) << 32 | static_cast<uint32_t>(s);
+                    n += accepted;
+                }
+            };
+            int cx, cy, cz;
+            v.grid.coordinates(rk, box, cx, cy, cz);
+            const CellGrid<R>& grid = v.grid;
+            if (byParticle && grid.nx >= 3 && grid.ny >= 3 && grid.nz >= 3 && cx >= 1 && cx + 1 < grid.nx) {
+                // The three cells of a row along x are consecutive slots: one range for the row
+                // (the list is sorted by particle below, so the order of discovery does not matter).
+                const int batch = v.batch_of_slot(k);
+                for (int dz = -1; dz <= 1; ++dz)
+                    for (int dy = -1; dy <= 1; ++dy) {
+                        const int c = grid.index(cx, CellGrid<R>::periodic(cy + dy, grid.ny),
+                                                 CellGrid<R>::periodic(cz + dz, grid.nz), batch);
+                        scan(v.cellStart[c - 1], v.cellStart[c + 2]);
+                    }
+            } else {
+                grid.for_each_adjacent(cx, cy, cz, v.batch_of_slot(k),
+                                       [&](int c) { scan(v.cellStart[c], v.cellStart[c + 1]); });
+            }
+            const int stored = n < capacity ? n : capacity;
+            // In particle order, as operator() leaves it (a list in cell order needs no sort).
+            if (byParticle) std::sort(key, key + stored);
+            int* entries = v.entries_of(k);
+            for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = static_cast<int>(static_cast<uint32_t>(key[m]));
+            v.count[k] = n;
+            longest = n > longest ? n : longest;
+        }
+        atomic_max(control + kMaxNeighbours, longest);
+    }
+#endif
 };
 
 }  // namespace structmd

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "backends/cpu/host_staging.hpp"
@@ -59,6 +61,15 @@ private:
     MemoryAccount* account_ = nullptr;
 };
 
+// Whether a functor offers a loop of its own for the host: host_rows(begin, end) does items
+// begin .. end - 1 on the calling thread (the pair kernel and the list build, which arrange their
+// work for a CPU core's caches and vector units).
+template <class F, class = void>
+struct has_host_rows : std::false_type {};
+template <class F>
+struct has_host_rows<F, std::void_t<decltype(std::declval<const F&>().host_rows(int64_t(), int64_t()))>>
+    : std::true_type {};
+
 template <class R>
 class CpuFft3d;  // backends/cpu/cpu_fft.hpp, included where engines are instantiated (engines/)
 template <class R>
@@ -109,9 +120,19 @@ public:
     bool lists_by_rows(int64_t) const { return true; }
 
     // f(i, lanes) for i < n, one lane per item: a CPU thread works through a neighbour loop alone.
+    // A functor with a host loop of its own gets one contiguous range of items a thread.
     template <class F>
     void for_each_lanes(int64_t n, const F& f, LaneSizing = LaneSizing::kNeighbourSum) const {
-        for_each(n, [&](int64_t i) { f(i, Lanes{}); });
+        if constexpr (has_host_rows<F>::value) {
+            const int teams = n >= kParallelThreshold ? threads_ : 1;
+#pragma omp parallel num_threads(teams) if (teams > 1)
+            {
+                const int64_t team = omp_get_thread_num(), size = omp_get_num_threads();
+                f.host_rows(n * team / size, n * (team + 1) / size);
+            }
+        } else {
+            for_each(n, [&](int64_t i) { f(i, Lanes{}); });
+        }
     }
 
     // Sum of f(i) over i < n. Partial sums over fixed blocks make the result independent of the
