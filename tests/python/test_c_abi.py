@@ -677,6 +677,14 @@ def test_coincident_particles_are_a_numerical_error_not_nan(loaded):
     expect(loaded, status, NUMERICAL)
     text = message(loaded)
     assert re.search(r"step", text, re.IGNORECASE) and re.search(r"\b[23]\b", text), text
+    # Every getter of what the pair makes non-finite says so too, on each backend, rather than
+    # returning OK with NaN or inf.
+    value = ffi.new("double*")
+    for term in ("potential", "total"):
+        expect(loaded, lib.structmd_get_energy(loaded, term.encode(), value), NUMERICAL)
+    expect(loaded, lib.structmd_get_particle_energies(loaded, ffi.new("double[]", n), n), NUMERICAL)
+    expect(loaded, lib.structmd_get_virial(loaded, ffi.new("double[]", 9)), NUMERICAL)
+    expect(loaded, lib.structmd_get_pressure(loaded, value), NUMERICAL)
     assert_usable(loaded)
 
 
