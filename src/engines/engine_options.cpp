@@ -62,7 +62,8 @@ EngineOptions parse_engine_options(const char* text) {
         nlohmann::json doc;
         try {
             doc = nlohmann::json::parse(text);
-        } catch (const nlohmann::json::parse_error& e) {
+        } catch (const nlohmann::json::exception& e) {
+            // parse_error, and out_of_range for a number no double holds (1e7662).
             throw Error(STRUCTMD_ERR_ARGUMENT, std::string("options: not valid JSON: ") + e.what());
         }
         if (!doc.is_object()) throw Error(STRUCTMD_ERR_ARGUMENT, "options: expected a JSON object");

@@ -67,7 +67,8 @@ BondsInGroup<Params> bonds_in_group(const InteractorBuild<B, R>& build, const Bo
         const int* ids = &bond.members[b * bond.arity];
         if (inGroup && !std::all_of(ids, ids + bond.arity, [&](int id) { return (*inGroup)[id]; })) continue;
         bonds.members.insert(bonds.members.end(), ids, ids + bond.arity);
-        values.assign(bond.schema, &bond.values[b * width]);
+        // data(), not [ ]: a schema of no parameters (an Expression of r alone) has no values at all.
+        values.assign(bond.schema, bond.values.data() + b * width);
         bonds.params.push_back(make(values));
     }
     return bonds;

@@ -270,6 +270,10 @@ TEST(BadInputs, OptionsOutOfRangeOrNestedDeepAreArgumentErrors) {
         EXPECT_NE(message.find("option \"threads\": expected an integer from 1 to 2147483647"), std::string::npos)
             << message;
     }
+    // A number no double holds is malformed options, not an internal error (fuzz_create_options).
+    EXPECT_NE(create_status(R"({"backend": "cpu", "threads": 2222e7662})", status).find("not valid JSON"),
+              std::string::npos);
+    EXPECT_EQ(status, STRUCTMD_ERR_ARGUMENT);
     const std::string nested = R"({"backend": "cpu", "threads": )" + nested_arrays(100000) + "}";
     std::string message;
     on_a_small_stack([&] { message = create_status(nested, status); });
