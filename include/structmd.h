@@ -128,7 +128,14 @@ STRUCTMD_API const char* structmd_version(void);
  *                      "ghost_exchange": how the ghosts of spatial domains travel between ranks:
  *                      "auto" (default: "nccl" where the build has NCCL and the backend is CUDA,
  *                      else "host") | "host" (MPI through pinned host memory) | "nccl" (from GPU
- *                      to GPU on the engine's stream).
+ *                      to GPU on the engine's stream);
+ *                      "pair_traversal": how pair terms walk their neighbours: "auto" (default:
+ *                      "particles", the faster on both backends today) | "clusters" (pairs of
+ *                      clusters of 4 particles, each cluster's partners loaded once for all its
+ *                      particles) | "particles" (a list per particle). Same physics either way,
+ *                      summed in another order; lists with a condition, exclusions or batches, boxes
+ *                      under four list radii a side, spatial domains and expression or plugin
+ *                      potentials walk per-particle lists whatever is asked (docs/c-api.md).
  *                      Read during the call only.
  * @param[out] out      receives the new handle, owned by the caller until structmd_destroy; set to
  *                      NULL on failure.

@@ -13,7 +13,9 @@ namespace structmd {
 // (the pair kernels: 8 lanes per particle at 10,976 particles ran 9% faster than the 32 that fill
 // the device; docs/benchmarks.md). kFillDevice: lanes until the items' threads fill the device
 // (the list build, whose ~500 candidate tests per particle are arithmetic, and the scans of cells).
-enum class LaneSizing { kNeighbourSum, kFillDevice };
+// kWarp: a whole warp per item (a cluster of particles and its partner clusters, whose lanes share
+// out the pairs of the clusters).
+enum class LaneSizing { kNeighbourSum, kFillDevice, kWarp };
 
 struct Lanes {
     int lane = 0;        // this thread's rank within the item's lanes
@@ -39,6 +41,36 @@ struct Lanes {
     template <class R>
     SMD_HD SMD_INLINE Tensor3<R> sum(const Tensor3<R>& w) const {
         return {sum(w.xx), sum(w.xy), sum(w.xz), sum(w.yx), sum(w.yy), sum(w.yz), sum(w.zx), sum(w.zy), sum(w.zz)};
+    }
+
+    // The sum of v over the lanes whose rank has the same remainder modulo `stride` (a power of two
+    // below count), in each of them: lanes that share out one item's work by rank / stride.
+    template <class T>
+    SMD_HD SMD_INLINE T sum_across(T v, int stride) const {
+#if defined(__CUDA_ARCH__)
+        for (int offset = stride; offset < count; offset *= 2) v += __shfl_xor_sync(mask, v, offset, count);
+#endif
+        return v;
+    }
+    template <class R>
+    SMD_HD SMD_INLINE Vec3<R> sum_across(Vec3<R> v, int stride) const {
+        return {sum_across(v.x, stride), sum_across(v.y, stride), sum_across(v.z, stride)};
+    }
+    template <class R>
+    SMD_HD SMD_INLINE Tensor3<R> sum_across(const Tensor3<R>& w, int stride) const {
+        return {sum_across(w.xx, stride), sum_across(w.xy, stride), sum_across(w.xz, stride),
+                sum_across(w.yx, stride), sum_across(w.yy, stride), sum_across(w.yz, stride),
+                sum_across(w.zx, stride), sum_across(w.zy, stride), sum_across(w.zz, stride)};
+    }
+
+    // v as lane `from` of the item holds it (every lane of the item must take part).
+    SMD_HD SMD_INLINE int from_lane(int v, int from) const {
+#if defined(__CUDA_ARCH__)
+        return __shfl_sync(mask, v, from, count);
+#else
+        (void)from;
+        return v;
+#endif
     }
 
     // The sum of v over the lanes below this one, and (in total) over all the item's lanes.

@@ -27,6 +27,10 @@ struct EngineOptions {
     // How spatial domains send their ghosts: "auto" (from GPU to GPU where NCCL is compiled in and the
     // backend is CUDA, else through the host), "host" (MPI over host memory) or "nccl".
     enum class GhostExchange { automatic, host, nccl } ghostExchange = GhostExchange::automatic;
+    // How pair terms walk their neighbours: "auto" (per-particle lists, the faster today on both
+    // backends), "clusters" or "particles" (neighbour/cluster_view.hpp). Lists with a condition,
+    // exclusions or batches, and spatial domains, always use per-particle lists.
+    enum class PairTraversal { automatic, clusters, particles } pairTraversal = PairTraversal::automatic;
 };
 
 // Parses the options JSON (NULL or "" for defaults) and resolves "auto". Throws Error(ERR_ARGUMENT)
@@ -46,5 +50,8 @@ constexpr bool nccl_compiled() {
 // What the options run on, before any simulation is loaded.
 std::string device_description(const EngineOptions& options);
 int cpu_thread_count(const EngineOptions& options);
+
+// Whether the pair terms of a simulation made with these options may walk cluster pairs.
+bool cluster_pairs(const EngineOptions& options);
 
 }  // namespace structmd

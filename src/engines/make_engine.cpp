@@ -17,6 +17,7 @@ std::unique_ptr<LocalEngine> load_simulation(const EngineOptions& options, const
 std::unique_ptr<LocalEngine> make_simulation(const EngineOptions& options, SimulationSpec spec,
                                             const ForceFieldComponents& components, const Logger& log) {
     const bool cuda = options.backend == BackendKind::cuda;
+    spec.forceField.clusterPairs = cluster_pairs(options);
 #ifdef STRUCTMD_WITH_SINGLE
     if (options.precision == Precision::single)
         return cuda ? make_cuda_engine_single(options.device, std::move(spec), components, log)

@@ -128,6 +128,7 @@ struct ForceFieldSpec {
     std::vector<BondSpec> bonds;
     std::vector<ExternalSpec> externals;
     std::vector<std::string> entryNames;  // every interaction entry (energy terms), in document order
+    bool clusterPairs = false;  // pair terms may walk cluster pairs (engine option "pair_traversal")
 
     // The longest distance at which any pair term acts (0 without pair terms).
     double largest_cutoff() const {

@@ -43,7 +43,7 @@ ForceField<B, R> make_interactors(const B& backend, const ForceFieldSpec& spec, 
             if (other.list == pair.list && other.condition == pair.condition) cutoff = std::max(cutoff, other.cutoff);
         auto list = std::make_shared<VerletList<B, R>>(backend, cutoff, entry.verletFactor, pair.condition,
                                                        entry.filterInputs, context.batch, context.batches,
-                                                       context.model);
+                                                       context.model, spec.clusterPairs);
         lists.push_back(list);
         listKeys.push_back(key);
         ff.add_list(list);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "forcefield/cluster_pair_kernel.hpp"
 #include "forcefield/hessian_kernels.hpp"
 #include "forcefield/interactor.hpp"
 #include "forcefield/lambda_coupling.hpp"
@@ -70,6 +71,18 @@ public:
     void prepare(Particles<B, R>& p) override { list_->update(p.pos, p.count, p.box, p.version); }
 
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
+        if (list_->clusters()) {
+            const ClusterView<R> clusters = list_->cluster_view();
+            dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
+                backend_.for_each_lanes(clusters.clusters,
+                                        ClusterPairKernel<Potential, R, PairR, decltype(force)::value,
+                                                          decltype(energy)::value, decltype(virial)::value>{
+                                            particles.charge.data(), radii(particles), this->group(), clusters,
+                                            table_of(table_), out},
+                                        LaneSizing::kWarp);
+            });
+            return;
+        }
         const NeighbourView<R> view = list_->view();
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
             backend_.for_each_lanes(particles.count,

@@ -139,7 +139,7 @@ struct PairKernel {
         const bool oneTable = table.ntypes == 1 && table.batch == nullptr;
         for (int64_t k = begin; k < end; ++k) {
             const int n = v.count[k];
-            if (group || n > capacity || v.entryStride != 1) {
+            if (group || n > v.capacity || v.entryStride != 1) {
                 (*this)(k, Lanes{});
                 continue;
             }

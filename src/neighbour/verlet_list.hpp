@@ -3,11 +3,16 @@
 // The list is rebuilt only when some particle has moved more than half the skin since the last
 // build; that test and the rebuild run on the backend without a host round trip. The list capacity
 // adapts at API boundaries (adapt()), never inside the step.
+//
+// A list may also keep cluster pairs (cluster_view.hpp), for the pair kernels that traverse them; the
+// per-particle lists are then built only once some caller has asked for their view (until then a view
+// of them scans the cells, which is exact, only slower).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "neighbour/cluster_list_kernels.hpp"
 #include "neighbour/pair_filter_inputs.hpp"
 #include "neighbour/verlet_list_kernels.hpp"
 
@@ -18,9 +23,18 @@ class VerletList {
 public:
     // inputs: what the condition reads about each particle (exclusions, types, charges); batch
     // (numbered 0 .. batches - 1) and model: backend arrays by particle, or null where not needed.
+    // clusters: keep cluster pairs as well, where the list accepts every pair of one system (no
+    // condition, no exclusions, no batches), which is what the cluster kernels handle.
     VerletList(const B& backend, double cutoff, double verletFactor, PairCondition condition,
-               const PairFilterInputs& inputs, const int* batch, int batches, const int* model)
-        : backend_(backend), cutoff_(cutoff), listRadius_(cutoff * verletFactor), batch_(batch), batches_(batches) {
+               const PairFilterInputs& inputs, const int* batch, int batches, const int* model,
+               bool clusters = false)
+        : backend_(backend),
+          cutoff_(cutoff),
+          listRadius_(cutoff * verletFactor),
+          batch_(batch),
+          batches_(batches),
+          clustersAllowed_(clusters && condition == PairCondition::all && inputs.excluded.empty() && !batch &&
+                           batches <= 1) {
         backend_.resize(control_, kControlSlots);
         backend_.fill(control_, 0);
         filter_.condition = condition;
@@ -62,6 +76,7 @@ public:
             backend_.write(control_, kRebuild, 1);
         else if (mirroredAt_ != version)
             backend_.for_each(n, RefreshPositions<R>{pos.data(), order_.data(), mirror()});
+        if (forceRebuild_) particleListsBuilt_ = particleListsWanted_ || !clusters_;
         forceRebuild_ = false;
         backend_.only_if(control_.data() + kRebuild, [&] { build(pos, n); });
     }
@@ -77,6 +92,10 @@ public:
         // it: until then every view keeps describing the buffers as they are.
         if (control[kMaxNeighbours] > capacity_) {
             pendingCapacity_ = control[kMaxNeighbours] + control[kMaxNeighbours] / 4 + 8;
+            needsLayout_ = true;
+        }
+        if (clusters_ && control[kMaxPartnerClusters] > clusterCapacity_) {
+            pendingClusterCapacity_ = control[kMaxPartnerClusters] + control[kMaxPartnerClusters] / 8 + 4;
             needsLayout_ = true;
         }
     }
@@ -104,7 +123,37 @@ public:
     void mirrored(int64_t version) { mirroredAt_ = version; }
     int64_t builds() const { return builds_; }
 
+    // The per-particle lists. With clusters, the first call has them built from the next update on.
     NeighbourView<R> view() {
+        if (clusters_ && !particleListsWanted_) {
+            particleListsWanted_ = true;
+            forceRebuild_ = true;
+        }
+        NeighbourView<R> v = particle_view();
+        if (!particleListsBuilt_) v.capacity = -1;  // every count exceeds it: the cells are scanned
+        return v;
+    }
+
+    // Whether the cluster pairs are kept (for the layout of the last update).
+    bool clusters() const { return clusters_; }
+    ClusterView<R> cluster_view() const {
+        ClusterView<R> v;
+        v.positions = positions_.data();
+        v.order = order_.data();
+        v.bounds = clusterBounds_.data();
+        v.cellOf = clusterCell_.data();
+        v.list = clusterList_.data();
+        v.count = clusterCount_.data();
+        v.capacity = clusterCapacity_;
+        v.clusters = clusterIds_;
+        v.cellStart = cellStart_.data();
+        v.grid = grid_;
+        v.box = box_;
+        return v;
+    }
+
+private:
+    NeighbourView<R> particle_view() {
         NeighbourView<R> v;
         v.positions = positions_.data();
         v.binned = binned_.data();
@@ -127,7 +176,6 @@ public:
         return v;
     }
 
-private:
     bool same_box(const Box<R>& box) const {
         return box.length.x == box_.length.x && box.length.y == box_.length.y && box.length.z == box_.length.z;
     }
@@ -142,11 +190,25 @@ private:
                                               cellStart_.data(), chunkCells_, cells}, LaneSizing::kFillDevice);
         backend_.for_each(n, PlaceParticles{control_.data(), cellOf_.data(), rankInCell_.data(), cellStart_.data(),
                                             order_.data()});
-        backend_.for_each(cells, SortCells<R>{pos.data(), control_.data(), cellStart_.data(), order_.data(),
-                                              slotOf_.data(), positions_.data(), binned_.data()});
-        backend_.for_each_lanes(n, BuildLists<R>{view(), R(listRadius_ * listRadius_), control_.data(),
-                                                 B::ordered_neighbour_lists},
-                                LaneSizing::kFillDevice);
+        if (clusters_) {
+            backend_.for_each(cells, SortCellsIntoClusters<R>{pos.data(), control_.data(), cellStart_.data(), grid_,
+                                                              box_, order_.data(), slotOf_.data(), positions_.data(),
+                                                              binned_.data(), clusterBounds_.data(),
+                                                              clusterCell_.data(), clusterCentre_.data(),
+                                                              clusterHalfExtent_.data()});
+            backend_.for_each_lanes(clusterIds_,
+                                    BuildClusterPairs<R>{cluster_view(), clusterCentre_.data(), clusterHalfExtent_.data(),
+                                                         R(listRadius_ * listRadius_), control_.data(),
+                                                         clusterList_.data(), clusterCount_.data()},
+                                    LaneSizing::kFillDevice);
+        } else {
+            backend_.for_each(cells, SortCells<R>{pos.data(), control_.data(), cellStart_.data(), order_.data(),
+                                                  slotOf_.data(), positions_.data(), binned_.data()});
+        }
+        if (particleListsBuilt_)
+            backend_.for_each_lanes(n, BuildLists<R>{particle_view(), R(listRadius_ * listRadius_), control_.data(),
+                                                     B::ordered_neighbour_lists},
+                                    LaneSizing::kFillDevice);
         backend_.write(control_, kRebuild, 0);
     }
 
@@ -182,6 +244,26 @@ private:
         backend_.fill(cellCount_, 0);
         backend_.resize(cellStart_, cells + 1);
         backend_.resize(chunkTotal_, chunks_);
+        // Clusters need the minimum image of two bounding boxes' centres to be the one of their
+        // particles: four cells or more along every axis.
+        clusters_ = clustersAllowed_ && grid_.nx >= 4 && grid_.ny >= 4 && grid_.nz >= 4;
+        if (clusters_) {
+            clusterIds_ = static_cast<int>(n / kClusterSize) + cells;
+            if (clusterCapacity_ == 0) {
+                // About a third of the clusters of the 27 cells around a cluster have a particle
+                // within reach of its own (59 of 180 in the LJ liquid); adapt() grows the lists
+                // when more do.
+                const double perCell = static_cast<double>(n) / cells / kClusterSize + 1.0;
+                clusterCapacity_ = static_cast<int>(std::ceil(0.6 * 27.0 * perCell)) + 8;
+            }
+            clusterCapacity_ = std::max(clusterCapacity_, pendingClusterCapacity_);
+            backend_.fit(clusterBounds_, 2 * static_cast<size_t>(clusterIds_));
+            backend_.fit(clusterCell_, clusterIds_);
+            backend_.fit(clusterCentre_, clusterIds_);
+            backend_.fit(clusterHalfExtent_, clusterIds_);
+            backend_.fit(clusterCount_, clusterIds_);
+            backend_.fit(clusterList_, static_cast<size_t>(clusterCapacity_) * clusterIds_);
+        }
         needsLayout_ = false;
         forceRebuild_ = true;
     }
@@ -202,6 +284,13 @@ private:
     bool forceRebuild_ = true;
     int64_t builds_ = 0;
     int64_t updatedAt_ = -1;
+    const bool clustersAllowed_;
+    bool clusters_ = false;              // cluster pairs kept for the current layout
+    bool particleListsWanted_ = false;   // some caller asked for the per-particle lists
+    bool particleListsBuilt_ = true;     // the builds since the last forced one made them
+    int clusterIds_ = 0;
+    int clusterCapacity_ = 0;
+    int pendingClusterCapacity_ = 0;
     int64_t mirroredAt_ = -1;  // the positions version a drift kernel mirrored
     const Real4<R>* source_ = nullptr;  // the positions the list was last brought up to date with
     PairFilter filter_;
@@ -210,6 +299,8 @@ private:
     typename B::template Buffer<int> control_;
     typename B::template Buffer<int> list_, count_, order_, slotOf_, cellOf_, rankInCell_, cellCount_, cellStart_, chunkTotal_;
     typename B::template Buffer<Real4<R>> positions_, binned_;
+    typename B::template Buffer<int> clusterBounds_, clusterCell_, clusterList_, clusterCount_;
+    typename B::template Buffer<Real4<R>> clusterCentre_, clusterHalfExtent_;
 };
 
 }  // namespace structmd

@@ -26,7 +26,8 @@ enum ListControl : int {
     kRebuild = kListRebuildFlag,  // 1 from the step that needs a build until the build ends
     kBuilds = 1,         // number of builds since load
     kMaxNeighbours = 2,  // the longest list seen at a build
-    kControlSlots = 3
+    kMaxPartnerClusters = 3,  // the longest cluster-pair list seen at a build (cluster_list_kernels.hpp)
+    kControlSlots = 4
 };
 
 // Every step whose drift did not mirror the positions (state/drift_bookkeeping.hpp): copies them

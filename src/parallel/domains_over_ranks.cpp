@@ -333,8 +333,12 @@ DomainsOverRanks::Domain DomainsOverRanks::build(std::vector<Migrant> owned) con
 
     const int64_t step = local_ ? local_->current_step() : startStep_;
     const double time = local_ ? local_->current_time() : startTime_;
+    // Cluster pairs are not yet checked against one rank with ghosts (mpi.domains): a domain's pair
+    // terms walk per-particle lists.
+    EngineOptions local = options_;
+    local.pairTraversal = EngineOptions::PairTraversal::particles;
     d.engine = make_simulation(
-        options_, spec_.local(ids, layout.owned, positions, velocities, step, time, std::max<int64_t>(0, finalStep_ - step)),
+        local, spec_.local(ids, layout.owned, positions, velocities, step, time, std::max<int64_t>(0, finalStep_ - step)),
         *components_, log_);
     return d;
 }

@@ -31,7 +31,7 @@ import sys
 import tempfile
 
 LJ_COLUMNS = ["n", "backend", "precision", "steps_per_call", "steps_per_second", "particle_steps_per_second",
-              "list_builds_per_1000_steps", "device_memory_mib", "setup_seconds", "pair", "scene"]
+              "list_builds_per_1000_steps", "device_memory_mib", "setup_seconds", "pair", "scene", "traversal"]
 ACCURACY_COLUMNS = ["precision", "dt", "skin", "n", "backend", "steps", "steps_per_second", "seconds_per_tau",
                     "energy_drift", "relative_force_error", "list_builds_per_1000_steps"]
 HYDRODYNAMICS_COLUMNS = ["method", "n", "backend", "precision", "tolerance", "steps_per_second", "error"]
@@ -103,6 +103,12 @@ def check_lj(program):
                          "--steps", "10", "--repeats", "2", "--warmup", "5"], LJ_COLUMNS)
     expect([(row["scene"], row["n"]) for row in rows] ==
            [("batches", "2000"), ("batches", "1000"), ("chains", "1600"), ("chains", "900")], f"rows {rows}")
+    for row in rows:
+        positive_finite(row, "particle_steps_per_second")
+    # Both pair traversals, in the order asked, each named in its row.
+    rows = run(program, ["--n", "4000", "--backend", "cpu", "--traversal", "clusters", "--traversal", "particles",
+                         "--steps", "5", "--repeats", "1", "--warmup", "2"], LJ_COLUMNS)
+    expect([row["traversal"] for row in rows] == ["clusters", "particles"], f"rows {rows}")
     for row in rows:
         positive_finite(row, "particle_steps_per_second")
 

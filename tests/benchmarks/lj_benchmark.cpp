@@ -75,6 +75,7 @@ struct BenchmarkOptions {
     int threads = 0;  // 0: the engine's default
     std::vector<std::string> pairForms{"builtin"};
     std::vector<std::string> scenes{"lj"};
+    std::vector<std::string> traversals{"auto"};
     double skin = 0.3;  // sigma, added to the cutoff for the Verlet list
     std::string csvPath;
 };
@@ -90,6 +91,7 @@ struct Row {
     double setupSeconds = 0;
     std::string pairForm;
     std::string scene;
+    std::string traversal;
 };
 
 constexpr int64_t kBatchCells = 5;      // fcc cells per edge of one batch: 500 particles
@@ -146,9 +148,10 @@ int64_t probe_steps_per_call(structmd_sim* sim, double seconds_per_call) {
 }
 
 Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::string& backend,
-            const std::string& precision, const std::string& pairForm, const std::string& scene) {
+            const std::string& precision, const std::string& pairForm, const std::string& scene,
+            const std::string& traversal) {
     const auto setup_start = std::chrono::steady_clock::now();
-    Handle simulation(create_options(backend, precision, options.threads));
+    Handle simulation(create_options(backend, precision, options.threads, traversal));
     structmd_sim* sim = simulation.get();
     {
         const std::string input = scene_input(scene, requested_size, pairForm, options.skin);  // released before stepping
@@ -158,6 +161,7 @@ Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::
     row.setupSeconds = seconds_since(setup_start);
     row.pairForm = pairForm;
     row.scene = scene;
+    row.traversal = traversal;
 
     check(structmd_step(sim, options.warmup), sim, "structmd_step (warm-up)");
     row.stepsPerCall =
@@ -185,29 +189,30 @@ Row measure(const BenchmarkOptions& options, int64_t requested_size, const std::
 }
 
 void print_header() {
-    std::printf("%10s  %-7s  %-9s  %10s  %10s  %16s  %14s  %10s  %7s  %-10s  %s\n", "N", "backend", "precision",
-                "steps/call", "steps/s", "particle-steps/s", "builds/1000st", "memory MiB", "setup s", "pair", "scene");
+    std::printf("%10s  %-7s  %-9s  %10s  %10s  %16s  %14s  %10s  %7s  %-10s  %-6s  %s\n", "N", "backend", "precision",
+                "steps/call", "steps/s", "particle-steps/s", "builds/1000st", "memory MiB", "setup s", "pair", "scene",
+                "traversal");
 }
 
 void print_row(const Row& row) {
     char memory[32] = "-";
     if (row.deviceMemoryMiB) std::snprintf(memory, sizeof memory, "%.1f", *row.deviceMemoryMiB);
-    std::printf("%10lld  %-7s  %-9s  %10lld  %10.4g  %16.4g  %14.2f  %10s  %7.2f  %-10s  %s\n",
+    std::printf("%10lld  %-7s  %-9s  %10lld  %10.4g  %16.4g  %14.2f  %10s  %7.2f  %-10s  %-6s  %s\n",
                 static_cast<long long>(row.particles), row.backend.c_str(), row.precision.c_str(),
                 static_cast<long long>(row.stepsPerCall), row.stepsPerSecond,
                 row.stepsPerSecond * static_cast<double>(row.particles), row.listBuildsPer1000Steps, memory,
-                row.setupSeconds, row.pairForm.c_str(), row.scene.c_str());
+                row.setupSeconds, row.pairForm.c_str(), row.scene.c_str(), row.traversal.c_str());
 }
 
 void write_csv_row(std::ofstream& csv, const Row& row) {
     char line[512];
     char memory[32] = "";
     if (row.deviceMemoryMiB) std::snprintf(memory, sizeof memory, "%.3f", *row.deviceMemoryMiB);
-    std::snprintf(line, sizeof line, "%lld,%s,%s,%lld,%.6g,%.6g,%.4f,%s,%.3f,%s,%s\n",
+    std::snprintf(line, sizeof line, "%lld,%s,%s,%lld,%.6g,%.6g,%.4f,%s,%.3f,%s,%s,%s\n",
                   static_cast<long long>(row.particles), row.backend.c_str(), row.precision.c_str(),
                   static_cast<long long>(row.stepsPerCall), row.stepsPerSecond,
                   row.stepsPerSecond * static_cast<double>(row.particles), row.listBuildsPer1000Steps, memory,
-                  row.setupSeconds, row.pairForm.c_str(), row.scene.c_str());
+                  row.setupSeconds, row.pairForm.c_str(), row.scene.c_str(), row.traversal.c_str());
     csv << line << std::flush;
 }
 
@@ -246,6 +251,10 @@ int main(int argc, char** argv) {
     app.add_option("--scene", options.scenes, "lj, batches or chains: what runs (repeatable)")
         ->check(CLI::IsMember({"lj", "batches", "chains"}))
         ->capture_default_str();
+    app.add_option("--traversal", options.traversals,
+                   "auto, clusters or particles: the engine option pair_traversal (repeatable)")
+        ->check(CLI::IsMember({"auto", "clusters", "particles"}))
+        ->capture_default_str();
     app.add_option("--skin", options.skin, "Neighbour-list skin (sigma)")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--csv", options.csvPath, "Also write the rows to this CSV file");
     CLI11_PARSE(app, argc, argv);
@@ -254,7 +263,7 @@ int main(int argc, char** argv) {
     if (!options.csvPath.empty() &&
         !open_csv(csv, options.csvPath,
                   "n,backend,precision,steps_per_call,steps_per_second,particle_steps_per_second,"
-                  "list_builds_per_1000_steps,device_memory_mib,setup_seconds,pair,scene"))
+                  "list_builds_per_1000_steps,device_memory_mib,setup_seconds,pair,scene,traversal"))
         return 2;
 
     if (options.fixedSteps > 0)
@@ -272,10 +281,11 @@ int main(int argc, char** argv) {
     for (const auto& backend : options.backends)
         for (const auto& precision : options.precisions)
             for (const auto& pairForm : options.pairForms)
+            for (const auto& traversal : options.traversals)
             for (const int64_t size : options.sizes) {
                 if (scene == "chains" && pairForm != "builtin") continue;  // the melt has no LJ to rewrite
                 try {
-                    const Row row = measure(options, size, backend, precision, pairForm, scene);
+                    const Row row = measure(options, size, backend, precision, pairForm, scene, traversal);
                     print_row(row);
                     if (csv.is_open()) write_csv_row(csv, row);
                 } catch (const Failure& failure) {

@@ -232,9 +232,11 @@ std::string bead_chains_input(const BeadChains& melt) {
     return json;
 }
 
-std::string create_options(const std::string& backend, const std::string& precision, int threads) {
+std::string create_options(const std::string& backend, const std::string& precision, int threads,
+                           const std::string& pairTraversal) {
     nlohmann::json options = {{"backend", backend}, {"precision", precision}, {"log", "warning"}};
     if (threads > 0) options["threads"] = threads;
+    if (pairTraversal != "auto") options["pair_traversal"] = pairTraversal;
     return options.dump();
 }
 

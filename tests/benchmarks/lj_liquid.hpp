@@ -56,7 +56,9 @@ std::string bead_chains_input(const BeadChains& melt);
 
 // structmd_create options for a backend ("auto", "cpu", "cuda"), a precision and a CPU thread count
 // (0: the engine's default).
-std::string create_options(const std::string& backend, const std::string& precision, int threads);
+// pairTraversal: the engine option "pair_traversal" (auto, clusters or particles).
+std::string create_options(const std::string& backend, const std::string& precision, int threads,
+                           const std::string& pairTraversal = "auto");
 
 nlohmann::json engine_info(const structmd_sim* sim);      // structmd_get_info, parsed
 nlohmann::json engine_counters(structmd_sim* sim);        // structmd_get_counters, parsed

@@ -185,7 +185,9 @@ public:
 
     int lanes_for(int64_t n, LaneSizing sizing) const {
         int lanes = 1;
-        if (sizing == LaneSizing::kFillDevice)
+        if (sizing == LaneSizing::kWarp)
+            lanes = 32;
+        else if (sizing == LaneSizing::kFillDevice)
             while (lanes < 32 && n * lanes < residentThreads_) lanes *= 2;
         else
             while (lanes < 32 && 2 * n * lanes <= residentThreads_ / 2) lanes *= 2;
