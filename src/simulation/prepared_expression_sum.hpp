@@ -45,7 +45,7 @@ template <class B, class R>
 class PreparedExpressionSum {
 public:
     PreparedExpressionSum(const B& backend, const ExpressionTransverserSpec& spec, const ForceFieldContext& context)
-        : backend_(backend), spec_(spec) {
+        : backend_(backend), spec_(spec), batch_(context.batch) {
         if (spec.cutoff > 0)
             list_ = std::make_shared<VerletList<B, R>>(backend, spec.cutoff, 1.1, PairCondition::all,
                                                        PairFilterInputs{}, context.batch, context.batches,
@@ -88,7 +88,8 @@ private:
                                                                               R(spec_.cutoff * spec_.cutoff), group};
             launch(0, p.count, traversal);
         } else {
-            launch(1, p.count, AllPairsTraversal<ExpressionSum<Function, R>, R>{sum, p.pos.data(), p.count, p.box, group});
+            launch(1, p.count,
+                   AllPairsTraversal<ExpressionSum<Function, R>, R>{sum, p.pos.data(), p.count, p.box, group, batch_});
         }
     }
 
@@ -102,6 +103,7 @@ private:
 
     const B& backend_;
     ExpressionTransverserSpec spec_;
+    const int* batch_;  // the particles' batches, numbered 0, 1, ... (null: one batch)
     std::shared_ptr<VerletList<B, R>> list_;  // null: all pairs
     std::shared_ptr<UploadedProgram<B, R>> program_;
     typename CompiledKernelsOf<B>::type kernels_{};

@@ -163,3 +163,18 @@ def test_traverse_expression_refuses_bad_arguments(sim, compute, cutoff, error, 
 def test_traverse_expression_needs_a_load(sim):
     with pytest.raises(structmd.StateError):
         sim.traverse_expression("r < 1", 1.0)
+
+
+def test_batches_stay_apart_over_a_list_and_over_all_pairs(sim):
+    """Two batches overlaid in one box (batchId 0 and 1) are independent systems: a particle's pairs
+    are those of its own batch, with a neighbour list and without."""
+    positions, _ = liquid(120, seed=17)
+    doc = document(positions, steps=1)
+    batch = [i % 2 for i in range(len(positions))]
+    doc["topology"]["structure"] = {"labels": ["id", "type", "batchId"],
+                                    "data": [[i, "A", b] for i, b in enumerate(batch)]}
+    sim.load(doc)
+    _, r = separations(sim.positions)
+    same = np.equal.outer(batch, batch)
+    np.testing.assert_array_equal(sim.traverse_expression("r < 2", 2.0), np.sum((r < 2) & same, axis=1))
+    np.testing.assert_array_equal(sim.traverse_expression("1"), np.sum(same, axis=1) - 1)

@@ -126,8 +126,8 @@ struct System {
     }
 
     template <class T>
-    void over_all_pairs(const T& t, const uint8_t* members) {
-        backend.for_each_lanes(n, AllPairsTraversal<T, double>{t, pos.data(), n, box, members});
+    void over_all_pairs(const T& t, const uint8_t* members, const int* batch = nullptr) {
+        backend.for_each_lanes(n, AllPairsTraversal<T, double>{t, pos.data(), n, box, members, batch});
     }
 };
 
@@ -205,6 +205,18 @@ TEST(AllPairsTraversal, VisitsEveryOtherParticleOfTheGroupByMinimumImage) {
     for (int64_t i = 0; i < s.n; ++i) {
         EXPECT_NEAR(out[i].force.x, listed[i].force.x, 1e-9 * (1 + std::abs(listed[i].force.x))) << i;
         EXPECT_NEAR(out[i].virial, listed[i].virial, 1e-9 * (1 + std::abs(listed[i].virial))) << i;
+    }
+}
+
+TEST(AllPairsTraversal, KeepsBatchesApart) {
+    System s(240, 6.0, 8);
+    std::vector<int> batch(s.n), count(s.n, -1);
+    for (int64_t i = 0; i < s.n; ++i) batch[i] = static_cast<int>((i * 7) % 3);
+    s.over_all_pairs(NeighbourCounter{count.data()}, s.group.data(), batch.data());
+    for (int64_t i = 0; i < s.n; ++i) {
+        int expected = 0;
+        for (int64_t j = 0; j < s.n; ++j) expected += j != i && s.group[j] && batch[j] == batch[i];
+        EXPECT_EQ(count[i], s.group[i] ? expected : -1) << i;
     }
 }
 
