@@ -27,14 +27,15 @@ struct AllPairsTraversal {
         const int i = static_cast<int>(item);
         if (group && !group[i]) return;
         const Transverser& t = transverser;
-        const Real4<R> ri = positions[i];
+        const Real4<R> pi = positions[i];
         const auto infoI = t.info(i);
         const int batchI = batch ? batch[i] : 0;
         auto total = t.zero();
         // The lanes take turns through the particles, so each load is shared by a warp's items.
         for (int64_t j = lanes.lane; j < count; j += lanes.count) {
             if (j == item || (group && !group[j]) || (batch && batch[j] != batchI)) continue;
-            t.accumulate(total, t.compute(ri, image_near(ri, positions[j], box), infoI, t.info(static_cast<int>(j))));
+            const PairFrame<R> pair = pair_frame(pi, positions[j], box);
+            t.accumulate(total, t.compute(pair.first, pair.second, infoI, t.info(static_cast<int>(j))));
         }
         total = lanes.combine(total, [&](decltype(total)& a, const decltype(total)& b) { t.accumulate(a, b); });
         if (lanes.leader()) t.set(i, total);

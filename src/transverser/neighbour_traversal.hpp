@@ -24,15 +24,15 @@ struct NeighbourTraversal {
         const int i = v.order[k];
         if (group && !group[i]) return;
         const Transverser& t = transverser;
-        const Real4<R> ri = v.positions[k];
+        const Real4<R> pi = v.positions[k];
         const auto infoI = t.info(i);
         auto total = t.zero();
         v.for_each_neighbour(static_cast<int>(k), [&](int s) {
             const int j = v.order[s];
-            const Real4<R> rj = image_near(ri, v.positions[s], v.box);
-            const Vec3<R> d = xyz(rj) - xyz(ri);
+            const PairFrame<R> pair = pair_frame(pi, v.positions[s], v.box);
+            const Vec3<R> d = xyz(pair.second);
             if (!(dot(d, d) < cutoff2) || (group && !group[j])) return;
-            t.accumulate(total, t.compute(ri, rj, infoI, t.info(j)));
+            t.accumulate(total, t.compute(pair.first, pair.second, infoI, t.info(j)));
         }, lanes);
         total = lanes.combine(total, [&](decltype(total)& a, const decltype(total)& b) { t.accumulate(a, b); });
         if (lanes.leader()) t.set(i, total);

@@ -16,8 +16,11 @@
 //   void accumulate(Compute& total, const Compute& current) const;  // total += current
 //   void set(int i, const Compute& total) const;        // writes particle i's total (anywhere)
 //
-// ri and rj are the positions (w: the type) with rj taken to the periodic image nearest ri, so
-// xyz(rj) - xyz(ri) is the separation and no box is needed. compute() is called for every ordered
+// ri and rj are the pair's positions in the frame of particle i (w: each one's type): ri at the
+// origin and rj at the separation r_j - r_i, of the periodic image of j nearest i. So xyz(rj) -
+// xyz(ri) is the separation, taken once in R (as the pair terms take it: its accuracy does not fall
+// with the size of the box), and no box is needed; a transverser that needs absolute positions
+// reads them in info(). compute() is called for every ordered
 // pair (i, j), i != j, that the traversal offers, so each particle gets its own total (no atomics).
 // The traversal splits a particle's pairs among lanes (core/lanes.hpp) on the GPU and combines the
 // lanes' totals with accumulate: accumulate must be associative and commutative (a sum, a max), and
@@ -28,11 +31,17 @@
 
 namespace structmd {
 
-// rj moved to the periodic image nearest ri, its w (the type) kept.
+// The pair (i, j) in the frame of i: positions pi and pj (w: the types) become first = (0, 0, 0,
+// type_i) and second = (minimum image of r_j - r_i, type_j).
+template <class R>
+struct PairFrame {
+    Real4<R> first, second;
+};
+
 template <class R, class Box>
-SMD_HD SMD_INLINE Real4<R> image_near(const Real4<R>& ri, const Real4<R>& rj, const Box& box) {
-    const Vec3<R> d = box.minimum_image(xyz(rj) - xyz(ri));
-    return Real4<R>{ri.x + d.x, ri.y + d.y, ri.z + d.z, rj.w};
+SMD_HD SMD_INLINE PairFrame<R> pair_frame(const Real4<R>& pi, const Real4<R>& pj, const Box& box) {
+    const Vec3<R> d = box.minimum_image(xyz(pj) - xyz(pi));
+    return {Real4<R>{R(0), R(0), R(0), pi.w}, Real4<R>{d.x, d.y, d.z, pj.w}};
 }
 
 }  // namespace structmd
