@@ -20,8 +20,8 @@
 // origin and rj at the separation r_j - r_i, of the periodic image of j nearest i. So xyz(rj) -
 // xyz(ri) is the separation, taken once in R (as the pair terms take it: its accuracy does not fall
 // with the size of the box), and no box is needed; a transverser that needs absolute positions
-// reads them in info(). compute() is called for every ordered
-// pair (i, j), i != j, that the traversal offers, so each particle gets its own total (no atomics).
+// reads them in info(). compute() is called for every ordered pair (i, j), i != j, that the
+// traversal offers, so each particle gets its own total (no atomics).
 // The traversal splits a particle's pairs among lanes (core/lanes.hpp) on the GPU and combines the
 // lanes' totals with accumulate: accumulate must be associative and commutative (a sum, a max), and
 // Compute trivially copyable. set() is called once per particle traversed, with its full total.
