@@ -483,6 +483,36 @@ STRUCTMD_API structmd_status structmd_get_time(const structmd_sim* sim, double* 
 
 /** @} */
 
+/** @name Transversers
+ *  A transverser is a computation over the pairs of particles run on the backend, each particle
+ *  getting its own total (UAMMD's Transverser; docs/c-api.md). Each needs a load.
+ *  @{ */
+
+/**
+ * Runs an expression transverser once, for the current state: each particle's sum over its pairs
+ * (i, j), j != i, of an expression of the pair. The first call with a given expression and cutoff
+ * prepares it (a neighbour list; on CUDA the expression is compiled into the traversal's kernel, as
+ * an Expression potential is) and later calls reuse it.
+ *
+ * @param sim        the handle.
+ * @param compute    the expression, in the language of the Expression potentials, of r (the
+ *                   distance), dx, dy, dz (r_j - r_i by minimum image), type_i, type_j (rows of
+ *                   global.types), charge_i, charge_j, radius_i, radius_j, mass_i and mass_j; a
+ *                   comparison is 1 or 0, so "r < 1.5" gives coordination numbers.
+ * @param cutoff     > 0: only the pairs closer than cutoff, found through a neighbour list; 0: every
+ *                   pair (the nearest periodic image of each other particle), at a cost of n^2.
+ * @param[out] sums  double[n], each particle's sum, in id order.
+ * @param n          the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_INPUT for an expression that does not parse or names an unknown
+ *         variable, or a cutoff that is negative or not finite (the message says which);
+ *         STRUCTMD_ERR_ARGUMENT; STRUCTMD_ERR_STATE; STRUCTMD_ERR_UNSUPPORTED under spatial domains
+ *         or batches over ranks.
+ */
+STRUCTMD_API structmd_status structmd_traverse_expression(structmd_sim* sim, const char* compute, double cutoff,
+                                                          double* sums, int64_t n);
+
+/** @} */
+
 /** @name Changing the state
  *  Each needs a load; none advances time.
  *  @{ */

@@ -55,7 +55,7 @@ module structmd
             structmd_get_parameter, structmd_set_force_callback, structmd_set_device_force_callback, &
             structmd_set_callback_error, structmd_get_view, structmd_force_callback, &
             structmd_get_orientations, structmd_set_orientations, structmd_get_torques, &
-            structmd_get_magnetic_moments
+            structmd_get_magnetic_moments, structmd_traverse_expression
 
   public :: structmd_version_f, structmd_last_error_f, structmd_create_f, structmd_load_file_f, &
             structmd_load_string_f, structmd_get_energy_f, structmd_get_ids_f, &
@@ -289,6 +289,17 @@ module structmd
       import :: c_ptr, c_int32_t, c_double
       type(c_ptr), value :: sim
       real(c_double), intent(out) :: t
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_traverse_expression(sim, compute, cutoff, sums, n) &
+        bind(C, name="structmd_traverse_expression") result(status)
+      import :: c_ptr, c_char, c_int32_t, c_int64_t, c_double
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: compute(*)
+      real(c_double), value :: cutoff
+      real(c_double), intent(inout) :: sums(*)
+      integer(c_int64_t), value :: n
       integer(c_int32_t) :: status
     end function
 

@@ -73,6 +73,34 @@ struct Lanes {
 #endif
     }
 
+    // v combined over the item's lanes by accumulate(total, other), in every lane: the butterfly of
+    // sum() for any trivially copyable T (a transverser's Compute, transverser/transverser.hpp),
+    // exchanged word by word. accumulate must be associative and commutative for the result not to
+    // depend on how the items were split among lanes.
+    template <class T, class Accumulate>
+    SMD_HD SMD_INLINE T combine(T v, const Accumulate& accumulate) const {
+#if defined(__CUDA_ARCH__)
+        constexpr int words = (sizeof(T) + sizeof(int) - 1) / sizeof(int);
+        for (int offset = count / 2; offset > 0; offset /= 2) {
+            int mine[words] = {};
+            copy_bytes(reinterpret_cast<char*>(mine), reinterpret_cast<const char*>(&v), sizeof(T));
+            int theirs[words];
+            for (int w = 0; w < words; ++w) theirs[w] = __shfl_xor_sync(mask, mine[w], offset, count);
+            T other;
+            copy_bytes(reinterpret_cast<char*>(&other), reinterpret_cast<const char*>(theirs), sizeof(T));
+            accumulate(v, other);
+        }
+#else
+        (void)accumulate;
+#endif
+        return v;
+    }
+
+    // memcpy without the standard library (kernels compiled at run time have none).
+    static SMD_HD SMD_INLINE void copy_bytes(char* to, const char* from, unsigned long bytes) {
+        for (unsigned long b = 0; b < bytes; ++b) to[b] = from[b];
+    }
+
     // The sum of v over the lanes below this one, and (in total) over all the item's lanes.
     SMD_HD SMD_INLINE int exclusive_sum(int v, int& total) const {
 #if defined(__CUDA_ARCH__)

@@ -31,7 +31,7 @@ public:
     int parse() {
         skip_space();
         if (at_end()) throw ExpressionError(1, "the expression is empty");
-        const int root = sum();
+        const int root = comparison();
         skip_space();
         if (!at_end()) throw ExpressionError(column(), std::string("unexpected '") + text_[pos_] + "'");
         return root;
@@ -97,6 +97,25 @@ private:
                 return left;
         }
     }
+    // The loosest binding: at most one comparison of two sums, 1 where it holds and 0 elsewhere,
+    // written with step (1 for x >= 0): a >= b is step(a - b), a < b is 1 - step(a - b), a <= b is
+    // step(b - a), a > b is 1 - step(b - a). Its derivative is 0, as step's.
+    int comparison() {
+        const int left = sum();
+        skip_space();
+        if (at_end() || (text_[pos_] != '<' && text_[pos_] != '>')) return left;
+        const bool less = text_[pos_++] == '<';
+        const bool orEqual = !at_end() && text_[pos_] == '=';
+        if (orEqual) ++pos_;
+        const int right = sum();
+        skip_space();
+        if (!at_end() && (text_[pos_] == '<' || text_[pos_] == '>'))
+            throw ExpressionError(column(), "comparisons do not chain: write (a < b) * (b < c)");
+        const int difference = within_depth(less == orEqual ? e_.binary(Op::sub, right, left)
+                                                            : e_.binary(Op::sub, left, right));
+        const int stepped = within_depth(e_.unary(Op::step, difference));
+        return orEqual ? stepped : within_depth(e_.binary(Op::sub, e_.constant(1.0), stepped));
+    }
     int sum() { return chain(&Parser::product, '+', Op::add, '-', Op::sub); }
     int product() { return chain(&Parser::unary, '*', Op::mul, '/', Op::div); }
 
@@ -120,7 +139,7 @@ private:
         if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return number();
         if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') return named();
         if (accept('(')) {
-            const int inner = sum();
+            const int inner = comparison();
             expect(')', "')'");
             return inner;
         }
@@ -166,7 +185,7 @@ private:
         expect('(', "'('");
         std::vector<int> args;
         if (!accept(')')) {
-            do args.push_back(sum());
+            do args.push_back(comparison());
             while (accept(','));
             expect(')', "',' or ')'");
         }

@@ -1,10 +1,11 @@
 #pragma once
 // The text of an expression to its node (expression.hpp). Grammar, loosest binding first:
+//   compare := sum (('<' | '<=' | '>' | '>=') sum)?   1 where it holds, 0 elsewhere; not chained
 //   sum     := product (('+' | '-') product)*
 //   product := unary (('*' | '/') unary)*
 //   unary   := ('-' | '+') unary | power          so -x^2 is -(x^2)
 //   power   := primary ('^' unary)?               right-associative: a^b^c is a^(b^c); 2^-1 is 1/2
-//   primary := number | name | name '(' sum (',' sum)* ')' | '(' sum ')'
+//   primary := number | name | name '(' compare (',' compare)* ')' | '(' compare ')'
 // Numbers: 12, 1.5, .5, 1e-3, 2.5E+4. Functions: sqrt exp log sin cos tan acos asin atan tanh cosh
 // sinh abs step (one argument), min max pow (two), select (three: select(c, a, b) is a where c != 0,
 // else b). Every other name is a variable, which the caller's resolver turns into an input, a data

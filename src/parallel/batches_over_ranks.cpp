@@ -37,6 +37,7 @@ std::string BatchesOverRanks::refusal(Operation op, PerParticle quantity) const 
         case Operation::view: return "a view of the backend's arrays";
         case Operation::changeParameters: return "changing a parameter";
         case Operation::checkpoint: return "a checkpoint";
+        case Operation::traversal: return "a transverser over pairs";
         default: return {};
     }
 }

@@ -35,6 +35,7 @@ std::string DomainsOverRanks::refusal(Operation op, PerParticle quantity) const 
         case Operation::pairForces: return "forces between pairs";
         case Operation::displacedForces: return "forces with a particle displaced";
         case Operation::lambdaDerivative: return "the derivative in lambda";
+        case Operation::traversal: return "a transverser over pairs";
     }
     return {};
 }

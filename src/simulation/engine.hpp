@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -32,6 +33,7 @@
 #include "simulation/force_cache.hpp"
 #include "simulation/local_engine.hpp"
 #include "simulation/particle_io.hpp"
+#include "simulation/prepared_expression_sum.hpp"
 #include "simulation/read_simulation.hpp"
 #include "simulation/rollback.hpp"
 #include "simulation/schedule.hpp"
@@ -243,6 +245,7 @@ public:
     void forces_with_displaced(int64_t id, const double displacement[3], double* f) override;
     double lambda_derivative() override;
     bool has_magnetization() const override { return !p_.magnetization.empty(); }
+    void expression_sum(const ExpressionTransverserSpec& spec, double* perParticle) override;  // engine_transversers.hpp
 
     // DomainMember (engine_domain.hpp)
     void set_step_firing(StepFiring* firing) override { steps_.firing = firing; }
@@ -419,6 +422,8 @@ private:
     double lambdaAtCallStart_ = 1.0;  // what a roll back to the start of the step call puts back
     CallbackTerm<B, R> callbacks_;    // the host's force callbacks
     ProbeBuffers<B, R> probed_;
+    // The expression transversers run so far, by key (ExpressionTransverserSpec::key).
+    std::vector<std::pair<std::string, std::unique_ptr<PreparedExpressionSum<B, R>>>> transversers_;
     // A spatial domain's slots (hold_ghosts), and the positions version the ghosts were last
     // refreshed at.
     DomainSlots<B, R> domain_{backend_};
@@ -431,3 +436,4 @@ private:
 #include "simulation/engine_particles.hpp"
 #include "simulation/engine_probes.hpp"
 #include "simulation/engine_state.hpp"
+#include "simulation/engine_transversers.hpp"

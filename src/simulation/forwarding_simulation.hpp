@@ -110,6 +110,10 @@ public:
         admit(Operation::lambdaDerivative);
         return inner().probes().lambda_derivative();
     }
+    void expression_sum(const ExpressionTransverserSpec& spec, double* perParticle) override {
+        admit(Operation::traversal);
+        inner().probes().expression_sum(spec, perParticle);
+    }
     bool has_magnetization() const override { return inner().probes().has_magnetization(); }
 
 protected:
@@ -117,6 +121,7 @@ protected:
     enum class Operation {
         read, write, readSubset, writeSubset, view, virial, externalEnergy, setBox, setLambda, forceCallback,
         changeParameters, checkpoint, termArrays, hessian, pairForces, displacedForces, lambdaDerivative,
+        traversal,
     };
     // The simulation the calls go on to.
     virtual Simulation& inner() const = 0;

@@ -5,6 +5,9 @@
 #include <cstdint>
 #include <string>
 
+#include "core/error.hpp"
+#include "simulation/expression_transverser.hpp"
+
 namespace structmd {
 
 class SimulationProbes {
@@ -32,6 +35,14 @@ public:
     virtual void forces_with_displaced(int64_t id, const double displacement[3], double* f) = 0;
     // dU/dlambda summed over the active terms of lambda (0 without any).
     virtual double lambda_derivative() = 0;
+    // Each particle's sum of an expression transverser (transverser/expression_sum.hpp) over its pairs,
+    // in id order (n values); particles outside the spec's group get 0. The engine prepares a spec's
+    // traversal (its list, its kernel) at the first call with its key and reuses it after.
+    virtual void expression_sum(const ExpressionTransverserSpec& spec, double* perParticle) {
+        (void)perParticle;
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ": expression transversers run on one engine, not under "
+                                                          "this parallel layout");
+    }
     // Whether the particles carry magnetic moments (the magnetic trajectory formats and measures).
     virtual bool has_magnetization() const = 0;
 };

@@ -29,6 +29,7 @@
 #include "steps/stress_measure.hpp"
 #include "steps/thermodynamic_integration.hpp"
 #include "steps/thermodynamic_measure.hpp"
+#include "steps/transverser_measure.hpp"
 #include "steps/write_patchy_particles_step.hpp"
 #include "steps/write_step.hpp"
 
@@ -52,6 +53,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(contacts_measure_entry());
         steps.add(height_measure_entry());
         steps.add(potential_measure_entry());
+        steps.add(transverser_measure_entry());
         steps.add(stress_measure_entry());
         steps.add(hessian_measure_entry());
         steps.add(pairwise_force_measure_entry());

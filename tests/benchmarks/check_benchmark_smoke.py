@@ -21,7 +21,7 @@ The domains benchmark runs a liquid on 1 MPI rank and over 2, long enough that t
 rebuilt (the particles migrate), in double precision: the drift of the NVE energy over the timed
 steps is the same on both to 1e-8, which a ghost that missed a neighbour would break.
 
-usage: check_benchmark_smoke.py lj|accuracy|coupling|hydrodynamics PROGRAM
+usage: check_benchmark_smoke.py lj|accuracy|coupling|transverser|hydrodynamics PROGRAM
        check_benchmark_smoke.py domains PROGRAM MPIEXEC [MPIEXEC FLAGS...]"""
 import csv
 import math
@@ -38,6 +38,7 @@ HYDRODYNAMICS_COLUMNS = ["method", "n", "backend", "precision", "tolerance", "st
 DOMAINS_COLUMNS = ["n", "ranks", "backend", "precision", "ghost_exchange", "steps_per_second",
                    "particle_steps_per_second", "domain_rebuilds_per_1000_steps", "list_builds_per_1000_steps",
                    "force_evaluations_per_1000_steps", "setup_seconds", "energy_drift"]
+TRANSVERSER_COLUMNS = ["n", "backend", "precision", "form", "seconds_per_call", "ratio_to_builtin"]
 COUPLING_COLUMNS = ["n", "backend", "precision", "region", "iterations", "step_us", "exchange_us", "extra_us",
                     "extra_fraction", "bytes_per_exchange", "get_us", "set_us"]
 # Force-error bounds per precision (the forces' arithmetic), see the docstring.
@@ -111,6 +112,23 @@ def check_lj(program):
     expect([row["traversal"] for row in rows] == ["clusters", "particles"], f"rows {rows}")
     for row in rows:
         positive_finite(row, "particle_steps_per_second")
+
+
+def check_transverser(program):
+    """One row per form, the baseline (a step) first with a positive time; the others' net times
+    finite (on a loaded machine a small difference may come out negative), and the ratio their time
+    over builtin_energy_read's where that is positive."""
+    rows = run(program, ["--n", "500", "--backend", "cpu", "--precision", "double", "--calls", "5", "--repeats", "3",
+                         "--warmup", "1"], TRANSVERSER_COLUMNS)
+    forms = ["baseline", "builtin_energy", "builtin_energy_read", "expression_lj", "expression_count"]
+    expect([row["form"] for row in rows] == forms, f"rows {rows}")
+    positive_finite(rows[0], "seconds_per_call")
+    times = {row["form"]: float(row["seconds_per_call"]) for row in rows}
+    expect(all(math.isfinite(t) for t in times.values()), f"times {times}")
+    if times["builtin_energy_read"] > 0:
+        for row in rows[1:]:
+            expect(math.isclose(float(row["ratio_to_builtin"]), times[row["form"]] / times["builtin_energy_read"],
+                                rel_tol=1e-4), f"ratio of {row}")
 
 
 def check_accuracy(program):
@@ -192,6 +210,6 @@ if kind == "domains":
     check_domains(program, sys.argv[3:])
 else:
     {"lj": check_lj, "accuracy": check_accuracy, "coupling": check_coupling,
-     "hydrodynamics": check_hydrodynamics}[kind](program)
+     "transverser": check_transverser, "hydrodynamics": check_hydrodynamics}[kind](program)
 if problems:
     sys.exit("\n".join(problems))

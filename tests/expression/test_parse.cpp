@@ -43,6 +43,25 @@ TEST(ExpressionParse, SelectAndStep) {
     EXPECT_DOUBLE_EQ(value("step(x - 3.5)"), 0.0);
 }
 
+TEST(ExpressionParse, ComparisonsAreOneOrZeroAndBindLoosest) {
+    EXPECT_DOUBLE_EQ(value("x < 3.5"), 1.0);
+    EXPECT_DOUBLE_EQ(value("x < 3"), 0.0);  // strict at equality
+    EXPECT_DOUBLE_EQ(value("x <= 3"), 1.0);
+    EXPECT_DOUBLE_EQ(value("x <= 2.5"), 0.0);
+    EXPECT_DOUBLE_EQ(value("x > 3"), 0.0);
+    EXPECT_DOUBLE_EQ(value("x > 2"), 1.0);
+    EXPECT_DOUBLE_EQ(value("x >= 3"), 1.0);
+    EXPECT_DOUBLE_EQ(value("x >= 3.5"), 0.0);
+    EXPECT_DOUBLE_EQ(value("x + 1 < 2 * x"), 1.0);  // (x + 1) < (2 x): sums on both sides
+    EXPECT_DOUBLE_EQ(value("2 * (x < 4) + (x > 4)"), 2.0);
+    EXPECT_DOUBLE_EQ(value("select(x >= 3, 5, 6)"), 5.0);
+    EXPECT_DOUBLE_EQ(evaluate("(x < 4) * x^2", 3.0).slope, 6.0);  // the comparison's derivative is 0
+    std::string message;
+    EXPECT_EQ(error_column("1 < x < 4", &message), 7);
+    EXPECT_NE(message.find("do not chain"), std::string::npos) << message;
+    EXPECT_EQ(error_column("x <"), 4);
+}
+
 TEST(ExpressionParse, ErrorsNameTheirColumn) {
     std::string message;
     EXPECT_EQ(error_column("x + * 2", &message), 5);

@@ -207,6 +207,7 @@ def valid_arguments(sim, prototype, n, good_input_file):
     """Arguments for a call that would succeed on a loaded handle with n particles."""
     by_name = {
         "term": lambda: ffi.new("char[]", b"potential"),
+        "compute": lambda: ffi.new("char[]", b"r < 1.5"),
         "path": lambda: ffi.new("char[]", str(good_input_file).encode()),
         "json": lambda: ffi.new("char[]", json.dumps(systems.lj_bond_system()).encode()),
         "buffer": lambda: ffi.new("char[]", 4096),
@@ -1105,6 +1106,26 @@ def test_view_describes_the_engines_array(loaded):
 
 
 # ---- coverage of the header --------------------------------------------------------------------
+
+def test_traverse_expression_sums_over_pairs_by_minimum_image(loaded):
+    """structmd_traverse_expression: each particle's sum of an expression over its pairs, against
+    numpy over every minimum image, with a neighbour list (cutoff) and over all pairs (0)."""
+    p = np.array(systems.BASE_POSITIONS)
+    d = p[None, :, :] - p[:, None, :]
+    d -= systems.BASE_BOX * np.round(d / systems.BASE_BOX)
+    r = np.linalg.norm(d, axis=2)
+    np.fill_diagonal(r, np.inf)
+    n = len(p)
+    sums = ffi.new("double[]", n)
+    check(loaded, lib.structmd_traverse_expression(loaded, b"r < 3", 3.0, sums, n))
+    np.testing.assert_array_equal(list(sums), np.sum(r < 3.0, axis=1))
+    check(loaded, lib.structmd_traverse_expression(loaded, b"exp(-r) * dy", 0.0, sums, n))
+    np.testing.assert_allclose(list(sums), np.sum(np.exp(-r) * d[:, :, 1], axis=1), rtol=1e-12, atol=1e-15)
+    before = list(sums)
+    assert lib.structmd_traverse_expression(loaded, b"r < q", 3.0, sums, n) == INPUT
+    assert "unknown variable 'q'" in ffi.string(lib.structmd_last_error(loaded)).decode()
+    assert list(sums) == before
+
 
 def test_every_header_function_was_called(request):
     selected = {item.originalname for item in request.session.items if item.module is request.module}

@@ -83,7 +83,7 @@ std::string output_path() { return (std::filesystem::temp_directory_path() / "st
 // half the box.
 json sample_value(const StepParameter& parameter) {
     static const std::map<std::string, json> text = {
-        {"outputFilePath", output_path()}, {"outputFormat", "xyz"}, {"group", "All"}};
+        {"outputFilePath", output_path()}, {"outputFormat", "xyz"}, {"group", "All"}, {"compute", "r < 1.5"}};
     switch (parameter.kind) {
         case StepValue::integer: return 1;
         case StepValue::number: return 1.0;

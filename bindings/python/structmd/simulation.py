@@ -641,6 +641,15 @@ class Simulation:
         """Each particle's row in global.types (0-based), shape (n,). Raises StateError before a load."""
         return self._get_array(lib.structmd_get_types, c_int32, "int32", 1)
 
+    def traverse_expression(self, compute: str, cutoff: float = 0.0) -> FloatArray:
+        """Each particle's sum over its pairs of the expression compute (of r, dx, dy, dz, type_i,
+        type_j, charge_i, charge_j, radius_i, radius_j, mass_i, mass_j; "r < 1.5" counts neighbours),
+        shape (n,), id order: over the pairs closer than cutoff (a neighbour list), or every pair for
+        cutoff 0. Raises InputError for a bad expression or cutoff, StateError before a load."""
+        def call(handle: c_void_p, pointer: Any, n: int) -> int:
+            return int(lib.structmd_traverse_expression(handle, compute.encode(), c_double(cutoff), pointer, n))
+        return self._get_array(call, c_double, "float64", 1)
+
     # ---- global quantities -------------------------------------------------------------------
 
     def energy(self, term: str = "potential") -> float:

@@ -1,0 +1,180 @@
+"""The expression transverser: ["TransverserMeasure","Expression"] writes each particle's sum of an
+expression over its pairs every N steps. Coordination numbers ("r < 1.5"), a local density and a sum
+of the pair's per-particle columns are computed here with numpy from the positions the API gives at
+the same step, over a neighbour list (a cutoff), over all pairs (none) and over a group."""
+
+import numpy as np
+import pytest
+
+import structmd
+from test_measures import BOX, document, measure, minimum_image
+
+
+@pytest.fixture
+def sim(options):
+    with structmd.Simulation(options) as s:
+        yield s
+
+
+def read_blocks(path):
+    """{step: array of rows `id value`} of a transverser measure's file."""
+    lines = path.read_text().splitlines()
+    assert lines[0] == "# id value"
+    blocks, current = {}, None
+    for line in lines[1:]:
+        if line.startswith("# "):
+            current = int(line[2:])
+            blocks[current] = []
+        else:
+            blocks[current].append([float(x) for x in line.split()])
+    return {step: np.array(rows) for step, rows in blocks.items()}
+
+
+def separations(positions):
+    p = np.asarray(positions)
+    d = minimum_image(p[None, :, :] - p[:, None, :])  # d[i, j] = r_j - r_i
+    r = np.linalg.norm(d, axis=2)
+    np.fill_diagonal(r, np.inf)
+    return d, r
+
+
+def liquid(n=300, seed=3):
+    rng = np.random.default_rng(seed)
+    positions = rng.uniform(-BOX / 2, BOX / 2, size=(n, 3))
+    velocities = rng.normal(0.0, 1.0, size=(n, 3))
+    return positions, velocities
+
+
+def test_coordination_numbers_every_n_steps_against_numpy(sim, tmp_path):
+    positions, velocities = liquid()
+    output = tmp_path / "coordination.dat"
+    sim.load(document(positions, velocities, steps=20, time_step=0.002, simulation_steps={
+        "coordination": measure("TransverserMeasure", "Expression", interval=10, outputFilePath=str(output),
+                                compute="r < 1.5", cutOff=1.5)}))
+    expected = {}
+    for step in (0, 10, 20):
+        if step:
+            sim.step(10)
+        _, r = separations(sim.positions)
+        expected[step] = np.sum(r < 1.5, axis=1)
+    blocks = read_blocks(output)
+    assert sorted(blocks) == [0, 10, 20]
+    for step, rows in blocks.items():
+        np.testing.assert_array_equal(rows[:, 0], np.arange(len(positions)))
+        np.testing.assert_array_equal(rows[:, 1], expected[step])
+    assert expected[0].sum() > 2 * len(positions)  # dense enough to mean something
+
+
+def test_local_density_over_a_list_and_over_all_pairs_agree_with_numpy(sim, tmp_path):
+    positions, _ = liquid(200, seed=5)
+    h = 2.0
+    weight = f"(r < {h}) * (1 - r / {h})^2"
+    listed, everything = tmp_path / "listed.dat", tmp_path / "all.dat"
+    sim.load(document(positions, steps=1, simulation_steps={
+        "listed": measure("TransverserMeasure", "Expression", outputFilePath=str(listed), compute=weight, cutOff=h),
+        "all": measure("TransverserMeasure", "Expression", outputFilePath=str(everything), compute=weight)}))
+    sim.step(1)
+    _, r = separations(sim.positions)
+    w = np.where(r < h, (1 - r / h) ** 2, 0.0)
+    expected = w.sum(axis=1)
+    for path in (listed, everything):
+        rows = read_blocks(path)[1]
+        np.testing.assert_allclose(rows[:, 1], expected, rtol=1e-12, atol=1e-12)
+
+
+def test_all_pairs_read_types_masses_and_separations(sim, tmp_path):
+    """No cutoff: every other particle by minimum image; type_j and mass_j are the partner's
+    (document(): type B has mass 2), dx its separation along x."""
+    positions, _ = liquid(60, seed=7)
+    types = ["A" if i % 3 else "B" for i in range(len(positions))]
+    output = tmp_path / "sum.dat"
+    sim.load(document(positions, types=types, steps=1, simulation_steps={
+        "sum": measure("TransverserMeasure", "Expression", outputFilePath=str(output),
+                       compute="mass_j * exp(-r) + dx * type_j - type_i / 100")}))
+    sim.step(1)
+    d, r = separations(sim.positions)
+    type_index = np.array([0.0 if t == "A" else 1.0 for t in types])
+    mass = np.array([1.0 if t == "A" else 2.0 for t in types])
+    terms = mass[None, :] * np.exp(-r) + d[:, :, 0] * type_index[None, :] - type_index[:, None] / 100
+    np.fill_diagonal(terms, 0.0)
+    rows = read_blocks(output)[1]
+    np.testing.assert_allclose(rows[:, 1], terms.sum(axis=1), rtol=1e-12, atol=1e-12)
+
+
+def test_a_group_takes_part_alone(sim, tmp_path):
+    positions, _ = liquid(150, seed=9)
+    members = [i for i in range(len(positions)) if i % 4 != 1]
+    output = tmp_path / "group.dat"
+    doc = document(positions, steps=1, force_field={
+        "groups": {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                   "data": [["some", "Ids", members]]}}, simulation_steps={
+        "count": measure("TransverserMeasure", "Expression", outputFilePath=str(output), compute="r < 2",
+                         cutOff=2.0, group="some")})
+    sim.load(doc)
+    sim.step(1)
+    _, r = separations(sim.positions)
+    inside = r[np.ix_(members, members)] < 2.0
+    rows = read_blocks(output)[1]
+    np.testing.assert_array_equal(rows[:, 0], members)
+    np.testing.assert_array_equal(rows[:, 1], inside.sum(axis=1))
+
+
+@pytest.mark.parametrize("compute, cut_off, message", [
+    ("r < ", 1.0, "parameters.compute"),
+    ("r < sigma", 1.0, "unknown variable"),
+    ("r < 1", -1.0, "parameters.cutOff"),
+])
+def test_bad_entries_name_their_path(sim, tmp_path, compute, cut_off, message):
+    doc = document([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], steps=1, simulation_steps={
+        "bad": measure("TransverserMeasure", "Expression", outputFilePath=str(tmp_path / "x.dat"),
+                       compute=compute, cutOff=cut_off)})
+    with pytest.raises(structmd.InputError, match=message):
+        sim.load(doc)
+
+
+def test_traverse_expression_from_the_api_follows_the_state(sim):
+    """structmd_traverse_expression through Simulation.traverse_expression: the same sums as numpy,
+    over a list and over all pairs, again after the particles moved (the prepared list follows)."""
+    positions, velocities = liquid(250, seed=13)
+    sim.load(document(positions, velocities, steps=50, time_step=0.005))
+    for _ in range(2):
+        d, r = separations(sim.positions)
+        np.testing.assert_array_equal(sim.traverse_expression("r < 1.5", 1.5), np.sum(r < 1.5, axis=1))
+        np.testing.assert_array_equal(sim.traverse_expression("r <= 1.2", 0.0), np.sum(r <= 1.2, axis=1))
+        dens = sim.traverse_expression("mass_j * (r < 2) * (1 - r / 2)^2", 2.0)
+        np.testing.assert_allclose(dens, np.where(r < 2, (1 - r / 2) ** 2, 0).sum(axis=1), rtol=1e-12, atol=1e-12)
+        sim.step(50)
+    assert not np.allclose(sim.positions, positions)
+
+
+@pytest.mark.parametrize("compute, cutoff, error, message", [
+    ("r <", 1.0, structmd.InputError, "compute: at column 4"),
+    ("r < rc", 1.0, structmd.InputError, "unknown variable 'rc'"),
+    ("r < 1", -2.0, structmd.InputError, "cutoff"),
+    ("r < 1", float("nan"), structmd.InputError, "cutoff"),
+])
+def test_traverse_expression_refuses_bad_arguments(sim, compute, cutoff, error, message):
+    positions, _ = liquid(20)
+    sim.load(document(positions, steps=1))
+    with pytest.raises(error, match=message):
+        sim.traverse_expression(compute, cutoff)
+
+
+def test_traverse_expression_needs_a_load(sim):
+    with pytest.raises(structmd.StateError):
+        sim.traverse_expression("r < 1", 1.0)
+
+
+def test_batches_stay_apart_over_a_list_and_over_all_pairs(sim):
+    """Two batches overlaid in one box (batchId 0 and 1) are independent systems: a particle's pairs
+    are those of its own batch, with a neighbour list and without."""
+    positions, _ = liquid(120, seed=17)
+    doc = document(positions, steps=1)
+    batch = [i % 2 for i in range(len(positions))]
+    doc["topology"]["structure"] = {"labels": ["id", "type", "batchId"],
+                                    "data": [[i, "A", b] for i, b in enumerate(batch)]}
+    sim.load(doc)
+    _, r = separations(sim.positions)
+    same = np.equal.outer(batch, batch)
+    np.testing.assert_array_equal(sim.traverse_expression("r < 2", 2.0), np.sum((r < 2) & same, axis=1))
+    np.testing.assert_array_equal(sim.traverse_expression("1"), np.sum(same, axis=1) - 1)
