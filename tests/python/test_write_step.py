@@ -644,6 +644,28 @@ def test_a_group_writes_only_its_particles_with_their_ids(sim, tmp_path, output_
         np.testing.assert_allclose(frame["xyz"], record[step][0][members], rtol=0, atol=5.1e-4)
 
 
+def test_a_host_stepping_in_a_loop_finds_every_due_frame_on_disk_when_each_call_returns(options, tmp_path):
+    """A schedule far longer than the loop: after each structmd_step the frames due up to the step
+    reached are in the file, the last one included, with the state the steps reached, not one the host
+    sets afterwards; destroying the handle there loses none (LAMMPS's run N, OpenMM's step(n))."""
+    path = tmp_path / "traj.lammpstrj"
+    with structmd.Simulation(options) as sim:
+        sim.load(document({"traj": writer(tmp_path / "traj", "lammpstrj")}, steps=1000))
+        reached = {0: np.asarray(sim.positions)}
+        for call in range(4):
+            sim.step(INTERVAL if call != 2 else INTERVAL + 1)
+            reached[sim.step_number] = np.asarray(sim.positions)
+            frames = read_lammpstrj(path)
+            assert [f["step"] for f in frames] == list(range(0, sim.step_number + 1, INTERVAL))
+            # The host moves the particles between calls: the frame already written keeps the
+            # state the steps reached.
+            sim.positions = np.asarray(sim.positions) * 0.999
+    frames = read_lammpstrj(path)
+    assert [f["step"] for f in frames] == [0, 3, 6, 9, 12]
+    for frame in frames[:3]:  # the frames at the steps where calls ended: 0, 3 and 6
+        np.testing.assert_allclose(frame["xyz"], reached[frame["step"]], rtol=0, atol=1e-6)
+
+
 def test_an_unknown_group_names_the_parameter(sim, tmp_path):
     with pytest.raises(structmd.InputError, match=r"simulationStep\.traj\.parameters\.group.*'nowhere'"):
         sim.load(document({"traj": writer(tmp_path / "traj", "xyz", group="nowhere")}))
