@@ -13,7 +13,11 @@ namespace structmd {
 
 namespace {
 
-constexpr size_t kNameLength = 7;  // VMD's PSF reader takes at most 7 characters of a word
+constexpr size_t kNameLength = 7;      // VMD's PSF reader takes at most 7 characters of a word
+constexpr int32_t kSegments = 1000000;  // "S" and six digits
+constexpr int32_t kResidues = 10000000;  // seven digits
+
+int32_t wrapped(int32_t value, int32_t modulus) { return ((value % modulus) + modulus) % modulus; }
 
 std::string psf_word(const std::string& name) {
     std::string word = name.substr(0, kNameLength);
@@ -71,7 +75,7 @@ void write_psf_topology(const std::string& path, const std::string& owner, const
     serial.reserve(frame.ids.size());
     for (size_t i = 0; i < frame.ids.size(); ++i) serial.emplace(frame.ids[i], static_cast<int64_t>(i) + 1);
 
-    std::fprintf(f, "PSF NAMD\n\n%10d !NTITLE\n", 2);
+    std::fprintf(f, "PSF EXT NAMD\n\n%10d !NTITLE\n", 2);
     std::fprintf(f, " REMARKS written by structmd " STRUCTMD_VERSION_STRING "\n");
     std::fprintf(f, " REMARKS topology of the DCD trajectory of %s\n", owner.c_str());
     std::fprintf(f, "\n%10zu !NATOM\n", frame.ids.size());
@@ -79,7 +83,8 @@ void write_psf_topology(const std::string& path, const std::string& owner, const
         const int64_t id = frame.ids[i];
         const std::string name = psf_word(frame.typeNames.at(static_cast<size_t>(frame.types[i])));
         std::fprintf(f, "%10zu S%-7d %-8d UNK      %-8s %-8s %14.6g %14.6g %11d\n", i + 1,
-                     value_of<int32_t>(molecules.chain, id, 0), value_of<int32_t>(molecules.residue, id, 1),
+                     wrapped(value_of<int32_t>(molecules.chain, id, 0), kSegments),
+                     wrapped(value_of<int32_t>(molecules.residue, id, 1), kResidues),
                      name.c_str(), name.c_str(), value_of(molecules.charge, id, 0.0),
                      value_of(molecules.mass, id, 0.0), 0);
     }
