@@ -9,7 +9,8 @@ two things the mobility fixes:
     displacement is 6 D0 t with D0 = k_B T / (6 pi eta a), whatever the neighbours do;
   - hydrodynamic coupling: two particles at distance r > 2a move together, <dx_i . dx_j> =
     2 k_B T dt tr M_ij = 2 k_B T dt / (2 pi eta r).
-Checks: D0 within 3 % (from the one-step displacements, 0.5 % statistical error) and the coupling within 10 % of those values between r = 1.5 and 4.
+Checks: D0 within 3 % (from the one-step displacements, 0.5 % statistical error) and the coupling
+within 10 % of those values between r = 1.5 and 4.
 
 usage: bdhi_suspension.py [FIGURE.png]   (the figure needs matplotlib)
 """

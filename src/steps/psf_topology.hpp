@@ -15,8 +15,9 @@
 //     resname UNK, name and type = the type's name cut to 7 characters (VMD reads at most 7),
 //     blanks replaced by '_'; charge and mass the input's (0 for entries beyond the input's
 //     particles, such as patches)
-//   M !NBOND: bonds, four pairs of serials (each in 10 columns) a line; then !NTHETA: angles (three triples a line) and
-//   !NPHI: dihedrals (two quadruples a line), each among the particles of the frame only;
+//   M !NBOND: bonds, four pairs of serials (each in 10 columns) a line; then !NTHETA: angles
+//   (three triples a line) and !NPHI: dihedrals (two quadruples a line), each among the particles
+//   of the frame only;
 //   0 !NIMPHI, 0 !NDON, 0 !NACC, 0 !NNB: the sections readers expect to find, empty.
 #include <string>
 

@@ -472,10 +472,11 @@ def test_dcd_has_a_psf_topology_beside_it(sim, tmp_path, group):
     position in the DCD (1-based)."""
     parameters = {"group": group} if group else {}
     doc, residues, chains = charged_molecules_document({"traj": writer(tmp_path / "traj", "dcd", **parameters)})
-    doc["topology"]["forceField"]["groups"] = {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
-                                               "data": [["heavy", "Ids", [0, 1, 2, 5, 7, 12, 19]]]}
-    doc["topology"]["forceField"]["torsion"] = {"type": ["Bond4", "Dihedral"], "labels": ["id_i", "id_j", "id_k", "id_l", "K", "n", "phi0"],
-                                                "data": [[0, 1, 2, 5, 1.0, 1, 0.0], [3, 4, 8, 9, 1.0, 1, 0.0]]}
+    force_field = doc["topology"]["forceField"]
+    force_field["groups"] = {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                             "data": [["heavy", "Ids", [0, 1, 2, 5, 7, 12, 19]]]}
+    force_field["torsion"] = {"type": ["Bond4", "Dihedral"], "labels": ["id_i", "id_j", "id_k", "id_l", "K", "n", "phi0"],
+                              "data": [[0, 1, 2, 5, 1.0, 1, 0.0], [3, 4, 8, 9, 1.0, 1, 0.0]]}
     sim.load(doc)
     sim.step(STEPS)
     psf = read_psf(tmp_path / "traj.psf")
