@@ -250,6 +250,13 @@ STRUCTMD_API structmd_status structmd_load_plugin(const char* path);
  * measures as when the schedule ends there. A flow-control step of the input (AFMMaxForce, an
  * escape time with stopSimulation) may end the call early, at the step whose state met its
  * condition: the call returns STRUCTMD_OK there and structmd_get_info's "stopped_by" names the step.
+ * Outputs (trajectory writers, measures) fire at the steps of their interval as they are reached,
+ * the step the call ends on included, and every file is flushed after each firing: when the call
+ * returns, a host stepping in a loop finds on disk every frame and row due up to the current step,
+ * as after LAMMPS's "run N" or OpenMM's step(n), and a host may stop and destroy the handle at any
+ * point without losing one. A frame off the interval is written only at the schedule's end (the
+ * final state above): a host that wants one where its own loop ends makes the schedule end there
+ * (its final_step), as the launcher's --steps does.
  * Needs a load. Returns when the steps are finished on the device, so wall-clock time around the
  * call is the time of the steps.
  *

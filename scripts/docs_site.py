@@ -31,6 +31,12 @@ INPUT_FORMAT_FIRST_PAGE_ENDS_AT = "## Neighbour lists"
 # The other pages of the site, in the order of its navigation.
 PAGES = [("C API", "c-api.md"), ("Python", "python.md"), ("Python API", "python-api.md"), ("Plugins", "plugins.md"),
          ("Architecture", "architecture.md"), ("Robustness", "robustness.md"), ("Benchmarks", "benchmarks.md")]
+# The tutorials, each a page of docs/tutorials whose code blocks take the scripts of examples/tutorials
+# (which their tests run) through pymdownx.snippets, so the code shown is the code tested.
+TUTORIALS = [("A Lennard-Jones liquid", "tutorials/lj-liquid.md"),
+             ("A coupling loop in C and Python", "tutorials/coupling-loop.md"),
+             ("A polymer melt", "tutorials/polymer-melt.md"),
+             ("A BDHI suspension", "tutorials/bdhi-suspension.md")]
 
 HEADING = re.compile(r"^(#{1,6}) +(.+?) *$")
 FENCE = re.compile(r"^ *(```|~~~)")
@@ -150,7 +156,7 @@ def write_pages(pages_dir: Path) -> List[Tuple[str, str]]:
         lines = rewrite_links(lines, "docs/" + INPUT_FORMAT, page, anchor_pages)
         (pages_dir / page).write_text("\n".join(lines) + "\n", encoding="utf-8")
     (pages_dir / "python-api.md").write_text(PYTHON_API_PAGE, encoding="utf-8")
-    for _, name in PAGES:
+    for _, name in PAGES + TUTORIALS:
         if name == "python-api.md":
             continue
         lines = (DOCS / name).read_text(encoding="utf-8").splitlines()
@@ -165,6 +171,7 @@ def write_pages(pages_dir: Path) -> List[Tuple[str, str]]:
 def mkdocs_config(pages_dir: Path, site_dir: Path, input_format: List[Tuple[str, str]]) -> str:
     nav = ["nav:", "  - Home: index.md", "  - Input format:"]
     nav += [f"      - {title!r}: {path}" for title, path in input_format]
+    nav += ["  - Tutorials:"] + [f"      - {title!r}: {name}" for title, name in TUTORIALS]
     nav += [f"  - {title}: {name}" for title, name in PAGES]
     return "\n".join([
         "site_name: structmd",
@@ -176,6 +183,10 @@ def mkdocs_config(pages_dir: Path, site_dir: Path, input_format: List[Tuple[str,
         "markdown_extensions:",
         "  - tables",
         "  - pymdownx.superfences",
+        # --8<-- "examples/tutorials/x.py" in a tutorial's code block: the file, from the repository.
+        "  - pymdownx.snippets:",
+        f"      base_path: [{REPOSITORY}]",
+        "      check_paths: true",
         # Lists indented by 2 as on GitHub, so the code blocks inside them stay code.
         "  - mdx_truly_sane_lists",
         "  - toc:",

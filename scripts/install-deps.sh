@@ -28,10 +28,11 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
-# ase: the reference and the i-PI server of tests/python/test_ase.py and test_ipi.py; mkdocs and its
-# extensions: the documentation site (scripts/docs_site.py, test docs_site).
-python_packages=(numpy cffi pytest ase mypy mkdocs pymdown-extensions "mkdocstrings[python]" mdx-truly-sane-lists)
-if [ "$profile" = test ] && ! python3 -c "import numpy, cffi, pytest, ase, mypy, mkdocs, pymdownx, mkdocstrings, mdx_truly_sane_lists" >/dev/null 2>&1; then
+# ase: the reference and the i-PI server of tests/python/test_ase.py and test_ipi.py; MDAnalysis: the
+# reader of the DCD and its PSF topology in test_write_step.py; mkdocs and its extensions: the
+# documentation site (scripts/docs_site.py, test docs_site).
+python_packages=(numpy cffi pytest ase MDAnalysis mypy mkdocs pymdown-extensions "mkdocstrings[python]" mdx-truly-sane-lists)
+if [ "$profile" = test ] && ! python3 -c "import numpy, cffi, pytest, ase, MDAnalysis, mypy, mkdocs, pymdownx, mkdocstrings, mdx_truly_sane_lists" >/dev/null 2>&1; then
   python3 -m pip install -q "${python_packages[@]}" 2>/dev/null \
     || python3 -m pip install -q --break-system-packages "${python_packages[@]}"
 fi

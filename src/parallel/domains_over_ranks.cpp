@@ -177,7 +177,7 @@ void DomainsOverRanks::advance(int64_t n) {
         begun_ = true;
         check_moves(move);
     }
-    if (current_step() == last) fire_due(true);
+    fire_due(current_step() == last);  // what is due at the step the call ends on, as the engine does
 }
 
 std::vector<Migrant> DomainsOverRanks::owned_now() {

@@ -189,7 +189,9 @@ public:
         }
         backend_.end_steps();
         check_fault(io_.gather_watched_positions());
-        if (current_step() == last) fire_steps(true);
+        // What is due at the step the call ends on is written now, as LAMMPS and OpenMM do, not at
+        // the start of a next call that a host may never make.
+        fire_steps(current_step() == last);
         forceField_.adapt();
     }
     void request_stop(const std::string& by) override {

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <limits>
 
+#include "steps/psf_topology.hpp"
+
 namespace structmd {
 
 namespace {
@@ -45,6 +47,13 @@ void put_title(std::vector<unsigned char>& out, std::string line) {
 int64_t frame_bytes(int64_t particles) { return 4 + kUnitCellBytes + 4 + 3 * (4 + 4 * particles + 4); }
 
 }  // namespace
+
+std::string DcdWriter::topology_path(const std::string& dcdPath) {
+    const size_t dot = dcdPath.rfind('.');
+    const size_t slash = dcdPath.find_last_of('/');
+    const bool hasExtension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+    return (hasExtension ? dcdPath.substr(0, dot) : dcdPath) + ".psf";
+}
 
 DcdWriter::DcdWriter(TrajectoryOptions options) : options_(std::move(options)), file_(nullptr, &std::fclose) {}
 
@@ -154,6 +163,7 @@ void DcdWriter::write(const TrajectoryFrame& frame) {
     if (!file_) {
         to_int32(4 * n, "a coordinate record's length (4 N)");
         if (!(options_.append && open_existing(n))) create(frame);
+        write_psf_topology(topology_path(options_.path), options_.owner, frame, options_.molecules);
     }
     if (frames_ == std::numeric_limits<int32_t>::max()) to_int32(int64_t{frames_} + 1, "the frame count (NSET)");
 

@@ -20,8 +20,12 @@
 // Byte offsets: control word k at 8 + 4k; the header, title and atom records take 276 bytes; a frame
 // takes 80 + 12 N. Appending extends a file of this layout with the same N and keeps its ISTART,
 // NSAVC and DELTA. The final state of a run may fall between intervals; its frame is written anyway.
+//
+// Beside it, when its first frame is written, the particles' topology as a PSF file of the same name
+// (psf_topology.hpp), so that MDAnalysis and VMD load the pair directly.
 #include <cstdio>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "steps/trajectory_writer.hpp"
@@ -32,6 +36,8 @@ class DcdWriter final : public TrajectoryWriter {
 public:
     explicit DcdWriter(TrajectoryOptions options);
     void write(const TrajectoryFrame& frame) override;
+    // "<path less its extension>.psf".
+    static std::string topology_path(const std::string& dcdPath);
 
 private:
     void create(const TrajectoryFrame& first);

@@ -29,11 +29,16 @@ struct TrajectoryFrame {
     std::vector<std::string> typeNames;  // indexed by type
 };
 
-// What a format that describes molecules (PDB) writes beside the positions, by particle id.
+// What a format that describes molecules (PDB, and DCD's PSF topology) writes beside the positions,
+// by particle id. Ids past the input's particles (a patchy entry's patches) have none of it.
 struct MoleculeLayout {
     std::vector<int32_t> chain;    // structure's chainId; empty when not given
     std::vector<int32_t> residue;  // structure's resId; empty when not given
-    std::vector<std::array<int64_t, 2>> bonds;  // the two-particle bonds, i < j, each pair once, sorted
+    std::vector<double> mass;      // the input's, by particle id
+    std::vector<double> charge;    // the input's, by particle id
+    std::vector<std::array<int64_t, 2>> bonds;      // the two-particle bonds, i < j, each pair once, sorted
+    std::vector<std::array<int64_t, 3>> angles;     // the three-particle bonds, as listed (i, j, k), sorted
+    std::vector<std::array<int64_t, 4>> dihedrals;  // the four-particle bonds, as listed, sorted
 };
 
 struct TrajectoryOptions {
@@ -42,7 +47,7 @@ struct TrajectoryOptions {
     bool append = false;
     int64_t interval = 1;    // steps between frames (DCD NSAVC)
     double timeStep = 0.0;   // DCD DELTA; 0 when unknown
-    MoleculeLayout molecules;  // filled for PDB only
+    MoleculeLayout molecules;  // filled for PDB and DCD only
 };
 
 class TrajectoryWriter {

@@ -72,20 +72,31 @@ void WriteStep::append(Simulation&, const std::vector<double>&, TrajectoryFrame&
 
 namespace {
 
-// Chains, residues and the distinct two-particle bonds of the input, for the PDB format.
+template <size_t Arity>
+void sort_unique(std::vector<std::array<int64_t, Arity>>& rows) {
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+}
+
+// Chains, residues, masses, charges and the distinct bonds of the input, for PDB and DCD's topology:
+// two-particle bonds each pair once, angles and dihedrals as listed.
 MoleculeLayout molecule_layout(const StepInput& in) {
     MoleculeLayout layout;
     layout.chain = in.system.chainId;
     layout.residue = in.system.resId;
+    layout.mass = in.system.mass;
+    layout.charge = in.system.charge;
     for (const BondSpec& bond : in.forceField.bonds) {
-        if (bond.arity != 2) continue;
-        for (size_t k = 0; k + 1 < bond.members.size(); k += 2) {
-            const int64_t i = bond.members[k], j = bond.members[k + 1];
-            layout.bonds.push_back({std::min(i, j), std::max(i, j)});
+        const std::vector<int>& m = bond.members;
+        for (size_t k = 0; k + static_cast<size_t>(bond.arity) <= m.size(); k += static_cast<size_t>(bond.arity)) {
+            if (bond.arity == 2) layout.bonds.push_back({std::min(m[k], m[k + 1]), std::max(m[k], m[k + 1])});
+            if (bond.arity == 3) layout.angles.push_back({m[k], m[k + 1], m[k + 2]});
+            if (bond.arity == 4) layout.dihedrals.push_back({m[k], m[k + 1], m[k + 2], m[k + 3]});
         }
     }
-    std::sort(layout.bonds.begin(), layout.bonds.end());
-    layout.bonds.erase(std::unique(layout.bonds.begin(), layout.bonds.end()), layout.bonds.end());
+    sort_unique(layout.bonds);
+    sort_unique(layout.angles);
+    sort_unique(layout.dihedrals);
     return layout;
 }
 
@@ -127,7 +138,7 @@ std::unique_ptr<TrajectoryWriter> trajectory_writer_of(const StepInput& in) {
     options.append = in.parameters.flag("append");
     options.interval = in.interval();
     options.timeStep = trajectory_time_step(in.system);
-    if (format == "pdb") options.molecules = molecule_layout(in);
+    if (format == "pdb" || format == "dcd") options.molecules = molecule_layout(in);
 
     std::unique_ptr<TrajectoryWriter> writer = make_trajectory_writer(format, std::move(options));
     if (!writer)

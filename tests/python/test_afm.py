@@ -158,9 +158,10 @@ def test_afm_measure_writes_indentation_and_cantilever_force(options, tmp_path, 
     frames = []
     with structmd.Simulation(dict(options, precision="double")) as sim:
         sim.load(doc)
-        for _ in range(3):  # the measure fires at steps 0, 4 and 8, before each step's move
+        for _ in range(3):  # the measure fires at steps 0, 4, 8 and 12, the last where the last call ends
             frames.append((sim.step_number, sim.positions, sim.forces))
             sim.step(4)
+        frames.append((sim.step_number, sim.positions, sim.forces))
     lines = (tmp_path / "afm.dat").read_text().splitlines()
     expected_header = (["#step", "time", "chip_0", "tip_0", "deflection_0", "tipForce_0", "sampleForce_0", "F_0"]
                        if verbose else ["#step", "time", "X_0", "F_0"])
@@ -175,7 +176,7 @@ def test_afm_measure_writes_indentation_and_cantilever_force(options, tmp_path, 
                                                     forces[1:8, 2].sum(), F], rtol=1e-9, atol=1e-12)
         else:
             np.testing.assert_allclose(values[2:], [frame[0, 2] - TIP_RADIUS, F], rtol=1e-12)
-    assert len(lines) == 4
+    assert len(lines) == 1 + len(frames)
 
 
 def test_afm_measure_needs_an_afm_entry(options, tmp_path):

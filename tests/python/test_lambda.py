@@ -181,7 +181,7 @@ def test_lambda_derivative_is_the_finite_difference_of_the_energy(options, tmp_p
     force_field, _ = TERMS[name]
     (written_lambda, values), = ti_output(options, tmp_path, force_field, [lam], 10, 2)
     assert written_lambda == lam
-    assert len(values) == 2 and values[0] == values[1]  # nothing moves
+    assert len(values) == 3 and values[0] == values[1] == values[2]  # steps 0, 1 and 2 (where the call ends); nothing moves
     h = 1e-6
     # One-sided at the ends of [0, 1] (second order), central inside.
     if lam == 0.0:

@@ -34,7 +34,7 @@ def thermo_file(tmp_path, options):
 def test_columns_are_read_under_the_header_names(thermo_file):
     columns = read_thermo(thermo_file)
     assert list(columns)[:3] == ["step", "particles", "volume"]
-    assert np.array_equal(columns["step"], np.arange(0, STEPS, INTERVAL))
+    assert np.array_equal(columns["step"], np.arange(0, STEPS + 1, INTERVAL))  # the last where the call ends
     # The file's own identities: total = kinetic + potential + external, potential = sum of the
     # entries, and T = 2K / (3N): the names must land on the right columns for these to hold.
     total = columns["kinetic"] + columns["potential"] + columns["external"]

@@ -138,6 +138,27 @@ def test_runs_are_deterministic(tmp_path, monkeypatch):
     assert np.array_equal(results[0][0], results[1][0]) and results[0][1] == results[1][1]
 
 
+def test_outputs_at_an_exchange_step_record_the_configuration_before_the_exchange(tmp_path, monkeypatch):
+    """As LAMMPS's temper dumps step N before its swap: the thermo row of temperature 0 at an attempt
+    holds the potential energy the replica had before it, which the handle (replica 0) still shows
+    after the call unless the pair (0, 1) exchanged there."""
+    monkeypatch.chdir(tmp_path)
+    with structmd.Simulation({"backend": "cpu", "precision": "double", "threads": 1}) as sim:
+        sim.load(oscillators(steps=100 * INTERVAL))
+        after = {}
+        while sim.step_number < 100 * INTERVAL:
+            sim.step(INTERVAL)
+            after[sim.step_number] = sim.energy("potential")
+    thermo = thermo_columns(tmp_path / "temperature0_thermo.dat")
+    before = dict(zip(thermo["step"].astype(int), thermo["potential"]))
+    exchanged = {int(row[0]): row[1] == "1" for row in
+                 (line.split() for line in (tmp_path / "exchanges.dat").read_text().splitlines())
+                 if row and not row[0].startswith("#")}
+    assert sum(exchanged.values()) >= 3, "the check needs exchanges of the pair (0, 1)"
+    for step, energy in after.items():
+        assert (before[step] == pytest.approx(energy, rel=1e-7)) == (not exchanged[step]), step  # 8 digits written
+
+
 @pytest.mark.parametrize("change, path", [
     (lambda p: p.update(temperatures=[1.0]), "simulationStep.exchange.parameters.temperatures"),
     (lambda p: p.update(temperatures=[1.0, -2.0]), "simulationStep.exchange.parameters.temperatures[1]"),

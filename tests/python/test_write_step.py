@@ -431,6 +431,94 @@ def test_dcd(sim, tmp_path, pbc):
             assert_positions(frame["xyz"], positions, pbc, atol=1e-6)
 
 
+def read_psf(path):
+    """An X-PLOR/NAMD PSF as its format is published: a "PSF" flags line, a title section, then
+    sections "<count> !<NAME>": atoms one a line (serial segment residue resname name type charge
+    mass ...), then bonds, angles and dihedrals as serials, 2, 3 and 4 to a tuple."""
+    lines = iter(path.read_text().splitlines())
+    assert next(lines).split()[0] == "PSF"
+    sections = {}
+    for line in lines:
+        words = line.split()
+        if len(words) < 2 or not words[1].startswith("!"):
+            continue
+        count, name = int(words[0]), words[1].strip("!:")
+        if name == "NTITLE":
+            sections[name] = [next(lines) for _ in range(count)]
+        elif name == "NATOM":
+            sections[name] = [next(lines).split() for _ in range(count)]
+        else:
+            width = {"NBOND": 2, "NTHETA": 3, "NPHI": 4, "NIMPHI": 4}.get(name, 1)
+            numbers = []
+            while len(numbers) < width * count:
+                numbers += [int(v) for v in next(lines).split()]
+            sections[name] = [tuple(numbers[k:k + width]) for k in range(0, len(numbers), width)]
+    return sections
+
+
+CHARGED_TYPES = [["A", 1.0, 0.5, -1.0], ["Polymer", 2.0, 0.7, 0.25], ["Na", 1.5, 0.6, 1.0]]
+
+
+def charged_molecules_document(writers):
+    doc, residues, chains = molecules_document(writers)
+    doc["global"]["types"]["data"] = CHARGED_TYPES
+    return doc, residues, chains
+
+
+@pytest.mark.parametrize("group", [None, "heavy"], ids=["all", "group"])
+def test_dcd_has_a_psf_topology_beside_it(sim, tmp_path, group):
+    """The PSF beside the DCD lists the particles written, in the DCD's order, with their type names,
+    masses, charges, residues and chains, and the bonds, angles and dihedrals among them by their
+    position in the DCD (1-based)."""
+    parameters = {"group": group} if group else {}
+    doc, residues, chains = charged_molecules_document({"traj": writer(tmp_path / "traj", "dcd", **parameters)})
+    force_field = doc["topology"]["forceField"]
+    force_field["groups"] = {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                             "data": [["heavy", "Ids", [0, 1, 2, 5, 7, 12, 19]]]}
+    force_field["torsion"] = {"type": ["Bond4", "Dihedral"], "labels": ["id_i", "id_j", "id_k", "id_l", "K", "n", "phi0"],
+                              "data": [[0, 1, 2, 5, 1.0, 1, 0.0], [3, 4, 8, 9, 1.0, 1, 0.0]]}
+    sim.load(doc)
+    sim.step(STEPS)
+    psf = read_psf(tmp_path / "traj.psf")
+    header, _ = read_dcd(tmp_path / "traj.dcd")
+    ids = [0, 1, 2, 5, 7, 12, 19] if group else list(range(20))
+    serial = {i: k + 1 for k, i in enumerate(ids)}
+    assert len(psf["NATOM"]) == header["natoms"] == len(ids)
+    types = {row[0]: row for row in CHARGED_TYPES}
+    for k, (i, atom) in enumerate(zip(ids, psf["NATOM"])):
+        name = doc["topology"]["structure"]["data"][i][1]
+        assert int(atom[0]) == k + 1
+        assert atom[1] == f"S{chains[i]}" and int(atom[2]) == residues[i]
+        assert atom[4] == atom[5] == name
+        assert float(atom[6]) == pytest.approx(types[name][3]) and float(atom[7]) == pytest.approx(types[name][1])
+    # Bonds: (0,1), (1,2), (1,5) and (1,0) again, (12,19); the angle 3-4-8 and dihedral 3-4-8-9 only
+    # with all their particles written.
+    bonds = [(0, 1), (1, 2), (1, 5), (12, 19)]
+    assert sorted(tuple(sorted(b)) for b in psf["NBOND"]) == [(serial[i], serial[j]) for i, j in bonds]
+    assert psf["NTHETA"] == ([] if group else [(4, 5, 9)])
+    assert psf["NPHI"] == ([(1, 2, 3, 4)] if group else [(1, 2, 3, 6), (4, 5, 9, 10)])
+
+
+def test_mdanalysis_reads_the_psf_and_dcd(sim, tmp_path):
+    """MDAnalysis loads the pair as a Universe: names, masses, charges and bonds from the PSF, each
+    frame's positions and box from the DCD."""
+    mda = pytest.importorskip("MDAnalysis")
+    doc, _, _ = charged_molecules_document({"traj": writer(tmp_path / "traj", "dcd")})
+    record = run_and_record(sim, doc)
+    steps, expected = expected_frames(record, True)
+    universe = mda.Universe(str(tmp_path / "traj.psf"), str(tmp_path / "traj.dcd"))
+    names = [row[1] for row in doc["topology"]["structure"]["data"]]
+    types = {row[0]: row for row in CHARGED_TYPES}
+    assert list(universe.atoms.names) == names
+    np.testing.assert_allclose(universe.atoms.masses, [types[n][1] for n in names])
+    np.testing.assert_allclose(universe.atoms.charges, [types[n][3] for n in names])
+    assert sorted(tuple(sorted(b)) for b in universe.bonds.indices.tolist()) == [(0, 1), (1, 2), (1, 5), (12, 19)]
+    assert len(universe.trajectory) == len(steps)
+    for timestep, positions in zip(universe.trajectory, expected):
+        np.testing.assert_allclose(timestep.positions, positions, rtol=0, atol=1e-5)
+        np.testing.assert_allclose(timestep.dimensions, BOX.tolist() + [90.0, 90.0, 90.0], rtol=1e-6)
+
+
 @pytest.mark.parametrize("other_time_step", ["global", "unscheduled integrator first"])
 def test_the_time_step_written_is_the_one_the_integrator_steps_with(sim, tmp_path, other_time_step):
     """DCD's DELTA and xyz's time follow the integrator's own timeStep, not global.fundamental's nor
@@ -555,6 +643,28 @@ def test_a_group_writes_only_its_particles_with_their_ids(sim, tmp_path, output_
     assert len(frames) == len(written_steps(0, STEPS))
     for frame, step in zip(frames, written_steps(0, STEPS)):
         np.testing.assert_allclose(frame["xyz"], record[step][0][members], rtol=0, atol=5.1e-4)
+
+
+def test_a_host_stepping_in_a_loop_finds_every_due_frame_on_disk_when_each_call_returns(options, tmp_path):
+    """A schedule far longer than the loop: after each structmd_step the frames due up to the step
+    reached are in the file, the last one included, with the state the steps reached, not one the host
+    sets afterwards; destroying the handle there loses none (LAMMPS's run N, OpenMM's step(n))."""
+    path = tmp_path / "traj.lammpstrj"
+    with structmd.Simulation(options) as sim:
+        sim.load(document({"traj": writer(tmp_path / "traj", "lammpstrj")}, steps=1000))
+        reached = {0: np.asarray(sim.positions)}
+        for call in range(4):
+            sim.step(INTERVAL if call != 2 else INTERVAL + 1)
+            reached[sim.step_number] = np.asarray(sim.positions)
+            frames = read_lammpstrj(path)
+            assert [f["step"] for f in frames] == list(range(0, sim.step_number + 1, INTERVAL))
+            # The host moves the particles between calls: the frame already written keeps the
+            # state the steps reached.
+            sim.positions = np.asarray(sim.positions) * 0.999
+    frames = read_lammpstrj(path)
+    assert [f["step"] for f in frames] == [0, 3, 6, 9, 12]
+    for frame in frames[:3]:  # the frames at the steps where calls ended: 0, 3 and 6
+        np.testing.assert_allclose(frame["xyz"], reached[frame["step"]], rtol=0, atol=1e-6)
 
 
 def test_an_unknown_group_names_the_parameter(sim, tmp_path):

@@ -325,8 +325,10 @@ class Simulation:
     def step(self, n: SupportsIndex = 1) -> None:
         """Advances n integration steps along the integrator schedule (past its end, its last
         integrator goes on); a flow-control step of the input may end the call early (info's
-        "stopped_by" names it). Raises TypeError for a non-integer n, ArgumentError for n < 0,
-        StateError before a load, NumericalError (state restored to the call's start) for a blow-up."""
+        "stopped_by" names it). When it returns, the outputs due up to the step reached (that step
+        included) are written and flushed, so a loop may stop anywhere. Raises TypeError for a
+        non-integer n, ArgumentError for n < 0, StateError before a load, NumericalError (state
+        restored to the call's start) for a blow-up."""
         self._call(lib.structmd_step, operator.index(n))
 
     def run(self, steps: Optional[SupportsIndex] = None, progress: bool = False) -> None:
