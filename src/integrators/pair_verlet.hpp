@@ -5,8 +5,10 @@
 // field. As UAMMD's VerletNVE with UAMMD-structured's DPD and SPH interactors does, the pair forces at
 // the new positions are computed with the half-step velocities; they are kept, beside the force
 // field's, for the first half kick of the next step unless the positions changed in between (another
-// integrator, the host, a roll back), in which case they are computed again with the velocities then.
+// integrator, the host), in which case they are computed again with the velocities then. They are
+// the integrator's state: a checkpoint holds them, so a restart continues the same trajectory.
 #include <cstdint>
+#include <vector>
 
 #include "integrators/integrator.hpp"
 #include "integrators/thermal_noise.hpp"
@@ -87,13 +89,19 @@ public:
         if (resetVelocities_)
             backend_.for_each(p.count, DrawThermalVelocities<R>{p.vel.data(), s.group, p.noise, p.now(), R(s.kT)});
         pairForcesAt_ = -1;  // the velocities may have changed: computed afresh at the first step
+        restored_.clear();
     }
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();
         const R dt = R(s.timeStep);
+        versionNow_ = &p.version;
         forces.update_forces();
-        if (pairForcesAt_ != p.version) update_pair_forces(p);
+        if (static_cast<int64_t>(restored_.size()) == 3 * p.count)
+            take_restored(p);
+        else if (pairForcesAt_ != p.version)
+            update_pair_forces(p);
+        restored_.clear();
         backend_.for_each(p.count, PairVerletKickDrift<R>{s.group, p.pos.data(), p.image.data(), p.vel.data(),
                                                           p.force.data(), pairForce_.data(), p.box, dt,
                                                           p.fault_slot(1), p.drift});
@@ -110,6 +118,21 @@ public:
         }
     }
 
+    // The pair forces (x, y, z by particle) while they belong to the present positions; none otherwise.
+    // A download: the engine asks at every step call (for its roll back) and at checkpoints.
+    std::vector<double> state() const override {
+        if (!versionNow_ || pairForcesAt_ != *versionNow_) return {};
+        std::vector<Real4<R>> forces(pairForce_.size());
+        backend_.download(pairForce_, forces.data(), forces.size());
+        std::vector<double> flat;
+        flat.reserve(3 * forces.size());
+        for (const Real4<R>& f : forces) flat.insert(flat.end(), {double(f.x), double(f.y), double(f.z)});
+        return flat;
+    }
+    // Taken at the next step, for the positions and velocities restored with them; a state of another
+    // size (of no particles, or edited) is ignored and the forces computed afresh.
+    void restore(const std::vector<double>& state) override { restored_ = state; }
+
 protected:
     // Writes (not adds) each particle's pair force into `out`, by particle; zero outside the group.
     virtual void compute_pair_forces(Particles<B, R>& p, const NeighbourView<R>& neighbours, Real4<R>* out) = 0;
@@ -124,12 +147,22 @@ private:
         pairForcesAt_ = p.version;
     }
 
+    void take_restored(Particles<B, R>& p) {
+        std::vector<Real4<R>> forces(p.count);
+        for (int64_t i = 0; i < p.count; ++i)
+            forces[i] = Real4<R>{R(restored_[3 * i]), R(restored_[3 * i + 1]), R(restored_[3 * i + 2]), R(0)};
+        backend_.upload(pairForce_, forces.data(), forces.size());
+        pairForcesAt_ = p.version;
+    }
+
     static constexpr double kListRadiusFactor = 1.25;  // list radius / cutoff: a skin of a quarter cutoff
     static constexpr int kStepsBetweenAdapts = 500;
 
     VerletList<B, R> list_;
     typename B::template Buffer<Real4<R>> pairForce_;
     int64_t pairForcesAt_ = -1;  // the positions version pairForce_ belongs to
+    const int64_t* versionNow_ = nullptr;  // the positions version of the particles it steps
+    std::vector<double> restored_;  // pair forces a restore gave, for the next step
     int stepsSinceAdapt_ = 0;
     bool resetVelocities_;
 };
