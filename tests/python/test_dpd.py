@@ -117,10 +117,10 @@ def test_momentum_is_conserved_with_noise(options):
     np.testing.assert_allclose(after, before, rtol=0, atol=1e-9 * np.sum(mass))
 
 
-def fluid_averages(options, density, a, time_step, equilibration, samples, every, box=5.0):
-    """Mean kinetic k_B T and mean excess pressure (1/3V) sum_{i<j} r_ij . F^C_ij of a one-type fluid
-    (mass 1, k_B T = 1, gamma = 4.5) started at random positions, the velocities drawn by the
-    integrator."""
+def fluid_averages(options, density, a, time_step, equilibration, samples, every, box=5.0, pressure=True):
+    """Mean kinetic k_B T and (where `pressure`) mean excess pressure (1/3V) sum_{i<j} r_ij . F^C_ij of
+    a one-type fluid (mass 1, k_B T = 1, gamma = 4.5) started at random positions, the velocities
+    drawn by the integrator."""
     n = int(round(density * box ** 3))
     x0 = np.random.default_rng(11).uniform(-box / 2, box / 2, (n, 3))
     doc = document(x0, ["A"] * n, box, dpd(time_step, 4.5, a), equilibration + samples * every)
@@ -131,10 +131,12 @@ def fluid_averages(options, density, a, time_step, equilibration, samples, every
         for _ in range(samples):
             sim.step(every)
             kinetic.append(np.sum(sim.velocities ** 2) / (3 * n))
+            if not pressure:
+                continue
             _, r = separations(sim.positions, box)
             inside = (r < CUTOFF) & (r > 0)
             excess.append(np.sum(a * (1.0 - r[inside] / CUTOFF) * r[inside]) / 2 / (3 * box ** 3))
-    return float(np.mean(kinetic)), float(np.mean(excess))
+    return float(np.mean(kinetic)), float(np.mean(excess)) if pressure else None
 
 
 @pytest.mark.parametrize("density, a, reference", [(3.0, 25.0, 23.637), (4.0, 18.75, 32.622)])
@@ -150,13 +152,15 @@ def test_equation_of_state(options, density, a, reference):
 
 def test_temperature_at_the_standard_time_step(options):
     # Velocity Verlet with the dissipative force at the half-step velocities (Groot and Warren's
-    # lambda = 1/2) runs about 3% hot at dt = 0.04; at dt = 0.01 the error is a sixteenth of that.
-    # The mean over 375 particles and 300 samples has a standard error of about 0.0025 k_B T; a noise
-    # amplitude off by sqrt(2) would miss by a factor 2.
-    hot, _ = fluid_averages(options, 3.0, 25.0, 0.04, 500, 300, 10)
+    # lambda = 1/2) runs about 3% hot at dt = 0.04 and converges to k_B T as dt^2. The kinetic
+    # temperature of this fluid is correlated over about one time unit (a long run's block averages),
+    # so a mean over 100 time units has a standard error of about 0.0045 k_B T, and over 50, 0.0065. A
+    # noise amplitude off by sqrt(2) would miss by a factor 2, one off by 10% by 20%.
+    hot, _ = fluid_averages(options, 3.0, 25.0, 0.04, 300, 500, 5, pressure=False)
     assert 1.01 < hot < 1.05
-    fine, _ = fluid_averages(options, 3.0, 25.0, 0.01, 1000, 300, 10)
-    assert fine == pytest.approx(1.0, abs=0.01)
+    fine, _ = fluid_averages(options, 3.0, 25.0, 0.01, 600, 500, 10, pressure=False)
+    assert fine == pytest.approx(1.0, abs=0.02)
+    assert fine < hot
 
 
 def test_checkpoint_restart_continues_the_same_trajectory(options, tmp_path):
@@ -185,3 +189,44 @@ def test_checkpoint_restart_continues_the_same_trajectory(options, tmp_path):
             assert np.array_equal(a, b), "the restarted run left the trajectory"
         else:
             np.testing.assert_allclose(a, b, rtol=0, atol=1e-9)
+
+
+def test_several_batches_are_refused_since_they_would_share_one_fluid(options):
+    x0, types, _ = random_fluid(4, 4.0, seed=7)
+    doc = document(x0, types, 4.0, dpd(0.01, 4.5, 25.0), 5)
+    doc["topology"]["structure"] = {"labels": ["id", "type", "batchId"],
+                                    "data": [[i, t, i % 2] for i, t in enumerate(types)]}
+    with structmd.Simulation(options) as sim:
+        with pytest.raises(structmd.UnsupportedError, match=r"integrator\.dpd\.type: .*batch"):
+            sim.load(doc)
+
+
+def final_state(options, seed, steps):
+    n, box = 150, 4.0
+    x0, types, _ = random_fluid(n, box, seed=8)
+    with structmd.Simulation(options) as sim:
+        sim.load(document(x0, types, box, dpd(0.04, 4.5, 25.0), steps, seed=seed))
+        sim.step(steps)
+        return sim.positions, sim.velocities
+
+
+def test_the_same_seed_repeats_the_trajectory_bit_for_bit_on_any_thread_count(options):
+    if options["backend"] != "cpu":
+        pytest.skip("thread counts are a CPU matter; the CPU run of this suite covers them")
+    cpu = {"backend": "cpu", "precision": "double", "log": "quiet"}
+    one = final_state(dict(cpu, threads=1), 21, 100)
+    two = final_state(dict(cpu, threads=2), 21, 100)
+    other = final_state(dict(cpu, threads=2), 22, 100)
+    assert np.array_equal(one[0], two[0]) and np.array_equal(one[1], two[1])
+    assert np.abs(other[1] - one[1]).max() > 0.1, "another seed, another trajectory"
+
+
+def test_the_backend_repeats_the_cpu_trajectory_to_rounding(options):
+    if options["backend"] == "cpu":
+        pytest.skip("compares another backend with the CPU: run with STRUCTMD_TEST_BACKEND=cuda")
+    # The same pair noise on both; 20 steps, before chaos amplifies rounding (1e-16) past 1e-9.
+    cpu = {"backend": "cpu", "precision": "double", "log": "quiet"}
+    expected = final_state(cpu, 21, 20)
+    measured = final_state(options, 21, 20)
+    np.testing.assert_allclose(measured[0], expected[0], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(measured[1], expected[1], rtol=0, atol=1e-9)

@@ -159,3 +159,18 @@ def test_energy_is_conserved_without_viscosity(options):
     assert coarse < 1e-3
     # Velocity Verlet's error is O(dt^2): half the step, a quarter of the error.
     assert 2.5 < coarse / fine < 6.0
+
+
+def test_the_backend_repeats_the_cpu_trajectory_to_rounding(options):
+    if options["backend"] == "cpu":
+        pytest.skip("compares another backend with the CPU: run with STRUCTMD_TEST_BACKEND=cuda")
+    x0, v0, types, _, box = fluid(seed=4, speed=1.0)
+    doc = document(x0, v0, types, box, sph(0.005, 2.0), 50)
+    states = []
+    for backend_options in ({"backend": "cpu", "precision": "double", "log": "quiet"}, options):
+        with structmd.Simulation(backend_options) as sim:
+            sim.load(doc)
+            sim.step(50)
+            states.append((sim.positions, sim.velocities))
+    np.testing.assert_allclose(states[1][0], states[0][0], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(states[1][1], states[0][1], rtol=0, atol=1e-9)
