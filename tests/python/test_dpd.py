@@ -83,6 +83,25 @@ def test_conservative_force_is_a_soft_repulsion(options):
     np.testing.assert_allclose(measured, expected, rtol=0, atol=1e-6 * np.abs(expected).max())
 
 
+def test_a_group_moves_alone_and_feels_its_own_members_only(options):
+    # Group "typeA": the B particles stay exactly where they are, and the A particles feel only one
+    # another (gamma = 0: the conservative force alone).
+    n, box, dt, a = 60, 4.0, 1e-3, 25.0
+    x0, types, mass = random_fluid(n, box, seed=9)
+    v0 = np.zeros((n, 3))
+    doc = document(x0, types, box, dpd(dt, 0.0, a, resetVelocities=False, group="typeA"), 1, velocities=v0)
+    doc["integrator"]["groups"] = {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                                   "data": [["typeA", "Types", ["A"]]]}
+    member = np.array([t == "A" for t in types])
+    d, r = separations(x0, box)
+    inside = (r < CUTOFF) & (r > 0) & member[:, None] & member[None, :]
+    weight = np.where(inside, a * (1.0 - r / CUTOFF) / np.where(inside, r, 1.0), 0.0)
+    expected = np.sum(weight[:, :, None] * d, axis=1)
+    measured = force_from_one_step(options, doc, x0, v0, mass, dt, box)
+    assert np.all(measured[~member] == 0.0), "a particle outside the group moved"
+    np.testing.assert_allclose(measured[member], expected[member], rtol=0, atol=1e-6 * np.abs(expected).max())
+
+
 def test_dissipative_force_damps_relative_velocity_along_the_line(options):
     # Temperature 0 and a = 0: the noise is 0 and F_i = -gamma sum_j w^2 (e_ij . v_ij) e_ij.
     n, box, dt, gamma = 60, 4.0, 1e-3, 4.5
