@@ -12,10 +12,12 @@
 #include "integrators/bdhi_quasi2d.hpp"
 #include "integrators/brownian.hpp"
 #include "integrators/brownian_rigid_body.hpp"
+#include "integrators/dpd_verlet.hpp"
 #include "integrators/langevin_bbk.hpp"
 #include "integrators/langevin_gjf.hpp"
 #include "integrators/magnetic.hpp"
 #include "integrators/no_motion.hpp"
+#include "integrators/sph_verlet.hpp"
 #include "integrators/steepest_descent.hpp"
 #include "integrators/velocity_verlet.hpp"
 
@@ -24,6 +26,8 @@ namespace structmd {
 template <class Visitor>
 void visit_builtin_integrators(Visitor& v) {
     v.template integrator<VelocityVerlet, VelocityVerletInputs>({"Verlet", "VelocityVerlet"});
+    v.template integrator<DpdVerlet, DpdVerletInputs>({"DPD", "Verlet"});
+    v.template integrator<SphVerlet, SphVerletInputs>({"SPH", "Verlet"});
     v.template integrator<LangevinBBK, LangevinBBKInputs>({"Langevin", "BBK"});
     v.template integrator<LangevinGJF, LangevinInputs>({"Langevin", "GJF"});
     v.template integrator<BrownianEulerMaruyama, BrownianInputs>({"Brownian", "EulerMaruyama"});

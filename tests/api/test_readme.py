@@ -14,6 +14,8 @@ UAMMD_INPUTS = REPOSITORY / "tests" / "reference" / "uammd_inputs"
 # How the README names each documented integrator; a new integrator needs its words here and there.
 README_WORDS = {
     ("Verlet", "VelocityVerlet"): "velocity Verlet",
+    ("DPD", "Verlet"): "dissipative particle dynamics",
+    ("SPH", "Verlet"): "smoothed particle hydrodynamics",
     ("Langevin", "BBK"): "BBK",
     ("Langevin", "GJF"): "Grønbech-Jensen-Farago",
     ("Brownian", "EulerMaruyama"): "Euler-Maruyama",
