@@ -47,8 +47,10 @@ struct ExpressionSum {
     }
     SMD_HD SMD_INLINE R compute(const Real4<R>& ri, const Real4<R>& rj, const Info& a, const Info& b) const {
         const Vec3<R> d = xyz(rj) - xyz(ri);
-        const R inputs[kSumInputs] = {sqrt(dot(d, d)), d.x,     d.y,      d.z,      ri.w,   rj.w,
-                                      a.charge,        b.charge, a.radius, b.radius, a.mass, b.mass};
+        // R(...): without the standard library's overloads (clang's host pass, NVRTC) sqrt of a
+        // float may be the double one.
+        const R r = R(sqrt(dot(d, d)));
+        const R inputs[kSumInputs] = {r, d.x, d.y, d.z, ri.w, rj.w, a.charge, b.charge, a.radius, b.radius, a.mass, b.mass};
         R value[1];
         Function::evaluate(inputs, function, value);
         return value[0];
