@@ -13,48 +13,15 @@
 #include "forcefield/cluster_pair_kernel.hpp"
 #include "forcefield/lennard_jones.hpp"
 #include "neighbour/verlet_list.hpp"
+#include "random_particles.hpp"
 
 namespace structmd {
 namespace {
 
 using List = VerletList<CpuBackend, double>;
-using Pairs = std::set<std::pair<int, int>>;
 
-struct System {
-    CpuBackend backend{2};
-    Box<double> box;
-    HostBuffer<Real4<double>> pos;
-    int64_t n = 0;
-    int64_t version = 0;
-
-    System(int64_t count, double lx, double ly, double lz, unsigned seed) : box(Box<double>::make(lx, ly, lz)), n(count) {
-        std::mt19937 rng(seed);
-        std::uniform_real_distribution<double> u(-0.5, 0.5);
-        backend.resize(pos, n);
-        for (int64_t i = 0; i < n; ++i) pos.data()[i] = {u(rng) * lx, u(rng) * ly, u(rng) * lz, 0.0};
-    }
-
-    void jiggle(double step, unsigned seed) {
-        std::mt19937 rng(seed);
-        std::normal_distribution<double> g(0.0, 1.0);
-        for (int64_t i = 0; i < n; ++i) {
-            Vec3<double> d{g(rng), g(rng), g(rng)};
-            d = (step / std::sqrt(dot(d, d))) * d;
-            Real4<double>& p = pos.data()[i];
-            const Vec3<double> r = box.wrap(xyz(p) + d);
-            p = {r.x, r.y, r.z, p.w};
-        }
-    }
-
-    Pairs pairs_within(double cutoff) const {
-        Pairs pairs;
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) {
-                const Vec3<double> d = box.minimum_image(xyz(pos.data()[j]) - xyz(pos.data()[i]));
-                if (i != j && dot(d, d) < cutoff * cutoff) pairs.insert({i, j});
-            }
-        return pairs;
-    }
+struct System : RandomParticles {
+    using RandomParticles::RandomParticles;
 
     // The pairs the cluster kernel would meet within the cutoff, each once from each side.
     Pairs met(List& list, double cutoff) {

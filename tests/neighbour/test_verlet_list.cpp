@@ -11,50 +11,15 @@
 
 #include "backends/cpu/cpu_backend.hpp"
 #include "neighbour/verlet_list.hpp"
+#include "random_particles.hpp"
 
 namespace structmd {
 namespace {
 
 using List = VerletList<CpuBackend, double>;
 
-struct System {
-    CpuBackend backend;
-    Box<double> box;
-    HostBuffer<Real4<double>> pos;
-    int64_t n = 0;
-    int64_t version = 0;  // every visit sees positions that may have changed
-
-    System(int64_t count, double lx, double ly, double lz, unsigned seed, int threads = 2)
-        : backend(threads), box(Box<double>::make(lx, ly, lz)), n(count) {
-        std::mt19937 rng(seed);
-        std::uniform_real_distribution<double> u(-0.5, 0.5);
-        backend.resize(pos, n);
-        for (int64_t i = 0; i < n; ++i) pos.data()[i] = {u(rng) * lx, u(rng) * ly, u(rng) * lz, 0.0};
-    }
-
-    // Moves every particle by a random displacement of length `step` and wraps it.
-    void jiggle(double step, unsigned seed) {
-        std::mt19937 rng(seed);
-        std::normal_distribution<double> g(0.0, 1.0);
-        for (int64_t i = 0; i < n; ++i) {
-            Vec3<double> d{g(rng), g(rng), g(rng)};
-            d = (step / std::sqrt(dot(d, d))) * d;
-            Real4<double>& p = pos.data()[i];
-            const Vec3<double> r = box.wrap(xyz(p) + d);
-            p = {r.x, r.y, r.z, p.w};
-        }
-    }
-
-    std::set<std::pair<int, int>> pairs_within(double cutoff) const {
-        std::set<std::pair<int, int>> pairs;
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) {
-                if (i == j) continue;
-                const Vec3<double> d = box.minimum_image(xyz(pos.data()[j]) - xyz(pos.data()[i]));
-                if (dot(d, d) < cutoff * cutoff) pairs.insert({i, j});
-            }
-        return pairs;
-    }
+struct System : RandomParticles {
+    using RandomParticles::RandomParticles;
 
     // Pairs of particles, as the list offers them through its slots.
     std::set<std::pair<int, int>> visited(List& list) {
