@@ -25,3 +25,13 @@ typedef unsigned long long uint64_t;
 #define SMD_INLINE inline
 #define SMD_UNROLL4
 #endif
+
+// The CPU backend's own loops (host_rows of the pair kernel and the list build): every call inlined,
+// and with g++ on x86-64 a second copy for AVX2 picked at load time where the processor has it
+// (twice the vector width of the SSE2 baseline; no FMA, so both copies round alike). Clang refuses
+// target_clones beside flatten, and nvcc's host pass never calls these loops.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
+#define SMD_HOST_LOOP __attribute__((flatten, target_clones("avx2", "default")))
+#else
+#define SMD_HOST_LOOP __attribute__((flatten))
+#endif

@@ -216,7 +216,8 @@ private:
     void layout(int64_t n, const Box<R>& box) {
         box_ = box;
         capacity_ = std::max(capacity_, pendingCapacity_);
-        grid_ = CellGrid<R>::make(box, listRadius_, n, batches_);
+        // The cluster kernels take their partners from the 27 cells around a cluster.
+        grid_ = CellGrid<R>::make(box, listRadius_, n, batches_, clustersAllowed_ ? 1 : B::list_cell_reach);
         if (capacity_ == 0) {
             // No particle has more neighbours than there are particles, whatever the list radius;
             // batches overlaid in the box each fill it at their own density.

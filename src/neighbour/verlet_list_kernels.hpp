@@ -16,6 +16,7 @@
 
 #if SMD_HOST_CODE
 #include <algorithm>
+#include <cmath>
 #include <vector>
 #endif
 
@@ -240,72 +241,155 @@ struct BuildLists {
     }
 
 #if SMD_HOST_CODE
+    // Rows are skipped for reaches up to this (the CPU's lists use 2); a wider one scans every cell.
+    static constexpr int kMaxRowReach = 4;
+
+    // Distance, in cells, from the coordinate u (in cells, inside cell c) to the cell `offset`
+    // cells from c along the same axis: 0 for c itself.
+    static R cell_gap(R u, int c, int offset) {
+        const R gap = offset > 0 ? R(c + offset) - u : (offset < 0 ? u - R(c + offset + 1) : R(0));
+        return gap > R(0) ? gap : R(0);
+    }
+
+    // A list of up to this many entries is put in particle order by ranking (below); a longer one,
+    // in a crowded or collapsed system, by a sort in n log n.
+    static constexpr int kRankedListLimit = 256;
+
     // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
-    // one thread, the same lists as operator() with one lane. Each accepted candidate is kept as
-    // (particle, slot) in one 64-bit key, so ordering a list by particle is a sort of plain integers
-    // rather than an insertion sort that looks up both particles at every move. flatten: the
-    // minimum image and the cell arithmetic inlined into the candidate loop.
-    __attribute__((flatten)) void host_rows(int64_t begin, int64_t end) const {
+    // one thread, the same lists as operator() with one lane. Each accepted candidate's slot is kept,
+    // then its particle looked up, and each goes to its place in particle order: the number
+    // of smaller particles in the list (particles in a list are distinct). That count is a loop of
+    // independent compares the compiler vectorises, where a comparison sort's branches, mispredicted
+    // about half the time, took a third of the build. flatten: the minimum image and the cell
+    // arithmetic inlined into the candidate loop.
+    SMD_HOST_LOOP void host_rows(int64_t begin, int64_t end) const {
         if (!control[kRebuild]) return;
         const NeighbourView<R>& v = view;
         const int capacity = v.capacity > 0 ? v.capacity : 0;
-        // One spare key past the capacity: a candidate beyond it is written there and dropped.
+        // One spare place past the capacity: a candidate beyond it is written there and dropped.
+        thread_local std::vector<int> particles, slots;
         thread_local std::vector<uint64_t> keys;
         thread_local std::vector<R> distance2;
-        if (keys.size() < static_cast<size_t>(capacity) + 1) keys.resize(static_cast<size_t>(capacity) + 1);
-        uint64_t* const key = keys.data();
+        if (particles.size() < static_cast<size_t>(capacity) + 1) {
+            particles.resize(static_cast<size_t>(capacity) + 1);
+            slots.resize(static_cast<size_t>(capacity) + 1);
+        }
+        int* const particle = particles.data();
+        int* const slot = slots.data();
         const Real4<R>* const positions = v.positions;
         const int* const order = v.order;
         const Box<R> box = v.box;
         const R radius2 = listRadius2;
+        // Rows are skipped against a radius a little larger than the list's, so that rounding in
+        // the cell geometry never drops a candidate the exact test below would accept.
+        const R prune2 = listRadius2 * R(1.002);
+        const Vec3<R> width{R(1) / v.grid.cellsPerLength.x, R(1) / v.grid.cellsPerLength.y,
+                            R(1) / v.grid.cellsPerLength.z};
         const bool trivial = v.filter.trivial();
         int longest = 0;
         for (int64_t k = begin; k < end; ++k) {
             const Vec3<R> rk = xyz(positions[k]);
             int n = 0;
             // Candidates s in first .. last - 1: their squared distances first, in a loop of their
-            // own (g++ 12 does not vectorise it yet: the strided loads of the positions), then the
-            // accepted ones appended without a branch.
+            // own that the compiler vectorises, then the accepted ones appended without a branch.
             const auto scan = [&](int first, int last) {
                 if (distance2.size() < static_cast<size_t>(last - first)) distance2.resize(static_cast<size_t>(last - first) * 2);
                 R* const d2 = distance2.data();
+                // No `omp simd` here: g++ 12 then declines the loop ("no vectype"), which it
+                // vectorises on its own.
                 const Real4<R>* const candidate = positions + first;
                 const int candidates = last - first;
-#pragma omp simd
+                const Box<R> cellBox = box;
+                const R x = rk.x, y = rk.y, z = rk.z;
                 for (int m = 0; m < candidates; ++m) {
-                    const R x = candidate[m].x, y = candidate[m].y, z = candidate[m].z;
-                    const Vec3<R> d = box.minimum_image(Vec3<R>{x, y, z} - rk);
+                    const Vec3<R> d = cellBox.minimum_image(
+                        Vec3<R>{candidate[m].x - x, candidate[m].y - y, candidate[m].z - z});
                     d2[m] = dot(d, d);
                 }
-                for (int s = first; s < last; ++s) {
-                    const bool accepted = d2[s - first] < radius2 && (trivial ? s != k : v.accepts(static_cast<int>(k), s));
-                    key[n < capacity ? n : capacity] =
-                        static_cast<uint64_t>(static_cast<uint32_t>(byParticle ? order[s] : 0)) << 32 | static_cast<uint32_t>(s);
+                const auto append = [&](int s, bool accepted) {
+                    slot[n < capacity ? n : capacity] = s;
                     n += accepted;
+                };
+                if (trivial) {
+                    for (int s = first; s < last; ++s) append(s, d2[s - first] < radius2 && s != k);
+                } else {
+                    for (int s = first; s < last; ++s)
+                        append(s, d2[s - first] < radius2 && v.accepts(static_cast<int>(k), s));
                 }
             };
             int cx, cy, cz;
             v.grid.coordinates(rk, box, cx, cy, cz);
             const CellGrid<R>& grid = v.grid;
-            if (byParticle && grid.nx >= 3 && grid.ny >= 3 && grid.nz >= 3 && cx >= 1 && cx + 1 < grid.nx) {
-                // The three cells of a row along x are consecutive slots: one range for the row
-                // (the list is sorted by particle below, so the order of discovery does not matter).
+            const int reach = grid.reach;
+            const Vec3<R> u{(rk.x + R(0.5) * box.length.x) * grid.cellsPerLength.x,
+                            (rk.y + R(0.5) * box.length.y) * grid.cellsPerLength.y,
+                            (rk.z + R(0.5) * box.length.z) * grid.cellsPerLength.z};
+            // Inside the grid (not NaN, not a particle that blew up out of the box): the cell
+            // arithmetic below then stays in the range of an int.
+            const bool inside = u.x >= R(0) && u.x < R(grid.nx) && u.y >= R(0) && u.y < R(grid.ny) && u.z >= R(0) &&
+                                u.z < R(grid.nz);
+            if (byParticle && inside && reach <= kMaxRowReach && grid.nx > 2 * reach && grid.ny > 2 * reach &&
+                grid.nz > 2 * reach) {
+                // The cells of a row along x are consecutive slots, scanned as one range (the list
+                // is sorted by particle below, so the order of discovery does not matter). A row
+                // whose cells all lie beyond the list radius in y and z is skipped, and a row is
+                // scanned only over the cells the radius reaches along x from this particle.
+                R gapY2[2 * kMaxRowReach + 1], gapZ2[2 * kMaxRowReach + 1];
+                for (int d = -reach; d <= reach; ++d) {
+                    const R gy = cell_gap(u.y, cy, d) * width.y, gz = cell_gap(u.z, cz, d) * width.z;
+                    gapY2[d + reach] = gy * gy;
+                    gapZ2[d + reach] = gz * gz;
+                }
+                // Offsets that keep u.x -/+ the reach along x positive, where truncation is floor.
+                const int shift = reach + 2;
                 const int batch = v.batch_of_slot(k);
-                for (int dz = -1; dz <= 1; ++dz)
-                    for (int dy = -1; dy <= 1; ++dy) {
-                        const int c = grid.index(cx, CellGrid<R>::periodic(cy + dy, grid.ny),
-                                                 CellGrid<R>::periodic(cz + dz, grid.nz), batch);
-                        scan(v.cellStart[c - 1], v.cellStart[c + 2]);
+                for (int dz = -reach; dz <= reach; ++dz) {
+                    if (gapZ2[dz + reach] >= prune2) continue;
+                    const int pz = CellGrid<R>::periodic(cz + dz, grid.nz);
+                    for (int dy = -reach; dy <= reach; ++dy) {
+                        const R left2 = prune2 - gapY2[dy + reach] - gapZ2[dz + reach];
+                        if (left2 <= R(0)) continue;
+                        const R along = std::sqrt(left2) * grid.cellsPerLength.x;
+                        const int low = static_cast<int>(u.x - along + R(shift)) - shift;
+                        const int high = static_cast<int>(u.x + along + R(shift)) - shift;
+                        int first = low > cx - reach ? low : cx - reach;
+                        int last = high < cx + reach ? high : cx + reach;
+                        const int row = grid.index(0, CellGrid<R>::periodic(cy + dy, grid.ny), pz, batch);
+                        if (first < 0) {
+                            scan(v.cellStart[row + first + grid.nx], v.cellStart[row + grid.nx]);
+                            first = 0;
+                        }
+                        if (last >= grid.nx) {
+                            scan(v.cellStart[row], v.cellStart[row + last - grid.nx + 1]);
+                            last = grid.nx - 1;
+                        }
+                        if (first <= last) scan(v.cellStart[row + first], v.cellStart[row + last + 1]);
                     }
+                }
             } else {
                 grid.for_each_adjacent(cx, cy, cz, v.batch_of_slot(k),
                                        [&](int c) { scan(v.cellStart[c], v.cellStart[c + 1]); });
             }
             const int stored = n < capacity ? n : capacity;
             // In particle order, as operator() leaves it (a list in cell order needs no sort).
-            if (byParticle) std::sort(key, key + stored);
             int* entries = v.entries_of(k);
-            for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = static_cast<int>(static_cast<uint32_t>(key[m]));
+            if (!byParticle) {
+                for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = slot[m];
+            } else if (stored <= kRankedListLimit) {
+                for (int m = 0; m < stored; ++m) particle[m] = order[slot[m]];
+                for (int m = 0; m < stored; ++m) {
+                    const int id = particle[m];
+                    int rank = 0;
+                    for (int other = 0; other < stored; ++other) rank += particle[other] < id;
+                    entries[rank * v.entryStride] = slot[m];
+                }
+            } else {
+                if (keys.size() < static_cast<size_t>(stored)) keys.resize(static_cast<size_t>(stored));
+                for (int m = 0; m < stored; ++m)
+                    keys[m] = static_cast<uint64_t>(static_cast<uint32_t>(order[slot[m]])) << 32 | static_cast<uint32_t>(slot[m]);
+                std::sort(keys.begin(), keys.begin() + stored);
+                for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = static_cast<int>(static_cast<uint32_t>(keys[m]));
+            }
             v.count[k] = n;
             longest = n > longest ? n : longest;
         }

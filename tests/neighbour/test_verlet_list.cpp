@@ -1,6 +1,7 @@
 // The Verlet list against an all-pairs search: every pair within the cutoff must be visited, after
 // builds, after moves that stay under the rebuild threshold, when the list overflows its capacity
-// or a cell is crowded, and in boxes with fewer than three cells per side. The particles' order by
+// or a cell is crowded, in boxes with fewer than three cells per side, and with the CPU's cells half
+// the list radius wide. The particles' order by
 // cell must be a permutation that keeps each cell contiguous and does not depend on thread timing.
 #include <gtest/gtest.h>
 
@@ -123,6 +124,22 @@ TEST(VerletList, SmallBoxesWithOneOrTwoCellsPerSide) {
     expect_complete(t.pairs_within(2.5), t.visited(wide));
 }
 
+TEST(VerletList, CellsHalfTheListRadiusWideWhereEveryAxisHasFiveOrMore) {
+    // List radius 2.2: cells 1.1 wide where every axis has more than 4 of them. With exactly 5
+    // along x every particle's rows wrap around the box on one side or the other; with 4 along
+    // z the grid keeps cells as wide as the list radius (reach 1).
+    System s(400, 5.6, 7.0, 9.0, 13);
+    List fine(s.backend, 2.0, 1.1, PairCondition::all, {}, nullptr, 1, nullptr);
+    expect_complete(s.pairs_within(2.0), s.visited(fine));
+    EXPECT_EQ(fine.view().grid.reach, 2);
+    EXPECT_EQ(fine.view().grid.nx, 5);
+    System t(300, 5.6, 7.0, 4.5, 14);
+    List coarse(t.backend, 2.0, 1.1, PairCondition::all, {}, nullptr, 1, nullptr);
+    expect_complete(t.pairs_within(2.0), t.visited(coarse));
+    EXPECT_EQ(coarse.view().grid.reach, 1);
+    EXPECT_EQ(coarse.view().grid.nx, 2);
+}
+
 TEST(VerletList, DiluteSystemInALargeBoxKeepsTheGridSmall) {
     System s(50, 400.0, 400.0, 400.0, 8);
     for (int64_t i = 0; i < 10; ++i) s.pos.data()[i] = {0.3 * i, 0.0, 0.0, 0.0};  // a close cluster
@@ -183,12 +200,14 @@ TEST(VerletList, SlotsAreAPermutationInCellOrder) {
 }
 
 TEST(VerletList, CompleteWithAGridScannedInChunks) {
-    // 17^3 cells, whose counts are scanned in 52 chunks of 96 cells: the chunks before a cell
-    // must all be counted for its first slot to be right.
+    // 21^3 cells (on the CPU half the list radius wide, 34 a side, then thinned to about twice the
+    // particles), whose counts are scanned in 73 chunks of 128 cells: the chunks before a cell must
+    // all be counted for its first slot to be right.
     System s(6000, 19.0, 19.0, 19.0, 11);
     List list(s.backend, 1.0, 1.1, PairCondition::all, {}, nullptr, 1, nullptr);
     expect_complete(s.pairs_within(1.0), s.visited(list));
-    EXPECT_EQ(list.view().grid.count(), 17 * 17 * 17);
+    EXPECT_EQ(list.view().grid.count(), 21 * 21 * 21);
+    EXPECT_EQ(list.view().grid.reach, 2);
     EXPECT_EQ(list.view().cellStart[list.view().grid.count()], s.n);
 }
 

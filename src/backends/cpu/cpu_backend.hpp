@@ -81,6 +81,9 @@ public:
     // Neighbour lists in index order: force sums independent of the build history, so a restart
     // continues bit for bit (the promise of the CPU backend).
     static constexpr bool ordered_neighbour_lists = true;
+    // Cells half the list radius wide: a core skips the candidates out of a particle's reach
+    // (neighbour/cell_grid.hpp).
+    static constexpr int list_cell_reach = 2;
 
     explicit CpuBackend(int threads) : threads_(threads > 0 ? threads : omp_get_max_threads()) {}
 

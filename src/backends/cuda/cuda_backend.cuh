@@ -110,6 +110,8 @@ public:
     // from 9.5e8 to 5.7e8 particle-steps/s on an H200; on the GPU a restart agrees with the
     // uninterrupted run to rounding instead.
     static constexpr bool ordered_neighbour_lists = false;
+    // Cells as wide as the list radius: a warp's lanes take a cell's members in rounds.
+    static constexpr int list_cell_reach = 1;
 
     explicit CudaBackend(int device) : device_(device) {
         int count = 0;
