@@ -12,6 +12,7 @@
 #include "neighbour/neighbour_view.hpp"
 
 #if SMD_HOST_CODE
+#include <cstring>
 #include <type_traits>
 #include <vector>
 #endif
@@ -118,14 +119,17 @@ struct PairKernel {
     }
 
 #if SMD_HOST_CODE
+    // Running sums of a slot's terms, one per lane of a vector (GCC's and Clang's vector extension).
+    static constexpr int kSums = 4;
+    typedef R Sums __attribute__((vector_size(kSums * sizeof(R))));
+
     // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
-    // one thread, the sums of operator() in the same order. Each slot's separations and pair terms
-    // go first into per-thread arrays, in a loop of independent iterations the compiler vectorises
-    // (a pair beyond the cutoff gets a zero term, a select where vectorised), then they are summed in list
-    // order. flatten: every call inlined (the box's minimum image, the potential), which the inliner
-    // otherwise declines in a body this size. A slot of a group, or whose list overflowed, takes
-    // operator().
-    __attribute__((flatten)) void host_rows(int64_t begin, int64_t end) const {
+    // one thread. Each slot's separations and pair terms go first into per-thread arrays, in a loop
+    // of independent iterations the compiler vectorises (a pair beyond the cutoff gets a zero term, a
+    // select where vectorised), then they are summed in an order fixed by the list. flatten: every
+    // call inlined (the box's minimum image, the potential), which the inliner otherwise declines in
+    // a body this size. A slot of a group, or whose list overflowed, takes operator().
+    SMD_HOST_LOOP void host_rows(int64_t begin, int64_t end) const {
         const NeighbourView<R>& v = neighbours;
         const int capacity = v.capacity > 0 ? v.capacity : 0;
         thread_local std::vector<R> scratch;
@@ -156,8 +160,8 @@ struct PairKernel {
             // turning the minimum image's branches into selects).
             const auto term = [&](int m, const Params& p) {
                 const int s = entries[m];
-                const Vec3<R> rj{positions[s].x, positions[s].y, positions[s].z};
-                const Vec3<R> rij = box.minimum_image(rj - ri);
+                const Vec3<R> rij =
+                    box.minimum_image(Vec3<R>{positions[s].x - ri.x, positions[s].y - ri.y, positions[s].z - ri.z});
                 const PairR r2 = PairR(dot(rij, rij));
                 const bool inside = r2 < p.cutoff2;
                 // Evaluated inside the cutoff only: a potential the compiler cannot vectorise (the
@@ -176,16 +180,53 @@ struct PairKernel {
             } else {
                 for (int m = 0; m < n; ++m) term(m, row[static_cast<int>(positions[entries[m]].w)]);
             }
-            Vec3<R> f{0, 0, 0};
-            R e = 0;
-            Tensor3<R> w = zero_tensor<R>();
-            for (int m = 0; m < n; ++m) {
-                const Vec3<R> rij{dx[m], dy[m], dz[m]};
-                if (WantForce) f += g[m] * rij;
-                if (WantEnergy) e += R(0.5) * u[m];
-                if (WantVirial) w += (R(-0.5) * g[m]) * outer(rij, rij);
+            // Four running sums, entry m into sum m % 4 (a vector's lanes), added pairwise at the
+            // end: an order fixed by the list alone, the same on every machine, whose four chains
+            // of additions run side by side where one chain of n dependent additions bounded the
+            // loop (and which the compiler cannot turn into an in-order reduction by shuffles).
+            Sums fx{}, fy{}, fz{}, e{}, w[9]{};
+            int m = 0;
+            for (; m + kSums <= n; m += kSums) {
+                Sums gm, x, y, z;
+                std::memcpy(&gm, g + m, sizeof(Sums));
+                std::memcpy(&x, dx + m, sizeof(Sums));
+                std::memcpy(&y, dy + m, sizeof(Sums));
+                std::memcpy(&z, dz + m, sizeof(Sums));
+                if (WantForce) {
+                    fx += gm * x;
+                    fy += gm * y;
+                    fz += gm * z;
+                }
+                if (WantEnergy) {
+                    Sums um;
+                    std::memcpy(&um, u + m, sizeof(Sums));
+                    e += R(0.5) * um;
+                }
+                if (WantVirial) {
+                    const Sums h = R(-0.5) * gm, r[3] = {x, y, z};
+                    for (int a = 0; a < 3; ++a)
+                        for (int b = 0; b < 3; ++b) w[3 * a + b] += h * (r[a] * r[b]);
+                }
             }
-            add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
+            for (int lane = 0; m + lane < n; ++lane) {
+                const int last = m + lane;
+                if (WantForce) {
+                    fx[lane] += g[last] * dx[last];
+                    fy[lane] += g[last] * dy[last];
+                    fz[lane] += g[last] * dz[last];
+                }
+                if (WantEnergy) e[lane] += R(0.5) * u[last];
+                if (WantVirial) {
+                    const R h = R(-0.5) * g[last], r[3] = {dx[last], dy[last], dz[last]};
+                    for (int a = 0; a < 3; ++a)
+                        for (int b = 0; b < 3; ++b) w[3 * a + b][lane] += h * (r[a] * r[b]);
+                }
+            }
+            const auto total = [](const Sums& a) { return (a[0] + a[1]) + (a[2] + a[3]); };
+            add_to_outputs<WantForce, WantEnergy, WantVirial>(
+                out, i, Vec3<R>{total(fx), total(fy), total(fz)}, total(e),
+                Tensor3<R>{total(w[0]), total(w[1]), total(w[2]), total(w[3]), total(w[4]), total(w[5]), total(w[6]),
+                           total(w[7]), total(w[8])});
         }
     }
 #endif
