@@ -518,6 +518,46 @@ STRUCTMD_API structmd_status structmd_get_time(const structmd_sim* sim, double* 
 STRUCTMD_API structmd_status structmd_traverse_expression(structmd_sim* sim, const char* compute, double cutoff,
                                                           double* sums, int64_t n);
 
+/**
+ * The number of values per particle that a registered transverser writes (1 for a count, 3 for a
+ * force...): structmd_traverse fills n = values x (number of particles) doubles. Needs no load.
+ *
+ * @param sim          the handle.
+ * @param name         the transverser's name, as a plugin the handle knows registered it
+ *                     (docs/plugins.md, "Transversers").
+ * @param[out] values  its values per particle, >= 1.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for a NULL pointer or a name no plugin of the handle
+ *         registered (the message lists those it knows).
+ */
+STRUCTMD_API structmd_status structmd_transverser_values(structmd_sim* sim, const char* name, int* values);
+
+/**
+ * Runs a transverser that a plugin registered (written in C++ against the Transverser contract,
+ * docs/plugins.md) once, for the current state, and copies each particle's values to the host. The
+ * plugin's code runs on the handle's backend (for CUDA, a plugin compiled with nvcc). The neighbour
+ * list of a cutoff is made at the first call with it and reused after.
+ *
+ * @param sim         the handle.
+ * @param name        the transverser's name.
+ * @param parameters  NULL, "" or a JSON object: the transverser's named parameters (absent ones
+ *                    take their defaults) and, optionally, "group": the name of a group of the force
+ *                    field (["Groups", "GroupsList"]); only its particles are traversed and pair
+ *                    with each other, the others get 0.
+ * @param cutoff      > 0: only the pairs closer than cutoff, found through a neighbour list; 0: every
+ *                    pair (the nearest periodic image, or in an open box the particle itself), at a
+ *                    cost of n^2.
+ * @param[out] out    double[n]: particle i's values at out[values * i ...] (structmd_transverser_values),
+ *                    particles in id order.
+ * @param n           values x the number of particles.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for an unknown name, parameters that are not a JSON
+ *         object, a wrong n or a NULL pointer; STRUCTMD_ERR_INPUT for a parameter it does not take, a
+ *         value that breaks its rule, an unknown group or a negative or non-finite cutoff (the message
+ *         names it); STRUCTMD_ERR_STATE without a load; STRUCTMD_ERR_UNSUPPORTED on a backend the
+ *         plugin was not compiled for, under spatial domains or batches over ranks.
+ */
+STRUCTMD_API structmd_status structmd_traverse(structmd_sim* sim, const char* name, const char* parameters,
+                                               double cutoff, double* out, int64_t n);
+
 /** @} */
 
 /** @name Changing the state

@@ -55,7 +55,8 @@ module structmd
             structmd_get_parameter, structmd_set_force_callback, structmd_set_device_force_callback, &
             structmd_set_callback_error, structmd_get_view, structmd_force_callback, &
             structmd_get_orientations, structmd_set_orientations, structmd_get_torques, &
-            structmd_get_magnetic_moments, structmd_traverse_expression
+            structmd_get_magnetic_moments, structmd_traverse_expression, &
+            structmd_transverser_values, structmd_traverse
 
   public :: structmd_version_f, structmd_last_error_f, structmd_create_f, structmd_load_file_f, &
             structmd_load_string_f, structmd_get_energy_f, structmd_get_ids_f, &
@@ -299,6 +300,26 @@ module structmd
       character(kind=c_char), intent(in) :: compute(*)
       real(c_double), value :: cutoff
       real(c_double), intent(inout) :: sums(*)
+      integer(c_int64_t), value :: n
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_transverser_values(sim, name, values) &
+        bind(C, name="structmd_transverser_values") result(status)
+      import :: c_ptr, c_char, c_int, c_int32_t
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int), intent(out) :: values
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_traverse(sim, name, parameters, cutoff, out, n) &
+        bind(C, name="structmd_traverse") result(status)
+      import :: c_ptr, c_char, c_int32_t, c_int64_t, c_double
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: name(*), parameters(*)
+      real(c_double), value :: cutoff
+      real(c_double), intent(inout) :: out(*)
       integer(c_int64_t), value :: n
       integer(c_int32_t) :: status
     end function

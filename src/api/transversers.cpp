@@ -1,8 +1,10 @@
-// Transversers from the host: an expression transverser run once (SimulationProbes::expression_sum).
+// Transversers from the host: an expression transverser run once (SimulationProbes::expression_sum),
+// and a transverser a plugin registered, run once by name (SimulationProbes::traverse).
 #include <string>
 
 #include "api/handle.hpp"
 #include "simulation/expression_transverser.hpp"
+#include "simulation/transverser_call.hpp"
 
 using namespace structmd;
 using namespace structmd::api;
@@ -17,6 +19,30 @@ structmd_status structmd_traverse_expression(structmd_sim* sim, const char* comp
         require_count(simulation, n, sums, "sums");
         const ExpressionTransverserSpec spec = make_expression_transverser(compute, "compute", cutoff, -1);
         simulation.probes().expression_sum(spec, sums);
+    });
+}
+
+structmd_status structmd_transverser_values(structmd_sim* sim, const char* name, int* values) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        require_pointer(name, "name");
+        require_pointer(values, "values");
+        *values = transverser_values(*s.components, name);
+    });
+}
+
+structmd_status structmd_traverse(structmd_sim* sim, const char* name, const char* parameters, double cutoff,
+                                  double* out, int64_t n) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        Simulation& simulation = loaded(s);
+        require_pointer(name, "name");
+        const TransverserCall call = make_transverser_call(*s.components, name, parameters, cutoff);
+        const int64_t expected = simulation.particle_count() * call.values;
+        if (n != expected)
+            throw Error(STRUCTMD_ERR_ARGUMENT, "n: expected " + std::to_string(expected) + " (" +
+                                                   std::to_string(call.values) + " per particle for transverser '" +
+                                                   call.name + "'), got " + std::to_string(n));
+        require_pointer(out, "out");
+        simulation.probes().traverse(call, out);
     });
 }
 

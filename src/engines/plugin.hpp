@@ -1,6 +1,6 @@
 #pragma once
 // Writing a structmd plugin: a shared library that adds force-field components, used from JSON like
-// the built-in ones (docs/plugins.md). A plugin defines its functors against the same contracts as
+// the built-in ones, and transversers that hosts run by name (docs/plugins.md). A plugin defines its functors against the same contracts as
 // the built-ins (forcefield/pair_potential.hpp, bond_potential.hpp, external_potential.hpp) and
 // registers them by input name:
 //
@@ -8,6 +8,7 @@
 //   struct Buckingham { ... };                                  // a pair functor
 //   STRUCTMD_PLUGIN(registrar) {
 //       registrar.pair<Buckingham>({"NonBonded", "Buckingham"});
+//       registrar.transverser<NeighbourCount>("NeighbourCount");  // transverser_component.hpp
 //   }
 //
 // Registering a component adds its reader entry and its engine factories for every engine type the
@@ -29,6 +30,7 @@
 #include "forcefield/component_set.hpp"
 #include "forcefield/factory_entries.hpp"
 #include "forcefield/reader_entries.hpp"
+#include "transverser/transverser_component.hpp"
 // STRUCTMD_PLUGIN_NO_CUDA: register no CUDA factories even from nvcc (tests the refusal on CUDA).
 #if defined(__CUDACC__) && defined(STRUCTMD_HAVE_CUDA) && !defined(STRUCTMD_PLUGIN_NO_CUDA)
 #include "backends/cuda/cuda_backend.cuh"
@@ -61,7 +63,30 @@ public:
         each_engine([&](auto& entries) { entries.template external<Potential>(key); });
     }
 
+    // A transverser (transverser/transverser_component.hpp) that hosts run by `name` (structmd_traverse).
+    template <class T>
+    void transverser(const std::string& name) {
+        static_assert(T::values >= 1, "a transverser writes at least one number per particle");
+        if (name.empty()) throw Error(STRUCTMD_ERR_ARGUMENT, "a transverser needs a name");
+        for (const TransverserEntry& t : set_.transversers)
+            if (t.name == name) throw Error(STRUCTMD_ERR_ARGUMENT, "transverser '" + name + "' is registered twice");
+        set_.transversers.push_back({name, T::parameters(), T::values});
+        runner_for<T, CpuBackend, float, float>(name);
+        runner_for<T, CpuBackend, double, float>(name);
+        runner_for<T, CpuBackend, double, double>(name);
+#if defined(STRUCTMD_PLUGIN_HAS_CUDA_FACTORIES)
+        runner_for<T, CudaBackend, float, float>(name);
+        runner_for<T, CudaBackend, double, float>(name);
+        runner_for<T, CudaBackend, double, double>(name);
+#endif
+    }
+
 private:
+    template <class T, class B, class R, class PairR>
+    void runner_for(const std::string& name) {
+        set_.template transverser_runners_to_fill<B, R, PairR>().push_back({name, &run_transverser<T, B, R>});
+    }
+
     template <class B, class R, class PairR, class Add>
     void add_for(Add& add) {
         FactoryEntries<B, R, PairR, /*WithHessian=*/false> entries;

@@ -73,7 +73,7 @@ std::shared_ptr<const ComponentSet> load_plugin_library(const std::string& path)
                         (headerStatus ? "" : " with status " + std::to_string(status) + ", which is not a structmd status") +
                         ": " + message);
     }
-    if (set->reader.entries().empty()) throw Error(STRUCTMD_ERR_ARGUMENT, where + ": registers no component");
+    if (set->reader.entries().empty() && set->transversers.empty()) throw Error(STRUCTMD_ERR_ARGUMENT, where + ": registers no component");
     return set;
 }
 

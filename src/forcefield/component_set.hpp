@@ -13,6 +13,7 @@
 #include "forcefield/component_registry.hpp"
 #include "forcefield/forcefield_spec.hpp"
 #include "forcefield/interactor_build.hpp"
+#include "transverser/transverser_component.hpp"
 
 namespace structmd {
 
@@ -27,32 +28,61 @@ struct ComponentSet {
     std::string source;  // where the components came from (a plugin's path), for messages
     Registry<ForceFieldComponent> reader;
 
+    std::vector<TransverserEntry> transversers;
+
     // The factories of engine type <B, R, PairR>, created empty on first use.
     template <class B, class R, class PairR>
     Registry<InteractorFactory<B, R>>& factories_to_fill() {
-        const std::string key = engine_type_key<B, R, PairR>();
-        for (EngineFactories& f : factories_)
-            if (f.engineType == key) return *static_cast<Registry<InteractorFactory<B, R>>*>(f.registry.get());
-        auto registry = std::make_shared<Registry<InteractorFactory<B, R>>>();
-        factories_.push_back({key, registry});
-        return *registry;
+        return slot_to_fill<Registry<InteractorFactory<B, R>>>(factories_, engine_type_key<B, R, PairR>());
     }
 
     // The factories of engine type <B, R, PairR>, or null when the source was not compiled for it.
     template <class B, class R, class PairR>
     const Registry<InteractorFactory<B, R>>* factories() const {
-        const std::string key = engine_type_key<B, R, PairR>();
-        for (const EngineFactories& f : factories_)
-            if (f.engineType == key) return static_cast<const Registry<InteractorFactory<B, R>>*>(f.registry.get());
+        return slot<Registry<InteractorFactory<B, R>>>(factories_, engine_type_key<B, R, PairR>());
+    }
+
+    // The transverser runners of engine type <B, R, PairR>, as the factories.
+    template <class B, class R, class PairR>
+    std::vector<TransverserRunner<B, R>>& transverser_runners_to_fill() {
+        return slot_to_fill<std::vector<TransverserRunner<B, R>>>(runners_, engine_type_key<B, R, PairR>());
+    }
+
+    // The runner of transverser `name` for engine type <B, R, PairR>, or null when the source was
+    // not compiled for it.
+    template <class B, class R, class PairR>
+    const TransverserRunner<B, R>* transverser_runner(const std::string& name) const {
+        if (const auto* runners = slot<std::vector<TransverserRunner<B, R>>>(runners_, engine_type_key<B, R, PairR>()))
+            for (const TransverserRunner<B, R>& r : *runners)
+                if (r.name == name) return &r;
         return nullptr;
     }
 
 private:
-    struct EngineFactories {
+    // What one engine type holds of a kind (its factories, its transverser runners).
+    struct EngineSlot {
         std::string engineType;
-        std::shared_ptr<void> registry;  // Registry<InteractorFactory<B, R>> of that engine type
+        std::shared_ptr<void> held;
     };
-    std::vector<EngineFactories> factories_;
+
+    template <class T>
+    static T& slot_to_fill(std::vector<EngineSlot>& slots, const std::string& key) {
+        for (EngineSlot& s : slots)
+            if (s.engineType == key) return *static_cast<T*>(s.held.get());
+        auto held = std::make_shared<T>();
+        slots.push_back({key, held});
+        return *held;
+    }
+
+    template <class T>
+    static const T* slot(const std::vector<EngineSlot>& slots, const std::string& key) {
+        for (const EngineSlot& s : slots)
+            if (s.engineType == key) return static_cast<const T*>(s.held.get());
+        return nullptr;
+    }
+
+    std::vector<EngineSlot> factories_;  // Registry<InteractorFactory<B, R>> by engine type
+    std::vector<EngineSlot> runners_;    // std::vector<TransverserRunner<B, R>> by engine type
 };
 
 class ForceFieldComponents {
@@ -71,8 +101,35 @@ public:
                                 (other ? "plugin '" + other->source + "'" : std::string("structmd")) +
                                 " already provides");
             }
+        for (const TransverserEntry& t : set->transversers)
+            if (const ComponentSet* other = transverser_source(t.name))
+                throw Error(STRUCTMD_ERR_ARGUMENT, "plugin '" + set->source + "' registers transverser '" + t.name +
+                                                       "', which plugin '" + other->source + "' already provides");
         for (const ForceFieldComponent& c : set->reader.entries()) reader_.add(c);
         sets_.push_back(std::move(set));
+    }
+
+    // The set that registered transverser `name`, or null.
+    const ComponentSet* transverser_source(const std::string& name) const {
+        for (const auto& set : sets_)
+            for (const TransverserEntry& t : set->transversers)
+                if (t.name == name) return set.get();
+        return nullptr;
+    }
+
+    // The set that registered transverser `name` and its entry; ERR_ARGUMENT naming the known ones
+    // when no loaded plugin registered it.
+    std::pair<std::shared_ptr<const ComponentSet>, const TransverserEntry*> transverser(const std::string& name) const {
+        std::string known;
+        for (const auto& set : sets_)
+            for (const TransverserEntry& t : set->transversers) {
+                if (t.name == name) return {set, &t};
+                known += (known.empty() ? "'" : ", '") + t.name + "'";
+            }
+        throw Error(STRUCTMD_ERR_ARGUMENT, "no transverser named '" + name + "' (" +
+                                               (known.empty() ? std::string("no loaded plugin registers one")
+                                                              : "the loaded plugins register " + known) +
+                                               "; docs/plugins.md says how to write one)");
     }
 
     // What the input reader reads with: built-ins, then every added component.

@@ -60,6 +60,15 @@ SMD_HD SMD_INLINE Real4<R> half_kick(Real4<R> v, const Real4<R>& f, R dt) {
     return v;
 }
 
+// The force a kick applies to particle i: the force field's, plus, where an integrator owns forces of
+// its own (DPD's and SPH's pair forces, pair_verlet.hpp), those too (extra: null for none).
+template <class R>
+SMD_HD SMD_INLINE Real4<R> kick_force(const Real4<R>* force, const Real4<R>* extra, int64_t i) {
+    if (!extra) return force[i];
+    const Real4<R> f = force[i], e = extra[i];
+    return {f.x + e.x, f.y + e.y, f.z + e.z, R(0)};
+}
+
 // The half kick that closes an inertial step (velocity Verlet, Langevin GJF) also checks the
 // particle's new state, so a blow-up is recorded in the step that produced it at no extra pass
 // over memory.
@@ -71,9 +80,10 @@ struct ClosingHalfKick {
     const Real4<R>* force;
     R dt;
     FaultSlot fault;
+    const Real4<R>* extraForce = nullptr;  // added to force (kick_force); null: none
     SMD_HD void operator()(int64_t i) const {
         if ((group && !group[i]) || held_fixed(vel[i])) return;
-        const Real4<R> f = force[i];
+        const Real4<R> f = kick_force(force, extraForce, i);
         const Real4<R> v = half_kick(vel[i], f, dt);
         vel[i] = v;
         fault.check(i, pos[i], v, f);

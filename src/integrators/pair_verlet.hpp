@@ -12,6 +12,7 @@
 
 #include "integrators/integrator.hpp"
 #include "integrators/thermal_noise.hpp"
+#include "integrators/velocity_verlet.hpp"
 #include "neighbour/verlet_list.hpp"
 
 namespace structmd {
@@ -21,58 +22,6 @@ struct PairVerletInputs : IntegratorInputs {
     static std::vector<Parameter> parameters() { return {with_default(boolean("resetVelocities"), 1.0)}; }
     // One fluid for every particle, as UAMMD-structured, which refuses more than one batch.
     static constexpr bool oneFluid = true;
-};
-
-template <class R>
-SMD_HD SMD_INLINE Real4<R> total_force(const Real4<R>& fieldForce, const Real4<R>& pairForce) {
-    return {fieldForce.x + pairForce.x, fieldForce.y + pairForce.y, fieldForce.z + pairForce.z, R(0)};
-}
-
-// v += dt/2 F/m; x += dt v, with F the force field's plus the pair forces; the engine's bookkeeping
-// for every particle, moved or not (as VerletKickDrift).
-template <class R>
-struct PairVerletKickDrift {
-    const uint8_t* group;
-    Real4<R>* pos;
-    Image* image;
-    Real4<R>* vel;
-    const Real4<R>* force;
-    const Real4<R>* pairForce;
-    Box<R> box;
-    R dt;
-    FaultSlot fault;
-    DriftBookkeeping<R> bookkeeping;
-    SMD_HD void operator()(int64_t i) const {
-        Real4<R> p = pos[i];
-        if (!(group && !group[i]) && !held_fixed(vel[i])) {
-            const Real4<R> v = half_kick(vel[i], total_force(force[i], pairForce[i]), dt);
-            vel[i] = v;
-            const Vec3<R> move = dt * xyz(v);
-            fault.check_move(i, move);
-            p = displaced(p, move, box, image[i]);
-            pos[i] = p;
-        }
-        bookkeeping(i, p);
-    }
-};
-
-// The closing v += dt/2 F/m, which also checks the particle's new state (as ClosingHalfKick).
-template <class R>
-struct PairVerletClosingKick {
-    const uint8_t* group;
-    const Real4<R>* pos;
-    Real4<R>* vel;
-    const Real4<R>* force;
-    const Real4<R>* pairForce;
-    R dt;
-    FaultSlot fault;
-    SMD_HD void operator()(int64_t i) const {
-        if ((group && !group[i]) || held_fixed(vel[i])) return;
-        const Real4<R> f = total_force(force[i], pairForce[i]);
-        const Real4<R> v = half_kick(vel[i], f, dt);
-        vel[i] = v;
-        fault.check(i, pos[i], v, f);
-    }
 };
 
 template <class B, class R>
@@ -102,14 +51,14 @@ public:
         else if (pairForcesAt_ != p.version)
             update_pair_forces(p);
         restored_.clear();
-        backend_.for_each(p.count, PairVerletKickDrift<R>{s.group, p.pos.data(), p.image.data(), p.vel.data(),
-                                                          p.force.data(), pairForce_.data(), p.box, dt,
-                                                          p.fault_slot(1), p.drift});
+        backend_.for_each(p.count, VerletKickDrift<R>{s.group, p.pos.data(), p.image.data(), p.vel.data(),
+                                                      p.force.data(), p.box, dt, p.fault_slot(1), p.drift,
+                                                      pairForce_.data()});
         forces.positions_moved(s.timeStep, true);
         forces.update_forces();
         update_pair_forces(p);
-        backend_.for_each(p.count, PairVerletClosingKick<R>{s.group, p.pos.data(), p.vel.data(), p.force.data(),
-                                                            pairForce_.data(), dt, p.fault_slot()});
+        backend_.for_each(p.count, ClosingHalfKick<R>{s.group, p.pos.data(), p.vel.data(), p.force.data(), dt,
+                                                      p.fault_slot(), pairForce_.data()});
         // The list's capacity grows from what its builds needed (a host round trip, so now and then);
         // until then a particle with more neighbours is served by scanning its cells.
         if (++stepsSinceAdapt_ >= kStepsBetweenAdapts) {

@@ -9,7 +9,7 @@ struct VelocityVerletInputs : IntegratorInputs {
 };
 
 // Also does the engine's bookkeeping for the evaluation at the new positions, for every particle,
-// moved or not.
+// moved or not. ["DPD","Verlet"] and ["SPH","Verlet"] (pair_verlet.hpp) kick with their pair forces too.
 template <class R>
 struct VerletKickDrift {
     const uint8_t* group;
@@ -21,10 +21,11 @@ struct VerletKickDrift {
     R dt;
     FaultSlot fault;
     DriftBookkeeping<R> bookkeeping;
+    const Real4<R>* extraForce = nullptr;  // added to force (kick_force); null: none
     SMD_HD void operator()(int64_t i) const {
         Real4<R> p = pos[i];
         if (!(group && !group[i]) && !held_fixed(vel[i])) {
-            const Real4<R> v = half_kick(vel[i], force[i], dt);
+            const Real4<R> v = half_kick(vel[i], kick_force(force, extraForce, i), dt);
             vel[i] = v;
             const Vec3<R> move = dt * xyz(v);
             fault.check_move(i, move);

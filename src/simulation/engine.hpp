@@ -99,6 +99,7 @@ public:
         const auto hessianStep = std::find_if(steps_.all.begin(), steps_.all.end(), [](const auto& s) { return s->needs_hessian(); });
         context_.hessian = hessianStep != steps_.all.end();
         forceField_ = make_force_field(spec.forceField, components, nullptr);
+        for (const GroupSpec& g : spec.forceField.groups) groupNames_.push_back(g.name);
         const auto pairForceStep = std::find_if(steps_.all.begin(), steps_.all.end(), [](const auto& s) { return s->needs_pair_forces(); });
         probed_.pairForces = pairForceStep != steps_.all.end();
         if (const std::string term = forceField_.term_without_pair_forces(); probed_.pairForces && !term.empty())
@@ -248,6 +249,7 @@ public:
     double lambda_derivative() override;
     bool has_magnetization() const override { return !p_.magnetization.empty(); }
     void expression_sum(const ExpressionTransverserSpec& spec, double* perParticle) override;  // engine_transversers.hpp
+    void traverse(const TransverserCall& call, double* perParticle) override;                 // engine_transversers.hpp
 
     // DomainMember (engine_domain.hpp)
     void set_step_firing(StepFiring* firing) override { steps_.firing = firing; }
@@ -426,6 +428,11 @@ private:
     ProbeBuffers<B, R> probed_;
     // The expression transversers run so far, by key (ExpressionTransverserSpec::key).
     std::vector<std::pair<std::string, std::unique_ptr<PreparedExpressionSum<B, R>>>> transversers_;
+    // What registered transversers (structmd_traverse) run with: a neighbour list by cutoff, made at
+    // the first run of that cutoff, their output, and the force field's group names.
+    std::vector<std::pair<double, std::shared_ptr<VerletList<B, R>>>> transverserLists_;
+    typename B::template Buffer<R> transverserOut_;
+    std::vector<std::string> groupNames_;
     // A spatial domain's slots (hold_ghosts), and the positions version the ghosts were last
     // refreshed at.
     DomainSlots<B, R> domain_{backend_};

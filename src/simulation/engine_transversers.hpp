@@ -1,11 +1,13 @@
 #pragma once
-// Engine's expression transversers (SimulationProbes::expression_sum): each prepared at its first
-// run (its list, its compiled kernel) and kept by key.
+// Engine's transversers: expression transversers (SimulationProbes::expression_sum), each prepared at
+// its first run (its list, its compiled kernel) and kept by key; and registered transversers
+// (SimulationProbes::traverse), run by the plugin's runner for this backend and precision.
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "simulation/engine.hpp"
+#include "transverser/transverser_component.hpp"
 
 namespace structmd {
 
@@ -22,6 +24,56 @@ void Engine<B, R, PairR>::expression_sum(const ExpressionTransverserSpec& spec, 
     PreparedExpressionSum<B, R>& prepared = *found->second;
     prepared.run(p_, spec.group >= 0 ? forceField_.group(spec.group) : nullptr);
     const std::vector<R> values = io_.download(prepared.output());
+    std::copy(values.begin(), values.end(), perParticle);
+}
+
+template <class B, class R, class PairR>
+void Engine<B, R, PairR>::traverse(const TransverserCall& call, double* perParticle) {
+    const TransverserRunner<B, R>* runner = call.source->template transverser_runner<B, R, PairR>(call.name);
+    if (!runner)
+        throw Error(STRUCTMD_ERR_UNSUPPORTED,
+                    "transverser '" + call.name + "' (from plugin '" + call.source->source + "') has no implementation "
+                    "for the " + B::name + " backend in this precision: that plugin was not compiled for it" +
+                    (std::string(B::name) == "cuda" ? " (build it with CUDA, from a .cu source)" : ""));
+    const uint8_t* group = nullptr;
+    if (call.group != "All") {
+        const auto named = std::find(groupNames_.begin(), groupNames_.end(), call.group);
+        if (named == groupNames_.end())
+            throw input_error(call.path, "no group named '" + call.group + "' (define it in a [\"Groups\", \"GroupsList\"] entry)");
+        group = forceField_.group(static_cast<int>(named - groupNames_.begin()));
+    }
+    backend_.activate();
+    refresh_ghosts();
+    std::shared_ptr<VerletList<B, R>> list;
+    if (call.cutoff > 0) {
+        const auto found = std::find_if(transverserLists_.begin(), transverserLists_.end(),
+                                        [&](const auto& l) { return l.first == call.cutoff; });
+        if (found != transverserLists_.end()) {
+            list = found->second;
+        } else {
+            list = std::make_shared<VerletList<B, R>>(backend_, call.cutoff, 1.1, PairCondition::all, PairFilterInputs{},
+                                                      context_.batch, context_.batches, context_.model);
+            transverserLists_.emplace_back(call.cutoff, list);
+        }
+    }
+    const int64_t n = p_.count;
+    backend_.resize(transverserOut_, n * call.values);
+    backend_.fill(transverserOut_, R(0));
+    if (n > 0) {
+        const TransverserInputs<R> inputs{n, p_.pos.data(), p_.vel.empty() ? nullptr : p_.vel.data(),
+                                          p_.charge.empty() ? nullptr : p_.charge.data(),
+                                          p_.radius.empty() ? nullptr : p_.radius.data(), transverserOut_.data()};
+        NeighbourView<R> view{};
+        if (list) {
+            list->update(p_.pos, n, p_.box, p_.version);
+            view = list->view();
+        }
+        runner->run(TransverserRun<B, R>{backend_, inputs, list ? &view : nullptr, R(call.cutoff * call.cutoff), p_.box,
+                                         group, context_.batch},
+                    call.parameters);
+        if (list) list->adapt();
+    }
+    const std::vector<R> values = io_.download(transverserOut_);
     std::copy(values.begin(), values.end(), perParticle);
 }
 

@@ -114,6 +114,10 @@ public:
         admit(Operation::traversal);
         inner().probes().expression_sum(spec, perParticle);
     }
+    void traverse(const TransverserCall& call, double* perParticle) override {
+        admit(Operation::traversal);
+        inner().probes().traverse(call, perParticle);
+    }
     bool has_magnetization() const override { return inner().probes().has_magnetization(); }
 
 protected:

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "simulation/expression_transverser.hpp"
+#include "simulation/transverser_call.hpp"
 
 namespace structmd {
 
@@ -42,6 +43,13 @@ public:
         (void)perParticle;
         throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ": expression transversers run on one engine, not under "
                                                           "this parallel layout");
+    }
+    // A registered transverser's numbers (call.values per particle), in id order (call.values x n);
+    // particles outside the call's group get 0. The engine keeps the neighbour list of each cutoff.
+    virtual void traverse(const TransverserCall& call, double* perParticle) {
+        (void)perParticle;
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, "transverser '" + call.name + "': transversers run on one engine, "
+                                              "not under this parallel layout");
     }
     // Whether the particles carry magnetic moments (the magnetic trajectory formats and measures).
     virtual bool has_magnetization() const = 0;

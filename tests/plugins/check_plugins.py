@@ -120,7 +120,7 @@ def main():
                            lambda: sim.load(text))
 
     # Refused plugins: another plugin ABI, not a plugin, no file. Nothing of them is loaded.
-    expect_failure(structmd.UnsupportedError, ["plugin ABI 999", "speaks plugin ABI 4", "not loaded"],
+    expect_failure(structmd.UnsupportedError, ["plugin ABI 999", "speaks plugin ABI 5", "not loaded"],
                    lambda: structmd.load_plugin(args.wrong_abi))
     expect_failure(structmd.UnsupportedError, ['option "plugins"', "plugin ABI 999"],
                    lambda: structmd.Simulation({**options, "plugins": [args.wrong_abi]}))

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Installs the build into a scratch prefix, builds the example plugin from outside against it (as
-# written, and with another plugin ABI number), then runs check_plugins.py on the installed library.
-# Usage: check_plugins.sh BUILD SOURCE SCRATCH PYTHON BACKEND
+# Installs the build into a scratch prefix and builds the example plugins (examples/plugins) from
+# outside against it, then checks them on the installed library: CHECK "potential" (the default)
+# builds Yukawa also with another plugin ABI number and runs check_plugins.py; "transversers" runs
+# check_transverser_plugins.py on the three transverser plugins.
+# Usage: check_plugins.sh BUILD SOURCE SCRATCH PYTHON BACKEND [CHECK]
 set -euo pipefail
-build="$1"; source="$2"; scratch="$3"; python="$4"; backend="$5"
+build="$1"; source="$2"; scratch="$3"; python="$4"; backend="$5"; check="${6:-potential}"
 rm -rf "$scratch"
 cmake --install "$build" --prefix "$scratch/prefix" > /dev/null
 configure() {  # configure NAME EXTRA-CMAKE-ARGS...
@@ -13,6 +15,13 @@ configure() {  # configure NAME EXTRA-CMAKE-ARGS...
     cmake --build "$scratch/$name" >> "$scratch/$name.log" 2>&1 || { cat "$scratch/$name.log"; exit 1; }
 }
 configure plugin
+library=$(find "$scratch/prefix" -name 'libstructmd.so' | head -n 1)
+export STRUCTMD_LIBRARY="$library" PYTHONPATH="$source/bindings/python${PYTHONPATH:+:$PYTHONPATH}"
+if [ "$check" = transversers ]; then
+    exec "$python" "$source/tests/plugins/check_transverser_plugins.py" --backend "$backend" \
+        --plugins "$scratch/plugin/neighbour_count.so" "$scratch/plugin/local_density.so" \
+                  "$scratch/plugin/lennard_jones_force.so"
+fi
 # The same plugin, claiming another plugin ABI: the library must refuse it.
 configure wrong_abi -DCMAKE_CXX_FLAGS=-DSTRUCTMD_PLUGIN_ABI_VERSION=999 \
                     -DCMAKE_CUDA_FLAGS=-DSTRUCTMD_PLUGIN_ABI_VERSION=999
@@ -22,8 +31,6 @@ if [ "$backend" = cuda ]; then
     configure cpu_only -DCMAKE_CUDA_FLAGS=-DSTRUCTMD_PLUGIN_NO_CUDA
     args=(--cpu-only "$scratch/cpu_only/yukawa.so")
 fi
-library=$(find "$scratch/prefix" -name 'libstructmd.so' | head -n 1)
-STRUCTMD_LIBRARY="$library" PYTHONPATH="$source/bindings/python${PYTHONPATH:+:$PYTHONPATH}" \
-    "$python" "$source/tests/plugins/check_plugins.py" --backend "$backend" \
+"$python" "$source/tests/plugins/check_plugins.py" --backend "$backend" \
     --plugin "$scratch/plugin/yukawa.so" --wrong-abi "$scratch/wrong_abi/yukawa.so" \
     --not-plugin "$library" --input "$source/examples/plugins/yukawa.json" "${args[@]}"

@@ -86,6 +86,13 @@ def check(sim, status):
     expect(sim, status, OK)
 
 
+def default_options():
+    """Every handle's options here: the test engine's, and the in-tree NeighbourCount transverser
+    plugin (tests/plugins), so that structmd_traverse runs through the header-wide checks."""
+    plugin = os.environ.get("STRUCTMD_TEST_TRANSVERSER_PLUGIN")
+    return {**engine_options(), **({"plugins": [plugin]} if plugin else {})}
+
+
 def create(options):
     out = ffi.new("structmd_sim**")
     status = lib.structmd_create(json.dumps(options).encode(), out)
@@ -177,7 +184,7 @@ def new_handle():
     handles = []
 
     def make(options=None):
-        handles.append(create(engine_options() if options is None else options))
+        handles.append(create(default_options() if options is None else options))
         return handles[-1]
 
     yield make
@@ -222,6 +229,8 @@ def valid_arguments(sim, prototype, n, good_input_file):
         "callback": lambda: ffi.NULL,
         "user_data": lambda: ffi.NULL,
         "view": lambda: ffi.new("structmd_dlpack_tensor**"),
+        "name": lambda: ffi.new("char[]", b"NeighbourCount"),
+        "parameters": lambda: ffi.new("char[]", b"{}"),
     }
     by_type = {
         "structmd_sim*": lambda: sim,
@@ -233,6 +242,7 @@ def valid_arguments(sim, prototype, n, good_input_file):
         "int64_t*": lambda: ffi.new("int64_t[]", 64),
         "int32_t*": lambda: ffi.new("int32_t[]", 64),
         "size_t*": lambda: ffi.new("size_t*"),
+        "int*": lambda: ffi.new("int*"),
     }
     return [by_name[name]() if name in by_name else by_type[c_type]() for c_type, name in prototype[1]]
 
@@ -241,9 +251,9 @@ HANDLE_FUNCTIONS = sorted(name for name, (_, params) in PROTOTYPES.items()
                           if params and params[0][0] == "structmd_sim*"
                           and name not in ("structmd_destroy", "structmd_last_error"))
 NEEDS_LOADED = sorted(set(HANDLE_FUNCTIONS) - {"structmd_load_file", "structmd_load_string", "structmd_get_info",
-                                                "structmd_set_callback_error"})
+                                                "structmd_set_callback_error", "structmd_transverser_values"})
 NULLABLE = {("structmd_get_info", "needed"), ("structmd_set_force_callback", "user_data"),
-            ("structmd_set_device_force_callback", "user_data")}  # optional pointers
+            ("structmd_set_device_force_callback", "user_data"), ("structmd_traverse", "parameters")}  # optional pointers
 POINTER_ARGUMENTS = sorted((name, index, param_name)
                            for name in HANDLE_FUNCTIONS
                            for index, (c_type, param_name) in enumerate(PROTOTYPES[name][1])
@@ -1125,6 +1135,38 @@ def test_traverse_expression_sums_over_pairs_by_minimum_image(loaded):
     assert lib.structmd_traverse_expression(loaded, b"r < q", 3.0, sums, n) == INPUT
     assert "unknown variable 'q'" in ffi.string(lib.structmd_last_error(loaded)).decode()
     assert list(sums) == before
+
+
+def test_traverse_runs_a_plugin_transverser_and_refuses_unknown_names(new_handle, loaded):
+    """structmd_traverse with the NeighbourCount plugin every handle here loads: neighbour counts
+    against numpy by minimum image; structmd_transverser_values needs no load; a handle without the
+    plugin refuses the name, saying that no loaded plugin registers one, and writes nothing."""
+    if not os.environ.get("STRUCTMD_TEST_TRANSVERSER_PLUGIN"):
+        pytest.skip("STRUCTMD_TEST_TRANSVERSER_PLUGIN not set (ctest sets it)")
+    p = np.array(systems.BASE_POSITIONS)
+    d = p[None, :, :] - p[:, None, :]
+    d -= systems.BASE_BOX * np.round(d / systems.BASE_BOX)
+    r = np.linalg.norm(d, axis=2)
+    np.fill_diagonal(r, np.inf)
+    n = len(p)
+    out = ffi.new("double[]", n)
+    check(loaded, lib.structmd_traverse(loaded, b"NeighbourCount", ffi.NULL, 3.0, out, n))
+    np.testing.assert_array_equal(list(out), np.sum(r < 3.0, axis=1))
+    check(loaded, lib.structmd_traverse(loaded, b"NeighbourCount", b"", 0.0, out, n))
+    assert list(out) == [n - 1] * n
+    values = ffi.new("int*", -1)
+    unloaded = new_handle()
+    check(unloaded, lib.structmd_transverser_values(unloaded, b"NeighbourCount", values))
+    assert values[0] == 1
+
+    bare = new_handle(engine_options())
+    assert lib.structmd_transverser_values(bare, b"NeighbourCount", values) == ARGUMENT
+    assert "no loaded plugin registers one" in ffi.string(lib.structmd_last_error(bare)).decode()
+    load(bare, systems.lj_bond_system())
+    untouched = ffi.new("double[]", [7.0] * n)
+    assert lib.structmd_traverse(bare, b"NeighbourCount", ffi.NULL, 3.0, untouched, n) == ARGUMENT
+    assert "no transverser named 'NeighbourCount'" in ffi.string(lib.structmd_last_error(bare)).decode()
+    assert list(untouched) == [7.0] * n
 
 
 def test_every_header_function_was_called(request):

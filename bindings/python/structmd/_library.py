@@ -61,6 +61,8 @@ SIGNATURES: Dict[str, Tuple[Any, List[Any]]] = {
     "structmd_get_step": (STATUS_T, [HANDLE_T, POINTER(c_int64)]),
     "structmd_get_time": (STATUS_T, [HANDLE_T, POINTER(c_double)]),
     "structmd_traverse_expression": (STATUS_T, [HANDLE_T, c_char_p, c_double, POINTER(c_double), c_int64]),
+    "structmd_transverser_values": (STATUS_T, [HANDLE_T, c_char_p, POINTER(c_int)]),
+    "structmd_traverse": (STATUS_T, [HANDLE_T, c_char_p, c_char_p, c_double, POINTER(c_double), c_int64]),
     "structmd_set_positions": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
     "structmd_set_velocities": (STATUS_T, [HANDLE_T, POINTER(c_double), c_int64]),
     "structmd_set_box": (STATUS_T, [HANDLE_T, POINTER(c_double)]),

@@ -9,7 +9,7 @@ import os
 import sys
 import time as _time
 from collections.abc import Mapping
-from ctypes import POINTER, byref, cast, c_double, c_int32, c_int64, c_size_t, c_void_p, create_string_buffer
+from ctypes import POINTER, byref, cast, c_double, c_int, c_int32, c_int64, c_size_t, c_void_p, create_string_buffer
 from typing import (TYPE_CHECKING, Any, Callable, Dict, Iterable, Literal, Optional, SupportsIndex,
                     TextIO, Tuple, TypeVar, Union)
 
@@ -651,6 +651,26 @@ class Simulation:
         def call(handle: c_void_p, pointer: Any, n: int) -> int:
             return int(lib.structmd_traverse_expression(handle, compute.encode(), c_double(cutoff), pointer, n))
         return self._get_array(call, c_double, "float64", 1)
+
+    def transverser_values(self, name: str) -> int:
+        """How many numbers per particle the transverser name (registered by a loaded plugin) writes.
+        Raises ArgumentError for a name no plugin of this handle registered."""
+        values = c_int()
+        self._call(lib.structmd_transverser_values, name.encode(), byref(values))
+        return values.value
+
+    def traverse(self, name: str, cutoff: float = 0.0,
+                 parameters: Optional[Mapping[str, Any]] = None) -> FloatArray:
+        """Runs the transverser name, registered by a loaded plugin (docs/plugins.md), once over the
+        pairs closer than cutoff (a neighbour list), or every pair for cutoff 0: shape (n,) for one
+        value per particle, else (n, values), id order. parameters: its named parameters and,
+        optionally, "group" (a force-field group; the other particles get 0). Raises ArgumentError
+        for an unknown name, InputError for a bad parameter or cutoff, StateError before a load."""
+        values = self.transverser_values(name)
+        text = json.dumps(dict(parameters)).encode() if parameters else None
+        def call(handle: c_void_p, pointer: Any, n: int) -> int:
+            return int(lib.structmd_traverse(handle, name.encode(), text, c_double(cutoff), pointer, values * n))
+        return self._get_array(call, c_double, "float64", values)
 
     # ---- global quantities -------------------------------------------------------------------
 
