@@ -133,12 +133,13 @@ struct PairKernel {
         const NeighbourView<R>& v = neighbours;
         const int capacity = v.capacity > 0 ? v.capacity : 0;
         thread_local std::vector<R> scratch;
-        if (scratch.size() < 5 * static_cast<size_t>(capacity)) scratch.resize(5 * static_cast<size_t>(capacity));
+        if (scratch.size() < 6 * static_cast<size_t>(capacity)) scratch.resize(6 * static_cast<size_t>(capacity));
         R* const dx = scratch.data();
         R* const dy = dx + capacity;
         R* const dz = dy + capacity;
         R* const g = dz + capacity;  // dU/dr / r, 0 beyond the cutoff
         R* const u = g + capacity;   // U, 0 beyond the cutoff
+        R* const within = u + capacity;  // 1 within the cutoff, else 0
         // One type and one table: the same parameters for every pair, kept out of the loop.
         const bool oneTable = table.ntypes == 1 && table.batch == nullptr;
         for (int64_t k = begin; k < end; ++k) {
@@ -173,6 +174,7 @@ struct PairKernel {
                 dz[m] = rij.z;
                 g[m] = inside ? R(t.dudr_over_r) : R(0);
                 if (WantEnergy) u[m] = inside ? R(t.energy) : R(0);
+                within[m] = inside ? R(1) : R(0);
             };
             if (oneTable) {
 #pragma omp simd
@@ -180,13 +182,26 @@ struct PairKernel {
             } else {
                 for (int m = 0; m < n; ++m) term(m, row[static_cast<int>(positions[entries[m]].w)]);
             }
-            // Four running sums, entry m into sum m % 4 (a vector's lanes), added pairwise at the
-            // end: an order fixed by the list alone, the same on every machine, whose four chains
-            // of additions run side by side where one chain of n dependent additions bounded the
-            // loop (and which the compiler cannot turn into an in-order reduction by shuffles).
+            // The terms of the pairs within the cutoff, moved to the front in list order: which pairs
+            // those are, and so the sums below, depend on the positions alone, not on which pairs
+            // beyond the cutoff the list happens to hold (a rebuild at another step, a restart, a
+            // spatial domain's list).
+            int kept = 0;
+            for (int m = 0; m < n; ++m) {
+                dx[kept] = dx[m];
+                dy[kept] = dy[m];
+                dz[kept] = dz[m];
+                g[kept] = g[m];
+                if (WantEnergy) u[kept] = u[m];
+                kept += within[m] != R(0);
+            }
+            // Four running sums, term m into sum m % 4 (a vector's lanes), added pairwise at the
+            // end: an order fixed by those pairs alone, the same on every machine, whose four
+            // chains of additions run side by side where one chain of dependent additions bounded
+            // the loop (and which the compiler cannot turn into an in-order reduction by shuffles).
             Sums fx{}, fy{}, fz{}, e{}, w[9]{};
             int m = 0;
-            for (; m + kSums <= n; m += kSums) {
+            for (; m + kSums <= kept; m += kSums) {
                 Sums gm, x, y, z;
                 std::memcpy(&gm, g + m, sizeof(Sums));
                 std::memcpy(&x, dx + m, sizeof(Sums));
@@ -208,7 +223,7 @@ struct PairKernel {
                         for (int b = 0; b < 3; ++b) w[3 * a + b] += h * (r[a] * r[b]);
                 }
             }
-            for (int lane = 0; m + lane < n; ++lane) {
+            for (int lane = 0; m + lane < kept; ++lane) {
                 const int last = m + lane;
                 if (WantForce) {
                     fx[lane] += g[last] * dx[last];
