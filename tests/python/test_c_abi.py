@@ -1117,14 +1117,21 @@ def test_view_describes_the_engines_array(loaded):
 
 # ---- coverage of the header --------------------------------------------------------------------
 
-def test_traverse_expression_sums_over_pairs_by_minimum_image(loaded):
-    """structmd_traverse_expression: each particle's sum of an expression over its pairs, against
-    numpy over every minimum image, with a neighbour list (cutoff) and over all pairs (0)."""
+def base_separations():
+    """The base system's positions, minimum-image separations d[i, j] = r_j - r_i and distances
+    (infinite on the diagonal)."""
     p = np.array(systems.BASE_POSITIONS)
     d = p[None, :, :] - p[:, None, :]
     d -= systems.BASE_BOX * np.round(d / systems.BASE_BOX)
     r = np.linalg.norm(d, axis=2)
     np.fill_diagonal(r, np.inf)
+    return p, d, r
+
+
+def test_traverse_expression_sums_over_pairs_by_minimum_image(loaded):
+    """structmd_traverse_expression: each particle's sum of an expression over its pairs, against
+    numpy over every minimum image, with a neighbour list (cutoff) and over all pairs (0)."""
+    p, d, r = base_separations()
     n = len(p)
     sums = ffi.new("double[]", n)
     check(loaded, lib.structmd_traverse_expression(loaded, b"r < 3", 3.0, sums, n))
@@ -1143,11 +1150,7 @@ def test_traverse_runs_a_plugin_transverser_and_refuses_unknown_names(new_handle
     plugin refuses the name, saying that no loaded plugin registers one, and writes nothing."""
     if not os.environ.get("STRUCTMD_TEST_TRANSVERSER_PLUGIN"):
         pytest.skip("STRUCTMD_TEST_TRANSVERSER_PLUGIN not set (ctest sets it)")
-    p = np.array(systems.BASE_POSITIONS)
-    d = p[None, :, :] - p[:, None, :]
-    d -= systems.BASE_BOX * np.round(d / systems.BASE_BOX)
-    r = np.linalg.norm(d, axis=2)
-    np.fill_diagonal(r, np.inf)
+    p, d, r = base_separations()
     n = len(p)
     out = ffi.new("double[]", n)
     check(loaded, lib.structmd_traverse(loaded, b"NeighbourCount", ffi.NULL, 3.0, out, n))
