@@ -12,6 +12,8 @@
 #include "neighbour/neighbour_view.hpp"
 
 #if SMD_HOST_CODE
+#include "core/left_pack.hpp"
+
 #include <cstring>
 #include <type_traits>
 #include <vector>
@@ -124,23 +126,38 @@ struct PairKernel {
     typedef R Sums __attribute__((vector_size(kSums * sizeof(R))));
 
     // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
-    // one thread. Each slot's separations and pair terms go first into per-thread arrays, in a loop
-    // of independent iterations the compiler vectorises (a pair beyond the cutoff gets a zero term, a
-    // select where vectorised), then they are summed in an order fixed by the list. flatten: every
-    // call inlined (the box's minimum image, the potential), which the inliner otherwise declines in
-    // a body this size. A slot of a group, or whose list overflowed, takes operator().
+    // one thread. Each slot in three passes over per-thread arrays, the first and last of independent
+    // iterations the compiler vectorises: the separations of every list entry, those within the
+    // cutoff moved to the front (core/left_pack.hpp), and the pair terms of those alone.
+    // Their sums then run in an order fixed by the pairs within the cutoff: the same after a rebuild
+    // at another step, a restart, or in a spatial domain's list, whatever pairs beyond the cutoff
+    // the list happens to hold. flatten: every call inlined (the box's minimum image, the
+    // potential), which the inliner otherwise declines in a body this size. A slot of a group, or
+    // whose list overflowed, takes operator().
     SMD_HOST_LOOP void host_rows(int64_t begin, int64_t end) const {
+        constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
         const NeighbourView<R>& v = neighbours;
         const int capacity = v.capacity > 0 ? v.capacity : 0;
+        const size_t length = static_cast<size_t>(LeftPack<R>::padded(capacity));
         thread_local std::vector<R> scratch;
-        if (scratch.size() < 6 * static_cast<size_t>(capacity)) scratch.resize(6 * static_cast<size_t>(capacity));
+        if (scratch.size() < 10 * length) scratch.resize(10 * length);
+        // By list entry, then packed: the separation, its square, and what the potential reads of
+        // the partner (its type, when the types differ; its charge; its radius).
         R* const dx = scratch.data();
-        R* const dy = dx + capacity;
-        R* const dz = dy + capacity;
-        R* const g = dz + capacity;  // dU/dr / r, 0 beyond the cutoff
-        R* const u = g + capacity;   // U, 0 beyond the cutoff
-        R* const within = u + capacity;  // 1 within the cutoff, else 0
-        // One type and one table: the same parameters for every pair, kept out of the loop.
+        R* const dy = dx + length;
+        R* const dz = dy + length;
+        R* const r2 = dz + length;
+        R* const typeJ = r2 + length;
+        R* const chargeJ = typeJ + length;
+        R* const radiusJ = chargeJ + length;
+        R* const within = radiusJ + length;  // 1 within the cutoff, else 0
+        R* const g = within + length;         // dU/dr / r of the packed pairs
+        R* const u = g + length;              // U of the packed pairs
+        R* packed[7] = {dx, dy, dz, r2, typeJ};
+        int packedArrays = 5;
+        if (charges) packed[packedArrays++] = chargeJ;
+        if (radii) packed[packedArrays++] = radiusJ;
+        // One type and one table: the same parameters for every pair, kept out of the loops.
         const bool oneTable = table.ntypes == 1 && table.batch == nullptr;
         for (int64_t k = begin; k < end; ++k) {
             const int n = v.count[k];
@@ -159,46 +176,45 @@ struct PairKernel {
             const Params first = row[0];
             // Element by element (no copies of whole structures, which keep the compiler from
             // turning the minimum image's branches into selects).
-            const auto term = [&](int m, const Params& p) {
+            const auto separation = [&](int m) {
                 const int s = entries[m];
                 const Vec3<R> rij =
                     box.minimum_image(Vec3<R>{positions[s].x - ri.x, positions[s].y - ri.y, positions[s].z - ri.z});
-                const PairR r2 = PairR(dot(rij, rij));
-                const bool inside = r2 < p.cutoff2;
-                // Evaluated inside the cutoff only: a potential the compiler cannot vectorise (the
-                // interpreted expression) then costs what it did in operator().
-                PairTerm<PairR> t{PairR(0), PairR(0)};
-                if (inside) t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, order[s]);
                 dx[m] = rij.x;
                 dy[m] = rij.y;
                 dz[m] = rij.z;
-                g[m] = inside ? R(t.dudr_over_r) : R(0);
-                if (WantEnergy) u[m] = inside ? R(t.energy) : R(0);
-                within[m] = inside ? R(1) : R(0);
+                r2[m] = dot(rij, rij);
+                typeJ[m] = positions[s].w;
+                if (charges) chargeJ[m] = charge[order[s]];
+                if (radii) radiusJ[m] = radius[order[s]];
+                within[m] = PairR(r2[m]) < first.cutoff2 ? R(1) : R(0);
+            };
+#pragma omp simd
+            for (int m = 0; m < n; ++m) separation(m);
+            if (!oneTable) {
+                for (int m = 0; m < n; ++m)
+                    within[m] = PairR(r2[m]) < row[static_cast<int>(typeJ[m])].cutoff2 ? R(1) : R(0);
+            }
+            for (int m = n; m < LeftPack<R>::padded(n); ++m) within[m] = R(0);
+            const int kept = LeftPack<R>::pack(packed, packedArrays, within, n);
+            const auto term = [&](int c, const Params& p) {
+                const PairTerm<PairR> t = evaluate_pair<Potential>(
+                    PairR(r2[c]), p, charges ? PairR(charge[i] * chargeJ[c]) : PairR(0), radii ? PairR(radius[i]) : PairR(0),
+                    radii ? PairR(radiusJ[c]) : PairR(0));
+                g[c] = R(t.dudr_over_r);
+                if (WantEnergy) u[c] = R(t.energy);
             };
             if (oneTable) {
 #pragma omp simd
-                for (int m = 0; m < n; ++m) term(m, first);
+                for (int c = 0; c < kept; ++c) term(c, first);
             } else {
-                for (int m = 0; m < n; ++m) term(m, row[static_cast<int>(positions[entries[m]].w)]);
-            }
-            // The terms of the pairs within the cutoff, moved to the front in list order: which pairs
-            // those are, and so the sums below, depend on the positions alone, not on which pairs
-            // beyond the cutoff the list happens to hold (a rebuild at another step, a restart, a
-            // spatial domain's list).
-            int kept = 0;
-            for (int m = 0; m < n; ++m) {
-                dx[kept] = dx[m];
-                dy[kept] = dy[m];
-                dz[kept] = dz[m];
-                g[kept] = g[m];
-                if (WantEnergy) u[kept] = u[m];
-                kept += within[m] != R(0);
+                for (int c = 0; c < kept; ++c) term(c, row[static_cast<int>(typeJ[c])]);
             }
             // Four running sums, term m into sum m % 4 (a vector's lanes), added pairwise at the
-            // end: an order fixed by those pairs alone, the same on every machine, whose four
-            // chains of additions run side by side where one chain of dependent additions bounded
-            // the loop (and which the compiler cannot turn into an in-order reduction by shuffles).
+            // end: an order fixed by the pairs within the cutoff alone, the same on every machine,
+            // whose four chains of additions run side by side where one chain of dependent additions
+            // bounded the loop (and which the compiler cannot turn into an in-order reduction by
+            // shuffles).
             Sums fx{}, fy{}, fz{}, e{}, w[9]{};
             int m = 0;
             for (; m + kSums <= kept; m += kSums) {
