@@ -15,8 +15,11 @@
 #include "state/slot_mirror.hpp"
 
 #if SMD_HOST_CODE
+#include "core/left_pack.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 #endif
 
@@ -266,13 +269,16 @@ struct BuildLists {
         if (!control[kRebuild]) return;
         const NeighbourView<R>& v = view;
         const int capacity = v.capacity > 0 ? v.capacity : 0;
-        // One spare place past the capacity: a candidate beyond it is written there and dropped.
+        // Eight spare places past the capacity: a block of candidates beyond it is written there and
+        // dropped.
         thread_local std::vector<int> particles, slots;
         thread_local std::vector<uint64_t> keys;
+        thread_local std::vector<int16_t> keys16;
         thread_local std::vector<R> distance2;
-        if (particles.size() < static_cast<size_t>(capacity) + 1) {
-            particles.resize(static_cast<size_t>(capacity) + 1);
-            slots.resize(static_cast<size_t>(capacity) + 1);
+        if (slots.size() < static_cast<size_t>(capacity) + 8) {
+            particles.resize(static_cast<size_t>(capacity) + 8);
+            keys16.resize(static_cast<size_t>(capacity) + 8);
+            slots.resize(static_cast<size_t>(capacity) + 8);
         }
         int* const particle = particles.data();
         int* const slot = slots.data();
@@ -286,35 +292,48 @@ struct BuildLists {
         const Vec3<R> width{R(1) / v.grid.cellsPerLength.x, R(1) / v.grid.cellsPerLength.y,
                             R(1) / v.grid.cellsPerLength.z};
         const bool trivial = v.filter.trivial();
+        const int slotCount =
+            v.cellStart[static_cast<int64_t>(v.grid.nx) * v.grid.ny * v.grid.nz * v.grid.batches];
         int longest = 0;
         for (int64_t k = begin; k < end; ++k) {
             const Vec3<R> rk = xyz(positions[k]);
             int n = 0;
-            // Candidates s in first .. last - 1: their squared distances first, in a loop of their
-            // own that the compiler vectorises, then the accepted ones appended without a branch.
+            // Candidates s in first .. last - 1.
             const auto scan = [&](int first, int last) {
-                if (distance2.size() < static_cast<size_t>(last - first)) distance2.resize(static_cast<size_t>(last - first) * 2);
-                R* const d2 = distance2.data();
-                // No `omp simd` here: g++ 12 then declines the loop ("no vectype"), which it
-                // vectorises on its own.
                 const Real4<R>* const candidate = positions + first;
                 const int candidates = last - first;
                 const Box<R> cellBox = box;
                 const R x = rk.x, y = rk.y, z = rk.z;
-                for (int m = 0; m < candidates; ++m) {
+                const auto distance2_of = [&](int m) {
                     const Vec3<R> d = cellBox.minimum_image(
                         Vec3<R>{candidate[m].x - x, candidate[m].y - y, candidate[m].z - z});
-                    d2[m] = dot(d, d);
+                    return dot(d, d);
+                };
+                if (trivial && last + 7 <= slotCount) {
+                    // Eight candidates at a time, reading up to seven slots past the last (a row
+                    // holds about ten: a vectorised loop's set-up and scalar tail would cost more
+                    // than the loop), the accepted ones appended without a branch (a branch on the
+                    // distance is mispredicted about half the time).
+                    for (int m = 0; m < candidates; m += 8) {
+                        unsigned accepted = 0;
+                        for (int e = 0; e < 8; ++e)
+                            accepted |= static_cast<unsigned>((distance2_of(m + e) < radius2) & (first + m + e != k) &
+                                                              (e < candidates - m))
+                                        << e;
+                        n += LeftPack<int32_t>::append_indices(slot + (n < capacity ? n : capacity), first + m, accepted);
+                    }
+                    return;
                 }
-                const auto append = [&](int s, bool accepted) {
+                // The squared distances first, in a loop of their own that the compiler
+                // vectorises (no `omp simd`: g++ 12 then declines it, "no vectype"), then the
+                // accepted ones appended.
+                if (distance2.size() < static_cast<size_t>(candidates)) distance2.resize(static_cast<size_t>(candidates) * 2);
+                R* const d2 = distance2.data();
+                for (int m = 0; m < candidates; ++m) d2[m] = distance2_of(m);
+                for (int s = first; s < last; ++s) {
+                    const bool accepted = d2[s - first] < radius2 && s != k && (trivial || v.accepts(static_cast<int>(k), s));
                     slot[n < capacity ? n : capacity] = s;
                     n += accepted;
-                };
-                if (trivial) {
-                    for (int s = first; s < last; ++s) append(s, d2[s - first] < radius2 && s != k);
-                } else {
-                    for (int s = first; s < last; ++s)
-                        append(s, d2[s - first] < radius2 && v.accepts(static_cast<int>(k), s));
                 }
             };
             int cx, cy, cz;
@@ -376,12 +395,30 @@ struct BuildLists {
             if (!byParticle) {
                 for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = slot[m];
             } else if (stored <= kRankedListLimit) {
-                for (int m = 0; m < stored; ++m) particle[m] = order[slot[m]];
+                int low = std::numeric_limits<int>::max(), high = std::numeric_limits<int>::min();
                 for (int m = 0; m < stored; ++m) {
-                    const int id = particle[m];
-                    int rank = 0;
-                    for (int other = 0; other < stored; ++other) rank += particle[other] < id;
-                    entries[rank * v.entryStride] = slot[m];
+                    particle[m] = order[slot[m]];
+                    low = particle[m] < low ? particle[m] : low;
+                    high = particle[m] > high ? particle[m] : high;
+                }
+                if (stored > 0 && high - low <= std::numeric_limits<int16_t>::max()) {
+                    // Particles within 32,768 of each other (every list of a system that small):
+                    // their counts in 16-bit lanes, twice as many a vector.
+                    int16_t* const key = keys16.data();
+                    for (int m = 0; m < stored; ++m) key[m] = static_cast<int16_t>(particle[m] - low);
+                    for (int m = 0; m < stored; ++m) {
+                        const int16_t id = key[m];
+                        int16_t rank = 0;
+                        for (int other = 0; other < stored; ++other) rank += key[other] < id;
+                        entries[rank * v.entryStride] = slot[m];
+                    }
+                } else {
+                    for (int m = 0; m < stored; ++m) {
+                        const int id = particle[m];
+                        int rank = 0;
+                        for (int other = 0; other < stored; ++other) rank += particle[other] < id;
+                        entries[rank * v.entryStride] = slot[m];
+                    }
                 }
             } else {
                 if (keys.size() < static_cast<size_t>(stored)) keys.resize(static_cast<size_t>(stored));
