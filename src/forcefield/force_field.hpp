@@ -79,6 +79,7 @@ public:
         for (const auto& list : lists_)
             if (const int* slots = list->slot_of(p.pos.data(), p.count)) {
                 drift.slotOf = slots;
+                drift.slots = p.count;
                 drift.mirror = list->mirror();
                 mirrored_ = list.get();
                 return;

@@ -21,6 +21,14 @@ struct SlotMirror {
     R halfSkin2 = R(0);
     int* control = nullptr;
 
+#if !defined(__CUDA_ARCH__) && defined(__GNUC__)
+    // Asks the CPU's caches for what record(slot, ...) will touch.
+    void prefetch(int64_t slot) const {
+        __builtin_prefetch(binned + slot);
+        __builtin_prefetch(positions + slot, 1);
+    }
+#endif
+
     SMD_HD SMD_INLINE void record(int64_t slot, const Real4<R>& p) const {
         positions[slot] = p;
         const Vec3<R> d = box.minimum_image(xyz(p) - xyz(binned[slot]));
