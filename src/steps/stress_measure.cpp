@@ -6,6 +6,7 @@
 
 #include "core/box.hpp"
 #include "core/error.hpp"
+#include "core/periodic_box.hpp"
 #include "neighbour/cell_grid.hpp"
 
 namespace structmd {
@@ -124,6 +125,7 @@ namespace {
 std::unique_ptr<SimulationStep> make(const StepInput& in) {
     const double radius = in.parameters.number("radiusCutOff");
     const auto& box = in.system.box;
+    require_periodic_box({box[0], box[1], box[2]}, in.path + ".type", "[\"MechanicalMeasure\", \"StressMeasure\"]'s cells");
     const double halfBox = half_shortest_edge(box[0], box[1], box[2]);
     if (radius >= halfBox) {
         std::ostringstream what;
