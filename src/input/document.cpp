@@ -200,7 +200,8 @@ double read_box_length(const TrackedNode& cell) {
         if (length > 0.0 && length <= kLargestBoxLength) return length;
     }
     throw input_error(cell.path(), "box length must be > 0 and <= 1e15, or 0 or \"inf\" for an open "
-                                   "(non-periodic) axis, got " + cell.json().dump());
+                                   "(non-periodic) axis: expected such a number or \"inf\", got " +
+                                       cell.json().dump());
 }
 
 // ["Ensemble","NVT"], or ["Ensemble","NVTlambda"]: the same with the coupling parameter lambda of

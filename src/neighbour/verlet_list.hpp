@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/error.hpp"
 #include "neighbour/cluster_list_kernels.hpp"
 #include "neighbour/pair_filter_inputs.hpp"
 #include "neighbour/verlet_list_kernels.hpp"

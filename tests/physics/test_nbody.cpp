@@ -328,9 +328,22 @@ TEST(NBody, SetBoxOpensAnAxis) {
     }
     ASSERT_STRUCTMD_OK(sim.get(), structmd_step(sim.get(), 10));
     const double bad[3] = {10.0, -1.0, 10.0};
-    EXPECT_NE(structmd_set_box(sim.get(), bad), STRUCTMD_OK);
+    EXPECT_EQ(structmd_set_box(sim.get(), bad), STRUCTMD_ERR_ARGUMENT);
     EXPECT_NE(std::string(structmd_last_error(sim.get())).find("lengths[1]"), std::string::npos)
         << structmd_last_error(sim.get());
+    // A term over a Verlet list keeps the box periodic: opening an axis is refused, nothing changed.
+    SimHandle listed = load(document(bodies, "20, 20, 20",
+                                     "\"nl\": {\"type\": [\"VerletConditionalListSet\", \"all\"]},\n"
+                                     "\"dh\": {\"type\": [\"NonBonded\", \"DebyeHuckel\"], \"parameters\": "
+                                     "{\"cutOffFactor\": 2.0, \"dielectricConstant\": 1.0, \"debyeLength\": 1.0, "
+                                     "\"condition\": \"all\"}}"));
+    ASSERT_TRUE(listed);
+    EXPECT_EQ(structmd_set_box(listed.get(), open), STRUCTMD_ERR_ARGUMENT);
+    EXPECT_NE(std::string(structmd_last_error(listed.get())).find("NBody"), std::string::npos)
+        << structmd_last_error(listed.get());
+    ASSERT_STRUCTMD_OK(listed.get(), structmd_get_box(listed.get(), lengths.data()));
+    EXPECT_EQ(lengths, (std::array<double, 3>{20.0, 20.0, 20.0}));
+    ASSERT_STRUCTMD_OK(listed.get(), structmd_step(listed.get(), 10));
 }
 
 void expect_error(const std::string& input, const std::vector<std::string>& fragments) {
