@@ -466,8 +466,9 @@ STRUCTMD_API structmd_status structmd_get_temperature(structmd_sim* sim, double*
 
 /**
  * @param sim            the handle.
- * @param[out] lengths   box edge lengths Lx, Ly, Lz; the box is orthorhombic, periodic in x, y and
- *                       z, and spans [-L/2, L/2).
+ * @param[out] lengths   box edge lengths Lx, Ly, Lz; the box is orthorhombic and spans [-L/2, L/2)
+ *                       along each periodic axis; an open (non-periodic) axis reads as infinity
+ *                       (INFINITY), given as 0 or "inf" in the input or by structmd_set_box.
  * @return STRUCTMD_OK; STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_get_box(structmd_sim* sim, double lengths[3]);
@@ -602,12 +603,16 @@ STRUCTMD_API structmd_status structmd_set_orientations(structmd_sim* sim, const 
 
 /**
  * Sets the box edge lengths, keeping fractional coordinates (particles are scaled with the box, as
- * a barostat would).
+ * a barostat would) along the axes periodic before and after; along an axis open before or after,
+ * positions are kept as they are.
  *
  * @param sim      the handle.
- * @param lengths  the new edges Lx, Ly, Lz.
- * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if a length is not positive and
- *         finite, or if a cutoff of the force field would exceed half the box; STRUCTMD_ERR_STATE.
+ * @param lengths  the new edges Lx, Ly, Lz: each > 0 and <= 1e15, or 0 or infinity for an open
+ *                 (non-periodic) axis, which reads back as infinity.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if a length is negative, NaN or above
+ *         1e15 but finite, if a cutoff of the force field would exceed half the box, or if an axis
+ *         would be open while the force field has Verlet lists (pair terms of an open box run over an
+ *         ["NBody","all"] entry); STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_set_box(structmd_sim* sim, const double lengths[3]);
 

@@ -65,9 +65,7 @@ structmd_status structmd_set_box(structmd_sim* sim, const double lengths[3]) {
     return with_handle(sim, [&](structmd_sim& s) {
         Simulation& simulation = loaded(s);
         require_pointer(lengths, "lengths");
-        for (int d = 0; d < 3; ++d)
-            if (!(lengths[d] > 0.0) || !std::isfinite(lengths[d]))
-                throw Error(STRUCTMD_ERR_ARGUMENT, "lengths[" + std::to_string(d) + "]: expected a positive length");
+        // The engine checks each length (0 or infinity: an open axis) against the force field.
         simulation.set_box(lengths);
     });
 }

@@ -1,10 +1,13 @@
 #pragma once
-// Orthorhombic periodic box spanning [-L/2, L/2) in each direction.
+// Orthorhombic box spanning [-L/2, L/2) along each periodic axis. An axis of length infinity is open
+// (not periodic, as UAMMD's Box takes a length of 0 or infinity): positions are never wrapped along it
+// and the nearest image of a particle is the particle itself.
 #include "core/vec.hpp"
 
 #if SMD_HOST_CODE
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #endif
 
 namespace structmd {
@@ -16,7 +19,21 @@ inline constexpr double kLargestBoxLength = 1e15;
 
 // The minimum-image rule: a cutoff (of a pair term, of a measure's neighbourhood) must be shorter than
 // this, half the shortest edge, so that each pair is seen through one image only.
+// (infinity in a box open along every axis, where any cutoff fits).
 inline double half_shortest_edge(double lx, double ly, double lz) { return 0.5 * std::min({lx, ly, lz}); }
+
+inline constexpr double kOpenAxis = std::numeric_limits<double>::infinity();
+
+inline bool is_open_axis(double length) { return length == kOpenAxis; }
+
+// A length the engine keeps for an axis: periodic (> 0, <= kLargestBoxLength) or open (infinity).
+inline bool is_box_length(double length) {
+    return is_open_axis(length) || (length > 0.0 && length <= kLargestBoxLength);
+}
+
+inline bool has_open_axis(double lx, double ly, double lz) {
+    return is_open_axis(lx) || is_open_axis(ly) || is_open_axis(lz);
+}
 #endif
 
 // How many box lengths a particle has crossed along each axis since its position was set.
@@ -30,10 +47,15 @@ struct Box {
     Vec3<R> inverse;  // 1 / length, so that wrapping needs no division
 
 #if SMD_HOST_CODE
+    // An open axis (length infinity) has an inverse of 0, so it never wraps.
     static Box make(double lx, double ly, double lz) {
         return {{R(lx), R(ly), R(lz)}, {R(1.0 / lx), R(1.0 / ly), R(1.0 / lz)}};
     }
 #endif
+
+    // What `image` box crossings add to a wrapped coordinate: 0 without crossings, also along an open
+    // axis, where image times infinity would be NaN.
+    static SMD_HD SMD_INLINE R image_offset(int image, R length) { return image == 0 ? R(0) : R(image) * length; }
 
     // The image of d closest to the origin, for d the difference of two wrapped positions (so
     // |d| < L along each axis): one compare per axis instead of a rounding call.
@@ -65,7 +87,8 @@ struct Box {
         const R lengths = floor(x * inverse + R(0.5));
         int shift = lengths < R(1e9) ? (lengths > R(-1e9) ? static_cast<int>(lengths) : -1000000000) : 1000000000;
         if (lengths != lengths) shift = 0;
-        x -= length * R(shift);
+        // An open axis (inverse 0) gives no shift; its length, infinity, times 0 would be NaN.
+        if (shift != 0) x -= length * R(shift);
         // Rounding can land exactly on +L/2; fold it back so the interval stays half-open.
         if (x >= R(0.5) * length) {
             x -= length;

@@ -42,6 +42,11 @@ struct ForceFieldComponent {
     std::function<double(const ParameterValues&, const Constants&, double cutOffFactor, bool shift)> actingCutoff;
     bool readsCutOffFactor = true;  // pairs: the entry gives "cutOffFactor" (else its own cut-off parameter)
     bool takesShift = true;  // pairs: false for a term without a shifted form, which refuses "shift": true
+    // Pairs: the factory can run the term over all pairs (an ["NBody", "all"] list) as well as over a
+    // Verlet list; set for the potentials of components.hpp's pair<> (built-in and plugin alike).
+    bool overAllPairs = false;
+    // Pairs of no cutoff (Coulomb, Gravity): over all pairs only, in a box open along every axis.
+    bool infiniteRange = false;
     // Pairs that read no cutOffFactor: the member of the entry that sets the range, for the error of a
     // cutoff too long for the box ("parameters.gamma", "data"; empty: "parameters.cutOff").
     std::string cutoffKey;

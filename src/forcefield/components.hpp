@@ -5,7 +5,7 @@
 // list, so a new potential is its functor file plus one line here.
 //
 // A visitor has
-//   template <class Potential> void pair(ComponentKey key);                 // NonBonded, over a list
+//   template <class Potential> void pair(ComponentKey key);   // NonBonded, over a Verlet list or all pairs
 //   template <class Potential> void bond(ComponentKey key, std::vector<std::string> common = {});
 //   template <class Potential> void external(ComponentKey key);   // External and Surface entries
 //   template <class Component> void configurable(ComponentKey key);
@@ -28,6 +28,7 @@
 #include "forcefield/clashed.hpp"
 #include "forcefield/constant_force_bond.hpp"
 #include "forcefield/constant_torque.hpp"
+#include "forcefield/coulomb.hpp"
 #include "forcefield/debye_huckel.hpp"
 #include "forcefield/dihedral.hpp"
 #include "forcefield/dipolar_magnetic.hpp"
@@ -39,6 +40,7 @@
 #include "forcefield/fixed_harmonic.hpp"
 #include "forcefield/flat_surfaces.hpp"
 #include "forcefield/gaussian_bond.hpp"
+#include "forcefield/gravity.hpp"
 #include "forcefield/harmonic_angle.hpp"
 #include "forcefield/harmonic_anisotropic.hpp"
 #include "forcefield/harmonic_bond.hpp"
@@ -88,6 +90,8 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template configurable<StericInnerComponent<12>>({"NonBonded", "StericInner12"});
     v.template configurable<ZhangComponent>({"NonBonded", "Zhang"});
     v.template pair<DebyeHuckel>({"NonBonded", "DebyeHuckel"});
+    v.template pair<Coulomb>({"NonBonded", "Coulomb"});
+    v.template pair<Gravity>({"NonBonded", "Gravity"});
     v.template pair<SplitLennardJones>({"NonBonded", "SplitLennardJones"});
     v.template pair<LaTorre>({"NonBonded", "LaTorre"});
     v.template pair<Clashed>({"NonBonded", "Clashed"});

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/periodic_box.hpp"
 #include "forcefield/component_registry.hpp"
 #include "forcefield/electrostatics.hpp"
 #include "input/read_parameters.hpp"
@@ -79,6 +80,8 @@ ForceFieldComponent configure(ForceFieldComponent c, const ComponentEntry& entry
                           "[\"LongRange\", \"Electrostatics\"] acts on the whole box: it cannot run with several "
                           "batches (batchId)");
 
+    require_periodic_box({system.box[0], system.box[1], system.box[2]}, entry.node.path() + ".type",
+                         "[\"LongRange\", \"Electrostatics\"] (Ewald sums over the periodic images)");
     const double box[3] = {system.box[0], system.box[1], system.box[2]};
     const double volume = box[0] * box[1] * box[2];
     const double halfBox = half_shortest_edge(box[0], box[1], box[2]);

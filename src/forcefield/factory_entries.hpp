@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "forcefield/all_pairs_interaction.hpp"
 #include "forcefield/bond_interaction.hpp"
 #include "forcefield/external_interaction.hpp"
 #include "forcefield/forcefield_spec.hpp"
@@ -45,10 +46,21 @@ struct FactoryEntries {
                                   },
                                   unlisted);
                           };
-                          auto interactor = make_pair_interaction<B, R, Potential, PairR>(build, pair, tableIn(PairR{}));
-                          if constexpr (WithHessian)
-                              if (build.context.hessian) interactor->enable_hessian(tableIn(Dual<PairR>{}));
-                          return interactor;
+                          // An ["NBody", "all"] list: every pair, no list and no second derivatives.
+                          if (build.spec.lists[pair.list].allPairs)
+                              return std::make_unique<AllPairsInteraction<B, R, Potential, PairR>>(
+                                  build.backend, build.scope(pair), tableIn(PairR{}),
+                                  static_cast<int>(build.context.ntypes), batches_for(build, pair), build.context.batch);
+                          // The reader gives a term of no cutoff an ["NBody", "all"] list only.
+                          if constexpr (has_infinite_range<Potential>::value) {
+                              throw Error(STRUCTMD_ERR_INTERNAL, pair.path + ": a term of no cutoff over a Verlet list");
+                          } else {
+                              auto interactor =
+                                  make_pair_interaction<B, R, Potential, PairR>(build, pair, tableIn(PairR{}));
+                              if constexpr (WithHessian)
+                                  if (build.context.hessian) interactor->enable_hessian(tableIn(Dual<PairR>{}));
+                              return interactor;
+                          }
                       }});
     }
 

@@ -36,9 +36,11 @@ inline int group_index(const std::vector<GroupSpec>& groups, const std::string& 
 }
 
 // The one rule between pair terms and the box: minimum images are exact only for interactions
-// shorter than half the shortest box length.
+// shorter than half the shortest box length. A box open along every axis has no images: any cutoff,
+// infinity too (an all-pairs term of no finite range), fits.
 inline bool cutoff_fits_box(double cutoff, const std::array<double, 3>& box) {
-    return cutoff < half_shortest_edge(box[0], box[1], box[2]);
+    const double half = half_shortest_edge(box[0], box[1], box[2]);
+    return cutoff < half || is_open_axis(half);
 }
 
 // What a configurable component (an expression, a table) derives from its entry when it is read,
@@ -63,7 +65,8 @@ struct InteractionSpec {
 struct NeighbourListSpec {
     std::string name;
     std::string path;
-    ComponentKey key;  // ["VerletConditionalListSet", condition]
+    ComponentKey key;  // ["VerletConditionalListSet", condition] or ["NBody", "all"]
+    bool allPairs = false;  // ["NBody", ...]: the pair terms on it visit every pair, no list is built
     double verletFactor = 1.1;
     double minimumCutoff = 0.0;  // the entry's cutOff parameter
     PairFilterInputs filterInputs;  // exclusions, types or type groups, charges: what its conditions read

@@ -78,6 +78,14 @@ struct has_text_options : std::false_type {};
 template <class Potential>
 struct has_text_options<Potential, std::void_t<decltype(Potential::text_options())>> : std::true_type {};
 
+// A potential of no cutoff (Coulomb, Gravity) declares `static constexpr bool infinite_range = true`:
+// it runs over all pairs only (an ["NBody", "all"] list), in a box open along every axis.
+template <class Potential, class = void>
+struct has_infinite_range : std::false_type {};
+template <class Potential>
+struct has_infinite_range<Potential, std::void_t<decltype(Potential::infinite_range)>>
+    : std::bool_constant<Potential::infinite_range> {};
+
 template <class Potential, class = void>
 struct acts_on_unlisted_pairs : std::false_type {};
 template <class Potential>

@@ -26,6 +26,7 @@ struct NeighbourCondition {
     bool excludes = false;  // reads an id/id_list table of pairs that never interact
     bool charges = false;   // some condition asks whether particles are charged
     Reads kind = Reads::nothing;
+    bool allPairs = false;  // ["NBody", condition]: every pair, no list
 };
 
 const Registry<NeighbourCondition>& neighbour_conditions() {
@@ -53,6 +54,8 @@ const Registry<NeighbourCondition>& neighbour_conditions() {
                 {"inter", PairCondition::typeGroupsInter},
                 {"noGroup", PairCondition::noTypeGroup}},
                true, false, Reads::typeGroups});
+        // UAMMD's NBody module as a list entry: a pair term naming it visits every pair of its batch.
+        r.add({{"NBody", "all"}, {{"all", PairCondition::all}}, false, false, Reads::nothing, true});
         return r;
     }();
     return known;
@@ -205,6 +208,12 @@ void read_neighbour_list(const ComponentEntry& entry, const SystemDescription& s
     const NeighbourCondition& condition =
         neighbour_conditions().at({entry.cls, entry.subclass}, list.path + ".type", "neighbour list");
     list.key = condition.key;
+    list.allPairs = condition.allPairs;
+    if (list.allPairs) {
+        input::read_parameters(entry.node, {});
+        ff.lists.push_back(std::move(list));
+        return;
+    }
     const ParameterValues values = input::read_parameters(
         entry.node, {with_default(number("cutOffVerletFactor", "1", Must::be_at_least_one), 1.1),
                      with_default(number("cutOff", "length", Must::be_non_negative), 0.0)});
@@ -245,9 +254,11 @@ void read_neighbour_list(const ComponentEntry& entry, const SystemDescription& s
 
 // ---- non-bonded pairs -------------------------------------------------------------------------
 
-void choose_list(const ComponentEntry& entry, ForceFieldSpec& ff, PairSpec& pair) {
+void choose_list(const ForceFieldComponent& component, const ComponentEntry& entry, const SystemDescription& system,
+                 ForceFieldSpec& ff, PairSpec& pair) {
     if (ff.lists.empty())
-        throw input_error(pair.path, "a NonBonded entry needs a [\"VerletConditionalListSet\", condition] entry");
+        throw input_error(pair.path, "a NonBonded entry needs a [\"VerletConditionalListSet\", condition] or "
+                                     "[\"NBody\", \"all\"] entry");
     const TrackedNode params = input::parameters_of(entry.node);
     if (ff.lists.size() > 1 || (params.valid() && params.has("neighbourList"))) {
         const std::string wanted = parameter<std::string>(entry, "neighbourList");
@@ -257,6 +268,24 @@ void choose_list(const ComponentEntry& entry, ForceFieldSpec& ff, PairSpec& pair
         pair.list = static_cast<int>(it - ff.lists.begin());
     }
     const NeighbourListSpec& list = ff.lists[pair.list];
+    if (!list.allPairs && has_open_axis(system.box[0], system.box[1], system.box[2]))
+        throw input_error(list.path + ".type",
+                          "a Verlet list needs a periodic box, and the box (" + system.boxPath +
+                              ") has an open axis: name an [\"NBody\", \"all\"] list entry in the neighbourList of " +
+                              pair.path + " (every pair, no cells)");
+    if (list.allPairs && !component.overAllPairs)
+        throw input_error(list.path + ".type", component.key.text() + " (" + pair.path +
+                                                   ") runs over Verlet lists only, not over an [\"NBody\", \"all\"] entry");
+    if (component.infiniteRange && !list.allPairs)
+        throw input_error(list.path + ".type", component.key.text() + " (" + pair.path +
+                                                   ") acts at every distance: it runs over an [\"NBody\", \"all\"] "
+                                                   "list entry, not a Verlet list");
+    if (component.infiniteRange && !(is_open_axis(system.box[0]) && is_open_axis(system.box[1]) &&
+                                     is_open_axis(system.box[2])))
+        throw input_error(system.boxPath, component.key.text() + " (" + pair.path +
+                                              ") acts at every distance, so it needs a box open along every axis "
+                                              "(0 or \"inf\"): over a periodic axis the nearest images alone would "
+                                              "miss the rest of the periodic sum (use [\"LongRange\", \"Electrostatics\"])");
     const auto& known = neighbour_conditions().find(list.key)->conditions;
     const std::string condition = parameter<std::string>(entry, "condition");
     for (const auto& [name, value] : known)
@@ -298,7 +327,7 @@ void read_pair(const ForceFieldComponent& component, const ComponentEntry& entry
                ForceFieldSpec& ff) {
     PairSpec pair;
     read_common(component, entry, ff, pair);
-    choose_list(entry, ff, pair);
+    choose_list(component, entry, system, ff, pair);
     std::vector<Parameter> own = component.entryParameters;
     if (component.readsCutOffFactor) own.push_back(number("cutOffFactor", "1", Must::be_positive));
     const ParameterValues values = input::read_parameters(entry.node, own);
@@ -505,9 +534,9 @@ ForceFieldSpec read_forcefield(const SystemDescription& system, const Logger& lo
         if (entry.cls == "Groups") read_group_entry(entry);
     for (const ComponentEntry& entry : system.sectionGroups) read_group_entry(entry);
     for (const ComponentEntry& entry : system.forceField)
-        if (entry.cls == "VerletConditionalListSet") read_neighbour_list(entry, system, ff);
+        if (entry.cls == "VerletConditionalListSet" || entry.cls == "NBody") read_neighbour_list(entry, system, ff);
     for (const ComponentEntry& entry : system.forceField) {
-        if (entry.cls == "VerletConditionalListSet" || entry.cls == "Groups") continue;
+        if (entry.cls == "VerletConditionalListSet" || entry.cls == "NBody" || entry.cls == "Groups") continue;
         const ForceFieldComponent& registered =
             registry.at({entry.cls, entry.subclass}, entry.node.path() + ".type", "component");
         const ForceFieldComponent component = registered.configure ? registered.configure(entry, system) : registered;

@@ -42,6 +42,12 @@ struct ReaderEntries {
             c.readsCutOffFactor = false;
             c.cutoffKey = Potential::cutoff_key;
         }
+        c.overAllPairs = true;
+        if constexpr (has_infinite_range<Potential>::value) {
+            c.infiniteRange = true;
+            c.readsCutOffFactor = false;
+            c.takesShift = false;
+        }
         if constexpr (acts_on_unlisted_pairs<Potential>::value)
             c.unlistedCutoff = [](const ParameterValues& v, const Constants& constants, double cutOffFactor, bool shift) {
                 return std::sqrt(static_cast<double>(

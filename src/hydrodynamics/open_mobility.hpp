@@ -30,7 +30,8 @@ struct PlaceSpheres {
         const Real4<R> p = pos[i];
         const Image n = image[i];
         const bool member = !group || group[i];
-        spheres[i] = {p.x + R(n.x) * box.length.x, p.y + R(n.y) * box.length.y, p.z + R(n.z) * box.length.z,
+        spheres[i] = {p.x + Box<R>::image_offset(n.x, box.length.x), p.y + Box<R>::image_offset(n.y, box.length.y),
+                      p.z + Box<R>::image_offset(n.z, box.length.z),
                       member ? (hydrodynamicRadius > R(0) ? hydrodynamicRadius : radius[i]) : R(0)};
     }
 };

@@ -71,7 +71,8 @@ struct SystemDescription {
     Units units;
     std::vector<ParticleType> types;
     bool typesArePolarizable = false;  // ["Types","Polarizable"]: particles take their type's polarizability
-    Vec3d box{0, 0, 0};
+    Vec3d box{0, 0, 0};  // infinity along an open (non-periodic) axis
+    std::string boxPath;  // the ensemble's box cell, for messages about the box
     double temperature = 0.0;  // in kelvin-like units: k_B T = units.boltzmann * temperature
     // The coupling parameter of ["Ensemble","NVTlambda"]; empty under NVT, where the terms of lambda
     // act in full (lambda = 1).

@@ -187,6 +187,23 @@ void read_types(const ComponentEntry& entry, std::vector<ParticleType>& types) {
     }
 }
 
+// One box length: a number > 0 and <= 1e15 (a periodic axis), or 0 or "inf" (an open axis, kept as
+// infinity): UAMMD's Box takes a length of 0 or infinity as a non-periodic axis, and JSON has no
+// infinity, so the string stands for it.
+double read_box_length(const TrackedNode& cell) {
+    if (cell.is_string()) {
+        const std::string text = cell.as<std::string>();
+        if (text == "inf" || text == "infinity" || text == "Infinity") return kOpenAxis;
+    } else if (cell.is_number()) {
+        const double length = cell.as<double>();
+        if (length == 0.0) return kOpenAxis;
+        if (length > 0.0 && length <= kLargestBoxLength) return length;
+    }
+    throw input_error(cell.path(), "box length must be > 0 and <= 1e15, or 0 or \"inf\" for an open "
+                                   "(non-periodic) axis: expected such a number or \"inf\", got " +
+                                       cell.json().dump());
+}
+
 // ["Ensemble","NVT"], or ["Ensemble","NVTlambda"]: the same with the coupling parameter lambda of
 // the terms that depend on it (lambda_coupling.hpp), which simulation steps may change during a run.
 void read_ensemble(const ComponentEntry& entry, SystemDescription& description) {
@@ -198,11 +215,10 @@ void read_ensemble(const ComponentEntry& entry, SystemDescription& description) 
     if (table.rows() != 1)
         throw input_error(entry.node.path() + ".data", "expected exactly one row, got " + std::to_string(table.rows()));
     const TrackedNode boxCell = table.cell(0, "box");
-    description.box = boxCell.as<Vec3d>();
-    for (size_t axis = 0; axis < 3; ++axis)
-        if (!(description.box[axis] > 0.0 && description.box[axis] <= kLargestBoxLength))
-            throw input_error(boxCell.at(axis).path(), "box length must be > 0 and <= 1e15, got " +
-                                                           boxCell.at(axis).json().dump());
+    if (!boxCell.is_array() || boxCell.size() != 3)
+        throw input_error(boxCell.path(), "expected [x, y, z] (the box lengths), got " + boxCell.json().dump());
+    for (size_t axis = 0; axis < 3; ++axis) description.box[axis] = read_box_length(boxCell.at(axis));
+    description.boxPath = boxCell.path();
     description.temperature = read_at_least(table.cell(0, "temperature"), 0.0, "temperature");
     if (withLambda) {
         const TrackedNode lambdaCell = table.cell(0, "lambda");

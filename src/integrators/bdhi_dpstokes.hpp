@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/periodic_box.hpp"
 #include "core/precise.hpp"
 #include "hydrodynamics/fcm_mesh.hpp"
 #include "hydrodynamics/lanczos_sqrt.hpp"
@@ -94,6 +95,7 @@ struct BdhiDPStokesInputs : IntegratorInputs {
 
     // The slab in the input's box, at the load and at every parameter change.
     static void validate_in_box(const ParameterValues& v, const std::array<double, 3>& box, const std::string& path) {
+        require_periodic_box(box, path + ".type", "this integrator's fluid grid");
         check_fits_box(v["Lx"], v["Ly"], v["H"], box.data(), path);
     }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/periodic_box.hpp"
 #include "hydrodynamics/fcm_mesh.hpp"
 #include "integrators/bdhi_grid.hpp"
 
@@ -15,6 +16,7 @@ namespace structmd {
 
 struct BdhiForceCouplingInputs : GridBdhiInputs {
     static void validate_in_box(const ParameterValues& v, const std::array<double, 3>& box, const std::string& path) {
+        require_periodic_box(box, path + ".type", "this integrator's fluid grid");
         make_fcm_plan(box.data(), v["hydrodynamicRadius"], v["tolerance"], path);
     }
 };

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/periodic_box.hpp"
 #include "hydrodynamics/lanczos_sqrt.hpp"
 #include "hydrodynamics/pse_far_field.hpp"
 #include "hydrodynamics/pse_near_field.hpp"
@@ -38,6 +39,7 @@ struct BdhiPositivelySplitEwaldInputs : IntegratorInputs {
     // The far field's grid; the near field's reach where the radius is given (else it is the
     // group's, known at the first step).
     static void validate_in_box(const ParameterValues& v, const std::array<double, 3>& box, const std::string& path) {
+        require_periodic_box(box, path + ".type", "this integrator's fluid grid");
         make_pse_far_plan(box.data(), v["psi"], v["tolerance"], path);
         if (v["hydrodynamicRadius"] > 0.0)
             check_near_field_fits(pse_near_cutoff(v["hydrodynamicRadius"], v["psi"], v["tolerance"]), box.data(), path);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/periodic_box.hpp"
 #include "hydrodynamics/planar_mesh.hpp"
 #include "integrators/bdhi_grid.hpp"
 #include "integrators/thermal_noise.hpp"
@@ -19,6 +20,7 @@ struct BdhiQuasi2DInputs : GridBdhiInputs {
     // Which fluid the plane is in (the order of PlanarHydrodynamics).
     static std::vector<TextOption> text_options() { return {{"hydrodynamicKernel", "Quasi2D", {"Quasi2D", "True2D"}, {}, ""}}; }
     static void validate_in_box(const ParameterValues& v, const std::array<double, 3>& box, const std::string& path) {
+        require_periodic_box(box, path + ".type", "this integrator's fluid grid");
         make_planar_plan(box.data(), static_cast<PlanarHydrodynamics>(static_cast<int>(v["hydrodynamicKernel"])),
                          v["hydrodynamicRadius"], v["tolerance"], path);
     }

@@ -38,9 +38,9 @@ SMD_HD SMD_INLINE MassMoments operator+(const MassMoments& a, const MassMoments&
 template <class R>
 SMD_HD SMD_INLINE void midpoint(const Real4<R>& p, const Image& image, const Real4<R>& v, const Box<R>& box, R dt,
                                 double r[3]) {
-    r[0] = double(p.x) + double(image.x) * double(box.length.x) - 0.5 * double(dt) * double(v.x);
-    r[1] = double(p.y) + double(image.y) * double(box.length.y) - 0.5 * double(dt) * double(v.y);
-    r[2] = double(p.z) + double(image.z) * double(box.length.z) - 0.5 * double(dt) * double(v.z);
+    r[0] = double(p.x) + Box<double>::image_offset(image.x, double(box.length.x)) - 0.5 * double(dt) * double(v.x);
+    r[1] = double(p.y) + Box<double>::image_offset(image.y, double(box.length.y)) - 0.5 * double(dt) * double(v.y);
+    r[2] = double(p.z) + Box<double>::image_offset(image.z, double(box.length.z)) - 0.5 * double(dt) * double(v.z);
 }
 
 template <class R>

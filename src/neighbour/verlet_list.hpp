@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/error.hpp"
 #include "neighbour/cluster_list_kernels.hpp"
 #include "neighbour/pair_filter_inputs.hpp"
 #include "neighbour/verlet_list_kernels.hpp"
@@ -214,6 +215,11 @@ private:
 
     // Sizes every buffer for n particles in this box and schedules a full rebuild.
     void layout(int64_t n, const Box<R>& box) {
+        // The reader refuses a list over an open axis; a box made open afterwards (structmd_set_box)
+        // is refused here, as its cells would be infinitely long.
+        if (has_open_axis(box.length.x, box.length.y, box.length.z))
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, "a Verlet list needs a periodic box: an axis of the box is open "
+                                                  "(pair terms of an open box run over an [\"NBody\", \"all\"] list)");
         box_ = box;
         capacity_ = std::max(capacity_, pendingCapacity_);
         // The cluster kernels take their partners from the 27 cells around a cluster.

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/box.hpp"
 #include "core/error.hpp"
 #include "input/read_parameters.hpp"
 #include "integrators/integrator_spec.hpp"
@@ -104,6 +105,9 @@ bool of_group(const TrackedNode& entry) {
 void refuse_components(const input::SystemDescription& system, const SimulationSpec& spec,
                        const Registry<ForceFieldComponent>& components, Refusals& found) {
     if (system.schedule.size() > 1) found.push_back({system.schedulePath, "a schedule of more than one integrator"});
+    // Slabs cut the box's longest axis into periodic pieces; an open axis has no length to cut.
+    if (has_open_axis(system.box[0], system.box[1], system.box[2]))
+        found.push_back({system.boxPath, "a box with an open axis (a length of 0 or \"inf\")"});
     for (const IntegratorSpec& integrator : spec.integrators) {
         const IntegratorComponent* component = integrator_registry().find(integrator.key);
         refuse({"integrator", integrator.path, integrator.key, component && component->underDomains,
@@ -124,9 +128,12 @@ void refuse_components(const input::SystemDescription& system, const SimulationS
         found.push_back({entry.node.path(), "entry " + type_text(key_of(entry))});
     for (const ComponentEntry& entry : system.forceField) {
         // Each domain's engine builds its own lists over the particles it holds, ghosts included.
-        const bool list = std::any_of(spec.forceField.lists.begin(), spec.forceField.lists.end(),
-                                      [&](const NeighbourListSpec& l) { return l.path == entry.node.path(); });
-        if (list) continue;
+        const auto list = std::find_if(spec.forceField.lists.begin(), spec.forceField.lists.end(),
+                                       [&](const NeighbourListSpec& l) { return l.path == entry.node.path(); });
+        // A domain's pairs are its particles' within a ghost width, not all pairs.
+        if (list != spec.forceField.lists.end() && list->allPairs)
+            found.push_back({entry.node.path(), "entry " + type_text(key_of(entry))});
+        if (list != spec.forceField.lists.end()) continue;
         const ForceFieldComponent* component = components.find(key_of(entry));
         refuse({"forceField entry", entry.node.path(), key_of(entry), component && component->underDomains}, found);
     }

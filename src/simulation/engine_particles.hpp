@@ -139,9 +139,9 @@ void Engine<B, R, PairR>::read(PerParticle q, double* out) {
             io_.download_vectors(p_.pos, out);
             const std::vector<Image> images = io_.download(p_.image);
             for (int64_t i = 0; i < p_.count; ++i) {
-                out[3 * i] += images[i].x * boxLengths_[0];
-                out[3 * i + 1] += images[i].y * boxLengths_[1];
-                out[3 * i + 2] += images[i].z * boxLengths_[2];
+                out[3 * i] += Box<double>::image_offset(images[i].x, boxLengths_[0]);
+                out[3 * i + 1] += Box<double>::image_offset(images[i].y, boxLengths_[1]);
+                out[3 * i + 2] += Box<double>::image_offset(images[i].z, boxLengths_[2]);
             }
             return;
         }
@@ -330,18 +330,30 @@ Simulation::ArrayView Engine<B, R, PairR>::view(const std::string& quantity) {
 template <class B, class R, class PairR>
 void Engine<B, R, PairR>::set_box(const double lengths[3]) {
     backend_.activate();
-    for (int d = 0; d < 3; ++d)
-        if (!(lengths[d] > 0.0 && lengths[d] <= kLargestBoxLength))
+    // 0 or infinity: an open axis, kept as infinity (core/box.hpp).
+    double given[3];
+    for (int d = 0; d < 3; ++d) {
+        given[d] = lengths[d] == 0.0 ? kOpenAxis : lengths[d];
+        if (!is_box_length(given[d]))
             throw Error(STRUCTMD_ERR_ARGUMENT, "lengths[" + std::to_string(d) + "]: expected a box length > 0 and "
-                                               "<= 1e15, got " + precise(lengths[d]));
+                                               "<= 1e15, or 0 or infinity for an open axis, got " + precise(lengths[d]));
+    }
+    lengths = given;
+    if (has_open_axis(lengths[0], lengths[1], lengths[2]) && forceField_.largest_list_radius() > 0)
+        throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the force field's Verlet lists need a periodic box (pair terms "
+                                           "of an open box run over an [\"NBody\", \"all\"] entry)");
     if (!cutoff_fits_box(largestCutoff_, {lengths[0], lengths[1], lengths[2]}))
         throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the largest cutoff (" + precise(largestCutoff_) +
                                                ") must be shorter than half the box (" +
                                                precise(half_shortest_edge(lengths[0], lengths[1], lengths[2])) + ")");
     std::vector<double> xyz(3 * p_.count);
     read(PerParticle::unwrappedPositions, xyz.data());
-    for (int64_t i = 0; i < p_.count; ++i)
-        for (int d = 0; d < 3; ++d) xyz[3 * i + d] *= lengths[d] / boxLengths_[d];
+    // Fractional coordinates are kept along axes periodic before and after; along an axis open before
+    // or after the positions stay where they are (an open axis has no fraction).
+    for (int d = 0; d < 3; ++d) {
+        if (is_open_axis(lengths[d]) || is_open_axis(boxLengths_[d])) continue;
+        for (int64_t i = 0; i < p_.count; ++i) xyz[3 * i + d] *= lengths[d] / boxLengths_[d];
+    }
     boxLengths_ = {lengths[0], lengths[1], lengths[2]};
     p_.box = Box<R>::make(lengths[0], lengths[1], lengths[2]);
     write(PerParticle::positions, xyz.data());

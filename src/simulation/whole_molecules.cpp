@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/box.hpp"
+
 namespace structmd {
 
 namespace {
@@ -39,7 +41,10 @@ BondGraph bond_graph(size_t n, const std::vector<BondSpec>& bonds) {
     return graph;
 }
 
-double nearest_image(double d, double length) { return d - length * std::nearbyint(d / length); }
+// Along an open axis (length infinity) the nearest image is the particle itself.
+double nearest_image(double d, double length) {
+    return is_open_axis(length) ? d : d - length * std::nearbyint(d / length);
+}
 
 }  // namespace
 

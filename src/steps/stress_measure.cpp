@@ -6,6 +6,7 @@
 
 #include "core/box.hpp"
 #include "core/error.hpp"
+#include "core/periodic_box.hpp"
 #include "neighbour/cell_grid.hpp"
 
 namespace structmd {
@@ -87,6 +88,11 @@ StressMeasure::StressMeasure(std::string name, int64_t interval, int64_t start, 
 
 void StressMeasure::run(Simulation& sim) {
     const std::array<double, 3> box = sim.box();
+    // The box can also be made open after load (structmd_set_box); the cells need a length.
+    if (has_open_axis(box[0], box[1], box[2]))
+        throw Error(STRUCTMD_ERR_STATE, "simulationStep." + name() + ": the box has an open axis at step " +
+                                            std::to_string(sim.current_step()) + "; the stress measure's cells need a "
+                                            "periodic box");
     const double halfBox = half_shortest_edge(box[0], box[1], box[2]);
     // The box can shrink after load (structmd_set_box); past half the box a pair has two images.
     if (radiusCutOff_ >= halfBox) {
@@ -124,6 +130,7 @@ namespace {
 std::unique_ptr<SimulationStep> make(const StepInput& in) {
     const double radius = in.parameters.number("radiusCutOff");
     const auto& box = in.system.box;
+    require_periodic_box({box[0], box[1], box[2]}, in.path + ".type", "[\"MechanicalMeasure\", \"StressMeasure\"]'s cells");
     const double halfBox = half_shortest_edge(box[0], box[1], box[2]);
     if (radius >= halfBox) {
         std::ostringstream what;

@@ -313,6 +313,23 @@ TEST(Document, BoxLengthsMustBePositive) {
     expect_input_error(document, {"global.ensemble.data[0][0][1]: box length must be > 0"});
     document["global"]["ensemble"]["data"][0][0] = {10, 20};
     expect_input_error(document, {"global.ensemble.data[0][0]: expected [x, y, z]"});
+    for (const json& bad : {json("wide"), json(nullptr), json(1e16), json("-inf"), json(true)}) {
+        document["global"]["ensemble"]["data"][0][0] = {10, bad, 30};
+        expect_input_error(document, {"global.ensemble.data[0][0][1]: box length must be > 0 and <= 1e15, or 0 or "
+                                      "\"inf\" for an open (non-periodic) axis"});
+    }
+}
+
+// UAMMD's Box takes a length of 0 or infinity as an open axis; JSON spells infinity "inf".
+TEST(Document, BoxLengthsOfZeroOrInfAreOpenAxes) {
+    json document = valid_document();
+    document["global"]["ensemble"]["data"][0][0] = {0, "inf", 30};
+    const ParsedDocument parsed = parse_document(document.dump());
+    const SystemDescription& system = parsed.system;
+    EXPECT_TRUE(std::isinf(system.box[0]) && system.box[0] > 0);
+    EXPECT_TRUE(std::isinf(system.box[1]) && system.box[1] > 0);
+    EXPECT_EQ(system.box[2], 30.0);
+    EXPECT_EQ(system.boxPath, "global.ensemble.data[0][0]");
 }
 
 TEST(Document, EnsembleNeedsOneRowAndNonNegativeTemperature) {

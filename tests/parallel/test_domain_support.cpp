@@ -102,5 +102,20 @@ TEST(DomainSupport, ALayoutTheDomainsDoNotCarryIsRefusedByItsPath) {
     EXPECT_EQ(refusal(text), "state.labels: column \"direction\" is not available under domain decomposition");
 }
 
+// Each domain pairs its own particles and ghosts, not all pairs; slabs need a periodic axis to cut.
+TEST(DomainSupport, AllPairsListsAndOpenBoxesAreRefusedByTheirPaths) {
+    const std::string overAllPairs = R"({"type": ["NonBonded", "DebyeHuckel"],
+        "parameters": {"condition": "all", "cutOffFactor": 3.0, "debyeLength": 1.0, "dielectricConstant": 1.0,
+                       "neighbourList": "every"}},
+        "every": {"type": ["NBody", "all"]})";
+    EXPECT_EQ(refusal(document(overAllPairs, kVerlet, kWrite)),
+              "topology.forceField.every: entry [\"NBody\",\"all\"] is not available under domain decomposition");
+    std::string open = document(overAllPairs, kVerlet, kWrite);
+    const std::string box = "[[20, 20, 20], 1.0]";
+    open.replace(open.find(box), box.size(), R"([[20, 20, "inf"], 1.0])");
+    EXPECT_EQ(refusal(open), "global.ensemble.data[0][0]: a box with an open axis (a length of 0 or \"inf\") is not "
+                             "available under domain decomposition");
+}
+
 }  // namespace
 }  // namespace structmd

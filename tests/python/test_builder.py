@@ -86,6 +86,25 @@ def test_what_python_can_see_is_refused_at_once(call, message):
     assert system.document() == before
 
 
+def test_open_axes_are_written_as_inf_and_run_over_all_pairs(options):
+    """An edge of math.inf or 0 is an open axis: JSON has no infinity, so the builder writes "inf",
+    which the engine reads back as infinity; gravity over an NBody entry then runs in that box."""
+    system = Input("open", seed=1)
+    system.add_type("A", mass=1.0)
+    system.set_ensemble([np.inf, 0.0, float("inf")], 1.0)
+    system.add_particles(np.array([[0.0, 0.0, 0.0], [1.5, 0.0, 0.0], [0.0, 2.0, 0.0]]), "A",
+                         velocities=np.zeros((3, 3)))
+    system.add_interaction("all", ["NBody", "all"])
+    system.add_interaction("gravity", ["NonBonded", "Gravity"], {"G": 1.0, "condition": "all"})
+    system.add_integrator("vv", ["Verlet", "VelocityVerlet"], {"timeStep": 0.001}, steps=5)
+    assert system.document()["global"]["ensemble"]["data"][0][0] == ["inf", 0.0, "inf"]
+    with structmd.Simulation(options) as sim:
+        sim.load(system.document())
+        assert all(np.isinf(edge) for edge in sim.box)
+        expected = -1.0 / 1.5 - 1.0 / 2.0 - 1.0 / 2.5
+        assert sim.energy("potential") == pytest.approx(expected, rel=1e-12)
+
+
 def test_an_input_from_ase_atoms_gives_ases_lennard_jones(options):
     from ase.calculators.lj import LennardJones
     from structmd.ase import Calculator

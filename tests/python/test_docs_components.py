@@ -106,6 +106,9 @@ def lennard_jones(condition, neighbour_list):
 # Components defined in one unit system only (their docs say so), and that system.
 UNITS_OF = {("Bond3", "BestChenHummerAngular"): "KcalMol_A"}
 
+# Terms of no cutoff (their docs say so): over an ["NBody","all"] list, in a box open along every axis.
+OPEN_BOX = {("NonBonded", "Coulomb"), ("NonBonded", "Gravity")}
+
 # Components that read a state column the base document lacks (their docs say so), and its values.
 DIRECTIONS = [[1.0, 0.0, 0.0, 0.0], [0.8, 0.6, 0.0, 0.0], [0.6, 0.0, 0.8, 0.0], [0.0, 0.0, 0.6, 0.8]]
 STATE_COLUMN_OF = {("Bond2", "RAP"): ("direction", DIRECTIONS), ("Bond2", "HarmonicRAP"): ("direction", DIRECTIONS),
@@ -128,11 +131,14 @@ def with_force_field_example(key):
             row.append(value)
     force_field = doc["topology"]["forceField"]
     cls, subclass = key
-    if cls == "VerletConditionalListSet":
+    if key in OPEN_BOX:
+        doc["global"]["ensemble"]["data"][0][0] = ["inf", "inf", "inf"]
+        force_field["nl"] = {"type": ["NBody", "all"]}
+    if cls in ("VerletConditionalListSet", "NBody"):
         del force_field["nl"]  # the example is the list
     assert name not in force_field, f"example name '{name}' clashes with the test's base system"
     force_field[name] = copy.deepcopy(entry)
-    if cls == "VerletConditionalListSet":
+    if cls in ("VerletConditionalListSet", "NBody"):
         for condition in LIST_CONDITIONS[subclass]:
             force_field[f"lj_{condition}"] = lennard_jones(condition, name)
     if cls == "Groups":
@@ -160,7 +166,7 @@ def test_force_field_example_loads_and_computes(sim, key):
     assert math.isfinite(sim.energy("potential"))
     assert np.all(np.isfinite(sim.particle_energies))
     assert np.all(np.isfinite(sim.virial))
-    if key[0] not in ("VerletConditionalListSet", "Groups"):
+    if key[0] not in ("VerletConditionalListSet", "NBody", "Groups"):
         assert math.isfinite(sim.energy(name))
     sim.step(2)
     assert np.all(np.isfinite(np.asarray(sim.positions)))

@@ -44,6 +44,10 @@ std::vector<double> evaluate(const Scene& scene, const ForceFieldSpec& spec, con
     backend.upload(p.pos, pos.data(), pos.size());
     backend.upload(p.radius, system.radius.data(), system.radius.size());
     backend.upload(p.charge, system.charge.data(), system.charge.size());
+    // At rest, with their masses (w), which the terms of masses (Gravity) read.
+    std::vector<Real4<double>> velocities;
+    for (double m : system.mass) velocities.push_back({0, 0, 0, m});
+    backend.upload(p.vel, velocities.data(), velocities.size());
     // The magnetic moments, which the magnetic terms read (the minimal inputs give every particle one).
     std::vector<Real4<double>> moments;
     for (const auto& m : system.magnetizations) moments.push_back({m[0], m[1], m[2], m[3]});

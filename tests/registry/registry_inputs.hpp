@@ -320,13 +320,17 @@ inline Json document(const Json& forceField, const Json& integrator = Json()) {
 }
 
 // The document with one component's entry under kEntryName (and the neighbour list a pair term needs,
-// and the units a component defined in one unit system needs).
+// and the units a component defined in one unit system needs). A term of no cutoff (Coulomb, Gravity)
+// gets an ["NBody", "all"] entry and a box open along every axis, which it needs.
 inline Json document_with(const ForceFieldComponent& c, const Json& entry) {
     Json forceField = Json::object();
-    if (c.kind == InteractionKind::pair)
+    if (c.kind == InteractionKind::pair && c.infiniteRange)
+        forceField["nl"] = {{"type", {"NBody", "all"}}};
+    else if (c.kind == InteractionKind::pair)
         forceField["nl"] = {{"type", {"VerletConditionalListSet", "all"}}, {"parameters", {{"cutOffVerletFactor", 1.2}}}};
     forceField[kEntryName] = entry;
     Json doc = document(forceField);
+    if (c.infiniteRange) doc["global"]["ensemble"]["data"][0][0] = {"inf", "inf", "inf"};
     if (!c.units.empty()) doc["global"]["units"] = {{"type", {"Units", c.units}}};
     return doc;
 }

@@ -120,7 +120,8 @@ class Input:
     def set_ensemble(self, box: Union[float, Sequence[float], np.ndarray], temperature: float, kind: str = "NVT",
                      columns: Optional[Mapping[str, Any]] = None) -> None:
         """["Ensemble", kind] with the box (one edge for a cube, or three) and the temperature, and
-        the other columns its kind takes (NVTlambda: {"lambda": 0.5}), in the input's units. Raises
+        the other columns its kind takes (NVTlambda: {"lambda": 0.5}), in the input's units. An edge of
+        0 or math.inf is an open (non-periodic) axis, written "inf" (JSON has no infinity). Raises
         ValueError for a box of other than one or three edges."""
         edges = np.asarray(box, dtype=float).ravel()
         if edges.size == 1:
@@ -128,7 +129,7 @@ class Input:
         if edges.size != 3:
             raise ValueError(f"the box is one edge or three, not {edges.size}")
         labels = ["box", "temperature", *(columns or {})]
-        row = [[float(edge) for edge in edges], float(temperature), *(_plain(value) for value in (columns or {}).values())]
+        row = [["inf" if np.isinf(edge) else float(edge) for edge in edges], float(temperature), *(_plain(value) for value in (columns or {}).values())]
         self._ensemble = {"type": ["Ensemble", kind], "labels": labels, "data": [row]}
 
     # ---- particles ---------------------------------------------------------------------------
