@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 #endif
 
@@ -401,24 +402,25 @@ struct BuildLists {
                     low = particle[m] < low ? particle[m] : low;
                     high = particle[m] > high ? particle[m] : high;
                 }
-                if (stored > 0 && high - low <= std::numeric_limits<int16_t>::max()) {
-                    // Particles within 32,768 of each other (every list of a system that small):
-                    // their counts in 16-bit lanes, twice as many a vector.
-                    int16_t* const key = keys16.data();
-                    for (int m = 0; m < stored; ++m) key[m] = static_cast<int16_t>(particle[m] - low);
+                // Each entry to its place: the count of smaller keys, with a key's own type as
+                // the counter (a list never holds more than kRankedListLimit).
+                const auto rank_by = [&](const auto* key) {
+                    using Key = std::remove_cv_t<std::remove_pointer_t<decltype(key)>>;
                     for (int m = 0; m < stored; ++m) {
-                        const int16_t id = key[m];
-                        int16_t rank = 0;
+                        const Key id = key[m];
+                        Key rank = 0;
                         for (int other = 0; other < stored; ++other) rank += key[other] < id;
                         entries[rank * v.entryStride] = slot[m];
                     }
+                };
+                if (stored > 0 && high - low <= std::numeric_limits<int16_t>::max()) {
+                    // Particles within 32,768 of each other (every list of a system that small):
+                    // compared in 16-bit lanes, twice as many a vector.
+                    int16_t* const key = keys16.data();
+                    for (int m = 0; m < stored; ++m) key[m] = static_cast<int16_t>(particle[m] - low);
+                    rank_by(key);
                 } else {
-                    for (int m = 0; m < stored; ++m) {
-                        const int id = particle[m];
-                        int rank = 0;
-                        for (int other = 0; other < stored; ++other) rank += particle[other] < id;
-                        entries[rank * v.entryStride] = slot[m];
-                    }
+                    rank_by(particle);
                 }
             } else {
                 if (keys.size() < static_cast<size_t>(stored)) keys.resize(static_cast<size_t>(stored));

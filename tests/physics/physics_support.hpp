@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -141,6 +142,16 @@ inline int run_tests_if_cuda(int argc, char** argv) {
         return 77;
     }
     structmd_destroy(probe);
+    ::testing::InitGoogleTest(&argc, argv);
+    return RUN_ALL_TESTS();
+}
+
+// The main() of a test run on either backend: `--backend=NAME` sets `backend` (cpu by default), and
+// the CUDA run reads as skipped without a GPU.
+inline int run_tests_on_backend(int argc, char** argv, std::string& backend) {
+    for (int k = 1; k < argc; ++k)
+        if (std::strncmp(argv[k], "--backend=", 10) == 0) backend = argv[k] + 10;
+    if (backend == "cuda") return run_tests_if_cuda(argc, argv);
     ::testing::InitGoogleTest(&argc, argv);
     return RUN_ALL_TESTS();
 }

@@ -115,10 +115,4 @@ TEST(PairTraversal, UnknownValueIsRefusedByName) {
 }  // namespace
 }  // namespace structmd_physics
 
-int main(int argc, char** argv) {
-    for (int k = 1; k < argc; ++k)
-        if (std::strncmp(argv[k], "--backend=", 10) == 0) structmd_physics::g_backend = argv[k] + 10;
-    if (structmd_physics::g_backend == "cuda") return structmd_physics::run_tests_if_cuda(argc, argv);
-    ::testing::InitGoogleTest(&argc, argv);
-    return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return structmd_physics::run_tests_on_backend(argc, argv, structmd_physics::g_backend); }
