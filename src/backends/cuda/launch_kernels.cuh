@@ -7,8 +7,20 @@
 
 namespace structmd {
 
+// In a step graph each kernel is a programmatic dependent of the one before (step_graphs.cuh): it is
+// scheduled while that one still runs and waits here, before touching memory, until it has finished
+// and its writes are visible. It then lets the next kernel be scheduled in turn, so a chain of small
+// kernels does not pay a launch between each two. Outside such a graph both are no-ops.
+__device__ __forceinline__ void follow_previous_kernel() {
+#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ >= 900
+    asm volatile("griddepcontrol.wait;" ::: "memory");
+    asm volatile("griddepcontrol.launch_dependents;" :::);
+#endif
+}
+
 template <class F>
 __global__ void for_each_kernel(int64_t n, F f) {
+    follow_previous_kernel();
     const int64_t i = static_cast<int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
     if (i < n) f(i);
 }
@@ -19,6 +31,7 @@ __global__ void for_each_kernel(int64_t n, F f) {
 // half of the device's warps resident.
 template <class F>
 __global__ void __launch_bounds__(128, 8) for_each_lanes_kernel(int64_t n, int lanes, F f) {
+    follow_previous_kernel();
     const int64_t thread = static_cast<int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
     const int64_t i = thread / lanes;
     if (i >= n) return;
@@ -36,6 +49,7 @@ __global__ void __launch_bounds__(128, 8) for_each_lanes_kernel(int64_t n, int l
 // several lanes the same cap spills and cost 2-7% (docs/benchmarks.md).
 template <class F>
 __global__ void __launch_bounds__(128, 12) for_each_lone_lane_kernel(int64_t n, int, F f) {
+    follow_previous_kernel();
     const int64_t i = static_cast<int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
     if (i >= n) return;
     Lanes single;

@@ -178,22 +178,37 @@ private:
         Cached c;
         cuda_check(cudaGraphCreate(&c.graph, 0), "creating a step graph");
         try {
-            cudaGraphNode_t last = nullptr;  // the node the next one waits for, in the top graph
-            cudaGraph_t body = nullptr;      // the open conditional body, if any
-            cudaGraphNode_t lastInBody = nullptr;
+            // The node the next one waits for, in the top graph and in the open conditional body,
+            // and whether it is one of the recorded kernels (which the next may follow early).
+            struct Tail {
+                cudaGraphNode_t node = nullptr;
+                bool kernel = false;
+            };
+            Tail last, lastInBody;
+            cudaGraph_t body = nullptr;
             for (KernelLaunch& launch : launches_) {
                 if (!launch.condition) body = nullptr;
                 if (launch.opensCondition) {
-                    body = add_conditional(c.graph, last, launch.condition);
-                    lastInBody = nullptr;
+                    body = add_conditional(c.graph, last.node, launch.condition);
+                    last.kernel = false;
+                    lastInBody = Tail{};
                 }
                 const cudaKernelNodeParams params = launch.node_params();
+                cudaGraph_t graph = body ? body : c.graph;
+                Tail& after = body ? lastInBody : last;
                 cudaGraphNode_t node = nullptr;
-                cudaGraphNode_t& after = body ? lastInBody : last;
-                cuda_check(cudaGraphAddKernelNode(&node, body ? body : c.graph, after ? &after : nullptr, after ? 1 : 0,
-                                                  &params),
+                const bool early = after.kernel;
+                cuda_check(cudaGraphAddKernelNode(&node, graph, after.node && !early ? &after.node : nullptr,
+                                                  after.node && !early ? 1 : 0, &params),
                            "building a step graph");
-                after = node;
+                if (early) {
+                    // for_each kernels wait for this edge's source themselves (launch_kernels.cuh).
+                    cudaGraphEdgeData edge{};
+                    edge.from_port = cudaGraphKernelNodePortProgrammatic;
+                    edge.type = cudaGraphDependencyTypeProgrammatic;
+                    cuda_check(cudaGraphAddDependencies(graph, &after.node, &node, &edge, 1), "building a step graph");
+                }
+                after = Tail{node, true};
                 c.nodes.push_back(node);
             }
             cuda_check(cudaGraphInstantiate(&c.exec, c.graph, 0), "instantiating a step graph");
