@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -197,7 +198,7 @@ private:
                 cudaGraph_t graph = body ? body : c.graph;
                 Tail& after = body ? lastInBody : last;
                 cudaGraphNode_t node = nullptr;
-                const bool early = after.kernel;
+                const bool early = after.kernel && follows_programmatically(launch.kernel);
                 cuda_check(cudaGraphAddKernelNode(&node, graph, after.node && !early ? &after.node : nullptr,
                                                   after.node && !early ? 1 : 0, &params),
                            "building a step graph");
@@ -219,6 +220,21 @@ private:
         c.launches = std::move(launches_);
         cache_.push_back(std::move(c));
         return cache_.back();
+    }
+
+    // Whether a kernel waits for the one before it itself (launch_kernels.cuh): compiled from PTX of
+    // compute capability 9.0 or above and running on such a GPU. Kernels built for an older one (or
+    // compiled at load time from its PTX) get a plain edge; so does a kernel whose attributes cannot
+    // be read.
+    bool follows_programmatically(const void* kernel) {
+        auto known = programmatic_.find(kernel);
+        if (known != programmatic_.end()) return known->second;
+        cudaFuncAttributes attributes{};
+        const bool waits = cudaFuncGetAttributes(&attributes, kernel) == cudaSuccess && attributes.ptxVersion >= 90 &&
+                           attributes.binaryVersion >= 90;
+        cudaGetLastError();  // a failed query leaves no error behind for the next check
+        programmatic_.emplace(kernel, waits);
+        return waits;
     }
 
     // Adds, after `last`, a kernel that reads *flag and an if-node on its value; `last` becomes the
@@ -249,6 +265,7 @@ private:
     bool conditionOpened_ = false;
     std::vector<KernelLaunch> launches_;
     std::vector<Cached> cache_;
+    std::unordered_map<const void*, bool> programmatic_;  // follows_programmatically, by kernel
     uint64_t uses_ = 0;
     uint64_t captured_ = 0;
     uint64_t replayed_ = 0;
