@@ -610,9 +610,8 @@ STRUCTMD_API structmd_status structmd_set_orientations(structmd_sim* sim, const 
  * @param lengths  the new edges Lx, Ly, Lz: each > 0 and <= 1e15, or 0 or infinity for an open
  *                 (non-periodic) axis, which reads back as infinity.
  * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT, changing nothing, if a length is negative, NaN or above
- *         1e15 but finite, if a cutoff of the force field would exceed half the box, or if an axis
- *         would be open while the force field has Verlet lists (pair terms of an open box run over an
- *         ["NBody","all"] entry); STRUCTMD_ERR_STATE.
+ *         1e15 but finite, or if a cutoff of the force field would exceed half the box;
+ *         STRUCTMD_ERR_STATE.
  */
 STRUCTMD_API structmd_status structmd_set_box(structmd_sim* sim, const double lengths[3]);
 

@@ -49,6 +49,8 @@ struct Lanes {
     SMD_HD SMD_INLINE T sum_across(T v, int stride) const {
 #if defined(__CUDA_ARCH__)
         for (int offset = stride; offset < count; offset *= 2) v += __shfl_xor_sync(mask, v, offset, count);
+#else
+        (void)stride;  // one lane on the host: nothing to sum across
 #endif
         return v;
     }

@@ -268,11 +268,6 @@ void choose_list(const ForceFieldComponent& component, const ComponentEntry& ent
         pair.list = static_cast<int>(it - ff.lists.begin());
     }
     const NeighbourListSpec& list = ff.lists[pair.list];
-    if (!list.allPairs && has_open_axis(system.box[0], system.box[1], system.box[2]))
-        throw input_error(list.path + ".type",
-                          "a Verlet list needs a periodic box, and the box (" + system.boxPath +
-                              ") has an open axis: name an [\"NBody\", \"all\"] list entry in the neighbourList of " +
-                              pair.path + " (every pair, no cells)");
     if (list.allPairs && !component.overAllPairs)
         throw input_error(list.path + ".type", component.key.text() + " (" + pair.path +
                                                    ") runs over Verlet lists only, not over an [\"NBody\", \"all\"] entry");

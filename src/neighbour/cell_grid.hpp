@@ -6,6 +6,11 @@
 // a third of the candidates of 27 wide cells. Independent systems sharing the
 // box (batches) get a grid each, so a particle's candidates are those of its own batch only: 1,000
 // batches overlaid in one box cost what one system of their total size costs, not 1,000 times more.
+//
+// Along an open axis (length infinity) the cells repeat: a coordinate x falls in cell
+// floor(x / width) modulo the axis's cell count, so the grid stays finite however far the particles
+// spread. Particles far apart along that axis may then share a cell; the distance test drops them,
+// and the neighbours of a particle are still within `reach` cells of its own, modulo the count.
 #include "core/box.hpp"
 
 #if SMD_HOST_CODE
@@ -22,6 +27,7 @@ struct CellGrid {
     int batches = 1;  // grids, one after the other: batch b's cells are b * nx * ny * nz onwards
     int reach = 1;    // cells scanned on each side of a particle's own along every axis
     Vec3<R> cellsPerLength{1, 1, 1};  // cells per unit length along each axis
+    bool openX = false, openY = false, openZ = false;  // axes whose cells repeat (see above)
 
 #if SMD_HOST_CODE
     int count() const { return nx * ny * nz * batches; }
@@ -35,10 +41,24 @@ struct CellGrid {
         grid.batches = std::max(batches, 1);
         grid.reach = std::max(reach, 1);
         const double minWidth = radius / grid.reach;
-        double n[3] = {std::floor(box.length.x / minWidth), std::floor(box.length.y / minWidth),
-                       std::floor(box.length.z / minWidth)};
-        for (double& v : n) v = std::min(std::max(1.0, v), 1e6);  // NaN and huge ratios: 1 and 1e6
+        const double length[3] = {static_cast<double>(box.length.x), static_cast<double>(box.length.y),
+                                  static_cast<double>(box.length.z)};
+        const bool open[3] = {is_open_axis(length[0]), is_open_axis(length[1]), is_open_axis(length[2])};
         const double limit = std::max<double>(64.0, 2.0 * static_cast<double>(particles));
+        double n[3], periodicCells = 1.0;
+        int openAxes = 0;
+        for (int d = 0; d < 3; ++d) {
+            n[d] = std::min(std::max(1.0, std::floor(length[d] / minWidth)), 1e6);  // NaN and huge ratios: 1 and 1e6
+            if (open[d])
+                ++openAxes;
+            else
+                periodicCells *= n[d];
+        }
+        // Open axes share what the periodic ones leave of the limit: a cube of cells about as many
+        // as twice the particles where all are open, as wide as the list radius allows.
+        for (int d = 0; d < 3; ++d)
+            if (open[d])
+                n[d] = std::max(1.0, std::floor(std::pow(limit / (periodicCells * grid.batches), 1.0 / openAxes)));
         while (n[0] * n[1] * n[2] * grid.batches > limit && n[0] * n[1] * n[2] > 1) {
             for (double& v : n) v = std::max(1.0, std::floor(v * 0.8));
         }
@@ -47,10 +67,21 @@ struct CellGrid {
         grid.nx = static_cast<int>(n[0]);
         grid.ny = static_cast<int>(n[1]);
         grid.nz = static_cast<int>(n[2]);
-        grid.cellsPerLength = {R(grid.nx / static_cast<double>(box.length.x)),
-                               R(grid.ny / static_cast<double>(box.length.y)),
-                               R(grid.nz / static_cast<double>(box.length.z))};
+        const auto perLength = [&](int d) { return R(open[d] ? 1.0 / minWidth : n[d] / length[d]); };
+        grid.cellsPerLength = {perLength(0), perLength(1), perLength(2)};
+        grid.openX = open[0];
+        grid.openY = open[1];
+        grid.openZ = open[2];
         return grid;
+    }
+
+    // The volume the cells cover: along an open axis, one round of its repeating cells.
+    double volume(const Box<R>& box) const {
+        const auto span = [](double length, bool open, int n, R perLength) {
+            return open ? n / static_cast<double>(perLength) : length;
+        };
+        return span(box.length.x, openX, nx, cellsPerLength.x) * span(box.length.y, openY, ny, cellsPerLength.y) *
+               span(box.length.z, openZ, nz, cellsPerLength.z);
     }
 #endif
 
@@ -62,11 +93,27 @@ struct CellGrid {
         return c >= R(0) ? (c < R(n) ? static_cast<int>(c) : n - 1) : 0;
     }
 
-    // Cell coordinates of a wrapped position (r in [-L/2, L/2)).
+    // A coordinate in units of cells, in [0, n) for a wrapped position (r in [-L/2, L/2)) and for any
+    // position along an open axis, whose cells repeat. There it is reduced in double, so that
+    // particles far from the origin still fall in the cells of their neighbours; NaN goes to 0.
+    static SMD_HD SMD_INLINE R scaled_along(R r, R length, R perLength, bool open, int n) {
+        if (!open) return (r + R(0.5) * length) * perLength;
+        const double s = static_cast<double>(r) * static_cast<double>(perLength);
+        const R wrapped = static_cast<R>(s - n * floor(s / n));
+        return wrapped < R(n) ? wrapped : R(0);
+    }
+    SMD_HD SMD_INLINE Vec3<R> scaled(Vec3<R> r, const Box<R>& box) const {
+        return {scaled_along(r.x, box.length.x, cellsPerLength.x, openX, nx),
+                scaled_along(r.y, box.length.y, cellsPerLength.y, openY, ny),
+                scaled_along(r.z, box.length.z, cellsPerLength.z, openZ, nz)};
+    }
+
+    // Cell coordinates of a wrapped position, or of any position along an open axis.
     SMD_HD SMD_INLINE void coordinates(Vec3<R> r, const Box<R>& box, int& cx, int& cy, int& cz) const {
-        cx = cell_of((r.x + R(0.5) * box.length.x) * cellsPerLength.x, nx);
-        cy = cell_of((r.y + R(0.5) * box.length.y) * cellsPerLength.y, ny);
-        cz = cell_of((r.z + R(0.5) * box.length.z) * cellsPerLength.z, nz);
+        const Vec3<R> u = scaled(r, box);
+        cx = cell_of(u.x, nx);
+        cy = cell_of(u.y, ny);
+        cz = cell_of(u.z, nz);
     }
 
     SMD_HD SMD_INLINE int index(int cx, int cy, int cz) const { return (cz * ny + cy) * nx + cx; }

@@ -18,9 +18,10 @@ SMD_HD SMD_INLINE uint32_t sub_cell_code(const CellGrid<R>& grid, const Box<R>& 
         const int s = static_cast<int>(floor((scaled - R(cell)) * R(4)));
         return static_cast<uint32_t>(s < 0 ? 0 : (s > 3 ? 3 : s));
     };
-    const uint32_t x = sub((r.x + R(0.5) * box.length.x) * grid.cellsPerLength.x, cx);
-    const uint32_t y = sub((r.y + R(0.5) * box.length.y) * grid.cellsPerLength.y, cy);
-    const uint32_t z = sub((r.z + R(0.5) * box.length.z) * grid.cellsPerLength.z, cz);
+    const Vec3<R> u = grid.scaled(r, box);
+    const uint32_t x = sub(u.x, cx);
+    const uint32_t y = sub(u.y, cy);
+    const uint32_t z = sub(u.z, cz);
     const auto spread = [](uint32_t v) { return (v & 1u) | ((v & 2u) << 2); };
     return spread(x) | spread(y) << 1 | spread(z) << 2;
 }

@@ -215,19 +215,15 @@ private:
 
     // Sizes every buffer for n particles in this box and schedules a full rebuild.
     void layout(int64_t n, const Box<R>& box) {
-        // The reader refuses a list over an open axis; a box made open afterwards (structmd_set_box)
-        // is refused here, as its cells would be infinitely long.
-        if (has_open_axis(box.length.x, box.length.y, box.length.z))
-            throw Error(STRUCTMD_ERR_UNSUPPORTED, "a Verlet list needs a periodic box: an axis of the box is open "
-                                                  "(pair terms of an open box run over an [\"NBody\", \"all\"] list)");
         box_ = box;
         capacity_ = std::max(capacity_, pendingCapacity_);
         // The cluster kernels take their partners from the 27 cells around a cluster.
         grid_ = CellGrid<R>::make(box, listRadius_, n, batches_, clustersAllowed_ ? 1 : B::list_cell_reach);
         if (capacity_ == 0) {
             // No particle has more neighbours than there are particles, whatever the list radius;
-            // batches overlaid in the box each fill it at their own density.
-            const double volume = static_cast<double>(box.length.x) * box.length.y * box.length.z * batches_;
+            // batches overlaid in the box each fill it at their own density (over an open axis, as
+            // if spread over one round of its cells: adapt() grows the lists of a denser cluster).
+            const double volume = grid_.volume(box) * batches_;
             const double expected = 4.18879 * listRadius_ * listRadius_ * listRadius_ * n / volume;
             capacity_ = static_cast<int>(std::min(std::ceil(1.3 * expected), static_cast<double>(n))) + 16;
         }

@@ -341,9 +341,7 @@ struct BuildLists {
             v.grid.coordinates(rk, box, cx, cy, cz);
             const CellGrid<R>& grid = v.grid;
             const int reach = grid.reach;
-            const Vec3<R> u{(rk.x + R(0.5) * box.length.x) * grid.cellsPerLength.x,
-                            (rk.y + R(0.5) * box.length.y) * grid.cellsPerLength.y,
-                            (rk.z + R(0.5) * box.length.z) * grid.cellsPerLength.z};
+            const Vec3<R> u = grid.scaled(rk, box);
             // Inside the grid (not NaN, not a particle that blew up out of the box): the cell
             // arithmetic below then stays in the range of an int.
             const bool inside = u.x >= R(0) && u.x < R(grid.nx) && u.y >= R(0) && u.y < R(grid.ny) && u.z >= R(0) &&

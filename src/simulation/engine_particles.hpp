@@ -339,9 +339,6 @@ void Engine<B, R, PairR>::set_box(const double lengths[3]) {
                                                "<= 1e15, or 0 or infinity for an open axis, got " + precise(lengths[d]));
     }
     lengths = given;
-    if (has_open_axis(lengths[0], lengths[1], lengths[2]) && forceField_.largest_list_radius() > 0)
-        throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the force field's Verlet lists need a periodic box (pair terms "
-                                           "of an open box run over an [\"NBody\", \"all\"] entry)");
     if (!cutoff_fits_box(largestCutoff_, {lengths[0], lengths[1], lengths[2]}))
         throw Error(STRUCTMD_ERR_ARGUMENT, "lengths: the largest cutoff (" + precise(largestCutoff_) +
                                                ") must be shorter than half the box (" +

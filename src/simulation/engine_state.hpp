@@ -129,8 +129,7 @@ void Engine<B, R, PairR>::load_checkpoint(const std::string& path) {
                            schedule_.stages(),
                            integrators_.size(),
                            static_cast<int>(host_.typeNames.size()),
-                           largestCutoff_,
-                           forceField_.largest_list_radius() > 0};
+                           largestCutoff_};
     const DynamicState<R> s = decode_state<R>(read_checkpoint_file(path), path, shape);
     // Everything read and checked: now the state changes.
     backend_.activate();

@@ -38,10 +38,6 @@ void check_state_values(const DynamicState<R>& s, const std::string& path, const
         if (!is_box_length(s.box[d]))
             throw invalid("box length " + std::to_string(d) + " is " + precise(s.box[d]) +
                           ", expected > 0 and <= 1e15, or infinity (an open axis)");
-    for (int d = 0; d < 3; ++d)
-        if (shape.verletLists && is_open_axis(s.box[d]))
-            throw invalid("box length " + std::to_string(d) + " is " + precise(s.box[d]) +
-                          ", an open axis, but the force field's Verlet lists need a periodic box");
     if (!cutoff_fits_box(shape.largestCutoff, s.box))
         throw invalid("the largest cutoff (" + precise(shape.largestCutoff) + ") must be shorter than half the box (" +
                       precise(half_shortest_edge(s.box[0], s.box[1], s.box[2])) + ")");

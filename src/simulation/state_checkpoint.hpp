@@ -43,7 +43,6 @@ struct StateShape {
     size_t integrators = 0;
     int types = 0;
     double largestCutoff = 0.0;  // of the pair terms
-    bool verletLists = false;    // the force field has Verlet lists, which need every axis periodic
 };
 
 template <class R>

@@ -2,8 +2,9 @@
 // through the C API: unscreened Coulomb among random charges in an open box against a direct sum
 // written here (energy, forces, virial) and against finite differences of the energy; a softened
 // gravitational cluster whose NVE run keeps its energy and momentum; a Debye-Hueckel term over all
-// pairs of a periodic box against the same term over a Verlet list; batches kept apart; checkpoints and
-// structmd_set_box of an open box; and the inputs refused, each naming its path.
+// pairs of a periodic box against the same term over a Verlet list; Verlet lists over open axes against
+// all pairs, with clumps far apart along an open axis sharing the repeating cells; batches kept apart;
+// checkpoints and structmd_set_box of an open box; and the inputs refused, each naming its path.
 // Usage: test_nbody [--backend=cpu|cuda]; with cuda it exits 77 (skipped) without a GPU.
 #include "physics_support.hpp"
 
@@ -274,11 +275,70 @@ TEST(NBody, ScreenedTermOverAllPairsIsTheVerletListsTerm) {
     EXPECT_LT(tensor_relative_deviation(a, b), 1e-12);
 }
 
-// A checkpoint of an open box restores it: the run continued from it follows the uninterrupted run.
-TEST(NBody, OpenBoxCheckpointRoundTrip) {
-    std::vector<Body> bodies = random_bodies(16, 4.0, 0.4, 0.3, 21);
-    const std::string input = document(bodies, "\"inf\", \"inf\", \"inf\"", gravity(1.0, 0.1));
-    const std::string path = ::testing::TempDir() + "nbody_open_box_" + g_backend + ".chk";
+const std::string kScreened = "\"dh\": {\"type\": [\"NonBonded\", \"DebyeHuckel\"], \"parameters\": {\"cutOffFactor\": 2.0, "
+                              "\"dielectricConstant\": 1.0, \"debyeLength\": 1.0, \"condition\": \"all\", "
+                              "\"neighbourList\": \"list\"}}";
+const std::string kScreenedOverVerletLists =
+    "\"list\": {\"type\": [\"VerletConditionalListSet\", \"all\"]},\n" + kScreened;
+const std::string kScreenedOverAllPairs = "\"list\": {\"type\": [\"NBody\", \"all\"]},\n" + kScreened;
+
+// Charges of one sign: the screened term then only pushes the bodies apart, and a run stays finite.
+std::vector<Body> repelling(std::vector<Body> bodies) {
+    for (Body& b : bodies) b.charge = std::abs(b.charge) + 0.1;
+    return bodies;
+}
+
+std::vector<double> positions_of(structmd_sim* sim, size_t n) {
+    std::vector<double> x(3 * n);
+    EXPECT_EQ(structmd_get_positions(sim, x.data(), static_cast<int64_t>(n)), STRUCTMD_OK) << structmd_last_error(sim);
+    return x;
+}
+
+// The same term over a Verlet list and over all pairs, at the Verlet run's positions: energy, forces
+// and virial agree to rounding.
+void expect_lists_find_every_pair(structmd_sim* listed, structmd_sim* allPairs, size_t n, const std::string& when) {
+    const std::vector<double> x = positions_of(listed, n);
+    ASSERT_STRUCTMD_OK(allPairs, structmd_set_positions(allPairs, x.data(), static_cast<int64_t>(n)));
+    EXPECT_LT(relative_deviation(potential_of(listed), potential_of(allPairs)), 1e-12) << when;
+    EXPECT_LT(max_relative_deviation(forces_of(listed, n), forces_of(allPairs, n)), 1e-12) << when;
+    std::array<double, 9> a{}, b{};
+    ASSERT_STRUCTMD_OK(listed, structmd_get_virial(listed, a.data()));
+    ASSERT_STRUCTMD_OK(allPairs, structmd_get_virial(allPairs, b.data()));
+    EXPECT_LT(tensor_relative_deviation(a, b), 1e-12) << when;
+}
+
+// Verlet lists over open axes: cells repeat along them, so a clump far up an open axis shares cells
+// with one near the origin. The lists must still hold every pair within reach and no other, after the
+// load and after a run long enough to rebuild them, in a box open along every axis and in a slab.
+TEST(NBody, VerletListsOverOpenAxesFindEveryPair) {
+    std::vector<Body> bodies = repelling(random_bodies(70, 6.0, 0.75, 0.8, 31));
+    std::vector<Body> far = repelling(random_bodies(40, 5.0, 0.75, 0.8, 32));
+    for (Body& b : far) {
+        b.position[2] += 701.3;
+        bodies.push_back(b);
+    }
+    const size_t n = bodies.size();
+    for (const char* box : {"\"inf\", \"inf\", \"inf\"", "7.5, 7.5, \"inf\"", "0, 9, 0"}) {
+        SimHandle listed = load(document(bodies, box, kScreenedOverVerletLists, 5e-3));
+        SimHandle allPairs = load(document(bodies, box, kScreenedOverAllPairs, 5e-3));
+        ASSERT_TRUE(listed && allPairs) << box;
+        expect_lists_find_every_pair(listed.get(), allPairs.get(), n, std::string("at the load, box ") + box);
+        ASSERT_STRUCTMD_OK(listed.get(), structmd_step(listed.get(), 400));
+        char counters[512];
+        ASSERT_STRUCTMD_OK(listed.get(), structmd_get_counters(listed.get(), counters, sizeof counters));
+        const std::string text = counters;
+        const size_t at = text.find("\"neighbour_list_builds\":");
+        ASSERT_NE(at, std::string::npos) << text;
+        EXPECT_GT(std::stoll(text.substr(at + 24)), 2) << "the run must rebuild the lists: " << text;
+        expect_lists_find_every_pair(listed.get(), allPairs.get(), n, std::string("after 400 steps, box ") + box);
+        const std::vector<double> x = positions_of(listed.get(), n);
+        for (double c : x) ASSERT_TRUE(std::isfinite(c));
+    }
+}
+
+// A run continued from a checkpoint follows the uninterrupted run.
+void expect_checkpoint_round_trip(const std::string& input, size_t n, const std::string& name) {
+    const std::string path = ::testing::TempDir() + name + "_" + g_backend + ".chk";
     SimHandle first = load(input);
     ASSERT_TRUE(first);
     ASSERT_STRUCTMD_OK(first.get(), structmd_step(first.get(), 50));
@@ -287,11 +347,12 @@ TEST(NBody, OpenBoxCheckpointRoundTrip) {
     SimHandle second = load(input);
     ASSERT_TRUE(second);
     ASSERT_STRUCTMD_OK(second.get(), structmd_load_checkpoint(second.get(), path.c_str()));
-    std::array<double, 3> lengths{};
-    ASSERT_STRUCTMD_OK(second.get(), structmd_get_box(second.get(), lengths.data()));
-    for (double l : lengths) EXPECT_TRUE(std::isinf(l)) << l;
+    std::array<double, 3> saved{}, restored{};
+    ASSERT_STRUCTMD_OK(first.get(), structmd_get_box(first.get(), saved.data()));
+    ASSERT_STRUCTMD_OK(second.get(), structmd_get_box(second.get(), restored.data()));
+    EXPECT_EQ(restored, saved);
+    EXPECT_TRUE(std::isinf(restored[0]) && std::isinf(restored[2])) << restored[0] << " " << restored[2];
     ASSERT_STRUCTMD_OK(second.get(), structmd_step(second.get(), 50));
-    const size_t n = bodies.size();
     std::vector<double> a(3 * n), b(3 * n);
     ASSERT_STRUCTMD_OK(first.get(), structmd_get_positions(first.get(), a.data(), static_cast<int64_t>(n)));
     ASSERT_STRUCTMD_OK(second.get(), structmd_get_positions(second.get(), b.data(), static_cast<int64_t>(n)));
@@ -300,6 +361,16 @@ TEST(NBody, OpenBoxCheckpointRoundTrip) {
         EXPECT_EQ(a[c], b[c]) << "coordinate " << c;
     }
     std::remove(path.c_str());
+}
+
+// A checkpoint of an open box restores it, with pairs over all pairs or over Verlet lists.
+TEST(NBody, OpenBoxCheckpointRoundTrip) {
+    const std::vector<Body> bodies = random_bodies(16, 4.0, 0.4, 0.3, 21);
+    expect_checkpoint_round_trip(document(bodies, "\"inf\", \"inf\", \"inf\"", gravity(1.0, 0.1)), bodies.size(),
+                                 "nbody_open_box");
+    const std::vector<Body> liquid = repelling(random_bodies(40, 5.0, 0.75, 0.8, 22));
+    expect_checkpoint_round_trip(document(liquid, "\"inf\", 6, \"inf\"", kScreenedOverVerletLists, 5e-3), liquid.size(),
+                                 "verlet_open_box");
 }
 
 // structmd_set_box takes 0 or infinity as an open axis (kept as infinity); a position along an axis
@@ -331,19 +402,18 @@ TEST(NBody, SetBoxOpensAnAxis) {
     EXPECT_EQ(structmd_set_box(sim.get(), bad), STRUCTMD_ERR_ARGUMENT);
     EXPECT_NE(std::string(structmd_last_error(sim.get())).find("lengths[1]"), std::string::npos)
         << structmd_last_error(sim.get());
-    // A term over a Verlet list keeps the box periodic: opening an axis is refused, nothing changed.
-    SimHandle listed = load(document(bodies, "20, 20, 20",
-                                     "\"nl\": {\"type\": [\"VerletConditionalListSet\", \"all\"]},\n"
-                                     "\"dh\": {\"type\": [\"NonBonded\", \"DebyeHuckel\"], \"parameters\": "
-                                     "{\"cutOffFactor\": 2.0, \"dielectricConstant\": 1.0, \"debyeLength\": 1.0, "
-                                     "\"condition\": \"all\"}}"));
-    ASSERT_TRUE(listed);
-    EXPECT_EQ(structmd_set_box(listed.get(), open), STRUCTMD_ERR_ARGUMENT);
-    EXPECT_NE(std::string(structmd_last_error(listed.get())).find("NBody"), std::string::npos)
-        << structmd_last_error(listed.get());
-    ASSERT_STRUCTMD_OK(listed.get(), structmd_get_box(listed.get(), lengths.data()));
-    EXPECT_EQ(lengths, (std::array<double, 3>{20.0, 20.0, 20.0}));
+    // A term over Verlet lists: the lists are laid out again for the opened axes and find the pairs
+    // all pairs find.
+    SimHandle listed = load(document(bodies, "20, 20, 20", kScreenedOverVerletLists));
+    SimHandle allPairs = load(document(bodies, "20, 20, 20", kScreenedOverAllPairs));
+    ASSERT_TRUE(listed && allPairs);
     ASSERT_STRUCTMD_OK(listed.get(), structmd_step(listed.get(), 10));
+    ASSERT_STRUCTMD_OK(listed.get(), structmd_set_box(listed.get(), open));
+    ASSERT_STRUCTMD_OK(allPairs.get(), structmd_set_box(allPairs.get(), open));
+    ASSERT_STRUCTMD_OK(listed.get(), structmd_get_box(listed.get(), lengths.data()));
+    EXPECT_TRUE(std::isinf(lengths[0]) && std::isinf(lengths[1]));
+    ASSERT_STRUCTMD_OK(listed.get(), structmd_step(listed.get(), 10));
+    expect_lists_find_every_pair(listed.get(), allPairs.get(), n, "after opening two axes");
 }
 
 void expect_error(const std::string& input, const std::vector<std::string>& fragments) {
@@ -362,17 +432,12 @@ TEST(NBody, RefusedInputsNameTheirPath) {
     // Unscreened Coulomb over a periodic axis would miss the periodic sum.
     expect_error(document(bodies, "10, 10, \"inf\"", kCoulomb),
                  {"global.ensemble.data[0][0]", "[\"NonBonded\", \"Coulomb\"]", "open along every axis"});
-    // A Verlet list has no cells along an open axis.
-    expect_error(document(bodies, kOpenBox,
-                          "\"nl\": {\"type\": [\"VerletConditionalListSet\", \"all\"]},\n"
-                          "\"dh\": {\"type\": [\"NonBonded\", \"DebyeHuckel\"], \"parameters\": {\"cutOffFactor\": 2.0, "
-                          "\"dielectricConstant\": 1.0, \"debyeLength\": 1.0, \"condition\": \"all\"}}"),
-                 {"topology.forceField.nl.type", "needs a periodic box", "NBody"});
+    // A term of no finite range over a Verlet list would be cut at the list's radius.
     expect_error(document(bodies, kOpenBox,
                           "\"nl\": {\"type\": [\"VerletConditionalListSet\", \"all\"]},\n"
                           "\"coulomb\": {\"type\": [\"NonBonded\", \"Coulomb\"], \"parameters\": "
                           "{\"dielectricConstant\": 1.0, \"condition\": \"all\"}}"),
-                 {"topology.forceField.nl.type"});
+                 {"topology.forceField.nl.type", "acts at every distance"});
     expect_error(document(bodies, kOpenBox,
                           kAllPairs + "\"g\": {\"type\": [\"NonBonded\", \"Gravity\"], \"parameters\": "
                                       "{\"G\": -1.0, \"condition\": \"all\"}}"),

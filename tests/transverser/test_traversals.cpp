@@ -1,7 +1,7 @@
 // The Transverser contract (src/transverser/) on the CPU backend: transversers written by a user
 // (a neighbour counter, a local density, a Lennard-Jones force with its virial) and the expression
 // transverser, over a neighbour list and over all pairs, each against a direct double loop over
-// every pair, in a periodic box and in an open one.
+// every pair, in a periodic box and in an open one (over lists and over all pairs).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -143,6 +143,24 @@ TEST(NeighbourTraversal, CountsTheNeighboursOfEveryParticle) {
         pairs += expected[i];
     }
     EXPECT_GT(pairs, 4 * s.n);  // a dense enough system for the check to mean something
+}
+
+// Over open axes the list's cells repeat: every third particle moved 503.7 up z (and a few far down x)
+// shares cells with those left near the origin, and the counts must still be the brute-force ones.
+TEST(NeighbourTraversal, CountsTheNeighboursInAnOpenBox) {
+    System s(700, 10.0, 1, true);
+    for (int64_t i = 0; i < s.n; i += 3) s.pos.data()[i].z += 503.7;
+    for (int64_t i = 0; i < s.n; i += 50) s.pos.data()[i].x -= 1.0e4;
+    const double cutoff = 1.7;
+    std::vector<int> count(s.n, -1), expected(s.n, 0);
+    s.over_list(NeighbourCounter{count.data()}, cutoff, nullptr);
+    s.each_pair(cutoff, nullptr, [&](int64_t i, int64_t, const Vec3<double>&) { ++expected[i]; });
+    int64_t pairs = 0;
+    for (int64_t i = 0; i < s.n; ++i) {
+        EXPECT_EQ(count[i], expected[i]) << "particle " << i;
+        pairs += expected[i];
+    }
+    EXPECT_GT(pairs, 2 * s.n);
 }
 
 TEST(NeighbourTraversal, LeavesParticlesOutsideTheGroupAloneAndSkipsTheirPairs) {
