@@ -228,17 +228,23 @@ public:
         backend_.for_each(p.count, IcmSetVelocities<R>{p.vel.data(), start_.data(), s.group});
     }
 
-    // The fluid's velocity field (three grids of faces), so a checkpoint carries it.
+    // The fluid's velocity field and its last advection (three grids of faces each), so that a run
+    // continued from a checkpoint is the run that went on.
     std::vector<double> state() const override {
         std::vector<double> out;
         if (vel_.size() == 0) return out;
         std::vector<R> held(vel_.size());
-        backend_.download(vel_, held.data(), held.size());
-        out.assign(held.begin(), held.end());
+        for (const auto* field : {&vel_, &advection_}) {
+            backend_.download(*field, held.data(), held.size());
+            out.insert(out.end(), held.begin(), held.end());
+        }
         out.push_back(firstStep_ ? 1.0 : 0.0);
         return out;
     }
-    void restore(const std::vector<double>& saved) override { restored_ = saved; }
+    void restore(const std::vector<double>& saved) override {
+        restored_ = saved;
+        if (fft_) apply_restored();
+    }
 
 private:
     // The grid for the box the integrator starts with (a box that changes afterwards is refused),
@@ -270,11 +276,7 @@ private:
                 s.log->info(s.name + ": inertial coupling fluid of " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
                             " x " + std::to_string(n[2]) + " cells, hydrodynamic radius " +
                             std::to_string(kIcmRadiusPerSpacing * box[0] / n[0]));
-            if (restored_.size() == size_t(3 * points + 1)) {
-                std::vector<R> held(restored_.begin(), restored_.end() - 1);
-                backend_.upload(vel_, held.data(), held.size());
-                firstStep_ = restored_.back() != 0.0;
-            } else {
+            if (!apply_restored()) {
                 const double cellVolume = box[0] * box[1] * box[2] / double(points);
                 backend_.for_each(points, DrawStaggeredNormals<R>{rhs_.data(), points, 3, p.noise.seed,
                                                                   static_cast<uint64_t>(NoisePurpose::initialVelocities) << 48,
@@ -282,13 +284,27 @@ private:
                 backend_.for_each(3 * points, ScaleField{rhs_.data(), R(std::sqrt(s.kT / (density_ * cellVolume)))});
                 solve(R(0));
             }
-            restored_.clear();
         }
         backend_.resize(start_, static_cast<size_t>(3 * p.count));
         backend_.resize(midOld_, static_cast<size_t>(3 * p.count));
         backend_.resize(midNew_, static_cast<size_t>(3 * p.count));
         backend_.resize(probeVectors_, static_cast<size_t>(3 * p.count));
         backend_.resize(probe_, static_cast<size_t>(p.count));
+    }
+
+    // The saved fluid, where restore gave one for this grid: true when applied.
+    bool apply_restored() {
+        const size_t faces = vel_.size();
+        const bool fits = restored_.size() == 2 * faces + 1;
+        if (fits) {
+            std::vector<R> held(restored_.begin(), restored_.begin() + faces);
+            backend_.upload(vel_, held.data(), faces);
+            held.assign(restored_.begin() + faces, restored_.end() - 1);
+            backend_.upload(advection_, held.data(), faces);
+            firstStep_ = restored_.back() != 0.0;
+        }
+        restored_.clear();
+        return fits;
     }
 
     struct ScaleField {

@@ -234,3 +234,19 @@ def test_long_time_diffusion_is_kT_times_the_periodic_mobility(thermal_run):
     measured, error = slopes.mean(), slopes.std(ddof=1) / math.sqrt(len(slopes))
     assert abs(measured - expected) < 4 * error, (measured, expected, error)
     assert error < 0.1 * expected
+
+
+def test_a_checkpoint_carries_the_fluid(options, tmp_path):
+    """At kT = 0 a pulled particle's velocity depends on the flow built up so far: a run continued from a
+    checkpoint matches the uninterrupted one only if the fluid was saved and restored with it."""
+    path = tmp_path / "icm.chk"
+    with structmd.Simulation(options) as sim:
+        sim.load(document([[0.3, 0.1, -0.2]], 8.0, icm(), steps=10 ** 6))
+        sim.external_forces = np.array([[1e-3, 0.0, 0.0]])
+        sim.step(20)
+        sim.save_checkpoint(path)
+        sim.step(20)
+        straight = sim.positions.copy()
+        sim.load_checkpoint(path)
+        sim.step(20)
+        assert np.array_equal(sim.positions, straight)
