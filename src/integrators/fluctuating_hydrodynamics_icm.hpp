@@ -173,6 +173,14 @@ struct IcmDriftProbe {
     }
 };
 
+// field *= scale (the initial fluid's amplitude).
+template <class R>
+struct IcmScaleField {
+    R* field;
+    R scale;
+    SMD_HD void operator()(int64_t i) const { field[i] *= scale; }
+};
+
 template <class B, class R>
 class IncompressibleInertialCoupling : public Integrator<B, R> {
 public:
@@ -281,7 +289,7 @@ private:
                 backend_.for_each(points, DrawStaggeredNormals<R>{rhs_.data(), points, 3, p.noise.seed,
                                                                   static_cast<uint64_t>(NoisePurpose::initialVelocities) << 48,
                                                                   ~uint64_t(0)});
-                backend_.for_each(3 * points, ScaleField{rhs_.data(), R(std::sqrt(s.kT / (density_ * cellVolume)))});
+                backend_.for_each(3 * points, IcmScaleField<R>{rhs_.data(), R(std::sqrt(s.kT / (density_ * cellVolume)))});
                 solve(R(0));
             }
         }
@@ -306,12 +314,6 @@ private:
         restored_.clear();
         return fits;
     }
-
-    struct ScaleField {
-        R* field;
-        R scale;
-        SMD_HD void operator()(int64_t i) const { field[i] *= scale; }
-    };
 
     // rhs -> vel: transform, solve and project, transform back.
     void solve(R viscousScale) {
