@@ -97,9 +97,23 @@ def test_the_reference_kernel_sums_to_one_and_its_squares_to_one_half():
 
 # ---- input ----------------------------------------------------------------------------------------
 
+def test_the_thermal_drift_is_small_but_there(options):
+    """sumThermalDrift adds the random finite difference's forcing: the same seed with and without it
+    gives trajectories that differ, by little (the kernel's mobility hardly changes along a step)."""
+    runs = []
+    for drift in (False, True):
+        with structmd.Simulation(options) as sim:
+            sim.load(document([[0.3, 0.1, -0.2]], 8.0, icm(sumThermalDrift=drift), steps=50, temperature=0.01))
+            sim.run()
+            runs.append(sim.positions.copy())
+    difference = np.abs(runs[1] - runs[0]).max()
+    assert 0.0 < difference < 1e-3
+
+
 def test_loads_with_uammd_structureds_parameters_and_defaults(options):
-    """Only viscosity, density and hydrodynamicRadius (and the time step) are needed; the grid follows
-    from the radius as UAMMD chooses it: n = floor(L 0.91 / a) made FFT-friendly (24 / (0.91 / 0.91) = 24)."""
+    """Only viscosity, density and hydrodynamicRadius (and the time step) are needed. (The grid the radius
+    chooses, n = floor(0.91 L / a) made FFT-friendly, is checked by the next test: 16 cells for L = 16,
+    a = 0.91, the grid of its reference.)"""
     with structmd.Simulation(options) as sim:
         sim.load(document([[0.0, 0.0, 0.0]], 24.0, icm(radius=0.91), steps=3))
         sim.run()
