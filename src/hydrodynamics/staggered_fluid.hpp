@@ -289,7 +289,7 @@ struct StaggeredStokesSolve {
         R norm2 = R(0);
         for (int d = 0; d < 3; ++d) {
             const R theta = twoPi * R(m[d]) / R(grid.size(d));
-            D[d] = Complex<R>{(R(1) - cos(theta)) / grid.h(d), sin(theta) / grid.h(d)};
+            D[d] = Complex<R>{R((R(1) - cos(theta)) / grid.h(d)), R(sin(theta) / grid.h(d))};
             norm2 += D[d].re * D[d].re + D[d].im * D[d].im;
         }
         // s = D . g
