@@ -13,6 +13,7 @@
 #include "integrators/brownian.hpp"
 #include "integrators/brownian_rigid_body.hpp"
 #include "integrators/dpd_verlet.hpp"
+#include "integrators/fluctuating_hydrodynamics_icm.hpp"
 #include "integrators/langevin_bbk.hpp"
 #include "integrators/langevin_gjf.hpp"
 #include "integrators/magnetic.hpp"
@@ -43,6 +44,8 @@ void visit_builtin_integrators(Visitor& v) {
         {"BDHITriplyPeriodic", "PositivelySplitEwald"});
     v.template integrator<BdhiPositivelySplitEwald, BdhiPositivelySplitEwaldInputs>(
         {"BDHITriplePeriodic", "PositivelySplitEwald"});
+    v.template integrator<IncompressibleInertialCoupling, IcmInputs>(
+        {"FluctuatingHydrodynamics", "IncompressibleInertialCoupling"});
     v.template integrator<MagneticFixed, MagneticFixedInputs>({"Magnetic", "Fixed"});
     v.template integrator<MagneticBrownian, MagneticBrownianInputs>({"Magnetic", "Brownian"});
     // The minimiser is also known by the reference's two spellings.

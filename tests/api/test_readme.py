@@ -26,6 +26,7 @@ README_WORDS = {
     ("BDHITriplyPeriodic", "PositivelySplitEwald"): "positively split Ewald",
     ("BDHIDoublyPeriodic", "Quasi2D"): "quasi-2D",
     ("BDHIDoublyPeriodic", "DPStokes"): "DPStokes",
+    ("FluctuatingHydrodynamics", "IncompressibleInertialCoupling"): "inertial coupling method",
     ("Magnetic", "Fixed"): "Landau-Lifshitz-Gilbert",
     ("Magnetic", "Brownian"): "Brownian rotation",
     ("SteepestDescent", "SteepestDescent"): "steepest descent",
