@@ -12,7 +12,7 @@
 // P = I - G (D G)^{-1} D; in Fourier space, with theta_d = 2 pi m_d / n_d,
 //   D_d = (1 - e^{-i theta_d}) / h_d,   |D|^2 = sum_d (2 sin(theta_d / 2) / h_d)^2 = -L,
 //   P = I - conj(D) D^T / |D|^2.
-// Particles meet the fluid through Peskin's three-point kernel (peskin_three_point.hpp): the
+// Particles meet the fluid through Peskin's three-point kernel (peskin_kernel.hpp): the
 // velocity at a particle J v = sum_faces phi phi phi v (J = dV S^T), and a force f spread as the
 // force density S f = sum_faces phi phi phi f / dV.
 #include <cmath>
@@ -22,7 +22,7 @@
 #include "core/hd.hpp"
 #include "core/random.hpp"
 #include "core/vec.hpp"
-#include "hydrodynamics/peskin_three_point.hpp"
+#include "hydrodynamics/peskin_kernel.hpp"
 
 namespace structmd {
 
@@ -65,8 +65,8 @@ struct PeskinWeights {
             const R u = g.coordinate(position[d], d);
             first[d] = static_cast<int>(floor(u)) - 2;
             for (int j = 0; j < 4; ++j) {
-                centre[d][j] = peskin_three_point(R(first[d] + j) + R(0.5) - u);
-                face[d][j] = peskin_three_point(R(first[d] + j) + R(1) - u);
+                centre[d][j] = peskin3(R(first[d] + j) + R(0.5) - u);
+                face[d][j] = peskin3(R(first[d] + j) + R(1) - u);
             }
         }
     }

@@ -28,9 +28,6 @@
 
 namespace structmd {
 
-// The hydrodynamic radius of Peskin's three-point kernel on the staggered grid, in grid spacings
-// (Balboa Usabiaga et al. 2014, as UAMMD's ICM takes it).
-inline constexpr double kIcmRadiusPerSpacing = 0.91;
 
 // The cells along each axis: cellDimX/Y/Z where given, else as UAMMD chooses them from the radius,
 // n = floor(L / (a / 0.91)) rounded up to an FFT-friendly size; at least 4 either way.
@@ -45,7 +42,7 @@ inline std::array<int, 3> icm_cells(const ParameterValues& v, const std::array<d
                                   "cellDimX, cellDimY and cellDimZ go together, each at least 4 cells");
             cells[d] = static_cast<int>(v[names[d]]);
         } else {
-            const double wanted = std::floor(box[d] * kIcmRadiusPerSpacing / v["hydrodynamicRadius"]);
+            const double wanted = std::floor(box[d] * kPeskin3RadiusOverSpacing / v["hydrodynamicRadius"]);
             if (!(wanted <= 1024.0))
                 throw input_error(path + ".parameters.hydrodynamicRadius",
                                   "the fluid grid would need more than 1024 cells along " + std::string(1, "xyz"[d]));
@@ -283,7 +280,7 @@ private:
             if (s.log)
                 s.log->info(s.name + ": inertial coupling fluid of " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
                             " x " + std::to_string(n[2]) + " cells, hydrodynamic radius " +
-                            std::to_string(kIcmRadiusPerSpacing * box[0] / n[0]));
+                            std::to_string(kPeskin3RadiusOverSpacing * box[0] / n[0]));
             if (!apply_restored()) {
                 const double cellVolume = box[0] * box[1] * box[2] / double(points);
                 backend_.for_each(points, DrawStaggeredNormals<R>{rhs_.data(), points, 3, p.noise.seed,
@@ -339,7 +336,7 @@ private:
     // single precision), as UAMMD.
     void add_thermal_drift(Particles<B, R>& p, double cellVolume) {
         const IntegratorScope& s = this->scope();
-        const double radius = kIcmRadiusPerSpacing * double(grid_.spacing.x);
+        const double radius = kPeskin3RadiusOverSpacing * double(grid_.spacing.x);
         const double delta = (sizeof(R) == sizeof(double) ? 1e-6 : 1e-4) * radius;
         for (R sign : {R(1), R(-1)}) {
             backend_.for_each(p.count, IcmDriftProbe<R>{p.pos.data(), s.group, p.noise, p.now(), R(0.5 * delta), sign, p.box,

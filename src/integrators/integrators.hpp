@@ -6,6 +6,7 @@
 #include "core/registry.hpp"
 #include "integrators/bdhi_cholesky.hpp"
 #include "integrators/bdhi_dpstokes.hpp"
+#include "integrators/bdhi_fluctuating_immersed_boundary.hpp"
 #include "integrators/bdhi_force_coupling.hpp"
 #include "integrators/bdhi_lanczos.hpp"
 #include "integrators/bdhi_positively_split_ewald.hpp"
@@ -46,6 +47,10 @@ void visit_builtin_integrators(Visitor& v) {
         {"BDHITriplePeriodic", "PositivelySplitEwald"});
     v.template integrator<IncompressibleInertialCoupling, IcmInputs>(
         {"FluctuatingHydrodynamics", "IncompressibleInertialCoupling"});
+    v.template integrator<BdhiFluctuatingImmersedBoundary, BdhiFluctuatingImmersedBoundaryInputs>(
+        {"BDHITriplyPeriodic", "FluctuatingImmersedBoundary"});
+    v.template integrator<BdhiFluctuatingImmersedBoundary, BdhiFluctuatingImmersedBoundaryInputs>(
+        {"BDHITriplePeriodic", "FluctuatingImmersedBoundary"});
     v.template integrator<MagneticFixed, MagneticFixedInputs>({"Magnetic", "Fixed"});
     v.template integrator<MagneticBrownian, MagneticBrownianInputs>({"Magnetic", "Brownian"});
     // The minimiser is also known by the reference's two spellings.

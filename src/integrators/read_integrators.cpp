@@ -62,13 +62,6 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
                                                   "rotational hydrodynamics (torques coupled through the fluid by the force coupling method), "
                                                   "which structmd does not have; "
                                                   "[\"Magnetic\",\"Brownian\"] moves the same particles without a fluid");
-        // UAMMD-structured's other triply periodic hydrodynamics: the force coupling method gives the
-        // same mobility (periodic RPY beyond overlap) to its tolerance.
-        if ((entry.cls == "BDHITriplyPeriodic" || entry.cls == "BDHITriplePeriodic") &&
-            entry.subclass == "FluctuatingImmersedBoundary")
-            throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ".type: [\"" + entry.cls + "\",\"" + entry.subclass +
-                                                      "\"] is not implemented; [\"BDHITriplyPeriodic\",\"ForceCouplingMethod\"] "
-                                                      "moves the same particles through the same periodic Stokes flow");
         const IntegratorComponent& component =
             registry.at({entry.cls, entry.subclass}, spec.path + ".type", "integrator");
         if (component.oneFluid && std::set<int32_t>(system.batchId.begin(), system.batchId.end()).size() > 1)

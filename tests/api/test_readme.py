@@ -24,6 +24,7 @@ README_WORDS = {
     ("BDHIOpenBoundary", "Lanczos"): "Lanczos",
     ("BDHITriplyPeriodic", "ForceCouplingMethod"): "force coupling method",
     ("BDHITriplyPeriodic", "PositivelySplitEwald"): "positively split Ewald",
+    ("BDHITriplyPeriodic", "FluctuatingImmersedBoundary"): "fluctuating immersed boundary",
     ("BDHIDoublyPeriodic", "Quasi2D"): "quasi-2D",
     ("BDHIDoublyPeriodic", "DPStokes"): "DPStokes",
     ("FluctuatingHydrodynamics", "IncompressibleInertialCoupling"): "inertial coupling method",

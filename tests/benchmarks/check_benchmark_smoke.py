@@ -179,12 +179,15 @@ def check_hydrodynamics(script):
     # would give 0).
     rows = run(script, ["--n", "150", "--backend", "cpu", "--seconds", "0.05", "--reference-max", "200"],
                HYDRODYNAMICS_COLUMNS)
-    expect([row["method"] for row in rows] == ["cholesky", "lanczos", "fcm", "pse", "quasi2d", "dpstokes"],
+    # The immersed boundary method against the periodic RPY mobility: its kernel's translational
+    # invariance (2 %) and radius (0.91 h, 1.5 % off the RPY one in this box) bound it, 10 %.
+    expect([row["method"] for row in rows] == ["cholesky", "lanczos", "fcm", "pse", "fib", "quasi2d", "dpstokes"],
            f"rows {rows}")
+    bounds = {"cholesky": (1e-25, 1e-10), "lanczos": (1e-25, 1e-10), "fib": (1e-4, 0.1)}
     for row in rows:
         positive_finite(row, "steps_per_second")
         error = float(row["error"])
-        bound = (1e-25, 1e-10) if row["method"] in ("cholesky", "lanczos") else (1e-7, 1e-2)
+        bound = bounds.get(row["method"], (1e-7, 1e-2))
         expect(bound[0] < error < bound[1], f"{row['method']} error {error} outside {bound}")
 
 

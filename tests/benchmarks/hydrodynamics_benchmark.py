@@ -15,6 +15,10 @@ Error, relative RMS of dt M F over the particles, in double precision at the met
 - triply periodic: the same method in double precision at tolerance 1e-6 (the method's converged
   mobility, which tests/python/test_bdhi_*.py check against independent Ewald and lattice sums), at the
   sizes up to --reference-max;
+- the fluctuating immersed boundary method (fib), which has no tolerance (its 3-point kernel gives a
+  radius of 0.91 grid spacings, the grid's closest to RADIUS, and a mobility that changes by about
+  2 % with where a particle is in its cell): positively split Ewald's periodic RPY mobility at
+  tolerance 1e-6 for that radius, up to --reference-max;
 - the slab (DPStokes, two walls 16 radii apart, particles at least 2 radii from them, grid spacing
   sigma = a / sqrt(pi)): the same method on a grid of half that spacing, up to --reference-max (its
   tolerance is the noise's alone).
@@ -46,6 +50,7 @@ METHODS = {
     "lanczos": (["BDHIOpenBoundary", "Lanczos"], False, True, [1000, 4000, 16000]),
     "fcm": (["BDHITriplyPeriodic", "ForceCouplingMethod"], True, True, [1000, 10000, 100000, 1000000]),
     "pse": (["BDHITriplyPeriodic", "PositivelySplitEwald"], True, True, [1000, 10000, 100000, 1000000]),
+    "fib": (["BDHITriplyPeriodic", "FluctuatingImmersedBoundary"], True, False, [1000, 10000, 100000, 1000000]),
     "quasi2d": (["BDHIDoublyPeriodic", "Quasi2D"], True, True, [1000, 10000, 100000, 1000000]),
     "dpstokes": (["BDHIDoublyPeriodic", "DPStokes"], True, True, [1000, 10000, 100000]),
 }
@@ -56,6 +61,8 @@ PLANAR = {"quasi2d"}
 # sqrt(pi), the Gaussian's width), and the reference halves it.
 SLAB = {"dpstokes"}
 SLAB_HEIGHT = 16.0 * RADIUS
+# The methods whose reference is another method's mobility: the periodic RPY one of positively split Ewald.
+RPY_REFERENCED = {"fib"}
 GRID_SPACING = RADIUS / math.sqrt(math.pi)
 
 
@@ -79,12 +86,25 @@ def placement(method, n, seed=11):
     return positions, rng.normal(size=(n, 3))
 
 
-def document(method, n, positions, temperature, tolerance, refinement=1):
+def immersed_boundary_radius(length):
+    """The radius the immersed boundary method gives for RADIUS: 0.91 L / n, n the even size with
+    factors 2, 3 and 5 closest in ratio to 0.91 L / RADIUS (docs/input-format.md)."""
+    def friendly(m):
+        for p in (2, 3, 5):
+            while m % p == 0:
+                m //= p
+        return m == 1
+    wanted = 0.91 * length / RADIUS
+    cells = min((m for m in range(2, 2 * int(wanted) + 8, 2) if friendly(m)), key=lambda m: abs(wanted / m - 1))
+    return 0.91 * length / cells
+
+
+def document(method, n, positions, temperature, tolerance, refinement=1, radius=RADIUS):
     kind, periodic, tolerant, _ = METHODS[method]
     length = side(method, n)
     # An open-boundary box only has to hold the particles: they are never folded back into it.
     box = [length] * 3 if periodic else [10.0 * length] * 3
-    parameters = {"timeStep": DT, "viscosity": ETA, "hydrodynamicRadius": RADIUS}
+    parameters = {"timeStep": DT, "viscosity": ETA, "hydrodynamicRadius": radius}
     if tolerant:
         parameters["tolerance"] = tolerance
     if method in SLAB:
@@ -111,11 +131,11 @@ def document(method, n, positions, temperature, tolerance, refinement=1):
     }
 
 
-def displacement(backend, precision, method, n, tolerance, refinement=1):
+def displacement(backend, precision, method, n, tolerance, refinement=1, radius=RADIUS):
     """dt M F from one step at temperature 0 (on a grid `refinement` times finer for a slab method)."""
     positions, forces = placement(method, n)
     with structmd.Simulation({"backend": backend, "precision": precision, "log": "quiet"}) as sim:
-        sim.load(document(method, n, positions, 0.0, tolerance, refinement))
+        sim.load(document(method, n, positions, 0.0, tolerance, refinement, radius))
         start = np.array(sim.positions)
         sim.external_forces = forces
         sim.step(1)
@@ -161,6 +181,9 @@ def error(backend, method, n, tolerance, reference_max):
         return relative_error(measured, rpy_product(positions, forces))
     if n > reference_max:
         return None
+    if method in RPY_REFERENCED:
+        return relative_error(measured, displacement(backend, "double", "pse", n, REFERENCE_TOLERANCE,
+                                                     radius=immersed_boundary_radius(side(method, n))))
     if method in SLAB:
         # The tolerance is the noise's alone (Lanczos); the deterministic part's error is the grid's.
         return relative_error(measured, displacement(backend, "double", method, n, tolerance, refinement=2))
@@ -206,7 +229,7 @@ def main():
                          "tolerance": args.tolerance if METHODS[method][2] else "",
                          "steps_per_second": rate, "error": err})
             shown = "-" if err is None else f"{err:.1e}"
-            tolerance = f"{args.tolerance:g}" if METHODS[method][2] else "exact"
+            tolerance = f"{args.tolerance:g}" if METHODS[method][2] else ("none" if method in RPY_REFERENCED else "exact")
             print(f"| {method} | {n:,} | {args.precision} | {tolerance} | {rate:,.0f} | {rate * n:.3g} | {shown} |",
                   flush=True)
     if args.csv:

@@ -83,7 +83,7 @@ TEST(PeskinThreePoint, SumsToOneWithSquaresSummingToOneHalfAndNoFirstMoment) {
     for (double r = -0.5; r <= 0.5; r += 0.03125) {
         double sum = 0, squares = 0, moment = 0;
         for (int j = -3; j <= 3; ++j) {
-            const double w = peskin_three_point(r - j);
+            const double w = peskin3(r - j);
             sum += w;
             squares += w * w;
             moment += w * (r - j);
@@ -137,9 +137,9 @@ TEST(StaggeredFluid, SpreadingPutsInTheForcesAndIsTheAdjointOfInterpolation) {
         for (int y = 0; y < 6; ++y)
             for (int x = 0; x < 6; ++x) {
                 auto image = [](double d) { return d - 7.5 * std::round(d / 7.5); };
-                const double w = peskin_three_point(image((x + 1.0) * h - 3.75 - q.x) / h) *
-                                 peskin_three_point(image((y + 0.5) * h - 3.75 - q.y) / h) *
-                                 peskin_three_point(image((z + 0.5) * h - 3.75 - q.z) / h);
+                const double w = peskin3(image((x + 1.0) * h - 3.75 - q.x) / h) *
+                                 peskin3(image((y + 0.5) * h - 3.75 - q.y) / h) *
+                                 peskin3(image((z + 0.5) * h - 3.75 - q.z) / h);
                 brute += w * v[f.grid.cells.index(x, y, z)];
             }
     EXPECT_NEAR(u.data()[0], brute, 1e-13);

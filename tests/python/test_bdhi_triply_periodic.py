@@ -209,15 +209,6 @@ def test_several_batches_are_refused(options):
         sim.load(document([[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]], 8.0, fcm(), steps=10, batches=[0, 0]))
 
 
-def test_the_immersed_boundary_method_is_refused_by_name(options):
-    entry = fcm(cls="BDHITriplePeriodic")
-    entry["type"] = ["BDHITriplePeriodic", "FluctuatingImmersedBoundary"]
-    with structmd.Simulation(options) as sim:
-        with pytest.raises(structmd.UnsupportedError,
-                           match=r"integrator\.bd\.type: .*FluctuatingImmersedBoundary.*not implemented"):
-            sim.load(document([[0.0, 0.0, 0.0]], 8.0, entry))
-
-
 @pytest.mark.parametrize("parameters, path, message", [
     ({"viscosity": 0.0}, "integrator.bd.parameters.viscosity", "positive"),
     ({"viscosity": -1.0}, "integrator.bd.parameters.viscosity", "positive"),
