@@ -28,6 +28,7 @@ README_WORDS = {
     ("BDHIDoublyPeriodic", "DPStokes"): "DPStokes",
     ("Magnetic", "Fixed"): "Landau-Lifshitz-Gilbert",
     ("Magnetic", "Brownian"): "Brownian rotation",
+    ("Magnetic", "ForceCouplingMethod"): "rotation through a fluid",
     ("SteepestDescent", "SteepestDescent"): "steepest descent",
     ("None", "None"): "moves nothing",
     ("Schedule", "Integrator"): "schedule",
