@@ -293,6 +293,11 @@ def test_bad_inputs_are_refused_by_path(options):
         two_batches = document([[0, 0, 0], [3, 0, 0]], 10.0, fcm(), batches=[0, 1])
         with pytest.raises(structmd.UnsupportedError, match=r"integrator\.bd\.type: hydrodynamics couples"):
             sim.load(two_batches)
+        sim.load(document([[0, 0, 0]], 10.0, fcm()))
+        sim.step(1)
+        sim.box = [11.0, 11.0, 11.0]
+        with pytest.raises(structmd.UnsupportedError, match=r"bd: the box changed.*Magnetic.*ForceCouplingMethod"):
+            sim.step(1)
 
 
 def test_the_moments_turn_with_the_particles_and_by_llg(options):
