@@ -21,7 +21,6 @@
 #include <cstdint>
 #include <string>
 
-#include "forcefield/bonded_geometry.hpp"
 #include "hydrodynamics/fcm_mesh.hpp"
 
 namespace structmd {
@@ -77,13 +76,18 @@ struct FcmHalfCurl {
         const Vec3<R> re{a[0].re, a[spectrumPoints].re, a[2 * spectrumPoints].re};
         const Vec3<R> im{a[0].im, a[spectrumPoints].im, a[2 * spectrumPoints].im};
         // i (k/2) x (re + i im) = -(k/2) x im + i (k/2) x re
-        const Vec3<R> curlRe = R(-1) * bonded_geometry::cross(halfK, im);
-        const Vec3<R> curlIm = bonded_geometry::cross(halfK, re);
+        const Vec3<R> curlRe = R(-1) * cross(halfK, im);
+        const Vec3<R> curlIm = cross(halfK, re);
         const R cr[3] = {curlRe.x, curlRe.y, curlRe.z}, ci[3] = {curlIm.x, curlIm.y, curlIm.z};
         for (int d = 0; d < 3; ++d) {
             Complex<R>& out = to[at + d * spectrumPoints];
             out = accumulate ? Complex<R>{out.re + cr[d], out.im + ci[d]} : Complex<R>{cr[d], ci[d]};
         }
+    }
+
+private:
+    SMD_HD SMD_INLINE static Vec3<R> cross(const Vec3<R>& a, const Vec3<R>& b) {
+        return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
     }
 };
 
