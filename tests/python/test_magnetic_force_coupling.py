@@ -181,11 +181,11 @@ def test_orientations_decorrelate_at_the_rotational_diffusion_rate(options):
     """27 particles 4 radii apart (box 12), no torque, kT = 1: each step turns every particle by a
     Gaussian rotation vector of variance s^2 = 2 D_r dt per axis, D_r = kT mu_r(L), whose body axes then
     keep on average e(0) . e(n dt) = r^n, r = (1 + 2 (1 - s^2) exp(-s^2/2)) / 3 (= exp(-2 D_r dt) to
-    O(dt^2)). Measured at n = 30 and 60 over 40 windows each started from the last one's end; the
+    O(dt^2)). Measured at n = 15 and 30 over 40 windows each started from the last one's end; the
     windows' means (over particles, which the fluid correlates) give the standard error, and the mean
     must be within 4 of them, while a rate off by a third (the translational mobility's 4/3 in place of
     the rotational one's) must be outside them."""
-    length, time_step, kT = 12.0, 0.1, 1.0
+    length, time_step, kT = 12.0, 0.2, 1.0
     grid = np.arange(3) * 4.0 - 4.0
     positions = [[x, y, z] for x in grid for y in grid for z in grid]
     n = len(positions)
@@ -194,7 +194,7 @@ def test_orientations_decorrelate_at_the_rotational_diffusion_rate(options):
     diffusion = kT * (1.0 - 4.0 * math.pi / 3.0 * (RADIUS / length) ** 3) * ROTATIONAL_MU0
     s2 = 2.0 * diffusion * time_step
     per_step = (1.0 + 2.0 * (1.0 - s2) * math.exp(-s2 / 2.0)) / 3.0
-    windows, lags = 40, (30, 60)
+    windows, lags = 40, (15, 30)
     correlations = {lag: [] for lag in lags}
     with structmd.Simulation(options) as sim:
         sim.load(doc)
