@@ -169,11 +169,14 @@ inline void checked_grid_sizes(const double* wanted, int axes, int* sizes, const
 // tolerance falls (its empirical "upsampling"); the support covers the distance at which the
 // Gaussian falls to tol of its peak. Unlike UAMMD, the grid is rounded up (finer) rather than
 // down, and the radius stays the one given rather than being refitted to the rounded grid.
-inline FcmPlan make_fcm_plan(const double box[3], double radius, double tolerance, const std::string& path) {
+// resolvedSigma > 0: the grid is made fine enough for a narrower Gaussian of that width as well (the
+// torques' of fcm_rotation.hpp).
+inline FcmPlan make_fcm_plan(const double box[3], double radius, double tolerance, const std::string& path,
+                             double resolvedSigma = 0.0) {
     FcmPlan plan;
     plan.sigma = radius / std::sqrt(M_PI);
     const double upsampling = std::min(0.55 + (-std::log10(3.0 * tolerance) / 10.0) * (1.65 - 0.55), 1.65);
-    const double spacing = plan.sigma / upsampling;
+    const double spacing = (resolvedSigma > 0.0 ? std::min(plan.sigma, resolvedSigma) : plan.sigma) / upsampling;
     const double reach = plan.sigma * std::sqrt(2.0 * std::log(1.0 / tolerance));
     double wanted[3];
     for (int d = 0; d < 3; ++d) {

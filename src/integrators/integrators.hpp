@@ -18,6 +18,7 @@
 #include "integrators/langevin_bbk.hpp"
 #include "integrators/langevin_gjf.hpp"
 #include "integrators/magnetic.hpp"
+#include "integrators/magnetic_force_coupling.hpp"
 #include "integrators/no_motion.hpp"
 #include "integrators/sph_verlet.hpp"
 #include "integrators/steepest_descent.hpp"
@@ -53,6 +54,7 @@ void visit_builtin_integrators(Visitor& v) {
         {"BDHITriplePeriodic", "FluctuatingImmersedBoundary"});
     v.template integrator<MagneticFixed, MagneticFixedInputs>({"Magnetic", "Fixed"});
     v.template integrator<MagneticBrownian, MagneticBrownianInputs>({"Magnetic", "Brownian"});
+    v.template integrator<MagneticForceCoupling, MagneticForceCouplingInputs>({"Magnetic", "ForceCouplingMethod"});
     // The minimiser is also known by the reference's two spellings.
     v.template integrator<SteepestDescent, SteepestDescentInputs>({"SteepestDescent", "SteepestDescent"});
     v.template integrator<SteepestDescent, SteepestDescentInputs>({"Minimization", "SteepestDescent"});

@@ -55,13 +55,6 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         IntegratorSpec spec;
         spec.name = entry.name;
         spec.path = entry.node.path();
-        // UAMMD-structured's magnetic particles in a fluid: their moments turn as those of
-        // ["Magnetic","Brownian"] do, but they move and turn through the force coupling method's fluid.
-        if (entry.cls == "Magnetic" && entry.subclass == "ForceCouplingMethod")
-            throw Error(STRUCTMD_ERR_UNSUPPORTED, spec.path + ".type: [\"Magnetic\",\"ForceCouplingMethod\"] needs "
-                                                  "rotational hydrodynamics (torques coupled through the fluid by the force coupling method), "
-                                                  "which structmd does not have; "
-                                                  "[\"Magnetic\",\"Brownian\"] moves the same particles without a fluid");
         const IntegratorComponent& component =
             registry.at({entry.cls, entry.subclass}, spec.path + ".type", "integrator");
         if (component.oneFluid && std::set<int32_t>(system.batchId.begin(), system.batchId.end()).size() > 1)
@@ -90,7 +83,9 @@ std::vector<IntegratorSpec> read_integrators(const input::SystemDescription& sys
         component.validate(spec.parameters, spec.path);
         // Entries added at run time may leave it out, as they may the later fields.
         if (component.validateInBox) component.validateInBox(spec.parameters, system.box, spec.path);
-        if (component.magnetic && system.magnetizations.empty())
+        // The algorithm "none" (index 0) leaves the moments alone: particles without them may move.
+        if (component.magnetic && spec.parameters["magneticIntegrationAlgorithm"] != 0.0 &&
+            system.magnetizations.empty())
             throw input_error(spec.path + ".type", entry.cls + " " + entry.subclass +
                                                        " turns magnetic moments: the state needs a 'magnetization' column");
 

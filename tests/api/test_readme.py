@@ -30,6 +30,7 @@ README_WORDS = {
     ("FluctuatingHydrodynamics", "IncompressibleInertialCoupling"): "inertial coupling method",
     ("Magnetic", "Fixed"): "Landau-Lifshitz-Gilbert",
     ("Magnetic", "Brownian"): "Brownian rotation",
+    ("Magnetic", "ForceCouplingMethod"): "rotation through a fluid",
     ("SteepestDescent", "SteepestDescent"): "steepest descent",
     ("None", "None"): "moves nothing",
     ("Schedule", "Integrator"): "schedule",

@@ -467,12 +467,9 @@ def test_magnetic_state_continues_from_a_checkpoint_as_without_it(options, tmp_p
         assert not np.allclose(continued, lab_moments(m, [[1, 0, 0, 0]] * n))
 
 
-def test_force_coupling_and_unknown_algorithms_are_refused_by_name(options):
+def test_unknown_algorithms_are_refused_by_name(options):
     m = [[0, 0, 1, 1.0]]
-    fcm = {"type": ["Magnetic", "ForceCouplingMethod"], "parameters": {"timeStep": 0.01, "msat": 1.0}}
     with structmd.Simulation(options) as sim:
-        with pytest.raises(structmd.UnsupportedError, match=r"integrator\.fcm\.type: .*hydrodynamics"):
-            sim.load(document([[0, 0, 0]], ["A"], magnetizations=m, integrators={"fcm": fcm}, schedule=[("fcm", 1)]))
         with pytest.raises(structmd.InputError,
                            match=r"magneticIntegrationAlgorithm: expected one of none, LLG_Euler, LLG_Heun"):
             sim.load(document([[0, 0, 0]], ["A"], magnetizations=m, integrators={"llg": fixed(0.01, algorithm="RK4")},

@@ -36,8 +36,6 @@ REPO = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
 
 # Generators not run, and why.
 SKIPPED = {
-    "Tests/Magnetism/ForceCouplingMethod/scripts/generateMagneticIntegratorsTest.py":
-        "rotational hydrodynamics (Magnetic ForceCouplingMethod): not implemented",
     "Tests/VQCM/ImpedanceDumble/scripts/generateTestOneParticle.py":
         "hydrodynamics (VQCMMeasure solves the fluid's impedance): out of scope",
     "Tests/VQCM/ImpedanceOneBlob/scripts/generateTestOneParticle.py":
