@@ -95,7 +95,7 @@ struct StaggeredParticleLine {
 // grid; the grid has at least four cells along each axis, so those lines differ). Each bin in particle
 // order: the sum is the same whatever the thread count.
 template <class R, class Vectors>
-struct StaggeredSpreadLine {
+struct InertialFluidSpreadLine {
     const Real4<R>* pos;
     Vectors vectors;
     const int* order;
@@ -136,7 +136,7 @@ struct StaggeredSpreadLine {
 
 // J v: each group member's velocity interpolated from the field (flat, 3i .. 3i + 2); 0 for others.
 template <class R>
-struct StaggeredInterpolate {
+struct InertialFluidInterpolate {
     const Real4<R>* pos;
     const uint8_t* group;
     StaggeredGrid<R> grid;
@@ -265,7 +265,7 @@ struct StaggeredFluidForcing {
 //   v_k = P_k g_k / (1 + viscousScale |D|^2) / N,
 // N the grid's points (the transforms are unnormalised). The mean (k = 0) is removed or kept.
 template <class R>
-struct StaggeredStokesSolve {
+struct InertialFluidSolve {
     Complex<R>* spectrum;
     StaggeredGrid<R> grid;
     R viscousScale;  // dt eta / (2 rho); 0: the projection alone

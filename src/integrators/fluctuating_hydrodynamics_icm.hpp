@@ -316,19 +316,19 @@ private:
     void solve(R viscousScale) {
         const int64_t points = grid_.cells.points(), spectrumPoints = grid_.cells.spectrum_points();
         for (int d = 0; d < 3; ++d) fft_->forward(rhs_.data() + d * points, spectrum_.data() + d * spectrumPoints);
-        backend_.for_each(spectrumPoints, StaggeredStokesSolve<R>{spectrum_.data(), grid_, viscousScale, removeTotalMomentum_});
+        backend_.for_each(spectrumPoints, InertialFluidSolve<R>{spectrum_.data(), grid_, viscousScale, removeTotalMomentum_});
         for (int d = 0; d < 3; ++d) fft_->inverse(spectrum_.data() + d * spectrumPoints, vel_.data() + d * points);
     }
 
     void interpolate(const Particles<B, R>& p, const Real4<R>* positions, const R* field, R* out) {
-        backend_.for_each(p.count, StaggeredInterpolate<R>{positions, this->scope().group, grid_, field, out});
+        backend_.for_each(p.count, InertialFluidInterpolate<R>{positions, this->scope().group, grid_, field, out});
     }
 
     template <class Vectors>
     void spread(const Particles<B, R>& p, const Real4<R>* positions, const Vectors& vectors, R scale) {
         bins_->sort(p.count, StaggeredParticleLine<R>{positions, this->scope().group, grid_});
         backend_.for_each(int64_t(grid_.cells.ny) * grid_.cells.nz,
-                          StaggeredSpreadLine<R, Vectors>{positions, vectors, bins_->order(), bins_->line_start(), grid_,
+                          InertialFluidSpreadLine<R, Vectors>{positions, vectors, bins_->order(), bins_->line_start(), grid_,
                                                           scale, rhs_.data()});
     }
 

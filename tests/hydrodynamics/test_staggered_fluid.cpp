@@ -74,7 +74,7 @@ struct Fluid {
     void solve(double viscousScale, bool removeMean) {
         const int64_t p = points(), s = grid.cells.spectrum_points();
         for (int d = 0; d < 3; ++d) fft.forward(rhs.data() + d * p, spectrum.data() + d * s);
-        backend.for_each(s, StaggeredStokesSolve<double>{spectrum.data(), grid, viscousScale, removeMean});
+        backend.for_each(s, InertialFluidSolve<double>{spectrum.data(), grid, viscousScale, removeMean});
         for (int d = 0; d < 3; ++d) fft.inverse(spectrum.data() + d * s, vel.data() + d * p);
     }
 };
@@ -110,7 +110,7 @@ TEST(StaggeredFluid, SpreadingPutsInTheForcesAndIsTheAdjointOfInterpolation) {
     LineBins<CpuBackend> bins(f.backend, 36);
     bins.sort(count, StaggeredParticleLine<double>{pos.data(), nullptr, f.grid});
     f.backend.fill(f.rhs, 0.0);
-    f.backend.for_each(36, StaggeredSpreadLine<double, Real4Vectors<double>>{pos.data(), {force.data()}, bins.order(),
+    f.backend.for_each(36, InertialFluidSpreadLine<double, Real4Vectors<double>>{pos.data(), {force.data()}, bins.order(),
                                                                              bins.line_start(), f.grid, 1.0, f.rhs.data()});
     const int64_t p = f.points();
     for (int c = 0; c < 3; ++c) {
@@ -124,7 +124,7 @@ TEST(StaggeredFluid, SpreadingPutsInTheForcesAndIsTheAdjointOfInterpolation) {
     f.backend.upload(f.vel, v.data(), v.size());
     HostBuffer<double> u;
     f.backend.resize(u, 3 * count);
-    f.backend.for_each(count, StaggeredInterpolate<double>{pos.data(), nullptr, f.grid, f.vel.data(), u.data()});
+    f.backend.for_each(count, InertialFluidInterpolate<double>{pos.data(), nullptr, f.grid, f.vel.data(), u.data()});
     double left = 0, right = 0;
     for (int k = 0; k < 3 * count; ++k) left += u.data()[k] * forces[k];
     for (int64_t k = 0; k < 3 * p; ++k) right += v[k] * f.rhs.data()[k];
