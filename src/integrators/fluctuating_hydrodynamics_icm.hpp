@@ -183,7 +183,10 @@ class IncompressibleInertialCoupling : public Integrator<B, R> {
 public:
     IncompressibleInertialCoupling(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
         : Integrator<B, R>(scope), backend_(backend), values_(v), viscosity_(v["viscosity"]), density_(v["density"]),
-          sumThermalDrift_(v["sumThermalDrift"] != 0), removeTotalMomentum_(v["removeTotalMomentum"] != 0) {}
+          sumThermalDrift_(v["sumThermalDrift"] != 0), removeTotalMomentum_(v["removeTotalMomentum"] != 0) {
+        // Its first GPU run (H200) crashed the host process in step; refused there until found.
+        refuse_unverified_cuda<B>(scope, "[\"FluctuatingHydrodynamics\",\"IncompressibleInertialCoupling\"]");
+    }
 
     void begin(Particles<B, R>& p, ForceSource&) override {
         prepare(p);
