@@ -377,29 +377,46 @@ def test_thermal_run_agrees_with_its_events(options, tmp_path):
     check_outputs(prefix, expected)
 
 
-def expect_input_error(options, tmp_path, steps, fragment, surface=True):
-    positions, directions = scattered()
+def expect_input_error(options, doc, fragment):
     with structmd.Simulation(options) as sim:
         with pytest.raises(structmd.StructmdError) as error:
-            sim.load(document(positions, directions, steps, surface=surface))
+            sim.load(doc)
     assert fragment in str(error.value)
 
 
 def test_bad_parameters_name_their_path(options, tmp_path):
     prefix = str(tmp_path / "bad_")
-    step = polymers_step(prefix)
-    del step["poly"]["parameters"]["bufferSize"]
-    expect_input_error(options, tmp_path, step, "simulationStep.poly.parameters.bufferSize: missing required parameter")
-    expect_input_error(options, tmp_path, polymers_step(prefix, startType="X"),
+    positions, directions = scattered()
+
+    def with_step(**extra):
+        return document(positions, directions, polymers_step(prefix, **extra))
+
+    doc = with_step()
+    del doc["simulationStep"]["poly"]["parameters"]["bufferSize"]
+    expect_input_error(options, doc, "simulationStep.poly.parameters.bufferSize: missing required parameter")
+    expect_input_error(options, with_step(startType="X"),
                        "simulationStep.poly.parameters.startType: no patch type 'X' in forceField entry 'bonding'")
-    expect_input_error(options, tmp_path, polymers_step(prefix, linkerType="S"),
+    expect_input_error(options, with_step(linkerType="S"),
                        "simulationStep.poly.parameters.linkerType: no patch type 'S' in forceField entry 'surface'")
-    expect_input_error(options, tmp_path, polymers_step(prefix, endType="S"),
-                       "simulationStep.poly.parameters.endType")
-    expect_input_error(options, tmp_path, polymers_step(prefix, maxLen=-1), "simulationStep.poly.parameters.maxLen")
-    expect_input_error(options, tmp_path, polymers_step(prefix, bufferSize=0), "simulationStep.poly.parameters.bufferSize")
-    expect_input_error(options, tmp_path, polymers_step(str(tmp_path / "missing" / "pp_")),
+    expect_input_error(options, with_step(endType="S"), "simulationStep.poly.parameters.endType")
+    expect_input_error(options, with_step(maxLen=-1), "simulationStep.poly.parameters.maxLen")
+    expect_input_error(options, with_step(bufferSize=0), "simulationStep.poly.parameters.bufferSize")
+    expect_input_error(options, with_step(surfaceEnergyThreshold="low"),
+                       "simulationStep.poly.parameters.surfaceEnergyThreshold")
+    expect_input_error(options, document(positions, directions, polymers_step(str(tmp_path / "missing" / "pp_"))),
                        "simulationStep.poly.parameters.outputFilePath")
+    doc = with_step()
+    del doc["topology"]["forceField"]["bonding"]
+    expect_input_error(options, doc, "simulationStep.poly: PatchPolymers needs a "
+                                     "[\"PatchyParticles\",\"DynamicallyBondedPatchyParticles\"] forceField entry")
+    doc = with_step()
+    doc["topology"]["forceField"]["bonding"]["patchesTopology"]["forceField"]["cosine"]["data"].append(
+        ["E", "E", 10.0, 1.0, RC])
+    expect_input_error(options, doc, "simulationStep.poly: forceField entry 'bonding' lets patches of type 'E' bond "
+                                     "to each other")
+    doc = with_step()
+    doc["topology"]["forceField"]["bonding"]["patchesTopology"]["structure"]["data"][3][1] = "S"
+    expect_input_error(options, doc, "simulationStep.poly: particle 1 has more than one patch of type 'S'")
 
 
 def test_without_a_surface_only_the_bulk_files_are_written(options, tmp_path):
