@@ -38,6 +38,7 @@ public:
             if (interactors_[k]->name() == name) return static_cast<int>(k);
         return -1;
     }
+    const Interactor<B, R>& interactor(int index) const { return *interactors_[index]; }
     std::vector<std::string> names() const {
         std::vector<std::string> all;
         for (const auto& it : interactors_) all.push_back(it->name());

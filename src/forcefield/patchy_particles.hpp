@@ -311,6 +311,10 @@ public:
         });
     }
 
+    bool dynamic() const { return dynamic_; }
+    // By patch, its bonded partner or -1 (dynamic entries only): the bonds the last evaluation used.
+    const Buffer<int>& bonds_buffer() const { return bond_; }
+
 private:
     PatchBonds bonds() {
         return PatchBonds{bond_.data(), candidate_.data(), lowest_.data(), threshold_};

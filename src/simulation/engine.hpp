@@ -247,6 +247,7 @@ public:
     void pair_forces_on(int64_t id, double* f) override;
     void forces_with_displaced(int64_t id, const double displacement[3], double* f) override;
     double lambda_derivative() override;
+    std::vector<int> patch_bonds(const std::string& entry) override;
     bool has_magnetization() const override { return !p_.magnetization.empty(); }
     void expression_sum(const ExpressionTransverserSpec& spec, double* perParticle) override;  // engine_transversers.hpp
     void traverse(const TransverserCall& call, double* perParticle) override;                 // engine_transversers.hpp

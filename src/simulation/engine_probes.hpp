@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "forcefield/patchy_particles.hpp"
 #include "simulation/engine.hpp"
 
 namespace structmd {
@@ -89,6 +90,17 @@ double Engine<B, R, PairR>::lambda_derivative() {
     backend_.fill(probed_.lambdaDerivatives, R(0));
     forceField_.add_lambda_derivative(p_, probed_.lambdaDerivatives.data());
     return backend_.reduce(p_.count, SumEnergy<R>{probed_.lambdaDerivatives.data()}, 0.0);
+}
+
+template <class B, class R, class PairR>
+std::vector<int> Engine<B, R, PairR>::patch_bonds(const std::string& entry) {
+    const int index = forceField_.find(entry);
+    const auto* patchy = index < 0 ? nullptr : dynamic_cast<const PatchyInteraction<B, R>*>(&forceField_.interactor(index));
+    if (!patchy || !patchy->dynamic())
+        throw Error(STRUCTMD_ERR_ARGUMENT, "no [\"PatchyParticles\",\"DynamicallyBondedPatchyParticles\"] forceField entry "
+                                           "named '" + entry + "'");
+    backend_.activate();
+    return io_.download(patchy->bonds_buffer());
 }
 
 }  // namespace structmd

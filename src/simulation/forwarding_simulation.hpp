@@ -118,6 +118,10 @@ public:
         admit(Operation::traversal);
         inner().probes().traverse(call, perParticle);
     }
+    std::vector<int> patch_bonds(const std::string& entry) override {
+        admit(Operation::termArrays);
+        return inner().probes().patch_bonds(entry);
+    }
     bool has_magnetization() const override { return inner().probes().has_magnetization(); }
 
 protected:

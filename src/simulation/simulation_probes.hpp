@@ -4,6 +4,7 @@
 // particle-id order.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "simulation/expression_transverser.hpp"
@@ -50,6 +51,14 @@ public:
         (void)perParticle;
         throw Error(STRUCTMD_ERR_UNSUPPORTED, "transverser '" + call.name + "': transversers run on one engine, "
                                               "not under this parallel layout");
+    }
+    // The bonds of a ["PatchyParticles","DynamicallyBondedPatchyParticles"] entry: for each of its
+    // patches (in the order of patchesState), the patch it is bonded to, or -1. They are the bonds the
+    // last force evaluation acted with (reading them settles nothing). ERR_ARGUMENT for a name that is
+    // not such an entry.
+    virtual std::vector<int> patch_bonds(const std::string& entry) {
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, "forceField entry '" + entry +
+                                                  "': patch bonds are read on one engine, not under this parallel layout");
     }
     // Whether the particles carry magnetic moments (the magnetic trajectory formats and measures).
     virtual bool has_magnetization() const = 0;

@@ -16,7 +16,7 @@ std::FILE* MeasureFile::stream() {
         if (!file_)
             throw Error(STRUCTMD_ERR_IO,
                         owner_ + ": cannot open '" + path_ + "' for writing: " + std::strerror(errno));
-        std::fprintf(file_.get(), "%s\n", header_.c_str());
+        if (!header_.empty()) std::fprintf(file_.get(), "%s\n", header_.c_str());
     }
     return file_.get();
 }

@@ -10,7 +10,8 @@ namespace structmd {
 
 class MeasureFile {
 public:
-    // owner names the step in messages ("simulationStep.msd"); header is written as the first line.
+    // owner names the step in messages ("simulationStep.msd"); header is written as the first line
+    // (none when empty).
     MeasureFile(std::string owner, std::string path, std::string header);
 
     // The open stream; opens the file and writes the header on the first call. Throws ERR_IO.

@@ -23,6 +23,7 @@
 #include "steps/mean_square_displacement.hpp"
 #include "steps/pairwise_force_measure.hpp"
 #include "steps/parallel_tempering.hpp"
+#include "steps/patch_polymers.hpp"
 #include "steps/particle_list_measure.hpp"
 #include "steps/potential_measure.hpp"
 #include "steps/sort_step.hpp"
@@ -65,6 +66,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(escape_polygon_time_entry());
         steps.add(total_magnetization_entry());
         steps.add(mean_magnetization_entry());
+        steps.add(patch_polymers_entry());
         steps.add(write_step_entry());
         steps.add(write_patchy_particles_step_entry());
         steps.add(sort_step_entry());

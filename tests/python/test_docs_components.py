@@ -175,7 +175,8 @@ def test_force_field_example_loads_and_computes(sim, key):
 
 # Steps that measure what one force-field component does, and that component.
 MEASURED_COMPONENT = {("ExperimentMeasures", "AFMMeasure"): ("AFM", "SphericalTip"),
-                      ("FlowControl", "AFMMaxForce"): ("AFM", "SphericalTip")}
+                      ("FlowControl", "AFMMaxForce"): ("AFM", "SphericalTip"),
+                      ("TopologicalMeasures", "PatchPolymers"): ("PatchyParticles", "DynamicallyBondedPatchyParticles")}
 
 
 def full_document_with(key):

@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "forcefield/afm_read.hpp"
 #include "forcefield/afm_tip.hpp"
+#include "forcefield/patchy_particles.hpp"
 #include "input/description.hpp"
 #include "steps/read_simulation_steps.hpp"
 #include "steps/simulation_step_registry.hpp"
@@ -57,7 +58,8 @@ json base_document() {
             {"data", {{1, "vv", 100}}}}}}}};
 }
 
-// Groups, and an AFM entry (tip 1, sample 0 and 2) for the step that measures one.
+// Groups, an AFM entry (tip 1, sample 0 and 2) for the step that measures one, and dynamically bonded
+// patches (a start and an end patch on each particle) for the step that follows their polymers.
 ForceFieldSpec with_groups() {
     ForceFieldSpec forceField;
     forceField.groups = {{"pair", {0, 1, 1, 0}}};
@@ -72,6 +74,16 @@ ForceFieldSpec with_groups() {
     config->timeStep = 0.001;
     afm.config = config;
     forceField.externals.push_back(afm);
+    ExternalSpec bonding;
+    bonding.name = "bonding";
+    bonding.key = {"PatchyParticles", "DynamicallyBondedPatchyParticles"};
+    auto patches = std::make_shared<PatchyConfig>();
+    patches->dynamic = true;
+    patches->typeNames = {"S", "E"};
+    patches->parent = {0, 0, 1, 1, 2, 2, 3, 3};
+    patches->type = {0, 1, 0, 1, 0, 1, 0, 1};
+    bonding.config = patches;
+    forceField.externals.push_back(bonding);
     return forceField;
 }
 const ForceFieldSpec kForceField = with_groups();
