@@ -2,7 +2,8 @@
 // The built-in force-field components: the one place where an input name ["Class", "SubClass"]
 // meets the functor that computes it. The reader's registry (component_registry.cpp: parameter
 // schemas, tables) and each engine's factories (make_interactors.hpp) are both made by visiting this
-// list, so a new potential is its functor file plus one line here.
+// list, so a new potential is its functor file plus one line here, in the group of its kind
+// (component_groups.hpp: each group is compiled in a unit of its own).
 //
 // A visitor has
 //   template <class Potential> void pair(ComponentKey key);   // NonBonded, over a Verlet list or all pairs
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "forcefield/component_groups.hpp"
 #include "forcefield/absorbed.hpp"
 #include "forcefield/afm_conic_tip.hpp"
 #include "forcefield/afm_tip.hpp"
@@ -73,46 +75,78 @@
 
 namespace structmd {
 
+// The Lennard-Jones forms of the NonBonded pair terms.
 template <class Visitor>
-void visit_builtin_forcefield(Visitor& v) {
+void visit_lennard_jones_pairs(Visitor& v) {
     v.template pair<LennardJonesType1>({"NonBonded", "LennardJonesType1"});
     v.template pair<LennardJonesType2>({"NonBonded", "LennardJonesType2"});
     v.template pair<LennardJonesType3>({"NonBonded", "LennardJonesType3"});
-    v.template pair<WCAType1>({"NonBonded", "WCAType1"});
-    v.template pair<WCAType2>({"NonBonded", "WCAType2"});
-    v.template pair<WCAType3>({"NonBonded", "WCAType3"});
     v.template pair<GeneralLennardJonesType1>({"NonBonded", "GeneralLennardJonesType1"});
     v.template pair<GeneralLennardJonesType2>({"NonBonded", "GeneralLennardJonesType2"});
     v.template pair<GeneralLennardJonesType3>({"NonBonded", "GeneralLennardJonesType3"});
+    v.template pair<SplitLennardJones>({"NonBonded", "SplitLennardJones"});
+}
+
+// The purely repulsive NonBonded pair terms.
+template <class Visitor>
+void visit_repulsive_pairs(Visitor& v) {
+    v.template pair<WCAType1>({"NonBonded", "WCAType1"});
+    v.template pair<WCAType2>({"NonBonded", "WCAType2"});
+    v.template pair<WCAType3>({"NonBonded", "WCAType3"});
     v.template pair<Steric6>({"NonBonded", "Steric6"});
     v.template pair<Steric12>({"NonBonded", "Steric12"});
-    v.template configurable<StericInnerComponent<6>>({"NonBonded", "StericInner6"});
-    v.template configurable<StericInnerComponent<12>>({"NonBonded", "StericInner12"});
-    v.template configurable<ZhangComponent>({"NonBonded", "Zhang"});
+    v.template pair<Clashed>({"NonBonded", "Clashed"});
+}
+
+// The NonBonded pair terms of charges, masses and colloids, and the membrane tail.
+template <class Visitor>
+void visit_charge_and_colloid_pairs(Visitor& v) {
     v.template pair<DebyeHuckel>({"NonBonded", "DebyeHuckel"});
     v.template pair<Coulomb>({"NonBonded", "Coulomb"});
     v.template pair<Gravity>({"NonBonded", "Gravity"});
-    v.template pair<SplitLennardJones>({"NonBonded", "SplitLennardJones"});
     v.template pair<LaTorre>({"NonBonded", "LaTorre"});
-    v.template pair<Clashed>({"NonBonded", "Clashed"});
     v.template pair<DLVOType1>({"NonBonded", "DLVOType1"});
     v.template pair<DLVOType2>({"NonBonded", "DLVOType2"});
     v.template pair<DLVOType3>({"NonBonded", "DLVOType3"});
     v.template pair<KimHummer>({"NonBonded", "KimHummer"});
-    v.template configurable<TabulatedPair>({"NonBonded", "Tabulated"});
+}
+
+// The NonBonded soft cores of alchemical (lambda) runs.
+template <class Visitor>
+void visit_soft_core_pairs(Visitor& v) {
     v.template pair<Steric6SoftCore>({"NonBonded", "Steric6SoftCore"});
     v.template pair<Steric12SoftCore>({"NonBonded", "Steric12SoftCore"});
     v.template pair<LennardJonesSoftCoreType1>({"NonBonded", "LennardJonesSoftCoreType1"});
     v.template pair<LennardJonesSoftCoreType2>({"NonBonded", "LennardJonesSoftCoreType2"});
+}
+
+// The pair terms configured by their entries: tables, expressions, long-range electrostatics, patches.
+template <class Visitor>
+void visit_configurable_pairs(Visitor& v) {
+    v.template configurable<StericInnerComponent<6>>({"NonBonded", "StericInner6"});
+    v.template configurable<StericInnerComponent<12>>({"NonBonded", "StericInner12"});
+    v.template configurable<ZhangComponent>({"NonBonded", "Zhang"});
+    v.template configurable<TabulatedPair>({"NonBonded", "Tabulated"});
+
     v.template configurable<Electrostatics>({"LongRange", "Electrostatics"});
+
     v.template configurable<DipolarMagnetic>({"NonBonded", "DipolarMagnetic"});
 
+    v.template configurable<PatchyParticlesComponent>({"PatchyParticles", "PatchyParticles"});
+    v.template configurable<PatchyParticlesComponent>({"PatchyParticles", "DynamicallyBondedPatchyParticles"});
+
+    v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
+}
+
+// The bonds, angles and dihedrals (Bond1 to Bond4).
+template <class Visitor>
+void visit_bonded_terms(Visitor& v) {
     v.template bond<FixedHarmonic>({"Bond1", "FixedHarmonic"});
     v.template bond<ConstantForceBond>({"Bond1", "ConstantForce"});
     v.template bond<FixedHarmonicAnisotropic>({"Bond1", "FixedHarmonicAnisotropic"});
     v.template bond<LambdaFixedHarmonicAnisotropic>({"Bond1", "LambdaFixedHarmonicAnisotropic"}, {"n"});
-
     using Harmonic = RadialBond<HarmonicBond>;
+
     v.template bond<Harmonic>({"Bond2", "Harmonic"});
     v.template bond<Harmonic>({"Bond2", "HarmonicCommon_K"}, {"K"});
     v.template bond<Harmonic>({"Bond2", "HarmonicCommon_K_r0"}, {"K", "r0"});
@@ -172,6 +206,16 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template bond<IdpFourierDihedral>({"Bond4", "IDP_Fourier"});
     v.template configurable<TabulatedDihedral>({"Bond4", "Tabulated"});
 
+    v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});
+
+    v.template configurable<ExpressionBondComponent<3>>({"Bond3", "Expression"});
+
+    v.template configurable<ExpressionBondComponent<4>>({"Bond4", "Expression"});
+}
+
+// The terms of one particle (External, Surface), of sets of particles (Set1, Set2) and the AFM tips.
+template <class Visitor>
+void visit_external_terms(Visitor& v) {
     v.template external<ExternalConstantForce>({"External", "ConstantForce"});
     v.template configurable<ConstantTorqueComponent>({"External", "ConstantTorque"});
     v.template configurable<ConstantMagneticField>({"External", "ConstantMagneticField"});
@@ -200,6 +244,7 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template configurable<SetComponent<FixedHarmonicIsotropicCommon>>(
         {"Set1", "FixedHarmonicAnisotropicCommon_K_r0CenterOfMass"});
     v.template configurable<SetComponent<ConstantTorqueOnSet>>({"Set1", "ConstantTorqueOverCenterOfMass"});
+
     v.template configurable<SetComponent<RadialBond<ConstantForceRadial>>>(
         {"Set2", "ConstantForceBetweenCentersOfMass"});
     v.template configurable<SetComponent<RadialBond<HarmonicBond>>>({"Set2", "HarmonicBondBetweenCentersOfMass"});
@@ -208,14 +253,33 @@ void visit_builtin_forcefield(Visitor& v) {
     v.template configurable<AfmComponent<SphericalTipPotential>>({"AFM", "SphericalTip"});
     v.template configurable<AfmComponent<SphericallyBluntedConicTipPotential>>({"AFM", "SphericallyBluntedConicTip"});
 
-    v.template configurable<PatchyParticlesComponent>({"PatchyParticles", "PatchyParticles"});
-    v.template configurable<PatchyParticlesComponent>({"PatchyParticles", "DynamicallyBondedPatchyParticles"});
-
-    v.template configurable<ExpressionPairComponent>({"NonBonded", "Expression"});
-    v.template configurable<ExpressionBondComponent<2>>({"Bond2", "Expression"});
-    v.template configurable<ExpressionBondComponent<3>>({"Bond3", "Expression"});
-    v.template configurable<ExpressionBondComponent<4>>({"Bond4", "Expression"});
     v.template configurable<ExpressionExternalComponent>({"External", "Expression"});
+}
+
+// The calls of one group (component_groups.hpp): each is compiled into an engine unit of its own.
+template <ComponentGroup G, class Visitor>
+void visit_component_group(Visitor& v) {
+    if constexpr (G == ComponentGroup::lennardJonesPairs) {
+        visit_lennard_jones_pairs(v);
+    } else if constexpr (G == ComponentGroup::repulsivePairs) {
+        visit_repulsive_pairs(v);
+    } else if constexpr (G == ComponentGroup::chargeAndColloidPairs) {
+        visit_charge_and_colloid_pairs(v);
+    } else if constexpr (G == ComponentGroup::softCorePairs) {
+        visit_soft_core_pairs(v);
+    } else if constexpr (G == ComponentGroup::configurablePairs) {
+        visit_configurable_pairs(v);
+    } else if constexpr (G == ComponentGroup::bondedTerms) {
+        visit_bonded_terms(v);
+    } else {
+        static_assert(G == ComponentGroup::externalTerms, "a component group without its visit");
+        visit_external_terms(v);
+    }
+}
+
+template <class Visitor>
+void visit_builtin_forcefield(Visitor& v) {
+    for_each_component_group([&v](auto group) { visit_component_group<decltype(group)::value>(v); });
 }
 
 }  // namespace structmd

@@ -2,25 +2,13 @@
 // The built-in integrators' factories (make_integrator.hpp declares builtin_integrator_factories):
 // the list of integrators.hpp visited once per engine type. Heavy: only the units that build them
 // include it.
-#include <memory>
 #include <utility>
 
+#include "integrators/integrator_factory_entries.hpp"
 #include "integrators/integrators.hpp"
 #include "integrators/make_integrator.hpp"
 
 namespace structmd {
-
-template <class B, class R>
-struct IntegratorFactoryEntries {
-    Registry<IntegratorFactory<B, R>> registry;
-
-    template <template <class, class> class Kind, class Inputs>
-    void integrator(ComponentKey key) {
-        registry.add({std::move(key), [](const B& backend, const IntegratorScope& scope, const ParameterValues& v) {
-                          return std::unique_ptr<Integrator<B, R>>(std::make_unique<Kind<B, R>>(backend, scope, v));
-                      }});
-    }
-};
 
 template <class B, class R>
 const Registry<IntegratorFactory<B, R>>& builtin_integrator_factories() {

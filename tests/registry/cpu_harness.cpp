@@ -1,8 +1,7 @@
 #include "cpu_harness.hpp"
 
-#include "backends/cpu/cpu_fft.hpp"
 #include "core/logger.hpp"
-#include "forcefield/builtin_factory_family.hpp"
+#include "forcefield/builtin_factories.hpp"
 #include "forcefield/make_interactors.hpp"
 #include "forcefield/read_forcefield.hpp"
 #include "state/fault.hpp"

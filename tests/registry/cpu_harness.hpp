@@ -1,8 +1,8 @@
 #pragma once
 // Builds a force field from its spec with the engine's own factories (make_interactors) on the CPU
 // backend in double precision, and evaluates it on the particles of the input, without an engine.
-// The built-in factories are instantiated once, in cpu_harness.cpp, so that the tests using them
-// compile quickly.
+// The built-in factories are the CPU double engine's own, compiled in its units (structmd_engines),
+// so the tests compile none of them again.
 #include <memory>
 #include <string>
 #include <vector>

@@ -9,14 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "backends/cpu/cpu_cholesky.hpp"  // the open-boundary integrators factor their mobility with it
-#include "backends/cpu/cpu_fft.hpp"  // the integrators' factories include the spectral ones, which hold an FFT
 #include "core/error.hpp"
 #include "cpu_harness.hpp"
 #include "forcefield/factory_entries.hpp"
 #include "forcefield/harmonic_bond.hpp"
 #include "input/description.hpp"
-#include "integrators/builtin_integrator_factories.hpp"
+#include "integrators/integrator_factory_entries.hpp"
 #include "integrators/read_integrators.hpp"
 #include "integrators/velocity_verlet.hpp"
 #include "registry_inputs.hpp"
