@@ -23,6 +23,7 @@
 #include "core/random.hpp"
 #include "core/vec.hpp"
 #include "hydrodynamics/peskin_kernel.hpp"
+#include "state/step_clock.hpp"
 
 namespace structmd {
 
@@ -168,16 +169,20 @@ struct InertialFluidInterpolate {
     }
 };
 
-// Independent standard normal numbers, `grids` of them per cell, keyed by (stream, cell, counter):
-// the random stress (six grids: W_xx, W_yy, W_zz at the cell centre, W_xy, W_xz, W_yz at the cell's
-// upper edges r + e_a/2 + e_b/2) every step, and the initial fluid velocity (three grids).
+// Independent standard normal numbers, `grids` of them per cell, keyed by (stream, cell, step): the
+// random stress (six grids: W_xx, W_yy, W_zz at the cell centre, W_xy, W_xz, W_yz at the cell's
+// upper edges r + e_a/2 + e_b/2) every step, and the initial fluid velocity (three grids, another
+// stream). The step is read from the clock on the backend, so a recorded step graph draws new
+// numbers each time it is replayed.
 template <class R>
 struct DrawStaggeredNormals {
     R* out;       // `grids` grids of cells
     int64_t points;
     int grids;    // at most 8
-    uint64_t seed, stream, counter;
+    uint64_t seed, stream;
+    ClockView now;
     SMD_HD void operator()(int64_t cell) const {
+        const uint64_t counter = static_cast<uint64_t>(now.step());
         double xi[8];
         normal4(seed, stream ^ static_cast<uint64_t>(2 * cell), counter, xi);
         normal4(seed, stream ^ static_cast<uint64_t>(2 * cell + 1), counter, xi + 4);

@@ -183,10 +183,7 @@ class IncompressibleInertialCoupling : public Integrator<B, R> {
 public:
     IncompressibleInertialCoupling(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
         : Integrator<B, R>(scope), backend_(backend), values_(v), viscosity_(v["viscosity"]), density_(v["density"]),
-          sumThermalDrift_(v["sumThermalDrift"] != 0), removeTotalMomentum_(v["removeTotalMomentum"] != 0) {
-        // Its first GPU run (H200) crashed the host process in step; refused there until found.
-        refuse_unverified_cuda<B>(scope, "[\"FluctuatingHydrodynamics\",\"IncompressibleInertialCoupling\"]");
-    }
+          sumThermalDrift_(v["sumThermalDrift"] != 0), removeTotalMomentum_(v["removeTotalMomentum"] != 0) {}
 
     void begin(Particles<B, R>& p, ForceSource&) override {
         prepare(p);
@@ -199,7 +196,6 @@ public:
         prepare(p);
         const R dt = R(s.timeStep);
         const int64_t points = grid_.cells.points();
-        const uint64_t step = static_cast<uint64_t>(p.now().step());
         const double cellVolume = double(grid_.spacing.x) * grid_.spacing.y * grid_.spacing.z;
 
         // q^{n+1/2} = q^n + dt/2 J^n v^n.
@@ -214,7 +210,7 @@ public:
         const bool noisy = s.kT > 0.0;
         if (noisy)
             backend_.for_each(points, DrawStaggeredNormals<R>{stress_.data(), points, 6, p.noise.seed,
-                                                              static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48, step});
+                                                              static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48, p.now()});
         backend_.for_each(points, StaggeredFluidForcing<R>{vel_.data(), noisy ? stress_.data() : nullptr, advection_.data(),
                                                            rhs_.data(), grid_, R(0.5 * s.timeStep * viscosity_ / density_),
                                                            R(std::sqrt(2.0 * s.kT * viscosity_ * s.timeStep / cellVolume) / density_),
@@ -288,7 +284,7 @@ private:
                 const double cellVolume = box[0] * box[1] * box[2] / double(points);
                 backend_.for_each(points, DrawStaggeredNormals<R>{rhs_.data(), points, 3, p.noise.seed,
                                                                   static_cast<uint64_t>(NoisePurpose::initialVelocities) << 48,
-                                                                  ~uint64_t(0)});
+                                                                  p.now()});
                 backend_.for_each(3 * points, IcmScaleField<R>{rhs_.data(), R(std::sqrt(s.kT / (density_ * cellVolume)))});
                 solve(R(0));
             }

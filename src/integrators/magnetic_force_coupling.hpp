@@ -54,9 +54,7 @@ class MagneticForceCoupling : public GridBdhi<B, R> {
 public:
     MagneticForceCoupling(const B& backend, const IntegratorScope& scope, const ParameterValues& v)
         : GridBdhi<B, R>(backend, scope), moments_(backend, v), viscosity_(v["viscosity"]),
-          radius_(v["hydrodynamicRadius"]), tolerance_(v["tolerance"]) {
-        refuse_unverified_cuda<B>(scope, "[\"Magnetic\",\"ForceCouplingMethod\"]");
-    }
+          radius_(v["hydrodynamicRadius"]), tolerance_(v["tolerance"]) {}
 
     void step(Particles<B, R>& p, ForceSource& forces) override {
         const IntegratorScope& s = this->scope();

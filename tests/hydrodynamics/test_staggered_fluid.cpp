@@ -196,8 +196,10 @@ TEST(StaggeredFluid, EveryFluidModeHoldsKTOverRhoDVPerTransverseDirection) {
     // The modes split at |D|^2 h^2 = 6 into a low and a high half, each checked on its own.
     std::vector<double> energy(s, 0.0);
     const int samples = 300, stride = 8;
+    StepClock clock;
     for (int step = 0; step < 200 + samples * stride; ++step) {
-        f.backend.for_each(p, DrawStaggeredNormals<double>{f.stress.data(), p, 6, 11, 5ull << 48, uint64_t(step)});
+        clock.step = step;
+        f.backend.for_each(p, DrawStaggeredNormals<double>{f.stress.data(), p, 6, 11, 5ull << 48, ClockView{&clock}});
         f.backend.for_each(p, StaggeredFluidForcing<double>{f.vel.data(), f.stress.data(), f.advection.data(),
                                                             f.rhs.data(), f.grid, viscous, noise, dt / rho, rho, step == 0});
         f.solve(viscous, true);

@@ -202,17 +202,9 @@ def full_document_with(key):
     return doc
 
 
-# Integrators whose CUDA path has not yet passed their tests on a GPU: refused there by name.
-REFUSED_ON_CUDA = {("FluctuatingHydrodynamics", "IncompressibleInertialCoupling"), ("Magnetic", "ForceCouplingMethod")}
-
-
 @pytest.mark.parametrize("key", DOCUMENT_COMPONENTS, ids=lambda k: f"{k[0]}-{k[1]}")
 def test_document_example_loads_and_steps(sim, key, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)  # measures write their files here
-    if BACKEND == "cuda" and key in REFUSED_ON_CUDA:
-        with pytest.raises(structmd.UnsupportedError, match="CPU backend only"):
-            sim.load(full_document_with(key))
-        return
     sim.load(full_document_with(key))
     sim.step(2)
     assert sim.step_number >= 2

@@ -18,11 +18,7 @@ import numpy as np
 import pytest
 
 import structmd
-from conftest import BACKEND
 from periodic_rpy import document, minimum_image
-
-# Refused on CUDA until its CUDA path has passed these tests on a GPU (test_docs_components checks the refusal).
-pytestmark = pytest.mark.skipif(BACKEND == "cuda", reason="refused on the CUDA backend in this version")
 
 HASIMOTO = 2.837297
 

@@ -16,12 +16,8 @@ import numpy as np
 import pytest
 
 import structmd
-from conftest import BACKEND
 from periodic_rpy import ETA, RADIUS, document, hasimoto, minimum_image
 from periodic_rpy import measured_mobility as measured_entry_mobility
-
-# Refused on CUDA until its CUDA path has passed these tests on a GPU (test_docs_components checks the refusal).
-pytestmark = pytest.mark.skipif(BACKEND == "cuda", reason="refused on the CUDA backend in this version")
 
 SIGMA = RADIUS / math.sqrt(math.pi)
 SIGMA_T = RADIUS / (6.0 * math.sqrt(math.pi)) ** (1.0 / 3.0)

@@ -54,10 +54,6 @@ def may_stand_still(document, masses):
     return bool(classes) and all(c in ("Verlet", "Langevin") for c in classes) and not np.any(masses > 0)
 
 
-# Integrators whose CUDA path has not yet passed their tests on a GPU: refused there by name.
-REFUSED_ON_CUDA = {("Magnetic", "ForceCouplingMethod"), ("FluctuatingHydrodynamics", "IncompressibleInertialCoupling")}
-
-
 def test_there_are_inputs():
     assert len(INPUTS) >= 1, f"no inputs in {INPUTS_DIR}"
 
@@ -67,11 +63,6 @@ def test_loads_and_steps(path, options, tmp_path):
     with open(path) as f:
         document = json.load(f)
     document = redirect_outputs(document, str(tmp_path))
-    refused = {tuple(entry["type"]) for entry in document.get("integrator", {}).values()} & REFUSED_ON_CUDA
-    if options["backend"] == "cuda" and refused:
-        with structmd.Simulation(options) as sim, pytest.raises(structmd.UnsupportedError, match="CPU backend only"):
-            sim.load(document)
-        return
     with structmd.Simulation(options) as sim:
         sim.load(document)
         assert sim.num_particles == len(document["state"]["data"])
