@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Regenerate UAMMD-structured's own inputs at small size, and sort them by whether structmd loads them.
 
-    python3 generate.py /path/to/UAMMD-structured [--out DIR] [--keep-scratch] [--no-classify]
+    python3 generate.py /path/to/UAMMD-structured [--vlmp /path/to/VLMP] [--out DIR] [--keep-scratch]
+                        [--no-classify] [--only REGEX]
 
 UAMMD-structured's Examples/*/*.py and Tests/**/scripts/generate*.py (written with its pyUAMMD package)
 make the inputs its users have. This script copies the checkout into a scratch directory, shrinks each
@@ -16,7 +17,8 @@ failing, are listed in UNSUPPORTED.md there, grouped by what is missing, the mos
 --no-classify every generated input is copied and no table is written.
 
 Python packages the generators need: numpy scipy deepdiff tqdm jsbeautifier json5 icosphere
-numpy-quaternion.
+numpy-quaternion. The HarmonicRAP generator takes its helix geometry from VLMP (github.com/PabloIbannez/VLMP,
+not on PyPI): with --vlmp naming a VLMP checkout it runs, importing only the VLMP modules it uses.
 """
 
 import argparse
@@ -35,14 +37,16 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
 
 # Generators not run, and why.
-SKIPPED = {
-    "Tests/VQCM/ImpedanceDumble/scripts/generateTestOneParticle.py":
-        "hydrodynamics (VQCMMeasure solves the fluid's impedance): out of scope",
-    "Tests/VQCM/ImpedanceOneBlob/scripts/generateTestOneParticle.py":
-        "hydrodynamics (VQCMMeasure solves the fluid's impedance): out of scope",
+SKIPPED = {}
+# Generators that import VLMP, run only with --vlmp.
+NEEDS_VLMP = {
     "Tests/RAP/HarmonicRAP/scripts/generateHarmonicRAPTest.py":
-        "needs the VLMP package (not on PyPI) for its helix geometry",
+        "needs the VLMP package (not on PyPI) for its helix geometry: give --vlmp",
 }
+# The VLMP modules the generators import. They are taken from the checkout into packages of their own
+# with empty __init__ files, so that VLMP's package set-up (its logger, colorama, pyquaternion) is not
+# needed.
+VLMP_MODULES = ["utils/geometry/objects/helix.py"]
 
 # Reductions of Tests/**/parameters.json, applied to the scratch copy: key -> value (dotted keys reach
 # into nested objects). Steps are cut so that the inputs are short runs; N so that they are small.
@@ -162,10 +166,25 @@ def prepare(scratch, script):
     return cwd
 
 
-def run_generator(scratch, script, log):
+def stage_vlmp(vlmp, scratch):
+    """VLMP_MODULES of the checkout vlmp under scratch/_vlmp/VLMP, returned as a path to import from."""
+    root = os.path.join(scratch, "_vlmp")
+    for module in VLMP_MODULES:
+        target = os.path.join(root, "VLMP", module)
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        shutil.copy(os.path.join(vlmp, "VLMP", module), target)
+        package = os.path.dirname(target)
+        while package != root:
+            open(os.path.join(package, "__init__.py"), "a").close()
+            package = os.path.dirname(package)
+    return root
+
+
+def run_generator(scratch, script, log, extra_path=()):
     cwd = prepare(scratch, script)
     before = {p: os.path.getmtime(os.path.join(cwd, p)) for p in glob.glob("**/*.json", root_dir=cwd, recursive=True)}
-    env = dict(os.environ, PYTHONPATH=scratch + os.pathsep + os.environ.get("PYTHONPATH", ""),
+    path = [scratch, *extra_path, os.environ.get("PYTHONPATH", "")]
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(path),
                UAMMD_PATH=os.path.join(scratch, "structured"), MPLBACKEND="Agg")
     result = subprocess.run([sys.executable, os.path.relpath(os.path.join(scratch, script), cwd)], cwd=cwd,
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
@@ -236,6 +255,7 @@ def main():
     parser.add_argument("--keep-scratch", action="store_true")
     parser.add_argument("--no-classify", action="store_true")
     parser.add_argument("--only", help="a regular expression on the generator paths")
+    parser.add_argument("--vlmp", help="a VLMP checkout, for the generators that import it")
     args = parser.parse_args()
 
     checkout = os.path.abspath(args.checkout)
@@ -247,15 +267,17 @@ def main():
         sys.path.insert(0, os.path.join(REPO, "bindings", "python"))
 
     generators = [g for g in discover(checkout) if not args.only or re.search(args.only, g)]
+    vlmp_path = [stage_vlmp(os.path.abspath(args.vlmp), scratch)] if args.vlmp else []
+    not_run = dict(SKIPPED, **({} if args.vlmp else NEEDS_VLMP))
     skipped, failed, inputs = [], [], []  # inputs: (origin script, staged path)
     with open(os.path.join(scratch, "generators.log"), "w") as log:
         for script in generators:
-            if script in SKIPPED:
-                skipped.append((script, SKIPPED[script]))
-                print(f"skip  {script}: {SKIPPED[script]}")
+            if script in not_run:
+                skipped.append((script, not_run[script]))
+                print(f"skip  {script}: {not_run[script]}")
                 continue
             try:
-                written, error = run_generator(scratch, script, log)
+                written, error = run_generator(scratch, script, log, vlmp_path if script in NEEDS_VLMP else ())
             except subprocess.TimeoutExpired:
                 written, error = None, "timed out"
             if error:
