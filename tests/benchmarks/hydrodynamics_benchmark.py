@@ -21,7 +21,13 @@ Error, relative RMS of dt M F over the particles, in double precision at the met
   tolerance 1e-6 for that radius, up to --reference-max;
 - the slab (DPStokes, two walls 16 radii apart, particles at least 2 radii from them, grid spacing
   sigma = a / sqrt(pi)): the same method on a grid of half that spacing, up to --reference-max (its
-  tolerance is the noise's alone).
+  tolerance is the noise's alone);
+- the magnetic force coupling method (magnetic_fcm: moments along z, no field, so no torque): the force
+  coupling method's translation at tolerance 1e-6, up to --reference-max;
+- the inertial coupling method (icm, fluid density 1): none. A particle moves with the fluid, whose
+  momentum the force builds up over many steps, so one step's displacement is not dt M F;
+  tests/python/test_fluctuating_hydrodynamics.py checks its long-time mobility (Hasimoto's periodic
+  correction) and its equipartition instead.
 Lanczos is exact in its deterministic part; its tolerance bounds the noise, which
 tests/python/test_bdhi_open_boundary.py checks against Cholesky.
 
@@ -53,7 +59,18 @@ METHODS = {
     "fib": (["BDHITriplyPeriodic", "FluctuatingImmersedBoundary"], True, False, [1000, 10000, 100000, 1000000]),
     "quasi2d": (["BDHIDoublyPeriodic", "Quasi2D"], True, True, [1000, 10000, 100000, 1000000]),
     "dpstokes": (["BDHIDoublyPeriodic", "DPStokes"], True, True, [1000, 10000, 100000]),
+    "icm": (["FluctuatingHydrodynamics", "IncompressibleInertialCoupling"], True, False, [1000, 10000, 100000]),
+    "magnetic_fcm": (["Magnetic", "ForceCouplingMethod"], True, True, [1000, 10000, 100000, 1000000]),
 }
+# The parameters a method takes beyond time step, viscosity, radius and tolerance.
+EXTRA_PARAMETERS = {
+    "icm": {"density": 1.0},
+    "magnetic_fcm": {"msat": 1.0, "damping": 0.1, "gyroRatio": 1.0, "magneticIntegrationAlgorithm": "LLG_Heun"},
+}
+# The magnetic methods: each particle at the identity orientation carries a unit moment along z.
+MAGNETIC = {"magnetic_fcm"}
+# The methods whose error is not measured (see above).
+UNREFERENCED = {"icm"}
 # The planar methods: particles in the plane z = 0 of an x-y periodic square at area fraction 0.05.
 PLANAR = {"quasi2d"}
 # The slab methods: particles between two walls SLAB_HEIGHT apart, at least 2 radii from each, at
@@ -63,6 +80,8 @@ SLAB = {"dpstokes"}
 SLAB_HEIGHT = 16.0 * RADIUS
 # The methods whose reference is another method's mobility: the periodic RPY one of positively split Ewald.
 RPY_REFERENCED = {"fib"}
+# The methods whose translation is the force coupling method's.
+FCM_REFERENCED = {"magnetic_fcm"}
 GRID_SPACING = RADIUS / math.sqrt(math.pi)
 
 
@@ -104,7 +123,7 @@ def document(method, n, positions, temperature, tolerance, refinement=1, radius=
     length = side(method, n)
     # An open-boundary box only has to hold the particles: they are never folded back into it.
     box = [length] * 3 if periodic else [10.0 * length] * 3
-    parameters = {"timeStep": DT, "viscosity": ETA, "hydrodynamicRadius": radius}
+    parameters = {"timeStep": DT, "viscosity": ETA, "hydrodynamicRadius": radius, **EXTRA_PARAMETERS.get(method, {})}
     if tolerant:
         parameters["tolerance"] = tolerance
     if method in SLAB:
@@ -112,6 +131,11 @@ def document(method, n, positions, temperature, tolerance, refinement=1, radius=
         cells = math.ceil(length / GRID_SPACING) * refinement
         parameters.update({"nx": cells, "ny": cells, "Lx": length, "Ly": length, "H": SLAB_HEIGHT, "w": 6,
                            "mode": "slit", "nz": math.ceil(SLAB_HEIGHT / GRID_SPACING) * refinement + 1})
+    if method in MAGNETIC:
+        state = {"labels": ["id", "position", "direction", "magnetization"],
+                 "data": [[i, list(p), [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 1.0]] for i, p in enumerate(positions)]}
+    else:
+        state = {"labels": ["id", "position"], "data": [[i, list(p)] for i, p in enumerate(positions)]}
     return {
         "system": {"info": {"type": ["Simulation", "Information"], "parameters": {"name": method, "seed": 5}}},
         "global": {
@@ -125,7 +149,7 @@ def document(method, n, positions, temperature, tolerance, refinement=1, radius=
             "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
                          "data": [[1, "bd", 10 ** 9]]},
         },
-        "state": {"labels": ["id", "position"], "data": [[i, list(p)] for i, p in enumerate(positions)]},
+        "state": state,
         "topology": {"structure": {"labels": ["id", "type"], "data": [[i, "A"] for i in range(n)]},
                      "forceField": {}},
     }
@@ -175,6 +199,8 @@ def relative_error(measured, reference):
 def error(backend, method, n, tolerance, reference_max):
     # In double precision: a one-step displacement is a few 1e-4 of a position, so single precision
     # would measure its own rounding, not the method.
+    if method in UNREFERENCED:
+        return None
     measured = displacement(backend, "double", method, n, tolerance)
     if not METHODS[method][1]:
         positions, forces = placement(method, n)
@@ -184,6 +210,8 @@ def error(backend, method, n, tolerance, reference_max):
     if method in RPY_REFERENCED:
         return relative_error(measured, displacement(backend, "double", "pse", n, REFERENCE_TOLERANCE,
                                                      radius=immersed_boundary_radius(side(method, n))))
+    if method in FCM_REFERENCED:
+        return relative_error(measured, displacement(backend, "double", "fcm", n, REFERENCE_TOLERANCE))
     if method in SLAB:
         # The tolerance is the noise's alone (Lanczos); the deterministic part's error is the grid's.
         return relative_error(measured, displacement(backend, "double", method, n, tolerance, refinement=2))
@@ -229,7 +257,8 @@ def main():
                          "tolerance": args.tolerance if METHODS[method][2] else "",
                          "steps_per_second": rate, "error": err})
             shown = "-" if err is None else f"{err:.1e}"
-            tolerance = f"{args.tolerance:g}" if METHODS[method][2] else ("none" if method in RPY_REFERENCED else "exact")
+            untolerant = "none" if method in RPY_REFERENCED | UNREFERENCED else "exact"
+            tolerance = f"{args.tolerance:g}" if METHODS[method][2] else untolerant
             print(f"| {method} | {n:,} | {args.precision} | {tolerance} | {rate:,.0f} | {rate * n:.3g} | {shown} |",
                   flush=True)
     if args.csv:
