@@ -77,8 +77,8 @@ public:
 private:
     template <class Term>
     void traverse(Particles<B, R>& p, const Term& term) {
-        backend_.for_each_lanes(p.count,
-                                AllPairsTraversal<Term, R>{term, p.pos.data(), p.count, p.box, this->group(), batch_});
+        traverse_all_pairs(backend_, p.count,
+                           AllPairsTraversal<Term, R>{term, p.pos.data(), p.count, p.box, this->group(), batch_});
     }
     // The column whose pairwise products the potential takes: the charges, or the masses.
     const R* products(Particles<B, R>& p) const {

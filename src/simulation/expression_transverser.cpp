@@ -34,7 +34,8 @@ ExpressionSumKernels expression_sum_kernels(const ExpressionTransverserSpec& spe
         "#include \"transverser/all_pairs_traversal.hpp\"\n#include \"transverser/expression_sum.hpp\"\n"
         "using namespace structmd;\n" + function.definition;
     kernels.names = {"&structmd::for_each_lanes_kernel<structmd::NeighbourTraversal<" + sum + ", " + real + ">>",
-                     "&structmd::for_each_lanes_kernel<structmd::AllPairsTraversal<" + sum + ", " + real + ">>"};
+                     "&structmd::for_each_lanes_kernel<structmd::AllPairsTraversal<" + sum + ", " + real + ">>",
+                     "&structmd::all_pairs_tiles_kernel<" + sum + ", " + real + ">"};
     return kernels;
 }
 

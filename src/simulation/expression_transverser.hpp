@@ -28,8 +28,9 @@ struct ExpressionTransverserSpec {
 const std::vector<std::string>& expression_transverser_inputs();
 
 // The source of the expression's traversal kernels for a backend that compiles at run time (NVRTC):
-// `names` are the kernel over a neighbour list, then the one over all pairs, in the real type `real`
-// ("float" or "double"), each launched with the functor of prepared_expression_sum.hpp.
+// `names` are the kernel over a neighbour list, then the two over all pairs (split among lanes, and in
+// shared-memory tiles: all_pairs_traversal.hpp), in the real type `real` ("float" or "double"), each
+// launched with the functor of prepared_expression_sum.hpp.
 struct ExpressionSumKernels {
     std::string source;
     std::vector<std::string> names;

@@ -88,7 +88,10 @@ private:
                                                                               R(spec_.cutoff * spec_.cutoff), group};
             launch(0, p.count, traversal);
         } else {
-            launch(1, p.count,
+            size_t kernel = 1;
+            if constexpr (B::compiles_at_run_time)
+                if (all_pairs_in_tiles(backend_, p.count)) kernel = 2;
+            launch(kernel, p.count,
                    AllPairsTraversal<ExpressionSum<Function, R>, R>{sum, p.pos.data(), p.count, p.box, group, batch_});
         }
     }

@@ -24,7 +24,9 @@
 // traversal offers, so each particle gets its own total (no atomics).
 // The traversal splits a particle's pairs among lanes (core/lanes.hpp) on the GPU and combines the
 // lanes' totals with accumulate: accumulate must be associative and commutative (a sum, a max), and
-// Compute trivially copyable. set() is called once per particle traversed, with its full total.
+// Compute trivially copyable. Info must be plain data too: over all pairs of a large system the GPU
+// copies the partners' Info into shared-memory tiles (all_pairs_traversal.hpp). set() is called once
+// per particle traversed, with its full total.
 // What the host prepares (uploading a table, zeroing an output) it does before building the struct.
 #include "core/hd.hpp"
 #include "core/vec.hpp"

@@ -75,8 +75,8 @@ void run_transverser(const TransverserRun<B, R>& run, const ParameterValues& val
     if (run.neighbours)
         run.backend.for_each_lanes(n, NeighbourTraversal<Functor, R>{functor, *run.neighbours, run.cutoff2, run.group});
     else
-        run.backend.for_each_lanes(
-            n, AllPairsTraversal<Functor, R>{functor, run.inputs.positions, n, run.box, run.group, run.batch});
+        traverse_all_pairs(run.backend, n,
+                           AllPairsTraversal<Functor, R>{functor, run.inputs.positions, n, run.box, run.group, run.batch});
 }
 
 }  // namespace structmd

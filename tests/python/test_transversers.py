@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import structmd
+from conftest import BACKEND
 from test_measures import BOX, document, measure, minimum_image
 
 
@@ -168,7 +169,7 @@ def test_traverse_expression_needs_a_load(sim):
 def test_batches_stay_apart_over_a_list_and_over_all_pairs(sim):
     """Two batches overlaid in one box (batchId 0 and 1) are independent systems: a particle's pairs
     are those of its own batch, with a neighbour list and without."""
-    positions, _ = liquid(120, seed=17)
+    positions, _ = liquid(300, seed=17)  # more than one tile of 128 on the GPU
     doc = document(positions, steps=1)
     batch = [i % 2 for i in range(len(positions))]
     doc["topology"]["structure"] = {"labels": ["id", "type", "batchId"],
@@ -178,3 +179,27 @@ def test_batches_stay_apart_over_a_list_and_over_all_pairs(sim):
     same = np.equal.outer(batch, batch)
     np.testing.assert_array_equal(sim.traverse_expression("r < 2", 2.0), np.sum((r < 2) & same, axis=1))
     np.testing.assert_array_equal(sim.traverse_expression("1"), np.sum(same, axis=1) - 1)
+
+
+@pytest.mark.skipif(BACKEND != "cuda", reason="1.6e9 pairs: a test of the GPU's all-pairs tiles")
+def test_all_pairs_of_a_large_system_in_an_open_box(sim):
+    """40,000 particles: on the GPU each has a lane of its own, so all pairs run in shared-memory tiles
+    (all_pairs_traversal.hpp). In an open box the sum over partners of dx is X - n x_i (X the sum of
+    the x's), and "1" counts the rest of a particle's batch."""
+    n = 40000
+    rng = np.random.default_rng(29)
+    positions = rng.uniform(-50.0, 50.0, size=(n, 3))
+    doc = document(positions, steps=1)
+    doc["global"]["ensemble"]["data"][0][0] = ["inf", "inf", "inf"]
+    batch = [i % 3 for i in range(n)]
+    doc["topology"]["structure"] = {"labels": ["id", "type", "batchId"],
+                                    "data": [[i, "A", b] for i, b in enumerate(batch)]}
+    sim.load(doc)
+    x = np.asarray(sim.positions)[:, 0]
+    batch = np.asarray(batch)
+    expected = np.zeros(n)
+    for b in range(3):
+        mine = batch == b
+        expected[mine] = x[mine].sum() - mine.sum() * x[mine]
+    np.testing.assert_allclose(sim.traverse_expression("dx", 0.0), expected, rtol=1e-9, atol=1e-7)
+    np.testing.assert_array_equal(sim.traverse_expression("1", 0.0), np.bincount(batch)[batch] - 1)
