@@ -15,8 +15,8 @@ inline DLManagedTensor* make_engine_tensor(const void* data, int device, int rea
                                            const int64_t shape[2], const int64_t strides[2]) {
     struct Tensor {
         DLManagedTensor managed{};
-        int64_t shape[2];
-        int64_t strides[2];
+        int64_t shape[2] = {};
+        int64_t strides[2] = {};
     };
     auto tensor = std::make_unique<Tensor>();
     for (int k = 0; k < ndim; ++k) {
