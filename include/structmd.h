@@ -901,6 +901,36 @@ typedef struct DLManagedTensor structmd_dlpack_tensor;
  */
 STRUCTMD_API structmd_status structmd_get_view(structmd_sim* sim, const char* quantity, structmd_dlpack_tensor** view);
 
+/**
+ * Runs a transverser that a plugin registered once, as structmd_traverse does, and lends its output
+ * as a DLPack tensor instead of copying it to the host: on CUDA the values stay on the GPU. Shape (n)
+ * for a transverser of one value per particle, (n, values) otherwise (structmd_transverser_values),
+ * contiguous (strides (1) or (values, 1) in elements), rows in ascending particle id, particles
+ * outside the group 0; float32 in single precision and float64 in mixed and double; on the GPU
+ * (kDLCUDA, the handle's device) or in host memory (kDLCPU). The engine's work is complete when the
+ * call returns.
+ * The data are the engine's output array of its registered transversers: valid until the next call
+ * on the handle that runs a registered transverser (structmd_traverse, structmd_traverse_view, a
+ * ["TransverserMeasure","Plugin"] step: any call that steps), sets anything, loads, changes a
+ * parameter or destroys it. Writing through the view changes nothing the engine reads. Release it
+ * with its deleter (a DLPack consumer does so); the deleter does not touch the handle and may be
+ * called after it is destroyed.
+ *
+ * @param sim         the handle.
+ * @param name        the transverser's name.
+ * @param parameters  NULL, "" or a JSON object, as for structmd_traverse.
+ * @param cutoff      > 0: the pairs closer than cutoff, over a neighbour list; 0: every pair.
+ * @param[out] view   the new tensor.
+ * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for an unknown name (the message lists the known ones),
+ *         parameters that are not a JSON object or a NULL pointer; STRUCTMD_ERR_INPUT for a parameter
+ *         it does not take, a value that breaks its rule, an unknown group or a negative or
+ *         non-finite cutoff; STRUCTMD_ERR_STATE without a load; STRUCTMD_ERR_UNSUPPORTED on a backend
+ *         the plugin was not compiled for, under spatial domains or batches over ranks. On failure
+ *         *view is left as it was.
+ */
+STRUCTMD_API structmd_status structmd_traverse_view(structmd_sim* sim, const char* name, const char* parameters,
+                                                    double cutoff, structmd_dlpack_tensor** view);
+
 /** @} */
 
 /* ---- structmd additions to the contract ---- */

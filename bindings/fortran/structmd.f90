@@ -56,7 +56,7 @@ module structmd
             structmd_set_callback_error, structmd_get_view, structmd_force_callback, &
             structmd_get_orientations, structmd_set_orientations, structmd_get_torques, &
             structmd_get_magnetic_moments, structmd_traverse_expression, &
-            structmd_transverser_values, structmd_traverse
+            structmd_transverser_values, structmd_traverse, structmd_traverse_view
 
   public :: structmd_version_f, structmd_last_error_f, structmd_create_f, structmd_load_file_f, &
             structmd_load_string_f, structmd_get_energy_f, structmd_get_ids_f, &
@@ -410,6 +410,16 @@ module structmd
       import :: c_ptr, c_char, c_int32_t
       type(c_ptr), value :: sim
       character(kind=c_char), intent(in) :: quantity(*)
+      type(c_ptr), intent(out) :: view
+      integer(c_int32_t) :: status
+    end function
+
+    function structmd_traverse_view(sim, name, parameters, cutoff, view) &
+        bind(C, name="structmd_traverse_view") result(status)
+      import :: c_ptr, c_char, c_int32_t, c_double
+      type(c_ptr), value :: sim
+      character(kind=c_char), intent(in) :: name(*), parameters(*)
+      real(c_double), value :: cutoff
       type(c_ptr), intent(out) :: view
       integer(c_int32_t) :: status
     end function

@@ -1,7 +1,9 @@
 // Transversers from the host: an expression transverser run once (SimulationProbes::expression_sum),
-// and a transverser a plugin registered, run once by name (SimulationProbes::traverse).
+// and a transverser a plugin registered, run once by name, its values copied to the host
+// (SimulationProbes::traverse) or lent as a DLPack tensor (SimulationProbes::traverse_on_backend).
 #include <string>
 
+#include "api/dlpack_tensor.hpp"
 #include "api/handle.hpp"
 #include "simulation/expression_transverser.hpp"
 #include "simulation/transverser_call.hpp"
@@ -43,6 +45,22 @@ structmd_status structmd_traverse(structmd_sim* sim, const char* name, const cha
                                                    call.name + "'), got " + std::to_string(n));
         require_pointer(out, "out");
         simulation.probes().traverse(call, out);
+    });
+}
+
+structmd_status structmd_traverse_view(structmd_sim* sim, const char* name, const char* parameters, double cutoff,
+                                       structmd_dlpack_tensor** view) {
+    return with_handle(sim, [&](structmd_sim& s) {
+        Simulation& simulation = loaded(s);
+        require_pointer(name, "name");
+        require_pointer(view, "view");
+        const TransverserCall call = make_transverser_call(*s.components, name, parameters, cutoff);
+        const SimulationProbes::TransverserOutput output = simulation.probes().traverse_on_backend(call);
+        // One value per particle is a vector, as Python's Simulation.traverse gives it.
+        const int ndim = output.values == 1 ? 1 : 2;
+        const int64_t shape[2] = {output.n, output.values};
+        const int64_t strides[2] = {ndim == 1 ? 1 : output.values, 1};
+        *view = make_engine_tensor(output.data, output.device, output.realSize, ndim, shape, strides);
     });
 }
 

@@ -120,16 +120,20 @@ public:
     // The set that registered transverser `name` and its entry; ERR_ARGUMENT naming the known ones
     // when no loaded plugin registered it.
     std::pair<std::shared_ptr<const ComponentSet>, const TransverserEntry*> transverser(const std::string& name) const {
+        for (const auto& set : sets_)
+            for (const TransverserEntry& t : set->transversers)
+                if (t.name == name) return {set, &t};
+        throw Error(STRUCTMD_ERR_ARGUMENT, unknown_transverser(name));
+    }
+
+    // Why `name` is no transverser: "no transverser named 'X' (the loaded plugins register 'A', 'B'; ...)".
+    std::string unknown_transverser(const std::string& name) const {
         std::string known;
         for (const auto& set : sets_)
-            for (const TransverserEntry& t : set->transversers) {
-                if (t.name == name) return {set, &t};
-                known += (known.empty() ? "'" : ", '") + t.name + "'";
-            }
-        throw Error(STRUCTMD_ERR_ARGUMENT, "no transverser named '" + name + "' (" +
-                                               (known.empty() ? std::string("no loaded plugin registers one")
-                                                              : "the loaded plugins register " + known) +
-                                               "; docs/plugins.md says how to write one)");
+            for (const TransverserEntry& t : set->transversers) known += (known.empty() ? "'" : ", '") + t.name + "'";
+        return "no transverser named '" + name + "' (" +
+               (known.empty() ? std::string("no loaded plugin registers one") : "the loaded plugins register " + known) +
+               "; docs/plugins.md says how to write one)";
     }
 
     // What the input reader reads with: built-ins, then every added component.

@@ -59,7 +59,11 @@ TrackedNode parameters_of(const TrackedNode& entry) {
 }
 
 ParameterValues read_parameters(const TrackedNode& entry, const std::vector<Parameter>& schema) {
-    const TrackedNode params = parameters_of(entry);
+    return read_parameter_object(parameters_of(entry), entry.path() + ".parameters", schema);
+}
+
+ParameterValues read_parameter_object(const TrackedNode& params, const std::string& path,
+                                      const std::vector<Parameter>& schema) {
     ParameterValues values;
     for (const Parameter& p : schema) {
         auto node = params.valid() ? params.find(p.name) : std::nullopt;
@@ -67,7 +71,7 @@ ParameterValues read_parameters(const TrackedNode& entry, const std::vector<Para
             values.set(p.name, read_parameter(*node, p));
         else if (p.required())
             throw params.valid() ? params.missing(p.name, "missing required parameter")
-                                 : input_error(entry.path() + ".parameters." + p.name, "missing required parameter");
+                                 : input_error(path + "." + p.name, "missing required parameter");
         else
             values.set(p.name, std::vector<double>(p.size, p.fallback));
     }

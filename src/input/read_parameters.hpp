@@ -23,6 +23,10 @@ TrackedNode parameters_of(const TrackedNode& entry);
 // The parameters in `schema` from the entry's "parameters" object; absent ones take their default,
 // and an absent required one is an error naming <entry>.parameters.<name>.
 ParameterValues read_parameters(const TrackedNode& entry, const std::vector<Parameter>& schema);
+// The same from an object of parameters itself (`params`), which may sit anywhere; invalid when none
+// was given, and then `path` is where an absent required one is named (<path>.<name>).
+ParameterValues read_parameter_object(const TrackedNode& params, const std::string& path,
+                                      const std::vector<Parameter>& schema);
 
 // The index among option.supported of a named choice's value, given at `path`: ERR_UNSUPPORTED for a
 // name the reference defines and structmd does not, an input error for any other.

@@ -61,10 +61,14 @@ std::vector<std::string> ordered_keys(const TrackingState& state, const std::str
     return keys;
 }
 
-// Keys of a component's "parameters" object are reported as parameters, the word users know them by.
+// Keys of a component's "parameters" object, or of an object of parameters named so
+// ("transverserParameters": a plugin transverser's), are reported as parameters, the word users know
+// them by.
 bool is_parameters_object(const std::string& path) {
-    const std::string name = "parameters";
+    const std::string name = "parameters", named = "Parameters";
     if (path == name) return true;
+    if (path.size() > named.size() && path.compare(path.size() - named.size(), std::string::npos, named) == 0)
+        return true;
     return path.size() > name.size() && path.compare(path.size() - name.size() - 1, std::string::npos, "." + name) == 0;
 }
 

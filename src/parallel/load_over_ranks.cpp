@@ -62,7 +62,7 @@ std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const 
         run_together(*comm, [&] {
             // The reader first, so that bad input is named by its JSON path before the domains
             // look at what it read.
-            SimulationSpec spec = read_simulation(*document, log, components.reader());
+            SimulationSpec spec = read_simulation(*document, log, components);
             check_domain_support(*document, spec, components.reader());
             domains.emplace(static_cast<const SystemSpec&>(spec));
             local = make_simulation(options, std::move(spec), components, log);
@@ -73,7 +73,7 @@ std::unique_ptr<Simulation> load_over_ranks(const EngineOptions& options, const 
     BatchShare share;
     run_together(*comm, [&] {
         if (comm->size() == 1) {
-            local = make_simulation(options, read_simulation(*document, log, components.reader()), components, log);
+            local = make_simulation(options, read_simulation(*document, log, components), components, log);
             return;
         }
         share = split_batches(document->root.json(), comm->rank(), comm->size());

@@ -251,6 +251,7 @@ public:
     bool has_magnetization() const override { return !p_.magnetization.empty(); }
     void expression_sum(const ExpressionTransverserSpec& spec, double* perParticle) override;  // engine_transversers.hpp
     void traverse(const TransverserCall& call, double* perParticle) override;                 // engine_transversers.hpp
+    TransverserOutput traverse_on_backend(const TransverserCall& call) override;             // engine_transversers.hpp
 
     // DomainMember (engine_domain.hpp)
     void set_step_firing(StepFiring* firing) override { steps_.firing = firing; }
@@ -433,6 +434,8 @@ private:
     // the first run of that cutoff, their output, and the force field's group names.
     std::vector<std::pair<double, std::shared_ptr<VerletList<B, R>>>> transverserLists_;
     typename B::template Buffer<R> transverserOut_;
+    // Runs a registered transverser into transverserOut_ (engine_transversers.hpp).
+    void run_registered_transverser(const TransverserCall& call);
     std::vector<std::string> groupNames_;
     // A spatial domain's slots (hold_ghosts), and the positions version the ghosts were last
     // refreshed at.

@@ -1,7 +1,8 @@
 #pragma once
 // Engine's transversers: expression transversers (SimulationProbes::expression_sum), each prepared at
 // its first run (its list, its compiled kernel) and kept by key; and registered transversers
-// (SimulationProbes::traverse), run by the plugin's runner for this backend and precision.
+// (SimulationProbes::traverse, traverse_on_backend), run by the plugin's runner for this backend and
+// precision into one output array, which traverse copies to the host and traverse_on_backend lends.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -29,6 +30,20 @@ void Engine<B, R, PairR>::expression_sum(const ExpressionTransverserSpec& spec, 
 
 template <class B, class R, class PairR>
 void Engine<B, R, PairR>::traverse(const TransverserCall& call, double* perParticle) {
+    run_registered_transverser(call);
+    const std::vector<R> values = io_.download(transverserOut_);
+    std::copy(values.begin(), values.end(), perParticle);
+}
+
+template <class B, class R, class PairR>
+SimulationProbes::TransverserOutput Engine<B, R, PairR>::traverse_on_backend(const TransverserCall& call) {
+    run_registered_transverser(call);
+    backend_.synchronize();
+    return {transverserOut_.data(), p_.count, call.values, static_cast<int>(sizeof(R)), backend_.device_ordinal()};
+}
+
+template <class B, class R, class PairR>
+void Engine<B, R, PairR>::run_registered_transverser(const TransverserCall& call) {
     const TransverserRunner<B, R>* runner = call.source->template transverser_runner<B, R, PairR>(call.name);
     if (!runner)
         throw Error(STRUCTMD_ERR_UNSUPPORTED,
@@ -73,8 +88,6 @@ void Engine<B, R, PairR>::traverse(const TransverserCall& call, double* perParti
                     call.parameters);
         if (list) list->adapt();
     }
-    const std::vector<R> values = io_.download(transverserOut_);
-    std::copy(values.begin(), values.end(), perParticle);
 }
 
 }  // namespace structmd

@@ -118,6 +118,10 @@ public:
         admit(Operation::traversal);
         inner().probes().traverse(call, perParticle);
     }
+    TransverserOutput traverse_on_backend(const TransverserCall& call) override {
+        admit(Operation::traversal);
+        return inner().probes().traverse_on_backend(call);
+    }
     std::vector<int> patch_bonds(const std::string& entry) override {
         admit(Operation::termArrays);
         return inner().probes().patch_bonds(entry);

@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "steps/backup_step.hpp"
 
+#include "forcefield/component_set.hpp"
 #include "forcefield/read_forcefield.hpp"
 #include "input/description.hpp"
 #include "integrators/read_integrators.hpp"
@@ -11,20 +12,18 @@
 
 namespace structmd {
 
-SimulationSpec read_simulation(const std::string& text, const Logger& log,
-                               const Registry<ForceFieldComponent>& components) {
-    return read_simulation(input::parse_document(text), log, components);
-}
+namespace {
 
-SimulationSpec read_simulation(const input::ParsedDocument& doc, const Logger& log,
-                               const Registry<ForceFieldComponent>& components) {
+// transversers: null where only the reader registry was given.
+SimulationSpec read_document(const input::ParsedDocument& doc, const Logger& log,
+                             const Registry<ForceFieldComponent>& components, const ForceFieldComponents* transversers) {
     const input::SystemDescription& system = doc.system;
     for (const std::string& warning : system.warnings) log.warning(warning);
 
     SimulationSpec spec;
     spec.forceField = read_forcefield(system, log, components);
     spec.integrators = read_integrators(system, spec.forceField.groups, spec.schedule);
-    spec.steps = read_simulation_steps(system, spec.forceField, log);
+    spec.steps = read_simulation_steps(system, spec.forceField, transversers, log);
     if (const auto& b = system.backup)
         spec.steps.push_back(std::make_unique<BackupStep>(b->intervalStep, b->startStep, b->endStep, b->filePath));
     doc.root.check_all_used();
@@ -56,6 +55,27 @@ SimulationSpec read_simulation(const input::ParsedDocument& doc, const Logger& l
     spec.batchId = system.batchId;
     spec.modelId = system.modelId;
     return spec;
+}
+
+}  // namespace
+
+SimulationSpec read_simulation(const std::string& text, const Logger& log, const ForceFieldComponents& components) {
+    return read_simulation(input::parse_document(text), log, components);
+}
+
+SimulationSpec read_simulation(const input::ParsedDocument& doc, const Logger& log,
+                               const ForceFieldComponents& components) {
+    return read_document(doc, log, components.reader(), &components);
+}
+
+SimulationSpec read_simulation(const std::string& text, const Logger& log,
+                               const Registry<ForceFieldComponent>& components) {
+    return read_simulation(input::parse_document(text), log, components);
+}
+
+SimulationSpec read_simulation(const input::ParsedDocument& doc, const Logger& log,
+                               const Registry<ForceFieldComponent>& components) {
+    return read_document(doc, log, components, nullptr);
 }
 
 std::unique_ptr<input::ParsedDocument> read_parameter_document(const std::string& text) {

@@ -9,13 +9,22 @@
 
 namespace structmd {
 
+class ForceFieldComponents;  // forcefield/component_set.hpp
+
 // Parses and validates a whole input document into a SimulationSpec, reading topology.forceField
-// with `components` (the built-ins, or a handle's registry with its plugins' components). Every key
-// of the document must be used by some component; throws Error(ERR_INPUT) naming the path otherwise.
-SimulationSpec read_simulation(const std::string& text, const Logger& log,
-                               const Registry<ForceFieldComponent>& components = forcefield_registry());
+// with `components` (the built-ins, or a handle's with its plugins' components) and simulationStep
+// with their transversers (["TransverserMeasure","Plugin"]). Every key of the document must be used
+// by some component; throws Error(ERR_INPUT) naming the path otherwise.
+SimulationSpec read_simulation(const std::string& text, const Logger& log, const ForceFieldComponents& components);
 // The same from a document already parsed, for a caller that decides from its description first
 // (parallel/load_over_ranks.cpp: one batch or several, which components run under domains).
+SimulationSpec read_simulation(const input::ParsedDocument& document, const Logger& log,
+                               const ForceFieldComponents& components);
+// The same with the force field's reader registry alone (the parallel layouts that load through
+// engines/make_engine.cpp): no transverser is known, and a ["TransverserMeasure","Plugin"] step is
+// refused as unsupported there.
+SimulationSpec read_simulation(const std::string& text, const Logger& log,
+                               const Registry<ForceFieldComponent>& components = forcefield_registry());
 SimulationSpec read_simulation(const input::ParsedDocument& document, const Logger& log,
                                const Registry<ForceFieldComponent>& components);
 

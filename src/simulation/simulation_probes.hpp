@@ -52,6 +52,20 @@ public:
         throw Error(STRUCTMD_ERR_UNSUPPORTED, "transverser '" + call.name + "': transversers run on one engine, "
                                               "not under this parallel layout");
     }
+    // The same left on the backend: the engine's output array of the run, call.values x n reals in id
+    // order, with the backend's work finished. It stays the engine's, valid until the next run of a
+    // registered transverser or anything that changes the engine's state.
+    struct TransverserOutput {
+        const void* data;
+        int64_t n;     // particles
+        int values;    // per particle
+        int realSize;  // bytes of one real
+        int device;    // the CUDA device, or -1 for host memory
+    };
+    virtual TransverserOutput traverse_on_backend(const TransverserCall& call) {
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, "transverser '" + call.name + "': transversers run on one engine, "
+                                              "not under this parallel layout");
+    }
     // The bonds of a ["PatchyParticles","DynamicallyBondedPatchyParticles"] entry: for each of its
     // patches (in the order of patchesState), the patch it is bonded to, or -1. They are the bonds the
     // last force evaluation acted with (reading them settles nothing). ERR_ARGUMENT for a name that is

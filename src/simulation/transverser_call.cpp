@@ -12,8 +12,21 @@
 namespace structmd {
 
 TransverserCall make_transverser_call(const ForceFieldComponents& components, const std::string& name,
-                                      const char* parameters, double cutoff) {
+                                      const input::TrackedNode& parameters, const std::string& path, double cutoff) {
     auto [source, entry] = components.transverser(name);
+    TransverserCall call;
+    call.name = name;
+    call.values = entry->values;
+    call.parameters = input::read_parameter_object(parameters, path, entry->parameters);
+    if (parameters.valid()) parameters.check_all_used();
+    call.cutoff = cutoff;
+    call.source = std::move(source);
+    return call;
+}
+
+TransverserCall make_transverser_call(const ForceFieldComponents& components, const std::string& name,
+                                      const char* parameters, double cutoff) {
+    components.transverser(name);  // an unknown name before anything about its parameters
     auto state = std::make_shared<input::TrackingState>();
     nlohmann::json& doc = state->document;
     doc = nlohmann::json::object();
@@ -26,22 +39,18 @@ TransverserCall make_transverser_call(const ForceFieldComponents& components, co
         if (!doc["parameters"].is_object()) throw Error(STRUCTMD_ERR_ARGUMENT, "parameters: expected a JSON object");
     }
     const input::TrackedNode root(state, &doc, name);
-    TransverserCall call;
-    call.name = name;
-    call.values = entry->values;
-    call.parameters = input::read_parameters(root, entry->parameters);
     const input::TrackedNode given = input::parameters_of(root);
-    if (given.valid()) {
-        if (auto group = given.find("group")) {
-            call.group = group->as<std::string>();
-            call.path = group->path();
+    std::string group = "All", groupPath;
+    if (given.valid())
+        if (auto node = given.find("group")) {
+            group = node->as<std::string>();
+            groupPath = node->path();
         }
-        given.check_all_used();
-    }
     if (!(cutoff >= 0) || !std::isfinite(cutoff))
         throw input_error("cutoff", "expected a finite number >= 0 (0: all pairs), got " + std::to_string(cutoff));
-    call.cutoff = cutoff;
-    call.source = std::move(source);
+    TransverserCall call = make_transverser_call(components, name, given, root.path() + ".parameters", cutoff);
+    call.group = std::move(group);
+    call.path = std::move(groupPath);
     return call;
 }
 

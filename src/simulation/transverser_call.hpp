@@ -10,6 +10,9 @@
 
 namespace structmd {
 
+namespace input {
+class TrackedNode;
+}
 struct ComponentSet;
 class ForceFieldComponents;
 
@@ -30,6 +33,13 @@ struct TransverserCall {
 // named as "<name>.parameters.<parameter>".
 TransverserCall make_transverser_call(const ForceFieldComponents& components, const std::string& name,
                                       const char* parameters, double cutoff);
+
+// The same from `parameters`, the object of its named parameters as a reader found it (invalid: none
+// given), whose path names the errors (<path>.<parameter>; `path` for a required one when none was
+// given). Every key of the object must be one of its parameters. The group is every particle; the
+// cutoff, >= 0 and finite, is the caller's to check.
+TransverserCall make_transverser_call(const ForceFieldComponents& components, const std::string& name,
+                                      const input::TrackedNode& parameters, const std::string& path, double cutoff);
 
 // The values per particle of transverser `name`; ERR_ARGUMENT for an unknown name.
 int transverser_values(const ForceFieldComponents& components, const std::string& name);

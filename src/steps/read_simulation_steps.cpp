@@ -25,6 +25,7 @@
 #include "steps/parallel_tempering.hpp"
 #include "steps/patch_polymers.hpp"
 #include "steps/particle_list_measure.hpp"
+#include "steps/plugin_transverser_measure.hpp"
 #include "steps/potential_measure.hpp"
 #include "steps/sort_step.hpp"
 #include "steps/stress_measure.hpp"
@@ -55,6 +56,7 @@ const Registry<SimulationStepEntry>& simulation_step_registry() {
         steps.add(height_measure_entry());
         steps.add(potential_measure_entry());
         steps.add(transverser_measure_entry());
+        steps.add(plugin_transverser_measure_entry());
         steps.add(stress_measure_entry());
         steps.add(hessian_measure_entry());
         steps.add(pairwise_force_measure_entry());
@@ -102,6 +104,7 @@ const char* kind_text(StepValue kind) {
         case StepValue::flag: return "flag";
         case StepValue::texts: return "list of texts";
         case StepValue::numbers: return "list of numbers";
+        case StepValue::object: return "object";
     }
     return "?";
 }
@@ -141,6 +144,11 @@ nlohmann::json read_value(const input::TrackedNode& node, const StepParameter& p
                 numbers.push_back(value);
             }
             return numbers;
+        }
+        case StepValue::object: {
+            if (!node.is_object()) throw input_error(node.path(), "expected an object");
+            node.mark_used();  // its keys are the step's to check, against what the object names
+            return node.json();
         }
     }
     throw Error(STRUCTMD_ERR_INTERNAL, node.path() + ": parameter of no known kind");
@@ -218,6 +226,7 @@ std::vector<std::string> StepParameters::texts(const std::string& name) const {
 std::vector<double> StepParameters::numbers(const std::string& name) const {
     return value(name, StepValue::numbers).get<std::vector<double>>();
 }
+nlohmann::json StepParameters::object(const std::string& name) const { return value(name, StepValue::object); }
 std::string StepParameters::path(const std::string& name) const { return entryPath_ + ".parameters." + name; }
 
 void StepInput::require_all_particles() const {
@@ -237,6 +246,7 @@ std::vector<int64_t> StepInput::member_ids() const {
 std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registry<SimulationStepEntry>& registry,
                                                                    const input::SystemDescription& system,
                                                                    const ForceFieldSpec& forceField,
+                                                                   const ForceFieldComponents* components,
                                                                    const Logger& log) {
     static const std::vector<uint8_t> everyParticle;
     const std::vector<GroupSpec>& groups = forceField.groups;
@@ -255,6 +265,7 @@ std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registr
                               group < 0 ? everyParticle : groups[static_cast<size_t>(group)].members,
                               system,
                               forceField,
+                              components,
                               log,
                               entry.node};
         if (std::unique_ptr<SimulationStep> made = step.make(input)) steps.push_back(std::move(made));
@@ -264,8 +275,9 @@ std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const Registr
 
 std::vector<std::unique_ptr<SimulationStep>> read_simulation_steps(const input::SystemDescription& system,
                                                                    const ForceFieldSpec& forceField,
+                                                                   const ForceFieldComponents* components,
                                                                    const Logger& log) {
-    return read_simulation_steps(simulation_step_registry(), system, forceField, log);
+    return read_simulation_steps(simulation_step_registry(), system, forceField, components, log);
 }
 
 }  // namespace structmd

@@ -22,8 +22,11 @@
 
 namespace structmd {
 
+class ForceFieldComponents;  // forcefield/component_set.hpp
+
 // What a step parameter holds in JSON.
-enum class StepValue { integer, number, text, flag, texts, numbers };  // texts, numbers: lists
+// texts, numbers: lists; object: a JSON object the step reads itself (a plugin's named parameters)
+enum class StepValue { integer, number, text, flag, texts, numbers, object };
 
 struct StepParameter {
     const char* name;
@@ -52,6 +55,7 @@ public:
     bool flag(const std::string& name) const;
     std::vector<std::string> texts(const std::string& name) const;
     std::vector<double> numbers(const std::string& name) const;
+    nlohmann::json object(const std::string& name) const;
     // <entry>.parameters.<name>, for the factory's own messages.
     std::string path(const std::string& name) const;
 
@@ -76,6 +80,9 @@ struct StepInput {
     const std::vector<uint8_t>& members;  // that group's members by particle id; empty for "All"
     const input::SystemDescription& system;
     const ForceFieldSpec& forceField;     // its bonded terms (PDB CONECT records) and entry names
+    // The handle's components, whose plugins' transversers a step may run; null where the reader
+    // was given none (read_simulation with the reader registry alone).
+    const ForceFieldComponents* components;
     const Logger& log;
     const input::TrackedNode& node;       // the entry itself, for steps that read a table (labels, data)
 

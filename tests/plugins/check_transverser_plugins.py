@@ -3,18 +3,24 @@ lennard_jones_force.cu) into the installed library and runs them by name with st
 (Simulation.traverse): neighbour counts and local densities against numpy over a neighbour list, over
 all pairs and over a group, the Lennard-Jones force transverser against the engine's own
 ["NonBonded", "LennardJonesType1"] forces, before and after steps, on every precision the library
-has; then the refusals (unknown name, bad parameters, unknown group, wrong n).
+has; structmd_traverse_view (Simulation.traverse_view) lends the same values where the engine computed
+them (host memory on the CPU backend, the GPU on CUDA, read through CuPy or PyTorch where installed);
+then the refusals (unknown name, bad parameters, unknown group, wrong n).
 Exit 77 (ctest's skip) for --backend cuda where no GPU is usable."""
 
 import argparse
 import ctypes
+import importlib
 import json
 import sys
+import tempfile
+from pathlib import Path
 
 import numpy as np
 
 import structmd
 from structmd._library import lib
+from structmd.dlpack import K_DL_CPU, K_DL_CUDA
 
 from check_plugins import expect_failure  # beside this script, which is run by its path
 
@@ -121,6 +127,78 @@ def check_lennard_jones(sim, tolerance, label):
     close(forces, (magnitude[:, :, None] * d).sum(axis=1), tolerance, f"{label}: LJ transverser against numpy")
 
 
+def host_copy(view):
+    """The view's values copied to the host: by numpy for host memory; through CuPy or PyTorch, where
+    one is installed, for GPU memory (None without either)."""
+    if view.device[0] == K_DL_CPU:
+        return np.from_dlpack(view).copy()
+    for name in ("cupy", "torch"):
+        try:
+            module = importlib.import_module(name)
+        except ImportError:
+            continue
+        array = module.from_dlpack(view)
+        return array.get() if name == "cupy" else array.cpu().numpy()
+    return None
+
+
+def check_views(sim, backend, bits, tolerance, label):
+    """traverse_view: the shape, the device and the precision of the engine, the values of traverse.
+    Each view is read before the next run, which reuses the engine's output array."""
+    for name, cutoff, parameters, shape in (("NeighbourCount", 1.5, None, (N,)),
+                                            ("LocalDensity", 2.5, {"sigma": 0.8}, (N,)),
+                                            ("LennardJonesForce", 2.5, {"epsilon": 1.0, "sigma": 1.0}, (N, 3))):
+        expected = sim.traverse(name, cutoff, parameters)
+        view = sim.traverse_view(name, cutoff, parameters)
+        assert view.shape == shape and view.bits == bits, (label, name, view.shape, view.bits)
+        assert view.device[0] == (K_DL_CUDA if backend == "cuda" else K_DL_CPU), (label, name, view.device)
+        values = host_copy(view)
+        if values is not None:
+            close(values, expected, tolerance, f"{label}: {name} through traverse_view")
+
+
+def read_measure(path):
+    """{step: rows (id, values...)} of a ["TransverserMeasure", ...] file, with its header."""
+    lines = Path(path).read_text().splitlines()
+    blocks, current = {}, None
+    for line in lines[1:]:
+        if line.startswith("# "):
+            current = int(line[2:])
+            blocks[current] = []
+        else:
+            blocks[current].append([float(x) for x in line.split()])
+    return lines[0], {step: np.array(rows) for step, rows in blocks.items()}
+
+
+def check_measure(options, tolerance, label):
+    """["TransverserMeasure","Plugin"] with the LJ force transverser (three values a particle) over
+    the even group: every 25 steps the rows of the group, each the engine's LJ force on the particle
+    from the other members, as traverse gives it at that step."""
+    with tempfile.TemporaryDirectory() as folder:
+        output = Path(folder) / "forces.dat"
+        doc = liquid_input()
+        doc["simulationStep"] = {"forces": {
+            "type": ["TransverserMeasure", "Plugin"],
+            "parameters": {"intervalStep": 25, "outputFilePath": str(output), "transverser": "LennardJonesForce",
+                           "transverserParameters": {"epsilon": 1.0, "sigma": 1.0}, "cutOff": 2.5,
+                           "group": "even"}}}
+        expected = {}
+        with structmd.Simulation(options) as sim:
+            sim.load(json.dumps(doc))
+            for steps in (0, 25, 25):
+                sim.step(steps)
+                expected[sim.step_number] = sim.traverse("LennardJonesForce", 2.5,
+                                                         {"epsilon": 1.0, "sigma": 1.0, "group": "even"})
+        header, blocks = read_measure(output)
+        assert header == "# id value_0 value_1 value_2", header
+        assert sorted(blocks) == [0, 25, 50], sorted(blocks)
+        even = np.arange(0, N, 2)
+        for step, rows in blocks.items():
+            np.testing.assert_array_equal(rows[:, 0], even)
+            assert np.abs(rows[:, 1:]).max() > 1.0, "the test geometry has no force to check"
+            close(rows[:, 1:], expected[step][even], tolerance, f"{label}: the measure's forces at step {step}")
+
+
 def check_refusals(sim):
     expect_failure(structmd.ArgumentError, ["no transverser named 'Nope'", "'NeighbourCount'", "'LocalDensity'"],
                    lambda: sim.traverse("Nope"))
@@ -133,6 +211,9 @@ def check_refusals(sim):
     expect_failure(structmd.InputError, ["no group named 'odd'"],
                    lambda: sim.traverse("NeighbourCount", 2.5, {"group": "odd"}))
     expect_failure(structmd.InputError, ["cutoff"], lambda: sim.traverse("NeighbourCount", -1.0))
+    expect_failure(structmd.ArgumentError, ["no transverser named 'Nope'"], lambda: sim.traverse_view("Nope"))
+    expect_failure(structmd.InputError, ["LocalDensity.parameters.sigma", "positive"],
+                   lambda: sim.traverse_view("LocalDensity", 2.5, {"sigma": -1.0}))
     # The C call itself: n must be values x particles, parameters a JSON object.
     out = (ctypes.c_double * (3 * N))()
     handle = sim._handle
@@ -174,8 +255,11 @@ def main():
                 sim.step(steps)
                 check_counts_and_densities(sim, tolerance, f"{precision}, step {sim.step_number}")
                 check_lennard_jones(sim, tolerance, f"{precision}, step {sim.step_number}")
+                check_views(sim, args.backend, 32 if precision == "single" else 64, tolerance,
+                            f"{precision}, step {sim.step_number}")
             if precision == "double":
                 check_refusals(sim)
+        check_measure({**options, "precision": precision}, tolerance, precision)
         checked.append(precision)
     assert checked, "no precision could be checked"
     print(f"transverser plugin checks passed on {args.backend} ({', '.join(checked)})")

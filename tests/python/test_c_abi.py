@@ -253,7 +253,8 @@ HANDLE_FUNCTIONS = sorted(name for name, (_, params) in PROTOTYPES.items()
 NEEDS_LOADED = sorted(set(HANDLE_FUNCTIONS) - {"structmd_load_file", "structmd_load_string", "structmd_get_info",
                                                 "structmd_set_callback_error", "structmd_transverser_values"})
 NULLABLE = {("structmd_get_info", "needed"), ("structmd_set_force_callback", "user_data"),
-            ("structmd_set_device_force_callback", "user_data"), ("structmd_traverse", "parameters")}  # optional pointers
+            ("structmd_set_device_force_callback", "user_data"), ("structmd_traverse", "parameters"),
+            ("structmd_traverse_view", "parameters")}  # optional pointers
 POINTER_ARGUMENTS = sorted((name, index, param_name)
                            for name in HANDLE_FUNCTIONS
                            for index, (c_type, param_name) in enumerate(PROTOTYPES[name][1])
@@ -1170,6 +1171,50 @@ def test_traverse_runs_a_plugin_transverser_and_refuses_unknown_names(new_handle
     assert lib.structmd_traverse(bare, b"NeighbourCount", ffi.NULL, 3.0, untouched, n) == ARGUMENT
     assert "no transverser named 'NeighbourCount'" in ffi.string(lib.structmd_last_error(bare)).decode()
     assert list(untouched) == [7.0] * n
+
+
+def test_traverse_view_lends_the_transverser_output_as_a_dlpack_tensor(new_handle, loaded):
+    """structmd_traverse_view: the NeighbourCount plugin's counts as a DLPack tensor of shape (n), in
+    host memory on the CPU backend (on the GPU on CUDA), equal to structmd_traverse's and to numpy's;
+    then its refusals: an unknown name (the message lists the known ones), a NULL view, parameters it
+    does not take, no load; each leaves the out-pointer alone."""
+    if not os.environ.get("STRUCTMD_TEST_TRANSVERSER_PLUGIN"):
+        pytest.skip("STRUCTMD_TEST_TRANSVERSER_PLUGIN not set (ctest sets it)")
+    p, d, r = base_separations()
+    n = len(p)
+    view = ffi.new("structmd_dlpack_tensor**")
+    for cutoff, expected in ((3.0, np.sum(r < 3.0, axis=1)), (0.0, np.full(n, n - 1))):
+        check(loaded, lib.structmd_traverse_view(loaded, b"NeighbourCount", ffi.NULL, cutoff, view))
+        managed = view[0]
+        tensor = managed.dl_tensor
+        assert (tensor.ndim, tensor.shape[0], tensor.strides[0], tensor.byte_offset) == (1, n, 1, 0)
+        assert (tensor.dtype.code, tensor.dtype.bits, tensor.dtype.lanes) == (2, 64, 1)  # kDLFloat, double
+        if engine_options()["backend"] == "cpu":
+            assert tensor.device.device_type == 1
+            counts = np.frombuffer(ffi.buffer(tensor.data, 8 * n), dtype=np.float64).copy()
+            np.testing.assert_array_equal(counts, expected)
+            host = ffi.new("double[]", n)
+            check(loaded, lib.structmd_traverse(loaded, b"NeighbourCount", ffi.NULL, cutoff, host, n))
+            np.testing.assert_array_equal(counts, list(host))
+        else:
+            assert tensor.device.device_type == 2
+        managed.deleter(managed)
+
+    untouched = ffi.cast("structmd_dlpack_tensor*", 0x1234)
+    view[0] = untouched
+    expect(loaded, lib.structmd_traverse_view(loaded, b"Nope", ffi.NULL, 3.0, view), ARGUMENT)
+    assert "no transverser named 'Nope'" in message(loaded) and "'NeighbourCount'" in message(loaded)
+    expect(loaded, lib.structmd_traverse_view(loaded, b"NeighbourCount", b'{"radius": 1}', 3.0, view), INPUT)
+    assert "NeighbourCount.parameters.radius" in message(loaded)
+    expect(loaded, lib.structmd_traverse_view(loaded, b"NeighbourCount", b"[1]", 3.0, view), ARGUMENT)
+    expect(loaded, lib.structmd_traverse_view(loaded, b"NeighbourCount", ffi.NULL, -1.0, view), INPUT)
+    assert view[0] == untouched
+    expect(loaded, lib.structmd_traverse_view(loaded, b"NeighbourCount", ffi.NULL, 3.0, ffi.NULL), ARGUMENT)
+    assert "view" in message(loaded)
+    expect(loaded, lib.structmd_traverse_view(loaded, ffi.NULL, ffi.NULL, 3.0, view), ARGUMENT)
+    unloaded = new_handle()
+    expect(unloaded, lib.structmd_traverse_view(unloaded, b"NeighbourCount", ffi.NULL, 3.0, view), STATE)
+    assert view[0] == untouched
 
 
 def test_every_header_function_was_called(request):

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "forcefield/component_set.hpp"
 #include "forcefield/afm_read.hpp"
 #include "forcefield/afm_tip.hpp"
 #include "forcefield/patchy_particles.hpp"
@@ -88,6 +89,19 @@ ForceFieldSpec with_groups() {
 }
 const ForceFieldSpec kForceField = with_groups();
 
+// The transversers a plugin would register (only what the reader sees of them): "Counted", of no
+// parameters, and "Weighted", of a positive "sigma" and two values per particle.
+ForceFieldComponents with_transversers() {
+    auto set = std::make_shared<ComponentSet>();
+    set->source = "test plugin";
+    set->transversers.push_back({"Counted", {}, 1});
+    set->transversers.push_back({"Weighted", {number("sigma", "length", Must::be_positive)}, 2});
+    ForceFieldComponents components;
+    components.add(set);
+    return components;
+}
+const ForceFieldComponents kComponents = with_transversers();
+
 std::string output_path() { return (std::filesystem::temp_directory_path() / "structmd_step_registry").string(); }
 
 // A valid value for each parameter: text parameters by name (a new required text parameter needs a
@@ -95,13 +109,15 @@ std::string output_path() { return (std::filesystem::temp_directory_path() / "st
 // half the box.
 json sample_value(const StepParameter& parameter) {
     static const std::map<std::string, json> text = {
-        {"outputFilePath", output_path()}, {"outputFormat", "xyz"}, {"group", "All"}, {"compute", "r < 1.5"}};
+        {"outputFilePath", output_path()}, {"outputFormat", "xyz"}, {"group", "All"}, {"compute", "r < 1.5"},
+        {"transverser", "Counted"}};
     switch (parameter.kind) {
         case StepValue::integer: return 1;
         case StepValue::number: return 1.0;
         case StepValue::flag: return true;
         case StepValue::texts: return json::array();
         case StepValue::numbers: return json::array({1.0});
+        case StepValue::object: return json::object();
         case StepValue::text: {
             const auto found = text.find(parameter.name);
             if (found == text.end()) {
@@ -162,17 +178,20 @@ struct Loaded {
     std::vector<std::unique_ptr<SimulationStep>> steps;
 };
 
-Loaded load(const json& document, const Registry<SimulationStepEntry>& registry = simulation_step_registry()) {
+Loaded load(const json& document, const Registry<SimulationStepEntry>& registry = simulation_step_registry(),
+            const ForceFieldComponents* components = &kComponents) {
     Loaded loaded;
     loaded.parsed = input::parse_document(document.dump());
-    loaded.steps = read_simulation_steps(registry, loaded.parsed.system, kForceField, Logger(LogLevel::quiet, nullptr));
+    loaded.steps =
+        read_simulation_steps(registry, loaded.parsed.system, kForceField, components, Logger(LogLevel::quiet, nullptr));
     return loaded;
 }
 
 // The error `load` throws for the document, which must have the status given.
-std::string load_error(const json& document, structmd_status status = STRUCTMD_ERR_INPUT) {
+std::string load_error(const json& document, structmd_status status = STRUCTMD_ERR_INPUT,
+                       const ForceFieldComponents* components = &kComponents) {
     try {
-        load(document);
+        load(document, simulation_step_registry(), components);
     } catch (const Error& error) {
         EXPECT_EQ(error.status(), status) << error.what();
         return error.what();
@@ -327,6 +346,32 @@ TEST(StepRegistry, AnUnknownStepNamesTheNearestKnownOnes) {
     // A known class with an unknown subclass is unknown too.
     const std::string subclass = load_error(document_with({"GeometricalMeasure", "Never"}, {{"intervalStep", 1}}));
     EXPECT_TRUE(starts_with(subclass, kEntryPath + ".type: unknown simulation step")) << subclass;
+}
+
+// ["TransverserMeasure","Plugin"] checks the transverser against the handle's plugins at load: an
+// unknown name is named by its path with the names known, a parameter the transverser does not take
+// or one breaking its rule by its path inside transverserParameters; without the handle's
+// components (a parallel layout that reads without them) the step is refused as unsupported.
+TEST(StepRegistry, APluginTransverserMeasureChecksItsTransverserAtLoad) {
+    const ComponentKey plugin{"TransverserMeasure", "Plugin"};
+    const auto with = [&](const json& extra) {
+        json parameters = {{"intervalStep", 1}, {"outputFilePath", output_path()}, {"transverser", "Weighted"},
+                           {"transverserParameters", {{"sigma", 0.5}}}};
+        parameters.update(extra);
+        return document_with(plugin, parameters);
+    };
+    EXPECT_EQ(load(with(json::object())).steps.size(), 1u);
+    const std::string unknown = load_error(with({{"transverser", "Nope"}}));
+    EXPECT_TRUE(starts_with(unknown, kParametersPath + ".transverser: no transverser named 'Nope'")) << unknown;
+    EXPECT_NE(unknown.find("'Counted', 'Weighted'"), std::string::npos) << unknown;
+    const std::string misspelt = load_error(with({{"transverserParameters", {{"sigma", 0.5}, {"sgma", 1.0}}}}));
+    EXPECT_TRUE(starts_with(misspelt, kParametersPath + ".transverserParameters.sgma: unknown parameter (known here: sigma)")) << misspelt;
+    const std::string negative = load_error(with({{"transverserParameters", {{"sigma", -1.0}}}}));
+    EXPECT_TRUE(starts_with(negative, kParametersPath + ".transverserParameters.sigma: expected a positive")) << negative;
+    const std::string missing = load_error(with({{"transverserParameters", json::object()}}));
+    EXPECT_TRUE(starts_with(missing, kParametersPath + ".transverserParameters.sigma: missing required")) << missing;
+    const std::string none = load_error(with(json::object()), STRUCTMD_ERR_UNSUPPORTED, nullptr);
+    EXPECT_TRUE(starts_with(none, kEntryPath + ": [\"TransverserMeasure\",\"Plugin\"]")) << none;
 }
 
 TEST(StepRegistry, AStepAddedAtRunTimeLoadsFromItsCopyOnly) {

@@ -80,6 +80,7 @@ SIGNATURES: Dict[str, Tuple[Any, List[Any]]] = {
     "structmd_set_device_force_callback": (STATUS_T, [HANDLE_T, c_void_p, c_void_p]),
     "structmd_set_callback_error": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_get_view": (STATUS_T, [HANDLE_T, c_char_p, POINTER(c_void_p)]),
+    "structmd_traverse_view": (STATUS_T, [HANDLE_T, c_char_p, c_char_p, c_double, POINTER(c_void_p)]),
     "structmd_save_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_load_checkpoint": (STATUS_T, [HANDLE_T, c_char_p]),
     "structmd_get_info": (STATUS_T, [HANDLE_T, c_char_p, c_size_t, POINTER(c_size_t)]),

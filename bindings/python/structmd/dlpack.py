@@ -1,7 +1,7 @@
 """DLPack tensors over memory that structmd owns, for numpy, CuPy, PyTorch or JAX to read without a copy.
 
-DLPackView wraps a DLManagedTensor (the library's from structmd_get_view, or one made here for the
-arrays a device force callback receives) and speaks the Python DLPack protocol: __dlpack__ returns a
+DLPackView wraps a DLManagedTensor (the library's from structmd_get_view or structmd_traverse_view, or
+one made here for the arrays a device force callback receives) and speaks the Python DLPack protocol: __dlpack__ returns a
 "dltensor" capsule, __dlpack_device__ the device. Consumers call `numpy.from_dlpack(view)`,
 `cupy.from_dlpack(view)` or `torch.from_dlpack(view)`.
 """
@@ -111,8 +111,9 @@ def make_tensor(data: Optional[int], n: int, real_size: int, device: int) -> int
 class DLPackView:
     """One DLManagedTensor, handed to the first consumer that asks (the DLPack protocol allows one).
 
-    Attributes: shape (n, 3); device (device_type, device_id) as __dlpack_device__ gives it; bits (32 or
-    64, the engine's precision); data_pointer, the address of the first element (0 for none).
+    Attributes: shape ((n, 3) for the engine's arrays; (n,) or (n, values) for a transverser's values);
+    strides, in elements; device (device_type, device_id) as __dlpack_device__ gives it; bits (32 or 64,
+    the engine's precision); data_pointer, the address of the first element (0 for none).
     """
 
     def __init__(self, address: int, stream: Optional[int] = None, owner: Optional[Simulation] = None) -> None:
@@ -122,23 +123,30 @@ class DLPackView:
         # them would read whatever the memory holds next.
         self._owner = owner
         tensor = DLManagedTensor.from_address(address).dl_tensor
-        self.shape = (tensor.shape[0], tensor.shape[1])
+        self.shape = tuple(tensor.shape[k] for k in range(tensor.ndim))
+        self.strides = tuple(tensor.strides[k] for k in range(tensor.ndim))
         self.device = (tensor.device.device_type, tensor.device.device_id)
         self.bits = tensor.dtype.bits
         self.data_pointer = tensor.data or 0
 
     def numpy(self) -> NDArray[numpy.floating[Any]]:
-        """A writable numpy array (n, 3) over the same host memory (kDLCPU views only); numpy's own
-        from_dlpack makes read-only arrays, which a device callback on the CPU backend cannot fill.
-        Raises BufferError for a view of GPU memory, StateError when its Simulation is closed."""
+        """A writable numpy array of the view's shape over the same host memory (kDLCPU views only);
+        numpy's own from_dlpack makes read-only arrays, which a device callback on the CPU backend
+        cannot fill. Raises BufferError for a view of GPU memory, StateError when its Simulation is
+        closed."""
         import numpy
 
         self._require_open_owner()
         if self.device[0] != K_DL_CPU:
             raise BufferError("only a view of host memory (the CPU backend) becomes a numpy array")
         real = ctypes.c_float if self.bits == 32 else ctypes.c_double
-        records = numpy.ctypeslib.as_array((real * (4 * self.shape[0])).from_address(self.data_pointer))
-        return records.reshape(self.shape[0], 4)[:, :3]
+        if not self.data_pointer or 0 in self.shape:
+            return numpy.zeros(self.shape, dtype=real)
+        # The elements the view spans, from its first to its last.
+        span = 1 + sum((size - 1) * stride for size, stride in zip(self.shape, self.strides))
+        elements = numpy.ctypeslib.as_array((real * span).from_address(self.data_pointer))
+        return numpy.lib.stride_tricks.as_strided(
+            elements, shape=self.shape, strides=tuple(ctypes.sizeof(real) * stride for stride in self.strides))
 
     def _require_open_owner(self) -> None:
         if self._owner is not None and self._owner.closed:

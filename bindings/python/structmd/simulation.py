@@ -672,6 +672,20 @@ class Simulation:
             return int(lib.structmd_traverse(handle, name.encode(), text, c_double(cutoff), pointer, values * n))
         return self._get_array(call, c_double, "float64", values)
 
+    def traverse_view(self, name: str, cutoff: float = 0.0,
+                      parameters: Optional[Mapping[str, Any]] = None) -> DLPackView:
+        """Runs the transverser name as traverse does, and gives its values where the engine computed
+        them as a DLPackView (structmd_traverse_view): on CUDA they stay on the GPU
+        (cupy.from_dlpack / torch.from_dlpack), on the CPU backend numpy.from_dlpack or view.numpy()
+        read them without a copy. Shape (n,) for one value per particle, else (n, values); float64,
+        or float32 in single precision. Valid until the next call that runs a registered transverser,
+        steps or sets anything. Raises as traverse does."""
+        text = json.dumps(dict(parameters)).encode() if parameters else None
+        address = c_void_p()
+        self._call(lib.structmd_traverse_view, name.encode(), text, c_double(cutoff), byref(address))
+        assert address.value is not None  # structmd_traverse_view succeeds only with a view
+        return DLPackView(address.value, owner=self)
+
     # ---- global quantities -------------------------------------------------------------------
 
     def energy(self, term: str = "potential") -> float:
