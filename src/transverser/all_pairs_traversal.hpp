@@ -14,13 +14,11 @@
 // once per particle. traverse_all_pairs launches it where each particle has a thread of its own (a
 // large system); elsewhere the functor runs as it is, each particle's partners split among lanes.
 #include "core/box.hpp"
+#include "core/dependent_launch.hpp"
 #include "core/hd.hpp"
 #include "core/lanes.hpp"
 #include "core/vec.hpp"
 #include "transverser/transverser.hpp"
-#if defined(__CUDACC__)
-#include "backends/cuda/launch_kernels.cuh"
-#endif
 
 namespace structmd {
 

@@ -2,21 +2,11 @@
 // The two kernels every launch of the CUDA backend goes through: f(i) for each item, and f(i, lanes)
 // with several threads per item. Free of the standard library, so that kernels compiled at run time
 // (runtime_compiler.hpp) instantiate these same templates.
+#include "core/dependent_launch.hpp"
 #include "core/hd.hpp"
 #include "core/lanes.hpp"
 
 namespace structmd {
-
-// In a step graph each kernel is a programmatic dependent of the one before (step_graphs.cuh): it is
-// scheduled while that one still runs and waits here, before touching memory, until it has finished
-// and its writes are visible. It then lets the next kernel be scheduled in turn, so a chain of small
-// kernels does not pay a launch between each two. Outside such a graph both are no-ops.
-__device__ __forceinline__ void follow_previous_kernel() {
-#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ >= 900
-    asm volatile("griddepcontrol.wait;" ::: "memory");
-    asm volatile("griddepcontrol.launch_dependents;" :::);
-#endif
-}
 
 template <class F>
 __global__ void for_each_kernel(int64_t n, F f) {
