@@ -8,7 +8,8 @@
 // - a shear wave v_y = eps sin(k x) decays as exp(-(eta / rho_0) kk^2 t);
 // - with noise, the fluid reaches the discrete equilibrium: each cell's density fluctuation has
 //   variance rho kT / (c^2 dV) and each face's velocity kT / (rho dV) (times 1 - 1/N: the total mass
-//   and momentum are fixed), so the static structure factor is rho kT / (c^2 dV) for every k != 0;
+//   and momentum are fixed), so the static structure factor <|drho_k|^2> / N is rho kT / (c^2 dV) for
+//   every k != 0 (checked apart on the low and the high half of the wave vectors);
 //   and the longitudinal modes hold their kT / (rho dV) each, seen in the divergence D v, whose
 //   variance is then (kT / (rho dV)) (1/N) sum_k |D_k|^2 = 6 kT / (rho dV h^2) (this one depends on
 //   the bulk viscosity's share of the random stress).
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "backends/cpu/cpu_backend.hpp"
+#include "backends/cpu/cpu_fft.hpp"
 #include "hydrodynamics/compressible_fluid.hpp"
 
 namespace structmd {
@@ -163,8 +165,24 @@ TEST(CompressibleFluid, TheFluctuatingFluidHoldsTheStructureFactorAndEquipartiti
     const double dV = 1.0, N = double(p);
     const int blocks = 20, perBlock = 300, stride = 5;
     for (int s = 0; s < 800; ++s) box.step(dt, kT);
-    std::vector<double> density(blocks, 0.0), velocity(blocks, 0.0), divergence(blocks, 0.0);
+    std::vector<double> density(blocks, 0.0), velocity(blocks, 0.0), divergence(blocks, 0.0), lowK(blocks, 0.0),
+        highK(blocks, 0.0);
     const StaggeredGrid<double>& g = box.fluid.grid();
+    // The half spectrum's wave vectors split at |D|^2 h^2 = 6 (the mean of |D|^2 h^2 over k).
+    CpuFft3d<double> fft(box.backend, g.cells);
+    const int64_t spectrumPoints = g.cells.spectrum_points();
+    const int hx = g.cells.half_x();
+    std::vector<Complex<double>> spectrum(spectrumPoints);
+    std::vector<double> fluctuation(p);
+    std::vector<int> half(spectrumPoints, -1);  // 0 low, 1 high, -1 k = 0
+    int halfCount[2] = {0, 0};
+    for (int64_t at = 1; at < spectrumPoints; ++at) {
+        const int m[3] = {static_cast<int>(at % hx), static_cast<int>(at / hx % n), static_cast<int>(at / (hx * n))};
+        double norm2 = 0.0;
+        for (int d = 0; d < 3; ++d) norm2 += std::pow(2 * std::sin(M_PI * m[d] / n), 2);
+        half[at] = norm2 < 6.0 ? 0 : 1;
+        halfCount[half[at]] += 1;
+    }
     for (int b = 0; b < blocks; ++b) {
         for (int s = 1; s <= perBlock; ++s) {
             box.step(dt, kT);
@@ -181,6 +199,12 @@ TEST(CompressibleFluid, TheFluctuatingFluidHoldsTheStructureFactorAndEquipartiti
                 dd += div * div;
             }
             const double samples = double(perBlock / stride);
+            for (int64_t i = 0; i < p; ++i) fluctuation[i] = box.density()[i] - rho;
+            fft.forward(fluctuation.data(), spectrum.data());
+            for (int64_t at = 1; at < spectrumPoints; ++at) {
+                const double power = (spectrum[at].re * spectrum[at].re + spectrum[at].im * spectrum[at].im) / N;
+                (half[at] == 0 ? lowK : highK)[b] += power / halfCount[half[at]] / samples;
+            }
             density[b] += dr / N / samples;
             velocity[b] += vv / (3 * N) / samples;
             divergence[b] += dd / N / samples;
@@ -195,6 +219,8 @@ TEST(CompressibleFluid, TheFluctuatingFluidHoldsTheStructureFactorAndEquipartiti
         EXPECT_NEAR(mean, expected, 4 * error + 3e-3 * expected) << what << " error " << error;
     };
     check(density, rho * kT / (c * c * dV) * (1 - 1 / N), "density");
+    check(lowK, rho * kT / (c * c * dV), "S(k), low k");
+    check(highK, rho * kT / (c * c * dV), "S(k), high k");
     check(velocity, kT / (rho * dV) * (1 - 1 / N), "velocity");
     check(divergence, 6 * kT / (rho * dV), "divergence");
 }

@@ -199,7 +199,8 @@ def test_a_checkpoint_carries_the_fluid(options, tmp_path):
 @pytest.fixture(scope="module")
 def thermal_run():
     """16 particles in 8^3 cells, kT = 1e-4 (density and velocity fluctuations of 1%: linear), eta 0.5,
-    zeta 0.2, c 1, dt 0.05: 600 steps from rest (the slowest mode relaxes by e^-17), then 16000 steps."""
+    zeta 0.2, c 1, dt 0.05: 600 steps from rest (the slowest modes' variances relax by e^-15), then
+    16000 steps."""
     from conftest import engine_options
     length, n, kT, dt, count = 8.0, 8, 1e-4, 0.05, 16
     start = np.random.default_rng(3).uniform(-length / 2, length / 2, (count, 3))
