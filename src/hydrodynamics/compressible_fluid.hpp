@@ -29,7 +29,6 @@
 
 #include "core/hd.hpp"
 #include "hydrodynamics/staggered_fluid.hpp"
-#include "integrators/thermal_noise.hpp"
 #include "state/step_clock.hpp"
 
 namespace structmd {
@@ -236,11 +235,11 @@ public:
     void update_velocity() { backend_.for_each(points(), CompressibleFluidVelocity<R>{current_.data(), grid_}); }
 
     // U^n -> U^{n+1} over dt with the forcing held. At kT > 0 the random stresses are drawn from the
-    // noise seed and the step on the clock (read on the backend, so a recorded step draws anew).
-    void step(double dt, double kT, uint64_t seed, ClockView now) {
+    // noise seed, the stream (W_A's; W_B's has bit 47 set, above any cell's) and the step on the
+    // clock (read on the backend, so a recorded step draws anew).
+    void step(double dt, double kT, uint64_t seed, uint64_t stream, ClockView now) {
         const bool noisy = kT > 0.0;
         if (noisy) {
-            const uint64_t stream = static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48;
             const int64_t n = points();
             backend_.for_each(n, DrawStaggeredNormals<R>{stress_.data(), n, 6, seed, stream, now});
             backend_.for_each(n, DrawStaggeredNormals<R>{stress_.data() + 6 * n, n, 6, seed, stream | (uint64_t(1) << 47), now});

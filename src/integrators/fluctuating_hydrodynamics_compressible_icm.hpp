@@ -25,6 +25,7 @@
 #include "hydrodynamics/staggered_fluid.hpp"
 #include "integrators/fluctuating_hydrodynamics_icm.hpp"
 #include "integrators/integrator.hpp"
+#include "integrators/thermal_noise.hpp"
 #include "neighbour/line_bins.hpp"
 
 namespace structmd {
@@ -116,7 +117,7 @@ public:
                           InertialFluidSpreadLine<R, Real4Vectors<R>>{p.pos.data(), Real4Vectors<R>{p.force.data()},
                                                                       bins_->order(), bins_->line_start(), fluid_->grid(),
                                                                       R(1.0 / fluid_->cell_volume()), fluid_->forcing()});
-        fluid_->step(s.timeStep, s.kT, p.noise.seed, p.now());
+        fluid_->step(s.timeStep, s.kT, p.noise.seed, static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48, p.now());
 
         // q^{n+1} = q^n + dt/2 J^{n+1/2} (v^n + v^{n+1}), from q^{n+1/2}.
         interpolate(p, fluid_->velocity(), midNew_.data());

@@ -46,7 +46,7 @@ struct CompressibleBox {
     double* momentum(int a) { return fluid.level() + (kCompressibleMomentumGrid + a) * points(); }
     const double* velocity(int a) const { return fluid.velocity() + a * points(); }
     void step(double dt, double kT, uint64_t seed = 7) {
-        fluid.step(dt, kT, seed, ClockView{&clock, 0, 0.0});
+        fluid.step(dt, kT, seed, uint64_t(5) << 48, ClockView{&clock, 0, 0.0});
         clock.step += 1;
     }
     double sum(const double* field) const {
