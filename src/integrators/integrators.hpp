@@ -14,6 +14,7 @@
 #include "integrators/brownian.hpp"
 #include "integrators/brownian_rigid_body.hpp"
 #include "integrators/dpd_verlet.hpp"
+#include "integrators/fluctuating_hydrodynamics_compressible_icm.hpp"
 #include "integrators/fluctuating_hydrodynamics_icm.hpp"
 #include "integrators/langevin_bbk.hpp"
 #include "integrators/langevin_gjf.hpp"
@@ -48,6 +49,8 @@ void visit_builtin_integrators(Visitor& v) {
         {"BDHITriplePeriodic", "PositivelySplitEwald"});
     v.template integrator<IncompressibleInertialCoupling, IcmInputs>(
         {"FluctuatingHydrodynamics", "IncompressibleInertialCoupling"});
+    v.template integrator<CompressibleInertialCoupling, CompressibleIcmInputs>(
+        {"FluctuatingHydrodynamics", "CompressibleInertialCoupling"});
     v.template integrator<BdhiFluctuatingImmersedBoundary, BdhiFluctuatingImmersedBoundaryInputs>(
         {"BDHITriplyPeriodic", "FluctuatingImmersedBoundary"});
     v.template integrator<BdhiFluctuatingImmersedBoundary, BdhiFluctuatingImmersedBoundaryInputs>(

@@ -28,6 +28,7 @@ README_WORDS = {
     ("BDHIDoublyPeriodic", "Quasi2D"): "quasi-2D",
     ("BDHIDoublyPeriodic", "DPStokes"): "DPStokes",
     ("FluctuatingHydrodynamics", "IncompressibleInertialCoupling"): "inertial coupling method",
+    ("FluctuatingHydrodynamics", "CompressibleInertialCoupling"): "compressible one",
     ("Magnetic", "Fixed"): "Landau-Lifshitz-Gilbert",
     ("Magnetic", "Brownian"): "Brownian rotation",
     ("Magnetic", "ForceCouplingMethod"): "rotation through a fluid",

@@ -135,10 +135,13 @@ inline const std::vector<Override>& overrides() {
         {{"BDHIDoublyPeriodic", "DPStokes"}, "w_d", {6.0}},
         {{"BDHIDoublyPeriodic", "DPStokes"}, "alpha_d", {3.0}},
         {{"BDHIDoublyPeriodic", "DPStokes"}, "tolerance", {1e-3}},
-        // The inertial coupling method's cells: whole numbers, at least 4, given all three or none.
+        // The inertial coupling methods' cells: whole numbers, at least 4, given all three or none.
         {{"FluctuatingHydrodynamics", "IncompressibleInertialCoupling"}, "cellDimX", {8.0}},
         {{"FluctuatingHydrodynamics", "IncompressibleInertialCoupling"}, "cellDimY", {10.0}},
         {{"FluctuatingHydrodynamics", "IncompressibleInertialCoupling"}, "cellDimZ", {12.0}},
+        {{"FluctuatingHydrodynamics", "CompressibleInertialCoupling"}, "cellDimX", {8.0}},
+        {{"FluctuatingHydrodynamics", "CompressibleInertialCoupling"}, "cellDimY", {10.0}},
+        {{"FluctuatingHydrodynamics", "CompressibleInertialCoupling"}, "cellDimZ", {12.0}},
         // zeroEnergy acts only in the rows whose epsilon is 0 (the excluded-volume form); generic
         // epsilons are all about 1.
         {{"NonBonded", "KimHummer"}, "epsilon", {0.0}},
