@@ -138,6 +138,16 @@ struct IntegratorScope {
     std::string path;                 // its entry's JSON path, for input it can check only when it starts
 };
 
+// An integrator whose CUDA path has not yet passed its tests on a GPU refuses the CUDA backend by
+// name at the load rather than run unverified there.
+template <class B>
+void refuse_unverified_cuda(const IntegratorScope& scope, const std::string& component) {
+    if (std::string(B::name) == "cuda")
+        throw Error(STRUCTMD_ERR_UNSUPPORTED, scope.path + ".type: " + component +
+                                                  " runs on the CPU backend only in this version: its CUDA path has not "
+                                                  "yet passed its tests on a GPU");
+}
+
 template <class B, class R>
 class Integrator {
 public:
