@@ -72,12 +72,8 @@ private:
     void prepare(const Particles<B, R>& p) override {
         const double box[3] = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
         if (mesh_) {
-            for (int d = 0; d < 3; ++d)
-                if (box[d] != mesh_->plan().box[d])
-                    throw Error(STRUCTMD_ERR_UNSUPPORTED,
-                                this->scope().name + ": the box changed; [\"BDHITriplyPeriodic\", "
-                                                     "\"FluctuatingImmersedBoundary\"] solves the Stokes flow of the "
-                                                     "box it started with");
+            refuse_changed_box(this->scope(), box, mesh_->plan().box, 3,
+                               "[\"BDHITriplyPeriodic\", \"FluctuatingImmersedBoundary\"]", "solves the Stokes flow");
         } else {
             const ImmersedBoundaryPlan plan = make_immersed_boundary_plan(box, radius_, this->scope().path);
             mesh_ = std::make_unique<ImmersedBoundaryMesh<B, R>>(backend_, plan);

@@ -147,11 +147,8 @@ private:
         const std::string& path = this->scope().path;
         const double box[3] = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
         if (mesh_) {
-            for (int d = 0; d < 3; ++d)
-                if (box[d] != mesh_->plan().box[d])
-                    throw Error(STRUCTMD_ERR_UNSUPPORTED,
-                                this->scope().name + ": the box changed; [\"BDHITriplyPeriodic\", \"PositivelySplitEwald\"] "
-                                                     "solves the Stokes flow of the box it started with");
+            refuse_changed_box(this->scope(), box, mesh_->plan().box, 3,
+                               "[\"BDHITriplyPeriodic\", \"PositivelySplitEwald\"]", "solves the Stokes flow");
         } else {
             const FcmPlan plan = make_pse_far_plan(box, xi_, tolerance_, path);
             const double radius = radius_ > 0.0 ? radius_ : group_radius(p);

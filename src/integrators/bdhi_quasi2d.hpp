@@ -47,11 +47,8 @@ private:
     void prepare(const Particles<B, R>& p) override {
         const double box[2] = {double(p.box.length.x), double(p.box.length.y)};
         if (mesh_) {
-            for (int d = 0; d < 2; ++d)
-                if (box[d] != mesh_->plan().box[d])
-                    throw Error(STRUCTMD_ERR_UNSUPPORTED,
-                                this->scope().name + ": the box changed; [\"BDHIDoublyPeriodic\", \"Quasi2D\"] "
-                                                     "solves the flow of the box it started with");
+            refuse_changed_box(this->scope(), box, mesh_->plan().box, 2, "[\"BDHIDoublyPeriodic\", \"Quasi2D\"]",
+                               "solves the flow");
         } else {
             mesh_ = std::make_unique<PlanarMesh<B, R>>(backend_, make_planar_plan(box, kind_, radius_, tolerance_,
                                                                                   this->scope().path));

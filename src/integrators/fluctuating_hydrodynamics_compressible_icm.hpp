@@ -150,9 +150,8 @@ private:
         const IntegratorScope& s = this->scope();
         const std::array<double, 3> box = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
         if (fluid_) {
-            if (box != box_)
-                throw Error(STRUCTMD_ERR_UNSUPPORTED, s.name + ": the box changed; [\"FluctuatingHydrodynamics\", "
-                                                               "\"CompressibleInertialCoupling\"] keeps the fluid of the box it started with");
+            refuse_changed_box(s, box.data(), box_.data(), 3,
+                               "[\"FluctuatingHydrodynamics\", \"CompressibleInertialCoupling\"]", "keeps the fluid");
         } else {
             require_periodic_box(box, s.path + ".type", "the compressible inertial coupling method's fluid");
             box_ = box;

@@ -258,9 +258,8 @@ private:
         const IntegratorScope& s = this->scope();
         const std::array<double, 3> box = {double(p.box.length.x), double(p.box.length.y), double(p.box.length.z)};
         if (fft_) {
-            if (box != box_)
-                throw Error(STRUCTMD_ERR_UNSUPPORTED, s.name + ": the box changed; [\"FluctuatingHydrodynamics\", "
-                                                               "\"IncompressibleInertialCoupling\"] keeps the fluid of the box it started with");
+            refuse_changed_box(s, box.data(), box_.data(), 3,
+                               "[\"FluctuatingHydrodynamics\", \"IncompressibleInertialCoupling\"]", "keeps the fluid");
         } else {
             require_periodic_box(box, s.path + ".type", "the inertial coupling method's fluid");
             box_ = box;

@@ -138,6 +138,17 @@ struct IntegratorScope {
     std::string path;                 // its entry's JSON path, for input it can check only when it starts
 };
 
+// An integrator whose grid was made for the box it started with refuses a box changed afterwards (the
+// first `axes` lengths of `now` against `start`), naming itself (`component`, as ["Class", "SubClass"])
+// and what it keeps of that box.
+inline void refuse_changed_box(const IntegratorScope& scope, const double* now, const double* start, int axes,
+                               const std::string& component, const std::string& keeps) {
+    for (int d = 0; d < axes; ++d)
+        if (now[d] != start[d])
+            throw Error(STRUCTMD_ERR_UNSUPPORTED,
+                        scope.name + ": the box changed; " + component + " " + keeps + " of the box it started with");
+}
+
 // An integrator whose CUDA path has not yet passed its tests on a GPU refuses the CUDA backend by
 // name at the load rather than run unverified there.
 template <class B>
