@@ -89,8 +89,6 @@ public:
         properties_.bulkViscosity = v["bulkViscosity"];
         properties_.speedOfSound = v["speedOfSound"];
         properties_.density = v["density"];
-        // Written for both backends and compiled for CUDA, but not yet run on a GPU.
-        refuse_unverified_cuda<B>(scope, "[\"FluctuatingHydrodynamics\",\"CompressibleInertialCoupling\"]");
     }
 
     void begin(Particles<B, R>& p, ForceSource&) override {

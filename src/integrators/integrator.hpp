@@ -149,16 +149,6 @@ inline void refuse_changed_box(const IntegratorScope& scope, const double* now, 
                         scope.name + ": the box changed; " + component + " " + keeps + " of the box it started with");
 }
 
-// An integrator whose CUDA path has not yet passed its tests on a GPU refuses the CUDA backend by
-// name at the load rather than run unverified there.
-template <class B>
-void refuse_unverified_cuda(const IntegratorScope& scope, const std::string& component) {
-    if (std::string(B::name) == "cuda")
-        throw Error(STRUCTMD_ERR_UNSUPPORTED, scope.path + ".type: " + component +
-                                                  " runs on the CPU backend only in this version: its CUDA path has not "
-                                                  "yet passed its tests on a GPU");
-}
-
 template <class B, class R>
 class Integrator {
 public:

@@ -181,15 +181,15 @@ def check_hydrodynamics(script):
                HYDRODYNAMICS_COLUMNS)
     # The immersed boundary method against the periodic RPY mobility: its kernel's translational
     # invariance (2 %) and radius (0.91 h, 1.5 % off the RPY one in this box) bound it, 10 %.
-    # The inertial coupling method has no one-step reference: its error is left empty. The magnetic
+    # The inertial coupling methods have no one-step reference: their error is left empty. The magnetic
     # force coupling method against the force coupling method's translation at tolerance 1e-6.
     expect([row["method"] for row in rows] == ["cholesky", "lanczos", "fcm", "pse", "fib", "quasi2d", "dpstokes",
-                                               "icm", "magnetic_fcm"], f"rows {rows}")
+                                               "icm", "cicm", "magnetic_fcm"], f"rows {rows}")
     bounds = {"cholesky": (1e-25, 1e-10), "lanczos": (1e-25, 1e-10), "fib": (1e-4, 0.1)}
     for row in rows:
         positive_finite(row, "steps_per_second")
-        if row["method"] == "icm":
-            expect(row["error"] == "", f"icm has no error to measure, got {row['error']}")
+        if row["method"] in ("icm", "cicm"):
+            expect(row["error"] == "", f"{row['method']} has no error to measure, got {row['error']}")
             continue
         error = float(row["error"])
         bound = bounds.get(row["method"], (1e-7, 1e-2))

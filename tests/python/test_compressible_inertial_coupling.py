@@ -22,12 +22,9 @@ import numpy as np
 import pytest
 
 import structmd
-from conftest import BACKEND
 from periodic_rpy import document, minimum_image
 from test_fluctuating_hydrodynamics import face_weights, grid_mobility
 
-# Refused on CUDA until its CUDA path has passed these tests on a GPU (test_docs_components checks the refusal).
-pytestmark = pytest.mark.skipif(BACKEND == "cuda", reason="refused on the CUDA backend in this version")
 
 
 def cicm(time_step=0.05, shear=0.5, bulk=0.3, sound=1.0, density=1.0, radius=None, cells=8, **extra):

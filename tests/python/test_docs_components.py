@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 
 import structmd
-from conftest import BACKEND
 
 DOC = Path(__file__).resolve().parents[2] / "docs" / "input-format.md"
 HEADING = re.compile(r'^### \["([^"]+)","([^"]+)"\]\s*$')
@@ -209,19 +208,11 @@ def full_document_with(key):
     return doc
 
 
-# Integrators whose CUDA path has not yet passed their tests on a GPU: refused there by name.
-REFUSED_ON_CUDA = {("FluctuatingHydrodynamics", "CompressibleInertialCoupling")}
-
-
 @pytest.mark.parametrize("key", DOCUMENT_COMPONENTS, ids=lambda k: f"{k[0]}-{k[1]}")
 def test_document_example_loads_and_steps(sim, key, tmp_path, monkeypatch):
     if key in NEEDS_TRANSVERSER_PLUGIN and not TRANSVERSER_PLUGIN:
         pytest.skip("STRUCTMD_TEST_TRANSVERSER_PLUGIN not set (ctest sets it)")
     monkeypatch.chdir(tmp_path)  # measures write their files here
-    if BACKEND == "cuda" and key in REFUSED_ON_CUDA:
-        with pytest.raises(structmd.UnsupportedError, match="CPU backend only"):
-            sim.load(full_document_with(key))
-        return
     sim.load(full_document_with(key))
     sim.step(2)
     assert sim.step_number >= 2
