@@ -21,7 +21,8 @@ The domains benchmark runs a liquid on 1 MPI rank and over 2, long enough that t
 rebuilt (the particles migrate), in double precision: the drift of the NVE energy over the timed
 steps is the same on both to 1e-8, which a ghost that missed a neighbour would break.
 
-usage: check_benchmark_smoke.py lj|accuracy|coupling|transverser|hydrodynamics PROGRAM
+usage: check_benchmark_smoke.py lj|accuracy|coupling|hydrodynamics PROGRAM
+       check_benchmark_smoke.py transverser PROGRAM NEIGHBOUR_COUNT_PLUGIN LJ_FORCE_PLUGIN
        check_benchmark_smoke.py domains PROGRAM MPIEXEC [MPIEXEC FLAGS...]"""
 import csv
 import math
@@ -114,21 +115,28 @@ def check_lj(program):
         positive_finite(row, "particle_steps_per_second")
 
 
-def check_transverser(program):
-    """One row per form, the baseline (a step) first with a positive time; the others' net times
-    finite (on a loaded machine a small difference may come out negative), and the ratio their time
-    over builtin_energy_read's where that is positive."""
-    rows = run(program, ["--n", "500", "--backend", "cpu", "--precision", "double", "--calls", "5", "--repeats", "3",
-                         "--warmup", "1"], TRANSVERSER_COLUMNS)
-    forms = ["baseline", "builtin_energy", "builtin_energy_read", "expression_lj", "expression_count"]
+def check_transverser(program, plugins):
+    """One row per form, the plugins' forms too, the baseline (a step) first with a positive time; the
+    others' net times finite (on a loaded machine a small difference may come out negative), and the
+    ratio their time over their built-in counterpart's where that is positive (the built-ins' own 0)."""
+    arguments = ["--n", "500", "--backend", "cpu", "--precision", "double", "--calls", "5", "--repeats", "3",
+                 "--warmup", "1"]
+    for plugin in plugins:
+        arguments += ["--plugin", plugin]
+    rows = run(program, arguments, TRANSVERSER_COLUMNS)
+    against = {"expression_lj": "builtin_energy_read", "expression_count": "builtin_energy_read",
+               "plugin_count_view": "builtin_energy", "plugin_lj_force_view": "builtin_energy"}
+    forms = ["baseline", "builtin_energy", "builtin_energy_read", "expression_lj", "expression_count",
+             "plugin_count_view", "plugin_lj_force_view"]
     expect([row["form"] for row in rows] == forms, f"rows {rows}")
     positive_finite(rows[0], "seconds_per_call")
     times = {row["form"]: float(row["seconds_per_call"]) for row in rows}
     expect(all(math.isfinite(t) for t in times.values()), f"times {times}")
-    if times["builtin_energy_read"] > 0:
-        for row in rows[1:]:
-            expect(math.isclose(float(row["ratio_to_builtin"]), times[row["form"]] / times["builtin_energy_read"],
-                                rel_tol=1e-4), f"ratio of {row}")
+    for row in rows[1:]:
+        builtin = times.get(against.get(row["form"], ""), 0.0)
+        expected = times[row["form"]] / builtin if builtin > 0 else 0.0
+        expect(math.isclose(float(row["ratio_to_builtin"]), expected, rel_tol=1e-4, abs_tol=1e-12),
+               f"ratio of {row}")
 
 
 def check_accuracy(program):
@@ -216,8 +224,10 @@ def check_domains(program, launcher):
 kind, program = sys.argv[1], os.path.abspath(sys.argv[2])
 if kind == "domains":
     check_domains(program, sys.argv[3:])
+elif kind == "transverser":
+    check_transverser(program, [os.path.abspath(plugin) for plugin in sys.argv[3:]])
 else:
     {"lj": check_lj, "accuracy": check_accuracy, "coupling": check_coupling,
-     "transverser": check_transverser, "hydrodynamics": check_hydrodynamics}[kind](program)
+     "hydrodynamics": check_hydrodynamics}[kind](program)
 if problems:
     sys.exit("\n".join(problems))
