@@ -500,7 +500,9 @@ STRUCTMD_API structmd_status structmd_get_time(const structmd_sim* sim, double* 
  * Runs an expression transverser once, for the current state: each particle's sum over its pairs
  * (i, j), j != i, of an expression of the pair. The first call with a given expression and cutoff
  * prepares it (a neighbour list; on CUDA the expression is compiled into the traversal's kernel, as
- * an Expression potential is) and later calls reuse it.
+ * an Expression potential is) and later calls reuse it. The list is a pair term's, kept up to date
+ * by the steps, where one offers every pair within the cutoff (no condition, no exclusions), else
+ * one of the transverser's own.
  *
  * @param sim        the handle.
  * @param compute    the expression, in the language of the Expression potentials, of r (the
@@ -536,7 +538,9 @@ STRUCTMD_API structmd_status structmd_transverser_values(structmd_sim* sim, cons
  * Runs a transverser that a plugin registered (written in C++ against the Transverser contract,
  * docs/plugins.md) once, for the current state, and copies each particle's values to the host. The
  * plugin's code runs on the handle's backend (for CUDA, a plugin compiled with nvcc). The neighbour
- * list of a cutoff is made at the first call with it and reused after.
+ * list is a pair term's, kept up to date by the steps, where one offers every pair within the cutoff
+ * (no condition, no exclusions); else one of the cutoff's own, made at the first call with it and
+ * reused after.
  *
  * @param sim         the handle.
  * @param name        the transverser's name.

@@ -28,6 +28,15 @@ public:
     // groups, and so the group pointers integrators hold stay valid).
     void share_groups(const ForceField& other) { groups_ = other.groups_; }
     void add_list(std::shared_ptr<VerletList<B, R>> list) { lists_.push_back(std::move(list)); }
+    // Of the pair terms' lists that offer every pair closer than `cutoff` (VerletList::
+    // offers_every_pair_within), the one of the smallest cutoff; null if none does.
+    std::shared_ptr<VerletList<B, R>> list_offering_every_pair_within(double cutoff, const int* batch) const {
+        std::shared_ptr<VerletList<B, R>> best;
+        for (const auto& list : lists_)
+            if (list->offers_every_pair_within(cutoff, batch) && (!best || list->cutoff() < best->cutoff()))
+                best = list;
+        return best;
+    }
     // A list over sites that terms place themselves (patches): kept up to date and grown as the
     // particles' lists are, but its skin does not limit a step's moves (its sites also turn with their
     // particles, and its own refresh test sees every move).

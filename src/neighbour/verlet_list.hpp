@@ -64,6 +64,13 @@ public:
     double cutoff() const { return cutoff_; }
     double skin() const { return listRadius_ - cutoff_; }
 
+    // Whether its per-particle lists offer every pair closer than `cutoff` among the particles of one
+    // batch of `batch`'s numbering: no condition, no exclusions, and no cluster pairs (whose lists a
+    // view() would have built beside them, changing what the steps pay).
+    bool offers_every_pair_within(double cutoff, const int* batch) const {
+        return filter_.trivial() && cutoff <= cutoff_ && batch == batch_ && !clustersAllowed_;
+    }
+
     // Brings the list up to date for the positions in pos (wrapped, n particles); version names
     // those positions, so asking twice for the same ones costs nothing.
     void update(const typename B::template Buffer<Real4<R>>& pos, int64_t n, const Box<R>& box, int64_t version) {

@@ -430,10 +430,11 @@ private:
     ProbeBuffers<B, R> probed_;
     // The expression transversers run so far, by key (ExpressionTransverserSpec::key).
     std::vector<std::pair<std::string, std::unique_ptr<PreparedExpressionSum<B, R>>>> transversers_;
-    // What registered transversers (structmd_traverse) run with: a neighbour list by cutoff, made at
-    // the first run of that cutoff, their output, and the force field's group names.
+    // What transversers run with: the neighbour lists of their own by cutoff, made at the first run of
+    // a cutoff no pair term's list covers, the registered ones' output, and the force field's group names.
     std::vector<std::pair<double, std::shared_ptr<VerletList<B, R>>>> transverserLists_;
     typename B::template Buffer<R> transverserOut_;
+    std::shared_ptr<VerletList<B, R>> transverser_list(double cutoff);
     // Runs a registered transverser into transverserOut_ (engine_transversers.hpp).
     void run_registered_transverser(const TransverserCall& call);
     std::vector<std::string> groupNames_;

@@ -12,6 +12,21 @@
 
 namespace structmd {
 
+// A pair term's list where one offers every pair within the cutoff: the steps keep it up to date, so
+// a transverser run after a step refreshes and builds nothing. Else a list of the transverser's own,
+// made at the first call with that cutoff.
+template <class B, class R, class PairR>
+std::shared_ptr<VerletList<B, R>> Engine<B, R, PairR>::transverser_list(double cutoff) {
+    if (auto shared = forceField_.list_offering_every_pair_within(cutoff, context_.batch)) return shared;
+    const auto found = std::find_if(transverserLists_.begin(), transverserLists_.end(),
+                                    [&](const auto& l) { return l.first == cutoff; });
+    if (found != transverserLists_.end()) return found->second;
+    auto own = std::make_shared<VerletList<B, R>>(backend_, cutoff, 1.1, PairCondition::all, PairFilterInputs{},
+                                                  context_.batch, context_.batches, context_.model);
+    transverserLists_.emplace_back(cutoff, own);
+    return own;
+}
+
 template <class B, class R, class PairR>
 void Engine<B, R, PairR>::expression_sum(const ExpressionTransverserSpec& spec, double* perParticle) {
     backend_.activate();
@@ -19,7 +34,8 @@ void Engine<B, R, PairR>::expression_sum(const ExpressionTransverserSpec& spec, 
     const std::string key = spec.key();
     auto found = std::find_if(transversers_.begin(), transversers_.end(), [&](const auto& t) { return t.first == key; });
     if (found == transversers_.end()) {
-        transversers_.emplace_back(key, std::make_unique<PreparedExpressionSum<B, R>>(backend_, spec, context_));
+        transversers_.emplace_back(key, std::make_unique<PreparedExpressionSum<B, R>>(
+                                            backend_, spec, context_, spec.cutoff > 0 ? transverser_list(spec.cutoff) : nullptr));
         found = transversers_.end() - 1;
     }
     PreparedExpressionSum<B, R>& prepared = *found->second;
@@ -59,18 +75,7 @@ void Engine<B, R, PairR>::run_registered_transverser(const TransverserCall& call
     }
     backend_.activate();
     refresh_ghosts();
-    std::shared_ptr<VerletList<B, R>> list;
-    if (call.cutoff > 0) {
-        const auto found = std::find_if(transverserLists_.begin(), transverserLists_.end(),
-                                        [&](const auto& l) { return l.first == call.cutoff; });
-        if (found != transverserLists_.end()) {
-            list = found->second;
-        } else {
-            list = std::make_shared<VerletList<B, R>>(backend_, call.cutoff, 1.1, PairCondition::all, PairFilterInputs{},
-                                                      context_.batch, context_.batches, context_.model);
-            transverserLists_.emplace_back(call.cutoff, list);
-        }
-    }
+    const std::shared_ptr<VerletList<B, R>> list = call.cutoff > 0 ? transverser_list(call.cutoff) : nullptr;
     const int64_t n = p_.count;
     backend_.resize(transverserOut_, n * call.values);
     backend_.fill(transverserOut_, R(0));

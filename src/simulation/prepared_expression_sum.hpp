@@ -44,12 +44,10 @@ struct CompiledKernelsOf<B, std::void_t<typename B::CompiledKernels>> {
 template <class B, class R>
 class PreparedExpressionSum {
 public:
-    PreparedExpressionSum(const B& backend, const ExpressionTransverserSpec& spec, const ForceFieldContext& context)
-        : backend_(backend), spec_(spec), batch_(context.batch) {
-        if (spec.cutoff > 0)
-            list_ = std::make_shared<VerletList<B, R>>(backend, spec.cutoff, 1.1, PairCondition::all,
-                                                       PairFilterInputs{}, context.batch, context.batches,
-                                                       context.model);
+    // list: one that offers every pair within spec.cutoff (Engine::transverser_list); null for all pairs.
+    PreparedExpressionSum(const B& backend, const ExpressionTransverserSpec& spec, const ForceFieldContext& context,
+                          std::shared_ptr<VerletList<B, R>> list)
+        : backend_(backend), spec_(spec), batch_(context.batch), list_(std::move(list)) {
         if constexpr (B::compiles_at_run_time) {
             const ExpressionSumKernels source = expression_sum_kernels(spec, real_type_name<R>());
             kernels_ = backend.compile(source.source, source.names);

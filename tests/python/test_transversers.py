@@ -46,6 +46,15 @@ def liquid(n=300, seed=3):
     return positions, velocities
 
 
+def lattice(edge=7, seed=3):
+    """edge^3 particles on a cubic lattice filling the box, each moved by up to 0.1: no pair closer
+    than 1.2, so a Lennard-Jones liquid of them steps calmly."""
+    rng = np.random.default_rng(seed)
+    sites = (np.arange(edge) + 0.5) * BOX / edge - BOX / 2
+    grid = np.stack(np.meshgrid(sites, sites, sites, indexing="ij"), axis=-1).reshape(-1, 3)
+    return grid + rng.uniform(-0.1, 0.1, grid.shape), rng.normal(0.0, 1.0, grid.shape)
+
+
 def test_coordination_numbers_every_n_steps_against_numpy(sim, tmp_path):
     positions, velocities = liquid()
     output = tmp_path / "coordination.dat"
@@ -179,6 +188,44 @@ def test_batches_stay_apart_over_a_list_and_over_all_pairs(sim):
     same = np.equal.outer(batch, batch)
     np.testing.assert_array_equal(sim.traverse_expression("r < 2", 2.0), np.sum((r < 2) & same, axis=1))
     np.testing.assert_array_equal(sim.traverse_expression("1"), np.sum(same, axis=1) - 1)
+
+
+def test_a_pair_terms_list_is_used_where_it_offers_every_pair(sim):
+    """A transverser within the cutoff of a pair term's list of every pair goes over that list (the
+    steps keep it up to date): its call adds only its output to the engine's memory, where one with a
+    longer cutoff makes a list of its own (at least 20 bytes a particle); both count as numpy does,
+    as the particles move."""
+    from test_measures import NEIGHBOUR_LIST, lj_entry
+    positions, velocities = lattice(seed=5)
+    sim.load(document(positions, velocities, steps=100, time_step=0.002,
+                      force_field={"nl": NEIGHBOUR_LIST, "lj": lj_entry()}))
+    sim.step(5)
+    held = sim.counters["device_memory_bytes"]
+    for _ in range(2):
+        _, r = separations(sim.positions)
+        np.testing.assert_array_equal(sim.traverse_expression("r < 2", 2.0), np.sum(r < 2, axis=1))
+        sim.step(20)
+    shared = sim.counters["device_memory_bytes"] - held
+    assert 0 < shared <= 8 * len(positions) + 4096, shared
+    _, r = separations(sim.positions)
+    np.testing.assert_array_equal(sim.traverse_expression("r < 3", 3.0), np.sum(r < 3, axis=1))
+    assert sim.counters["device_memory_bytes"] - held - shared > 20 * len(positions)
+
+
+def test_a_list_that_leaves_pairs_out_is_not_used(sim):
+    """A pair term over the pairs that are not excluded (a bond excludes 0-1, lattice neighbours): a
+    transverser still counts every pair, the bonded one too."""
+    positions, _ = lattice(seed=7)
+    bonds = {"type": ["Bond2", "HarmonicCommon_K_r0"], "parameters": {"K": 20.0, "r0": BOX / 7},
+             "labels": ["id_i", "id_j"], "data": [[0, 1]]}
+    from test_measures import lj_entry
+    excluding = {"type": ["VerletConditionalListSet", "nonExcluded"], "parameters": {"cutOffVerletFactor": 1.2}}
+    sim.load(document(positions, steps=10, force_field={"nl": excluding, "lj": lj_entry(condition="nonExcluded"),
+                                                         "bonds": bonds}))
+    sim.step(1)
+    _, r = separations(sim.positions)
+    assert r[0, 1] < 2
+    np.testing.assert_array_equal(sim.traverse_expression("r < 2", 2.0), np.sum(r < 2, axis=1))
 
 
 @pytest.mark.skipif(BACKEND != "cuda", reason="1.6e9 pairs: a test of the GPU's all-pairs tiles")
