@@ -12,7 +12,7 @@ the driver out, and the repaired wheel installed into a fresh virtual environmen
   to need a library that exists nowhere), an UnsupportedError that names it and the `[cuda]` extra,
   and the CPU backend keeps working in the same process. Where a GPU is usable, a CUDA handle steps.
 
-The `[cuda]` extra downloads about 1.2 GB of NVIDIA wheels (2.8 GB installed), too much for every
+The `[cuda]` extra downloads about 1.2 GB of NVIDIA wheels (1.6 GB installed), too much for every
 run: only with STRUCTMD_TEST_CUDA_EXTRA=1 is the wheel installed with it, and then the CUDA libraries
 the module maps must be the venv's (/proc/self/maps), with no LD_LIBRARY_PATH. Without it the CUDA
 libraries come from wherever the system's loader finds them, or from nowhere.
