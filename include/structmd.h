@@ -142,7 +142,7 @@ STRUCTMD_API const char* structmd_version(void);
  * @return STRUCTMD_OK; STRUCTMD_ERR_ARGUMENT for malformed options, an unknown key, a bad value, a
  *         "device" that does not exist, or out == NULL; STRUCTMD_ERR_DEVICE when "cuda" is demanded
  *         and no GPU is usable; STRUCTMD_ERR_UNSUPPORTED when "cuda" is demanded from a CPU-only
- *         build; STRUCTMD_ERR_IO when "log_file" cannot be opened; for "plugins", the statuses of
+ *         build or from one whose CUDA module cannot load its CUDA libraries; STRUCTMD_ERR_IO when "log_file" cannot be opened; for "plugins", the statuses of
  *         structmd_load_plugin, the message naming the option; for "mpi_comm",
  *         STRUCTMD_ERR_UNSUPPORTED from a build without MPI and STRUCTMD_ERR_STATE before MPI_Init;
  *         for "ghost_exchange": "nccl", STRUCTMD_ERR_UNSUPPORTED from a build without NCCL and

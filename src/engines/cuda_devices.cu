@@ -4,7 +4,7 @@
 
 namespace structmd {
 
-bool cuda_backend_compiled() { return true; }
+std::string cuda_backend_unavailable() { return {}; }
 
 int usable_gpu_count() {
     int count = 0;

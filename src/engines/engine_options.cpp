@@ -125,8 +125,8 @@ EngineOptions parse_engine_options(const char* text) {
     if (backend == "auto") {
         options.backend = usable_gpu_count() > 0 ? BackendKind::cuda : BackendKind::cpu;
     } else if (backend == "cuda") {
-        if (!cuda_backend_compiled())
-            throw Error(STRUCTMD_ERR_UNSUPPORTED, "option \"backend\": this build of structmd has no CUDA backend");
+        if (const std::string why = cuda_backend_unavailable(); !why.empty())
+            throw Error(STRUCTMD_ERR_UNSUPPORTED, "option \"backend\": " + why);
         const int gpus = usable_gpu_count();
         if (gpus == 0) throw Error(STRUCTMD_ERR_DEVICE, "option \"backend\": \"cuda\" was asked for but no usable GPU was found");
         if (options.device >= gpus)

@@ -11,7 +11,7 @@ Error no_cuda() { return Error(STRUCTMD_ERR_UNSUPPORTED, "this build of structmd
 
 }  // namespace
 
-bool cuda_backend_compiled() { return false; }
+std::string cuda_backend_unavailable() { return "this build of structmd has no CUDA backend"; }
 int usable_gpu_count() { return 0; }
 std::string gpu_name(int) { throw no_cuda(); }
 

