@@ -435,6 +435,7 @@ private:
     std::vector<std::pair<double, std::shared_ptr<VerletList<B, R>>>> transverserLists_;
     typename B::template Buffer<R> transverserOut_;
     std::shared_ptr<VerletList<B, R>> transverser_list(double cutoff);
+    bool transverser_owns(const VerletList<B, R>& list) const;
     // Runs a registered transverser into transverserOut_ (engine_transversers.hpp).
     void run_registered_transverser(const TransverserCall& call);
     std::vector<std::string> groupNames_;

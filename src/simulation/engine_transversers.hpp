@@ -27,6 +27,15 @@ std::shared_ptr<VerletList<B, R>> Engine<B, R, PairR>::transverser_list(double c
     return own;
 }
 
+// Whether the list is one of the transversers' own: the end of every step call adapts the pair
+// terms' lists to what their builds needed (a copy to the host), so a transverser over one of those
+// leaves it to that (an overflowed particle meanwhile scans its cells, neighbour_view.hpp).
+template <class B, class R, class PairR>
+bool Engine<B, R, PairR>::transverser_owns(const VerletList<B, R>& list) const {
+    return std::any_of(transverserLists_.begin(), transverserLists_.end(),
+                       [&](const auto& own) { return own.second.get() == &list; });
+}
+
 template <class B, class R, class PairR>
 void Engine<B, R, PairR>::expression_sum(const ExpressionTransverserSpec& spec, double* perParticle) {
     backend_.activate();
@@ -34,8 +43,9 @@ void Engine<B, R, PairR>::expression_sum(const ExpressionTransverserSpec& spec, 
     const std::string key = spec.key();
     auto found = std::find_if(transversers_.begin(), transversers_.end(), [&](const auto& t) { return t.first == key; });
     if (found == transversers_.end()) {
+        const auto list = spec.cutoff > 0 ? transverser_list(spec.cutoff) : nullptr;
         transversers_.emplace_back(key, std::make_unique<PreparedExpressionSum<B, R>>(
-                                            backend_, spec, context_, spec.cutoff > 0 ? transverser_list(spec.cutoff) : nullptr));
+                                            backend_, spec, context_, list, list && transverser_owns(*list)));
         found = transversers_.end() - 1;
     }
     PreparedExpressionSum<B, R>& prepared = *found->second;
@@ -91,7 +101,7 @@ void Engine<B, R, PairR>::run_registered_transverser(const TransverserCall& call
         runner->run(TransverserRun<B, R>{backend_, inputs, list ? &view : nullptr, R(call.cutoff * call.cutoff), p_.box,
                                          group, context_.batch},
                     call.parameters);
-        if (list) list->adapt();
+        if (list && transverser_owns(*list)) list->adapt();
     }
 }
 

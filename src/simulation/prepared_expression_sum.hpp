@@ -44,10 +44,11 @@ struct CompiledKernelsOf<B, std::void_t<typename B::CompiledKernels>> {
 template <class B, class R>
 class PreparedExpressionSum {
 public:
-    // list: one that offers every pair within spec.cutoff (Engine::transverser_list); null for all pairs.
+    // list: one that offers every pair within spec.cutoff (Engine::transverser_list); null for all
+    // pairs. adaptList: whether this sum adapts it after each run (a list of the transversers' own).
     PreparedExpressionSum(const B& backend, const ExpressionTransverserSpec& spec, const ForceFieldContext& context,
-                          std::shared_ptr<VerletList<B, R>> list)
-        : backend_(backend), spec_(spec), batch_(context.batch), list_(std::move(list)) {
+                          std::shared_ptr<VerletList<B, R>> list, bool adaptList)
+        : backend_(backend), spec_(spec), batch_(context.batch), list_(std::move(list)), adaptList_(adaptList) {
         if constexpr (B::compiles_at_run_time) {
             const ExpressionSumKernels source = expression_sum_kernels(spec, real_type_name<R>());
             kernels_ = backend.compile(source.source, source.names);
@@ -69,7 +70,7 @@ public:
             params.program = program_->view();
             traverse<InterpretedExpression>(p, group, params);
         }
-        if (list_) list_->adapt();
+        if (list_ && adaptList_) list_->adapt();
     }
 
     const typename B::template Buffer<R>& output() const { return out_; }
@@ -106,6 +107,7 @@ private:
     ExpressionTransverserSpec spec_;
     const int* batch_;  // the particles' batches, numbered 0, 1, ... (null: one batch)
     std::shared_ptr<VerletList<B, R>> list_;  // null: all pairs
+    bool adaptList_;
     std::shared_ptr<UploadedProgram<B, R>> program_;
     typename CompiledKernelsOf<B>::type kernels_{};
     typename B::template Buffer<R> out_;

@@ -15,7 +15,7 @@ import structmd
 from conftest import BACKEND
 from structmd.dlpack import K_DL_CPU, K_DL_CUDA
 from test_measures import document, measure
-from test_transversers import lattice, liquid, read_blocks, separations
+from test_transversers import check_a_pair_terms_list_is_shared, liquid, read_blocks, separations
 
 PLUGIN = os.environ.get("STRUCTMD_TEST_TRANSVERSER_PLUGIN")
 pytestmark = pytest.mark.skipif(not PLUGIN, reason="STRUCTMD_TEST_TRANSVERSER_PLUGIN not set (ctest sets it)")
@@ -121,23 +121,7 @@ def test_traverse_view_lends_the_counts_without_a_copy(sim):
 
 
 def test_a_registered_transverser_goes_over_a_pair_terms_list_of_every_pair(sim):
-    """Within the cutoff of the LJ term's list (every pair): the call adds only its output to the
-    engine's memory and counts as numpy does as the particles move; beyond it, a list of its own."""
-    from test_measures import NEIGHBOUR_LIST, lj_entry
-    positions, velocities = lattice(seed=27)
-    sim.load(document(positions, velocities, steps=100, time_step=0.002,
-                      force_field={"nl": NEIGHBOUR_LIST, "lj": lj_entry()}))
-    sim.step(5)
-    held = sim.counters["device_memory_bytes"]
-    for _ in range(2):
-        _, r = separations(sim.positions)
-        np.testing.assert_array_equal(sim.traverse("NeighbourCount", 2.5), np.sum(r < 2.5, axis=1))
-        sim.step(20)
-    shared = sim.counters["device_memory_bytes"] - held
-    assert 0 < shared <= 8 * len(positions) + 4096, shared
-    _, r = separations(sim.positions)
-    np.testing.assert_array_equal(sim.traverse("NeighbourCount", 3.0), np.sum(r < 3.0, axis=1))
-    assert sim.counters["device_memory_bytes"] - held - shared > 20 * len(positions)
+    check_a_pair_terms_list_is_shared(sim, lambda cutoff: sim.traverse("NeighbourCount", cutoff), 2.5, 3.0, 27)
 
 
 def test_traverse_view_refuses_as_traverse_does(sim, options):

@@ -190,26 +190,30 @@ def test_batches_stay_apart_over_a_list_and_over_all_pairs(sim):
     np.testing.assert_array_equal(sim.traverse_expression("1"), np.sum(same, axis=1) - 1)
 
 
-def test_a_pair_terms_list_is_used_where_it_offers_every_pair(sim):
-    """A transverser within the cutoff of a pair term's list of every pair goes over that list (the
-    steps keep it up to date): its call adds only its output to the engine's memory, where one with a
-    longer cutoff makes a list of its own (at least 20 bytes a particle); both count as numpy does,
-    as the particles move."""
+def check_a_pair_terms_list_is_shared(sim, counts, within, beyond, seed):
+    """counts(cutoff): a transverser's neighbour counts. Within the cutoff of the LJ term's list (of
+    every pair) it goes over that list, which the steps keep up to date: its calls add only their
+    output to the engine's memory, where one with a cutoff beyond makes a list of its own (at least
+    20 bytes a particle); both count as numpy does, as the particles move."""
     from test_measures import NEIGHBOUR_LIST, lj_entry
-    positions, velocities = lattice(seed=5)
+    positions, velocities = lattice(seed=seed)
     sim.load(document(positions, velocities, steps=100, time_step=0.002,
                       force_field={"nl": NEIGHBOUR_LIST, "lj": lj_entry()}))
     sim.step(5)
     held = sim.counters["device_memory_bytes"]
     for _ in range(2):
         _, r = separations(sim.positions)
-        np.testing.assert_array_equal(sim.traverse_expression("r < 2", 2.0), np.sum(r < 2, axis=1))
+        np.testing.assert_array_equal(counts(within), np.sum(r < within, axis=1))
         sim.step(20)
     shared = sim.counters["device_memory_bytes"] - held
     assert 0 < shared <= 8 * len(positions) + 4096, shared
     _, r = separations(sim.positions)
-    np.testing.assert_array_equal(sim.traverse_expression("r < 3", 3.0), np.sum(r < 3, axis=1))
+    np.testing.assert_array_equal(counts(beyond), np.sum(r < beyond, axis=1))
     assert sim.counters["device_memory_bytes"] - held - shared > 20 * len(positions)
+
+
+def test_a_pair_terms_list_is_used_where_it_offers_every_pair(sim):
+    check_a_pair_terms_list_is_shared(sim, lambda cutoff: sim.traverse_expression(f"r < {cutoff}", cutoff), 2.0, 3.0, 5)
 
 
 def test_a_list_that_leaves_pairs_out_is_not_used(sim):
