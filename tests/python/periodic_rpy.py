@@ -6,11 +6,14 @@ positively split Ewald), written here independently of the engine:
   (1986)), and its overlapping form (Wajnryb et al. 2013) for pairs closer than 2a.
 - The input document of a few equal spheres in a periodic box under one integrator entry, and the
   mobility measured from that integrator's deterministic steps.
+- The check that a bad entry is refused at load with its JSON path.
 """
 
 import math
+import re
 
 import numpy as np
+import pytest
 
 import structmd
 
@@ -38,6 +41,19 @@ def document(positions, box, entry, steps=1, temperature=0.0, force_field=None, 
         "state": {"labels": ["id", "position"], "data": [[i, [float(c) for c in p]] for i, p in enumerate(positions)]},
         "topology": {"structure": structure, "forceField": force_field or {}},
     }
+
+
+def assert_refused_at_load(options, doc, path, message=""):
+    """Loading doc raises InputError naming the JSON path, then saying message (a regular expression)."""
+    with structmd.Simulation(options) as sim:
+        with pytest.raises(structmd.InputError, match=re.escape(path) + ".*" + message):
+            sim.load(doc)
+
+
+def with_open_z(doc):
+    """doc with its box open along z (an infinite edge)."""
+    doc["global"]["ensemble"]["data"][0][0][2] = "inf"
+    return doc
 
 
 def minimum_image(d, box):

@@ -10,14 +10,12 @@ The mobility is read column by column from the integrator's own deterministic st
 a force F on one particle along one axis moves every particle by dt M F.
 """
 
-import math
-
 import numpy as np
 import pytest
 
 import structmd
 from set_parameter_checks import assert_refused_and_kept
-from periodic_rpy import (ETA, MU0, RADIUS, covariance_standard_error, document, hasimoto, measured_mobility,
+from periodic_rpy import (ETA, assert_refused_at_load, MU0, RADIUS, covariance_standard_error, document, hasimoto, measured_mobility,
                           minimum_image, noise_samples, rpy_ewald, rpy_overlap_correction, trapped_particle_energy,
                           windowed_msd)
 
@@ -271,9 +269,8 @@ def test_unequal_radii_need_a_hydrodynamic_radius(options):
     ({"tolerance": -1e-3}, "tolerance", "positive"),
 ])
 def test_bad_input_names_its_path(options, parameters, path, message):
-    with structmd.Simulation(options) as sim:
-        with pytest.raises(structmd.InputError, match=r"integrator\.bd\.parameters\." + path + ".*" + message):
-            sim.load(document([[0.0, 0.0, 0.0]], 12.0, pse(**parameters)))  # the load alone refuses
+    assert_refused_at_load(options, document([[0.0, 0.0, 0.0]], 12.0, pse(**parameters)),
+                           "integrator.bd.parameters." + path, message)
 
 
 @pytest.mark.parametrize("psi, message", [(1e6, r"more than 2\^30"), (0.3, "more than half the box")])

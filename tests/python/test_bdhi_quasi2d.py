@@ -392,9 +392,7 @@ def test_several_batches_are_refused_by_name(options):
     ({"radius": 1e-7}, "integrator.bd.parameters.hydrodynamicRadius", r"more than 2\^30"),  # not SIGFPE (issue 37)
 ])
 def test_bad_input_names_its_path(options, parameters, path, message):
-    with structmd.Simulation(options) as sim:
-        with pytest.raises(structmd.InputError, match=path.replace(".", r"\.") + ".*" + message):
-            sim.load(document([[0.0, 0.0, 0.0]], 6.0, q2d(**parameters)))  # the load alone refuses
+    periodic_rpy.assert_refused_at_load(options, document([[0.0, 0.0, 0.0]], 6.0, q2d(**parameters)), path, message)
 
 
 def test_set_parameter_refuses_a_radius_whose_grid_cannot_be(options):
