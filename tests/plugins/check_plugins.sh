@@ -16,7 +16,7 @@ configure() {  # configure NAME EXTRA-CMAKE-ARGS...
 }
 configure plugin
 library=$(find "$scratch/prefix" -name 'libstructmd.so' | head -n 1)
-export STRUCTMD_LIBRARY="$library" PYTHONPATH="$source/bindings/python${PYTHONPATH:+:$PYTHONPATH}"
+export STRUCTMD_LIBRARY="$library" PYTHONPATH="$source/bindings/python:$source/tests/python${PYTHONPATH:+:$PYTHONPATH}"
 if [ "$check" = transversers ]; then
     exec "$python" "$source/tests/plugins/check_transverser_plugins.py" --backend "$backend" \
         --plugins "$scratch/plugin/neighbour_count.so" "$scratch/plugin/local_density.so" \

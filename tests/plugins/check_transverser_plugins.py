@@ -23,6 +23,7 @@ from structmd._library import lib
 from structmd.dlpack import K_DL_CPU, K_DL_CUDA
 
 from check_plugins import expect_failure  # beside this script, which is run by its path
+from measure_files import read_step_blocks  # tests/python, on the path check_plugins.sh gives
 
 SKIP = 77
 BOX = 8.0
@@ -157,19 +158,6 @@ def check_views(sim, backend, bits, tolerance, label):
             close(values, expected, tolerance, f"{label}: {name} through traverse_view")
 
 
-def read_measure(path):
-    """{step: rows (id, values...)} of a ["TransverserMeasure", ...] file, with its header."""
-    lines = Path(path).read_text().splitlines()
-    blocks, current = {}, None
-    for line in lines[1:]:
-        if line.startswith("# "):
-            current = int(line[2:])
-            blocks[current] = []
-        else:
-            blocks[current].append([float(x) for x in line.split()])
-    return lines[0], {step: np.array(rows) for step, rows in blocks.items()}
-
-
 def check_measure(options, tolerance, label):
     """["TransverserMeasure","Plugin"] with the LJ force transverser (three values a particle) over
     the even group: every 25 steps the rows of the group, each the engine's LJ force on the particle
@@ -189,7 +177,7 @@ def check_measure(options, tolerance, label):
                 sim.step(steps)
                 expected[sim.step_number] = sim.traverse("LennardJonesForce", 2.5,
                                                          {"epsilon": 1.0, "sigma": 1.0, "group": "even"})
-        header, blocks = read_measure(output)
+        header, blocks = read_step_blocks(output)
         assert header == "# id value_0 value_1 value_2", header
         assert sorted(blocks) == [0, 25, 50], sorted(blocks)
         even = np.arange(0, N, 2)

@@ -8,6 +8,7 @@ import pytest
 
 import structmd
 from conftest import BACKEND
+from measure_files import read_step_blocks
 from test_measures import BOX, document, measure, minimum_image
 
 
@@ -19,16 +20,9 @@ def sim(options):
 
 def read_blocks(path):
     """{step: array of rows `id value`} of a transverser measure's file."""
-    lines = path.read_text().splitlines()
-    assert lines[0] == "# id value"
-    blocks, current = {}, None
-    for line in lines[1:]:
-        if line.startswith("# "):
-            current = int(line[2:])
-            blocks[current] = []
-        else:
-            blocks[current].append([float(x) for x in line.split()])
-    return {step: np.array(rows) for step, rows in blocks.items()}
+    header, blocks = read_step_blocks(path)
+    assert header == "# id value"
+    return blocks
 
 
 def separations(positions):
