@@ -197,6 +197,20 @@ def windowed_msd(sim, windows, lag, length):
     return window_msd.mean(), window_msd.std(ddof=1) / math.sqrt(windows)
 
 
+def diffusion_from_msd_slopes(trajectory, time_step, lag, windows=8):
+    """The long-time diffusion coefficient of an unwrapped trajectory (steps x particles x 3): in each
+    of `windows` consecutive windows, the slope of the mean square displacement between lags `lag`
+    and 2 `lag` (steps), over 6 dt; their mean and its standard error from their spread (the fluid
+    correlates the particles, so windows, not particles, are the samples)."""
+    slopes = []
+    for window in np.array_split(np.arange(len(trajectory)), windows):
+        part = trajectory[window]
+        msd = [np.mean(np.sum((part[k:] - part[:-k]) ** 2, axis=-1)) for k in (lag, 2 * lag)]
+        slopes.append((msd[1] - msd[0]) / (6 * lag * time_step))
+    slopes = np.array(slopes)
+    return slopes.mean(), slopes.std(ddof=1) / math.sqrt(windows)
+
+
 def trapped_particle_energy(options, entry, box, kT, stiffness, time_step):
     """A particle in a harmonic trap of stiffness K under the integrator `entry`: <K x^2> per axis
     from samples one relaxation time apart (with the self-mobility mu, Hasimoto's), in 20 blocks.

@@ -22,7 +22,8 @@ import numpy as np
 import pytest
 
 import structmd
-from periodic_rpy import assert_checkpoint_carries_the_fluid, assert_refused_at_load, document, minimum_image, with_open_z
+from periodic_rpy import (assert_checkpoint_carries_the_fluid, assert_refused_at_load, diffusion_from_msd_slopes, document,
+                          minimum_image, with_open_z)
 from test_fluctuating_hydrodynamics import face_weights, grid_mobility
 
 
@@ -229,12 +230,6 @@ def test_long_time_diffusion_is_kT_times_the_incompressible_mobility(thermal_run
     r = thermal_run
     traj, dt = r["trajectory"], r["dt"]
     expected = r["kT"] * np.mean([np.trace(grid_mobility(q, r["n"], r["length"], 0.5)) / 3 for q in r["start"]])
-    slopes = []
-    for window in np.array_split(np.arange(len(traj)), 8):
-        part = traj[window]
-        msd = [np.mean(np.sum((part[lag:] - part[:-lag]) ** 2, axis=-1)) for lag in (300, 600)]
-        slopes.append((msd[1] - msd[0]) / (6 * 300 * dt))
-    slopes = np.array(slopes)
-    measured, error = slopes.mean(), slopes.std(ddof=1) / math.sqrt(len(slopes))
+    measured, error = diffusion_from_msd_slopes(traj, dt, 300)
     assert abs(measured - expected) < 4 * error, (measured, expected, error)
     assert error < 0.1 * expected

@@ -18,7 +18,8 @@ import numpy as np
 import pytest
 
 import structmd
-from periodic_rpy import assert_checkpoint_carries_the_fluid, assert_refused_at_load, document, minimum_image, with_open_z
+from periodic_rpy import (assert_checkpoint_carries_the_fluid, assert_refused_at_load, diffusion_from_msd_slopes, document,
+                          minimum_image, with_open_z)
 
 HASIMOTO = 2.837297
 
@@ -234,13 +235,7 @@ def test_long_time_diffusion_is_kT_times_the_periodic_mobility(thermal_run):
     rng = np.random.default_rng(12)
     positions = rng.uniform(-r["length"] / 2, r["length"] / 2, (40, 3))
     expected = r["kT"] * np.mean([np.trace(grid_mobility(q, r["n"], r["length"], 1.0)) / 3 for q in positions])
-    slopes = []
-    for window in np.array_split(np.arange(len(traj)), 8):
-        part = traj[window]
-        msd = [np.mean(np.sum((part[lag:] - part[:-lag]) ** 2, axis=-1)) for lag in (100, 200)]
-        slopes.append((msd[1] - msd[0]) / (6 * 100 * dt))
-    slopes = np.array(slopes)
-    measured, error = slopes.mean(), slopes.std(ddof=1) / math.sqrt(len(slopes))
+    measured, error = diffusion_from_msd_slopes(traj, dt, 100)
     assert abs(measured - expected) < 4 * error, (measured, expected, error)
     assert error < 0.1 * expected
 
