@@ -1,0 +1,1042 @@
+// nvcc -O3 -std=c++17 -arch=sm_90 -Isrc -Iinclude -o ssv tests/benchmarks/small_step_variants.cu
+//
+// Small-step design study for issue 33: how fast can a whole velocity-Verlet NVE step of the LJ
+// liquid be at small N on one GPU, and which design gets there. Standalone (no engine code), so
+// each variant is the bare step. The liquid: fcc at density 0.8442 (4 k^3 particles), jittered,
+// velocities at T = 1.44 with zero total momentum, rc 2.5, list radius 2.8 (skin 0.3), dt 0.005,
+// mass 1, single precision. Every variant keeps a full Verlet list built on the device from a cell
+// list, rebuilt when a particle has moved more than skin/2 since the last build; the builds are
+// part of every timed loop and use the same kernels' code (bin, sort each cell's members by index
+// so that the lists do not depend on thread timing, a warp per particle writing its list in cell
+// order through ballots). Variants:
+//   chain        what the engine does today: a graph of 50 steps, each a chain of kernels (clock,
+//                drift with the displacement check, a one-thread kernel setting the condition,
+//                the list build in an IF conditional node, the pair kernel, the closing kick), the
+//                edges between consecutive kernels programmatic (dependent launch) as in the
+//                engine. Lanes per particle as the engine sizes them (kNeighbourSum, core/lanes.hpp).
+//   fused-L      one kernel per step at L lanes per particle: the pair kernel reads x(n) from one
+//                buffer and each particle's epilogue applies the closing kick of step n, the opening
+//                kick of step n+1 and the drift, writing x(n+1) to the other buffer; the last block
+//                to finish sets the IF node's condition from the displacement flag (no setter
+//                kernel). Graphs of 50 steps, the two buffers swapping from node to node.
+//   persistent-L one cooperative launch for all the steps, phases separated by grid.sync(): the
+//                fused step, then, when the flag read by every block after the barrier says so,
+//                the three build phases. The grid: what is co-resident, at most what the pair
+//                phase needs.
+// Checks before timing (exit status 1 when one fails): each variant's first forces against an
+// all-pairs reference in double; each variant's first list holds exactly the pairs within rc that
+// the reference finds; each variant's positions after --check-steps steps against chain's. Then
+// a warm-up, and the timed steps with builds per 1000 steps and the total energy drift.
+//
+//   structmd_small_step_variants [--steps S] [--warmup W] [--check-steps C] [--csv PATH] [k ...]
+//   (k: fcc cells per edge, 4 k^3 particles; default 10 14 25: 4,000, 10,976 and 62,500)
+#include <cooperative_groups.h>
+#include <cuda_runtime.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <numeric>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/dependent_launch.hpp"
+
+namespace cg = cooperative_groups;
+
+namespace {
+
+void check(cudaError_t status, const char* what) {
+    if (status != cudaSuccess) {
+        std::fprintf(stderr, "%s: %s\n", what, cudaGetErrorString(status));
+        std::exit(1);
+    }
+}
+
+constexpr double kDensity = 0.8442;
+constexpr double kTemperature = 1.44;
+constexpr float kCutoff = 2.5f;
+constexpr float kCutoff2 = kCutoff * kCutoff;
+constexpr float kListRadius2 = 2.8f * 2.8f;
+constexpr float kHalfSkin2 = 0.15f * 0.15f;
+constexpr float kDt = 0.005f;
+constexpr float kHalfDt = 0.5f * kDt;
+constexpr int kCellCapacity = 64;   // two members a lane in the cell sort; ~18 expected
+constexpr int kListCapacity = 128;  // ~78 expected within the list radius
+constexpr int kThreads = 256;
+constexpr int kStepsPerGraph = 50;  // even: the fused graphs end on the buffer they start from
+
+// The device state of one liquid. Positions are double-buffered for the fused and persistent steps.
+struct System {
+    int n = 0;
+    float length = 0;
+    int perEdge = 0;  // list cells per edge
+    int cells = 0;
+    float4* pos[2] = {nullptr, nullptr};
+    float4* vel = nullptr;
+    float4* force = nullptr;
+    float4* posAtBuild = nullptr;
+    int* cellCount = nullptr;
+    int* cellMember = nullptr;  // kCellCapacity per cell
+    int* list = nullptr;        // entry m of particle i at i * particleStride + m * entryStride
+    int* listCount = nullptr;
+    int particleStride = 0;
+    int entryStride = 0;
+    int* rebuild = nullptr;        // the displacement flag of chain and fused, cleared by the build
+    int* rebuildByStep = nullptr;  // persistent: three flags in rotation (see persistent_steps)
+    int* builds = nullptr;
+    int* overflow = nullptr;
+    unsigned* blocksDone = nullptr;
+    unsigned long long* step = nullptr;
+};
+
+// --- the arithmetic every variant shares -----------------------------------------------------
+
+__device__ __forceinline__ float3 minimum_image(float3 d, float length) {
+    d.x -= length * rintf(d.x / length);
+    d.y -= length * rintf(d.y / length);
+    d.z -= length * rintf(d.z / length);
+    return d;
+}
+
+__device__ __forceinline__ float3 lj_force(float3 d) {  // on i from j, d = r_i - r_j
+    const float r2 = d.x * d.x + d.y * d.y + d.z * d.z;
+    if (r2 >= kCutoff2) return {0, 0, 0};
+    const float inv2 = 1.f / r2, inv6 = inv2 * inv2 * inv2;
+    const float scale = 24.f * inv2 * inv6 * (2.f * inv6 - 1.f);
+    return {scale * d.x, scale * d.y, scale * d.z};
+}
+
+__device__ __forceinline__ float4 kicked(float4 v, float3 f) {
+    v.x += f.x * kHalfDt;
+    v.y += f.y * kHalfDt;
+    v.z += f.z * kHalfDt;
+    return v;
+}
+
+__device__ __forceinline__ float wrapped(float x, float length) { return x - length * floorf(x / length); }
+
+__device__ __forceinline__ float4 drifted(float4 x, float4 v, float length) {
+    return make_float4(wrapped(x.x + v.x * kDt, length), wrapped(x.y + v.y * kDt, length),
+                       wrapped(x.z + v.z * kDt, length), x.w);
+}
+
+__device__ __forceinline__ bool moved_past_half_skin(float4 x, float4 atBuild, float length) {
+    const float3 d = minimum_image(make_float3(x.x - atBuild.x, x.y - atBuild.y, x.z - atBuild.z), length);
+    return d.x * d.x + d.y * d.y + d.z * d.z > kHalfSkin2;
+}
+
+__device__ __forceinline__ int cell_coordinate(float x, const System& s) {
+    return min(s.perEdge - 1, max(0, static_cast<int>(x / s.length * s.perEdge)));
+}
+
+// Loads through the read-only path where the data cannot change during the kernel (chain, fused);
+// the persistent kernel writes positions and lists between its barriers, so it loads plainly.
+template <bool ReadOnly, class T>
+__device__ __forceinline__ T load(const T* p) {
+    if constexpr (ReadOnly)
+        return __ldg(p);
+    else
+        return *p;
+}
+
+// The L lanes of one particle: a power-of-two segment of a warp.
+template <int L>
+struct LaneGroup {
+    int item;
+    int lane;
+    unsigned mask;
+    __device__ explicit LaneGroup(long long virtualThread)
+        : item(static_cast<int>(virtualThread / L)),
+          lane(static_cast<int>(virtualThread % L)),
+          mask(L == 32 ? 0xffffffffu : ((1u << L) - 1u) << (static_cast<int>(virtualThread % 32) & ~(L - 1))) {}
+};
+
+// The force on particle i, summed over its list by L lanes (lane l takes entries l, l + L, ...),
+// combined by a fixed butterfly of shuffles, in every lane.
+template <int L, bool ReadOnly>
+__device__ __forceinline__ float3 pair_force(const System& s, const float4* pos, const LaneGroup<L>& g) {
+    const int i = g.item;
+    const float4 p = load<ReadOnly>(pos + i);
+    const int m = load<ReadOnly>(s.listCount + i);
+    const int* row = s.list + static_cast<long long>(i) * s.particleStride;
+    float3 f = {0, 0, 0};
+#pragma unroll 2
+    for (int k = g.lane; k < m; k += L) {
+        const float4 q = load<ReadOnly>(pos + load<ReadOnly>(row + static_cast<long long>(k) * s.entryStride));
+        const float3 d = lj_force(minimum_image(make_float3(p.x - q.x, p.y - q.y, p.z - q.z), s.length));
+        f.x += d.x;
+        f.y += d.y;
+        f.z += d.z;
+    }
+    for (int offset = L / 2; offset > 0; offset /= 2) {
+        f.x += __shfl_xor_sync(g.mask, f.x, offset, L);
+        f.y += __shfl_xor_sync(g.mask, f.y, offset, L);
+        f.z += __shfl_xor_sync(g.mask, f.z, offset, L);
+    }
+    return f;
+}
+
+// The fused epilogue of particle i: closing kick of step n (unless this is the first step), opening
+// kick of step n+1, drift to x(n+1) in `out`. The same operations, in the same order, as chain's
+// kick and drift kernels. Returns whether the particle moved past half the skin since the build.
+__device__ __forceinline__ bool advance_particle(const System& s, float4 x, float4* out, int i, float3 f, bool closing) {
+    float4 v = s.vel[i];
+    if (closing) v = kicked(v, f);
+    v = kicked(v, f);
+    const float4 next = drifted(x, v, s.length);
+    out[i] = next;
+    s.vel[i] = v;
+    return moved_past_half_skin(next, s.posAtBuild[i], s.length);
+}
+
+// --- the list build: bin, sort each cell, a warp per particle's list -------------------------
+
+__device__ __forceinline__ void bin_particle(const System& s, const float4* pos, int i) {
+    const float4 p = pos[i];
+    s.posAtBuild[i] = p;
+    const int cell = (cell_coordinate(p.z, s) * s.perEdge + cell_coordinate(p.y, s)) * s.perEdge + cell_coordinate(p.x, s);
+    const int slot = atomicAdd(s.cellCount + cell, 1);
+    if (slot < kCellCapacity)
+        s.cellMember[cell * kCellCapacity + slot] = i;
+    else
+        atomicAdd(s.overflow, 1);
+}
+
+// A warp puts a cell's members in index order (each lane holds two and counts the smaller ones),
+// so the lists, and with them the order of every force sum, do not depend on the binning atomics.
+__device__ __forceinline__ void sort_cell(const System& s, int cell, int lane) {
+    int* members = s.cellMember + cell * kCellCapacity;
+    const int count = min(s.cellCount[cell], kCellCapacity);
+    const int a = lane < count ? members[lane] : INT_MAX;
+    const int b = lane + 32 < count ? members[lane + 32] : INT_MAX;
+    int rankA = 0, rankB = 0;
+    for (int t = 0; t < 32; ++t) {
+        const int otherA = __shfl_sync(0xffffffffu, a, t), otherB = __shfl_sync(0xffffffffu, b, t);
+        rankA += (otherA < a) + (otherB < a);
+        rankB += (otherA < b) + (otherB < b);
+    }
+    __syncwarp();
+    if (lane < count) members[rankA] = a;
+    if (lane + 32 < count) members[rankB] = b;
+}
+
+// A warp builds particle i's list: the 27 cells around it in a fixed order, each cell's members
+// (in index order) tested by the lanes, the hits written in order through a ballot.
+__device__ __forceinline__ void build_list(const System& s, const float4* pos, int i, int lane) {
+    const float4 p = pos[i];
+    const int cx = cell_coordinate(p.x, s), cy = cell_coordinate(p.y, s), cz = cell_coordinate(p.z, s);
+    const int e = s.perEdge;
+    int found = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int cell = (((cz + dz + e) % e) * e + (cy + dy + e) % e) * e + (cx + dx + e) % e;
+                const int count = min(s.cellCount[cell], kCellCapacity);
+                for (int base = 0; base < count; base += 32) {
+                    const int k = base + lane;
+                    const int j = k < count ? s.cellMember[cell * kCellCapacity + k] : -1;
+                    bool hit = false;
+                    if (j >= 0 && j != i) {
+                        const float4 q = pos[j];
+                        const float3 d = minimum_image(make_float3(q.x - p.x, q.y - p.y, q.z - p.z), s.length);
+                        hit = d.x * d.x + d.y * d.y + d.z * d.z < kListRadius2;
+                    }
+                    const unsigned hits = __ballot_sync(0xffffffffu, hit);
+                    const int entry = found + __popc(hits & ((1u << lane) - 1u));
+                    if (hit && entry < kListCapacity)
+                        s.list[static_cast<long long>(i) * s.particleStride + static_cast<long long>(entry) * s.entryStride] = j;
+                    found += __popc(hits);
+                }
+            }
+    if (lane == 0) {
+        s.listCount[i] = min(found, kListCapacity);
+        if (found > kListCapacity) atomicAdd(s.overflow, 1);
+    }
+}
+
+__global__ void clear_cells(System s) {
+    structmd::follow_previous_kernel();
+    const int c = blockIdx.x * blockDim.x + threadIdx.x;
+    if (c < s.cells) s.cellCount[c] = 0;
+}
+
+__global__ void bin_particles(System s, const float4* pos) {
+    structmd::follow_previous_kernel();
+    const int i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i == 0) {
+        *s.rebuild = 0;
+        ++*s.builds;
+    }
+    if (i < s.n) bin_particle(s, pos, i);
+}
+
+__global__ void sort_cells(System s) {
+    structmd::follow_previous_kernel();
+    const int cell = (blockIdx.x * blockDim.x + threadIdx.x) / 32;
+    if (cell < s.cells) sort_cell(s, cell, threadIdx.x % 32);
+}
+
+__global__ void build_lists(System s, const float4* pos) {
+    structmd::follow_previous_kernel();
+    const int i = static_cast<int>((static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x) / 32);
+    if (i < s.n) build_list(s, pos, i, threadIdx.x % 32);
+}
+
+int blocks_for(long long threads) { return static_cast<int>((threads + kThreads - 1) / kThreads); }
+
+// The build's four kernels on `stream` (issued directly, or captured into an IF node's body).
+void launch_build(const System& s, const float4* pos, cudaStream_t stream) {
+    clear_cells<<<blocks_for(s.cells), kThreads, 0, stream>>>(s);
+    bin_particles<<<blocks_for(s.n), kThreads, 0, stream>>>(s, pos);
+    sort_cells<<<blocks_for(32ll * s.cells), kThreads, 0, stream>>>(s);
+    build_lists<<<blocks_for(32ll * s.n), kThreads, 0, stream>>>(s, pos);
+    check(cudaGetLastError(), "launching the list build");
+}
+
+// --- chain: the engine's step, kernel by kernel --------------------------------------------------
+
+__global__ void chain_clock(System s) {
+    structmd::follow_previous_kernel();
+    ++*s.step;
+}
+
+__global__ void chain_drift(System s, float4* pos, float4* vel, int* rebuild) {
+    structmd::follow_previous_kernel();
+    const int i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= s.n) return;
+    const float4 f = s.force[i];
+    const float4 v = kicked(vel[i], make_float3(f.x, f.y, f.z));
+    const float4 next = drifted(pos[i], v, s.length);
+    pos[i] = next;
+    vel[i] = v;
+    if (moved_past_half_skin(next, s.posAtBuild[i], s.length)) *rebuild = 1;
+}
+
+__global__ void chain_set_condition(System s, cudaGraphConditionalHandle handle) {
+    structmd::follow_previous_kernel();
+    cudaGraphSetConditional(handle, *s.rebuild != 0 ? 1u : 0u);
+}
+
+template <int L>
+__global__ void chain_pair(System s) {
+    structmd::follow_previous_kernel();
+    const long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+    if (t >= static_cast<long long>(s.n) * L) return;
+    const LaneGroup<L> g(t);
+    const float3 f = pair_force<L, true>(s, s.pos[0], g);
+    if (g.lane == 0) s.force[g.item] = make_float4(f.x, f.y, f.z, 0.f);
+}
+
+__global__ void chain_kick(System s) {
+    structmd::follow_previous_kernel();
+    const int i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= s.n) return;
+    const float4 f = s.force[i];
+    s.vel[i] = kicked(s.vel[i], make_float3(f.x, f.y, f.z));
+}
+
+// --- fused: one kernel per step -------------------------------------------------------------------
+
+// Inside a graph (handle set), the last block to finish copies the displacement flag into the IF
+// node's condition: one thread sets it, as cudaGraphSetConditional requires, without a setter kernel.
+template <int L>
+__global__ void fused_step(System s, const float4* __restrict__ in, float4* __restrict__ out, bool closing,
+                           cudaGraphConditionalHandle handle, float4* forceOut) {
+    const long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+    if (t < static_cast<long long>(s.n) * L) {
+        const LaneGroup<L> g(t);
+        const float3 f = pair_force<L, true>(s, in, g);
+        if (g.lane == 0) {
+            if (forceOut) forceOut[g.item] = make_float4(f.x, f.y, f.z, 0.f);
+            if (advance_particle(s, __ldg(in + g.item), out, g.item, f, closing)) *s.rebuild = 1;
+        }
+    }
+    if (!handle) return;
+    __threadfence();
+    __syncthreads();
+    if (threadIdx.x == 0 && atomicAdd(s.blocksDone, 1u) == gridDim.x - 1) {
+        *s.blocksDone = 0;
+        cudaGraphSetConditional(handle, atomicAdd(s.rebuild, 0) != 0 ? 1u : 0u);
+        ++*s.step;
+    }
+}
+
+// --- persistent: one cooperative launch for many steps ------------------------------------------
+
+// Step g sets rebuildByStep[g % 3]; every block reads it after the barrier that follows; thread 0
+// clears rebuildByStep[(g + 2) % 3] then, which every block read in step g - 1 (before this barrier)
+// and which step g + 2 sets only after the next barrier, so no clear races with a set or a read.
+template <int L>
+__global__ void persistent_steps(System s, int parity, long long firstStep, int steps, bool closingFirst,
+                                 float4* forceOut) {
+    cg::grid_group grid = cg::this_grid();
+    const long long threads = static_cast<long long>(gridDim.x) * blockDim.x;
+    const long long id = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+    const int lane = threadIdx.x % 32;
+    for (int step = 0; step < steps; ++step) {
+        const float4* in = s.pos[(parity + step) & 1];
+        float4* out = s.pos[(parity + step + 1) & 1];
+        const long long g = firstStep + step;
+        int* flag = s.rebuildByStep + g % 3;
+        // The build of the step before (if any) is over: its cell counts can go.
+        for (long long c = id; c < s.cells; c += threads) s.cellCount[c] = 0;
+        for (long long t = id; t < static_cast<long long>(s.n) * L; t += threads) {
+            const LaneGroup<L> group(t);
+            const float3 f = pair_force<L, false>(s, in, group);
+            if (group.lane == 0) {
+                if (forceOut && step == 0) forceOut[group.item] = make_float4(f.x, f.y, f.z, 0.f);
+                if (advance_particle(s, in[group.item], out, group.item, f, closingFirst || step > 0)) *flag = 1;
+            }
+        }
+        grid.sync();
+        if (id == 0) {
+            s.rebuildByStep[(g + 2) % 3] = 0;
+            ++*s.step;
+        }
+        if (*static_cast<volatile int*>(flag)) {
+            if (id == 0) ++*s.builds;
+            for (long long i = id; i < s.n; i += threads) bin_particle(s, out, static_cast<int>(i));
+            grid.sync();
+            for (long long cell = id / 32; cell < s.cells; cell += threads / 32) sort_cell(s, static_cast<int>(cell), lane);
+            grid.sync();
+            for (long long i = id / 32; i < s.n; i += threads / 32) build_list(s, out, static_cast<int>(i), lane);
+            grid.sync();
+        }
+    }
+}
+
+// --- the reference and the checks (double precision, all pairs) ---------------------------------
+
+__device__ double3 minimum_image_double(float4 p, float4 q, double length) {
+    double3 d = {double(p.x) - double(q.x), double(p.y) - double(q.y), double(p.z) - double(q.z)};
+    d.x -= length * rint(d.x / length);
+    d.y -= length * rint(d.y / length);
+    d.z -= length * rint(d.z / length);
+    return d;
+}
+
+// Per particle: the force, half its pair energies (shifted to zero at rc, so that the energy is
+// continuous where the truncated force is), the sum of the pair forces' magnitudes (the scale of
+// the round-off) and the number of pairs within rc.
+__global__ void reference_forces(int n, const float4* pos, double length, double3* force, double* energy,
+                                 double* magnitudes, int* withinCutoff) {
+    const int i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= n) return;
+    const float4 p = pos[i];
+    const double rc2 = double(kCutoff) * kCutoff, rc6 = rc2 * rc2 * rc2;
+    const double shift = 4.0 * (1.0 / (rc6 * rc6) - 1.0 / rc6);
+    double3 f = {0, 0, 0};
+    double e = 0, sum = 0;
+    int count = 0;
+    for (int j = 0; j < n; ++j) {
+        if (j == i) continue;
+        const double3 d = minimum_image_double(p, pos[j], length);
+        const double r2 = d.x * d.x + d.y * d.y + d.z * d.z;
+        if (r2 >= rc2) continue;
+        const double inv2 = 1.0 / r2, inv6 = inv2 * inv2 * inv2;
+        const double scale = 24.0 * inv2 * inv6 * (2.0 * inv6 - 1.0);
+        f.x += scale * d.x;
+        f.y += scale * d.y;
+        f.z += scale * d.z;
+        e += 0.5 * (4.0 * inv6 * (inv6 - 1.0) - shift);
+        sum += fabs(scale) * sqrt(r2);
+        ++count;
+    }
+    force[i] = f;
+    energy[i] = e;
+    magnitudes[i] = sum;
+    withinCutoff[i] = count;
+}
+
+// How many of particle i's list entries lie within rc, by the reference's arithmetic.
+__global__ void listed_within_cutoff(System s, const float4* pos, int* withinCutoff) {
+    const int i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= s.n) return;
+    const double rc2 = double(kCutoff) * kCutoff;
+    int count = 0;
+    for (int m = 0; m < s.listCount[i]; ++m) {
+        const int j = s.list[static_cast<long long>(i) * s.particleStride + static_cast<long long>(m) * s.entryStride];
+        const double3 d = minimum_image_double(pos[i], pos[j], s.length);
+        count += d.x * d.x + d.y * d.y + d.z * d.z < rc2;
+    }
+    withinCutoff[i] = count;
+}
+
+// --- host side --------------------------------------------------------------------------------------
+
+template <class T>
+T* device_array(size_t count) {
+    T* d = nullptr;
+    check(cudaMalloc(&d, std::max<size_t>(1, count) * sizeof(T)), "cudaMalloc");
+    check(cudaMemset(d, 0, std::max<size_t>(1, count) * sizeof(T)), "cudaMemset");
+    return d;
+}
+
+template <class T>
+std::vector<T> to_host(const T* d, size_t count) {
+    std::vector<T> h(count);
+    check(cudaMemcpy(h.data(), d, count * sizeof(T), cudaMemcpyDeviceToHost), "copy to host");
+    return h;
+}
+
+template <class T>
+T read_one(const T* d) {
+    return to_host(d, 1)[0];
+}
+
+struct Liquid {
+    float length = 0;
+    int perEdge = 0;
+    std::vector<float4> pos, vel;
+};
+
+// fcc at the benchmark's density, jittered, sorted by list cell (so that neighbours are near in
+// memory), velocities from a Gaussian at kTemperature with the total momentum removed.
+Liquid make_liquid(int cellsPerEdge) {
+    Liquid liquid;
+    const double a = std::cbrt(4.0 / kDensity);
+    liquid.length = static_cast<float>(a * cellsPerEdge);
+    liquid.perEdge = static_cast<int>(std::floor(liquid.length / std::sqrt(kListRadius2)));
+    uint64_t state = 12345;
+    auto uniform = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return (static_cast<double>(state >> 11) + 0.5) / 9007199254740992.0;
+    };
+    const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+    auto wrap = [&](double v) {
+        const float w = static_cast<float>(std::fmod(v + 10 * liquid.length, liquid.length));
+        return w < liquid.length ? w : 0.f;
+    };
+    for (int x = 0; x < cellsPerEdge; ++x)
+        for (int y = 0; y < cellsPerEdge; ++y)
+            for (int z = 0; z < cellsPerEdge; ++z)
+                for (const auto& b : basis)
+                    liquid.pos.push_back({wrap((x + b[0]) * a + 0.1 * (uniform() - 0.5)),
+                                          wrap((y + b[1]) * a + 0.1 * (uniform() - 0.5)),
+                                          wrap((z + b[2]) * a + 0.1 * (uniform() - 0.5)), 0.f});
+    const int e = liquid.perEdge;
+    auto cell_of = [&](const float4& p) {
+        auto c = [&](float v) { return std::min(e - 1, static_cast<int>(v / liquid.length * e)); };
+        return (c(p.z) * e + c(p.y)) * e + c(p.x);
+    };
+    std::stable_sort(liquid.pos.begin(), liquid.pos.end(),
+                     [&](const float4& p, const float4& q) { return cell_of(p) < cell_of(q); });
+    const size_t n = liquid.pos.size();
+    std::vector<double> v(3 * n);
+    for (size_t k = 0; k < 3 * n; k += 2) {
+        const double r = std::sqrt(-2.0 * std::log(uniform())), phi = 2.0 * M_PI * uniform();
+        v[k] = r * std::cos(phi);
+        if (k + 1 < 3 * n) v[k + 1] = r * std::sin(phi);
+    }
+    double mean[3] = {0, 0, 0}, sum2 = 0;
+    for (size_t i = 0; i < n; ++i)
+        for (int d = 0; d < 3; ++d) mean[d] += v[3 * i + d] / n;
+    for (size_t i = 0; i < n; ++i)
+        for (int d = 0; d < 3; ++d) sum2 += (v[3 * i + d] - mean[d]) * (v[3 * i + d] - mean[d]);
+    const double scale = std::sqrt(3.0 * (n - 1) * kTemperature / sum2);
+    for (size_t i = 0; i < n; ++i)
+        liquid.vel.push_back({static_cast<float>((v[3 * i] - mean[0]) * scale),
+                              static_cast<float>((v[3 * i + 1] - mean[1]) * scale),
+                              static_cast<float>((v[3 * i + 2] - mean[2]) * scale), 0.f});
+    return liquid;
+}
+
+struct Reference {
+    std::vector<double3> force;
+    std::vector<double> energy, magnitudes;
+    std::vector<int> withinCutoff;
+};
+
+Reference reference_at(const System& s, const float4* pos) {
+    double3* force = device_array<double3>(s.n);
+    double *energy = device_array<double>(s.n), *magnitudes = device_array<double>(s.n);
+    int* within = device_array<int>(s.n);
+    reference_forces<<<blocks_for(s.n), kThreads>>>(s.n, pos, s.length, force, energy, magnitudes, within);
+    check(cudaDeviceSynchronize(), "reference forces");
+    Reference r{to_host(force, s.n), to_host(energy, s.n), to_host(magnitudes, s.n), to_host(within, s.n)};
+    cudaFree(force);
+    cudaFree(energy);
+    cudaFree(magnitudes);
+    cudaFree(within);
+    return r;
+}
+
+// Total energy; `halfStep`: the velocities are v(n - 1/2) at x(n) (fused, persistent), completed
+// here with the reference force's half kick.
+double total_energy(const System& s, const float4* pos, bool halfStep) {
+    const Reference r = reference_at(s, pos);
+    const std::vector<float4> vel = to_host(s.vel, s.n);
+    double e = 0;
+    for (int i = 0; i < s.n; ++i) {
+        double v[3] = {vel[i].x, vel[i].y, vel[i].z};
+        if (halfStep) {
+            v[0] += r.force[i].x * kHalfDt;
+            v[1] += r.force[i].y * kHalfDt;
+            v[2] += r.force[i].z * kHalfDt;
+        }
+        e += 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + r.energy[i];
+    }
+    return e;
+}
+
+System make_system(const Liquid& liquid) {
+    System s;
+    s.n = static_cast<int>(liquid.pos.size());
+    s.length = liquid.length;
+    s.perEdge = liquid.perEdge;
+    s.cells = s.perEdge * s.perEdge * s.perEdge;
+    for (float4*& p : s.pos) p = device_array<float4>(s.n);
+    s.vel = device_array<float4>(s.n);
+    s.force = device_array<float4>(s.n);
+    s.posAtBuild = device_array<float4>(s.n);
+    s.cellCount = device_array<int>(s.cells);
+    s.cellMember = device_array<int>(static_cast<size_t>(s.cells) * kCellCapacity);
+    s.list = device_array<int>(static_cast<size_t>(s.n) * kListCapacity);
+    s.listCount = device_array<int>(s.n);
+    s.rebuild = device_array<int>(1);
+    s.rebuildByStep = device_array<int>(3);
+    s.builds = device_array<int>(1);
+    s.overflow = device_array<int>(1);
+    s.blocksDone = device_array<unsigned>(1);
+    s.step = device_array<unsigned long long>(1);
+    return s;
+}
+
+void free_system(System& s) {
+    for (void* p : {static_cast<void*>(s.pos[0]), static_cast<void*>(s.pos[1]), static_cast<void*>(s.vel),
+                    static_cast<void*>(s.force), static_cast<void*>(s.posAtBuild), static_cast<void*>(s.cellCount),
+                    static_cast<void*>(s.cellMember), static_cast<void*>(s.list), static_cast<void*>(s.listCount),
+                    static_cast<void*>(s.rebuild), static_cast<void*>(s.rebuildByStep), static_cast<void*>(s.builds),
+                    static_cast<void*>(s.overflow), static_cast<void*>(s.blocksDone), static_cast<void*>(s.step)})
+        cudaFree(p);
+}
+
+enum class Design { kChain, kFused, kPersistent };
+
+template <class F>
+void with_lanes(int lanes, F&& f) {
+    switch (lanes) {
+        case 1: f(std::integral_constant<int, 1>{}); break;
+        case 2: f(std::integral_constant<int, 2>{}); break;
+        case 4: f(std::integral_constant<int, 4>{}); break;
+        case 8: f(std::integral_constant<int, 8>{}); break;
+        case 16: f(std::integral_constant<int, 16>{}); break;
+        default: f(std::integral_constant<int, 32>{}); break;
+    }
+}
+
+// A launch captured with a programmatic edge from the kernel before it when `programmatic`.
+template <class... Params, class... Args>
+void launch(void (*kernel)(Params...), int blocks, int threads, cudaStream_t stream, bool programmatic, Args... args) {
+    cudaLaunchConfig_t config{};
+    config.gridDim = dim3(blocks);
+    config.blockDim = dim3(threads);
+    config.stream = stream;
+    cudaLaunchAttribute attribute{};
+    attribute.id = cudaLaunchAttributeProgrammaticStreamSerialization;
+    attribute.val.programmaticStreamSerializationAllowed = 1;
+    config.attrs = programmatic ? &attribute : nullptr;
+    config.numAttrs = programmatic ? 1 : 0;
+    check(cudaLaunchKernelEx(&config, kernel, args...), "launching a kernel");
+}
+
+cudaGraph_t capturing_graph(cudaStream_t stream) {
+    cudaStreamCaptureStatus status{};
+    cudaGraph_t graph = nullptr;
+    check(cudaStreamGetCaptureInfo(stream, &status, nullptr, &graph), "capture info");
+    return graph;
+}
+
+// Appends to the capture on `stream` an IF node on `handle` whose body is what `body` launches on
+// `bodyStream`. The edge into the node is a plain one.
+template <class Body>
+void capture_if(cudaStream_t stream, cudaStream_t bodyStream, cudaGraphConditionalHandle handle, Body&& body) {
+    cudaStreamCaptureStatus status{};
+    cudaGraph_t graph = nullptr;
+    const cudaGraphNode_t* dependencies = nullptr;
+    const cudaGraphEdgeData* edges = nullptr;
+    size_t count = 0;
+    check(cudaStreamGetCaptureInfo(stream, &status, nullptr, &graph, &dependencies, &edges, &count), "capture info");
+    cudaGraphNodeParams params{};
+    params.type = cudaGraphNodeTypeConditional;
+    params.conditional.handle = handle;
+    params.conditional.type = cudaGraphCondTypeIf;
+    params.conditional.size = 1;
+    cudaGraphNode_t node = nullptr;
+    check(cudaGraphAddNode(&node, graph, dependencies, nullptr, count, &params), "adding an IF node");
+    check(cudaStreamUpdateCaptureDependencies(stream, &node, nullptr, 1, cudaStreamSetCaptureDependencies),
+          "capture dependencies");
+    cudaGraph_t bodyGraph = params.conditional.phGraph_out[0];
+    check(cudaStreamBeginCaptureToGraph(bodyStream, bodyGraph, nullptr, nullptr, 0, cudaStreamCaptureModeRelaxed),
+          "capturing an IF body");
+    body(bodyStream);
+    check(cudaStreamEndCapture(bodyStream, &bodyGraph), "capturing an IF body");
+}
+
+// One variant on one liquid: its state, its graph or cooperative grid, and its steps.
+class Variant {
+public:
+    Variant(Design design, int lanes, System& s, cudaStream_t stream, cudaStream_t bodyStream)
+        : design_(design), lanes_(lanes), s_(s), stream_(stream), bodyStream_(bodyStream) {}
+    Variant(const Variant&) = delete;
+    Variant& operator=(const Variant&) = delete;
+    ~Variant() {
+        if (exec_) cudaGraphExecDestroy(exec_);
+    }
+
+    std::string name() const {
+        if (design_ == Design::kChain) return "chain";
+        return std::string(design_ == Design::kFused ? "fused-" : "persistent-") + std::to_string(lanes_);
+    }
+    int grid() const { return design_ == Design::kPersistent ? cooperativeBlocks_ : blocks_for(static_cast<long long>(s_.n) * lanes_); }
+
+    // Puts the liquid in the state at step 0 with its list built, and lays the list out for the
+    // variant's lanes (by columns for one lane per particle, by rows for several, as the engine).
+    void reset(const Liquid& liquid) {
+        check(cudaMemcpy(s_.pos[0], liquid.pos.data(), sizeof(float4) * s_.n, cudaMemcpyHostToDevice), "copy");
+        check(cudaMemcpy(s_.vel, liquid.vel.data(), sizeof(float4) * s_.n, cudaMemcpyHostToDevice), "copy");
+        for (int* counter : {s_.rebuild, s_.builds, s_.overflow}) check(cudaMemset(counter, 0, sizeof(int)), "memset");
+        check(cudaMemset(s_.rebuildByStep, 0, 3 * sizeof(int)), "memset");
+        check(cudaMemset(s_.blocksDone, 0, sizeof(unsigned)), "memset");
+        s_.particleStride = lanes_ == 1 ? 1 : kListCapacity;
+        s_.entryStride = lanes_ == 1 ? s_.n : 1;
+        parity_ = 0;
+        persistentStep_ = 0;
+        launch_build(s_, s_.pos[0], stream_);
+        check(cudaMemsetAsync(s_.builds, 0, sizeof(int), stream_), "memset");
+        check(cudaStreamSynchronize(stream_), "initial build");
+    }
+
+    // The forces at step 0 into `forceOut`, and the first step's half: chain computes f(0);
+    // fused and persistent take the first step without its closing kick, so that every later step
+    // repeats chain's arithmetic (chain's state x(n), v(n), f(n) against their x(n+1), v(n+1/2)).
+    void start(float4* forceOut) {
+        with_lanes(lanes_, [&](auto lanes) {
+            constexpr int L = decltype(lanes)::value;
+            const int blocks = blocks_for(static_cast<long long>(s_.n) * L);
+            if (design_ == Design::kChain) {
+                chain_pair<L><<<blocks, kThreads, 0, stream_>>>(s_);
+                check(cudaMemcpyAsync(forceOut, s_.force, sizeof(float4) * s_.n, cudaMemcpyDeviceToDevice, stream_), "copy");
+            } else if (design_ == Design::kFused) {
+                fused_step<L><<<blocks, kThreads, 0, stream_>>>(s_, s_.pos[0], s_.pos[1], false, 0, forceOut);
+                check(cudaStreamSynchronize(stream_), "first fused step");
+                if (read_one(s_.rebuild)) launch_build(s_, s_.pos[1], stream_);
+                parity_ = 1;
+            } else {
+                launch_persistent<L>(1, false, forceOut);
+            }
+        });
+        check(cudaStreamSynchronize(stream_), "first step");
+        if (design_ != Design::kPersistent) capture();
+    }
+
+    // Steps on: a multiple of kStepsPerGraph for the graph designs.
+    void run(int steps) {
+        if (design_ == Design::kPersistent) {
+            with_lanes(lanes_, [&](auto lanes) { launch_persistent<decltype(lanes)::value>(steps, true, nullptr); });
+            return;
+        }
+        for (int done = 0; done < steps; done += kStepsPerGraph) check(cudaGraphLaunch(exec_, stream_), "graph launch");
+    }
+
+    // The positions one drift after the state, x(n+1): chain's are drifted on scratch copies by its own
+    // drift kernel, the others hold them already.
+    std::vector<float4> next_positions() {
+        if (design_ != Design::kChain) return to_host(s_.pos[parity_], s_.n);
+        float4 *pos = device_array<float4>(s_.n), *vel = device_array<float4>(s_.n);
+        int* flag = device_array<int>(1);
+        check(cudaMemcpy(pos, s_.pos[0], sizeof(float4) * s_.n, cudaMemcpyDeviceToDevice), "copy");
+        check(cudaMemcpy(vel, s_.vel, sizeof(float4) * s_.n, cudaMemcpyDeviceToDevice), "copy");
+        chain_drift<<<blocks_for(s_.n), kThreads>>>(s_, pos, vel, flag);
+        std::vector<float4> next = to_host(pos, s_.n);
+        cudaFree(pos);
+        cudaFree(vel);
+        cudaFree(flag);
+        return next;
+    }
+
+    double energy() const {
+        return design_ == Design::kChain ? total_energy(s_, s_.pos[0], false) : total_energy(s_, s_.pos[parity_], true);
+    }
+
+private:
+    template <int L>
+    void launch_persistent(int steps, bool closingFirst, float4* forceOut) {
+        if (!cooperativeBlocks_) {
+            int perMultiprocessor = 0, multiprocessors = 0;
+            check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perMultiprocessor, persistent_steps<L>, kThreads, 0),
+                  "occupancy");
+            check(cudaDeviceGetAttribute(&multiprocessors, cudaDevAttrMultiProcessorCount, 0), "device");
+            cooperativeBlocks_ = std::max(1, std::min(perMultiprocessor * multiprocessors,
+                                                      blocks_for(static_cast<long long>(s_.n) * L)));
+        }
+        int parity = parity_;
+        long long firstStep = persistentStep_;
+        void* args[] = {&s_, &parity, &firstStep, &steps, &closingFirst, &forceOut};
+        check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(persistent_steps<L>), dim3(cooperativeBlocks_),
+                                          dim3(kThreads), args, 0, stream_),
+              "cooperative launch");
+        parity_ = (parity_ + steps) & 1;
+        persistentStep_ += steps;
+    }
+
+    void capture() {
+        cudaGraph_t graph = nullptr;
+        check(cudaStreamBeginCapture(stream_, cudaStreamCaptureModeThreadLocal), "begin capture");
+        with_lanes(lanes_, [&](auto lanes) {
+            constexpr int L = decltype(lanes)::value;
+            const int pairBlocks = blocks_for(static_cast<long long>(s_.n) * L), particleBlocks = blocks_for(s_.n);
+            for (int step = 0; step < kStepsPerGraph; ++step) {
+                cudaGraphConditionalHandle handle{};
+                check(cudaGraphConditionalHandleCreate(&handle, capturing_graph(stream_), 0, 0), "graph condition");
+                if (design_ == Design::kChain) {
+                    launch(chain_clock, 1, 1, stream_, step > 0, s_);
+                    launch(chain_drift, particleBlocks, kThreads, stream_, true, s_, s_.pos[0], s_.vel, s_.rebuild);
+                    launch(chain_set_condition, 1, 1, stream_, true, s_, handle);
+                    capture_if(stream_, bodyStream_, handle, [&](cudaStream_t body) { launch_build(s_, s_.pos[0], body); });
+                    launch(chain_pair<L>, pairBlocks, kThreads, stream_, false, s_);
+                    launch(chain_kick, particleBlocks, kThreads, stream_, true, s_);
+                } else {
+                    const float4* in = s_.pos[(parity_ + step) & 1];
+                    float4* out = s_.pos[(parity_ + step + 1) & 1];
+                    launch(fused_step<L>, pairBlocks, kThreads, stream_, false, s_, in, out, true, handle,
+                           static_cast<float4*>(nullptr));
+                    capture_if(stream_, bodyStream_, handle, [&](cudaStream_t body) { launch_build(s_, out, body); });
+                }
+            }
+        });
+        check(cudaStreamEndCapture(stream_, &graph), "end capture");
+        check(cudaGraphInstantiate(&exec_, graph, 0), "instantiate");
+        check(cudaGraphUpload(exec_, stream_), "upload");
+        cudaGraphDestroy(graph);
+    }
+
+    Design design_;
+    int lanes_;
+    System& s_;
+    cudaStream_t stream_, bodyStream_;
+    cudaGraphExec_t exec_ = nullptr;
+    int parity_ = 0;
+    long long persistentStep_ = 0;
+    int cooperativeBlocks_ = 0;
+};
+
+// The engine's lanes for a pair kernel (kNeighbourSum): the most that keep the particles' threads
+// within half the resident threads of the device.
+int engine_lanes(int n) {
+    int multiprocessors = 0, threadsPerMultiprocessor = 0;
+    check(cudaDeviceGetAttribute(&multiprocessors, cudaDevAttrMultiProcessorCount, 0), "device");
+    check(cudaDeviceGetAttribute(&threadsPerMultiprocessor, cudaDevAttrMaxThreadsPerMultiProcessor, 0), "device");
+    const long long resident = static_cast<long long>(multiprocessors) * threadsPerMultiprocessor;
+    int lanes = 1;
+    while (lanes < 32 && 2ll * n * lanes <= resident / 2) lanes *= 2;
+    return lanes;
+}
+
+struct Options {
+    int steps = 2000;
+    int warmup = 200;
+    int checkSteps = 100;
+    std::string csv;
+    std::vector<int> sizes;
+};
+
+int round_to_graphs(int steps) { return std::max(1, (steps + kStepsPerGraph - 1) / kStepsPerGraph) * kStepsPerGraph; }
+
+struct Row {
+    int n;
+    std::string variant;
+    int lanes, blocks;
+    double usPerStep, stepsPerSecond, buildsPer1000, forceError, trajectoryError, energyDrift, neighbours;
+};
+
+// Largest |dF| over particles and components, in units of the sum of the particle's pair-force
+// magnitudes (the scale of its round-off).
+double relative_force_error(const std::vector<float4>& force, const Reference& r) {
+    double worst = 0;
+    for (size_t i = 0; i < force.size(); ++i) {
+        const double scale = std::max(1.0, r.magnitudes[i]);
+        worst = std::max({worst, std::fabs(force[i].x - r.force[i].x) / scale, std::fabs(force[i].y - r.force[i].y) / scale,
+                          std::fabs(force[i].z - r.force[i].z) / scale});
+    }
+    return worst;
+}
+
+double largest_displacement(const std::vector<float4>& a, const std::vector<float4>& b, float length) {
+    double worst = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const double d[3] = {double(a[i].x) - b[i].x, double(a[i].y) - b[i].y, double(a[i].z) - b[i].z};
+        for (double c : d) worst = std::max(worst, std::fabs(c - length * std::rint(c / length)));
+    }
+    return worst;
+}
+
+// Forces: |dF| within 1e-4 of the pair forces' magnitude sum (a float pair force wrapped through the
+// box carries ~1e-5 relative error; a missing or doubled pair is far larger). Trajectories: the
+// same sum order repeats chain's arithmetic and should give 0; another order starts at round-off
+// (~1e-6) and the liquid's chaos (Lyapunov exponent ~5 per tau) multiplies it by ~10 over 0.5 tau,
+// well under 1e-3, while a force or kick in error moves particles by more within those steps.
+constexpr double kForceTolerance = 1e-4;
+constexpr double kTrajectoryTolerance = 1e-3;
+
+bool run_size(int cellsPerEdge, const Options& options, std::vector<Row>& rows) {
+    const Liquid liquid = make_liquid(cellsPerEdge);
+    if (liquid.perEdge < 3) {
+        std::fprintf(stderr, "k = %d: fewer than 3 list cells per edge\n", cellsPerEdge);
+        return false;
+    }
+    System s = make_system(liquid);
+    cudaStream_t stream, bodyStream;
+    // The steps' stream synchronises with the legacy stream that the checks' copies and kernels use.
+    check(cudaStreamCreate(&stream), "stream");
+    check(cudaStreamCreateWithFlags(&bodyStream, cudaStreamNonBlocking), "stream");
+    check(cudaMemcpy(s.pos[0], liquid.pos.data(), sizeof(float4) * s.n, cudaMemcpyHostToDevice), "copy");
+    const Reference reference = reference_at(s, s.pos[0]);
+    float4* firstForces = device_array<float4>(s.n);
+    int* listedWithin = device_array<int>(s.n);
+    const int checkSteps = round_to_graphs(options.checkSteps), warmup = round_to_graphs(options.warmup),
+              steps = round_to_graphs(options.steps);
+
+    const int chainLanes = engine_lanes(s.n);
+    std::vector<std::pair<Design, int>> designs = {{Design::kChain, chainLanes}};
+    for (int lanes : {1, 2, 4, 8, 16, 32}) designs.push_back({Design::kFused, lanes});
+    for (int lanes : {1, 2, 4, 8, 16, 32}) designs.push_back({Design::kPersistent, lanes});
+
+    bool passed = true;
+    std::vector<float4> chainPositions;
+    for (const auto& [design, lanes] : designs) {
+        Variant variant(design, lanes, s, stream, bodyStream);
+        variant.reset(liquid);
+        listed_within_cutoff<<<blocks_for(s.n), kThreads>>>(s, s.pos[0], listedWithin);
+        const std::vector<int> listed = to_host(listedWithin, s.n);
+        const std::vector<int> counts = to_host(s.listCount, s.n);
+        const double neighbours = std::accumulate(counts.begin(), counts.end(), 0.0) / s.n;
+        int listsMissingPairs = 0;
+        for (int i = 0; i < s.n; ++i) listsMissingPairs += listed[i] != reference.withinCutoff[i];
+
+        variant.start(firstForces);
+        const double forceError = relative_force_error(to_host(firstForces, s.n), reference);
+        variant.run(checkSteps);
+        const std::vector<float4> positions = variant.next_positions();
+        if (design == Design::kChain) chainPositions = positions;
+        const double trajectoryError = largest_displacement(positions, chainPositions, s.length);
+
+        variant.run(warmup);
+        check(cudaStreamSynchronize(stream), "warm-up");
+        const double energyBefore = variant.energy();
+        const int buildsBefore = read_one(s.builds);
+        cudaEvent_t begin, end;
+        check(cudaEventCreate(&begin), "event");
+        check(cudaEventCreate(&end), "event");
+        check(cudaEventRecord(begin, stream), "event");
+        variant.run(steps);
+        check(cudaEventRecord(end, stream), "event");
+        check(cudaEventSynchronize(end), variant.name().c_str());
+        float ms = 0;
+        check(cudaEventElapsedTime(&ms, begin, end), "event");
+        cudaEventDestroy(begin);
+        cudaEventDestroy(end);
+        const int builds = read_one(s.builds) - buildsBefore;
+        const double energyAfter = variant.energy();
+        const int overflow = read_one(s.overflow);
+
+        const double us = 1000.0 * ms / steps;
+        rows.push_back({s.n, variant.name(), lanes, variant.grid(), us, 1e6 / us, 1000.0 * builds / steps, forceError,
+                        trajectoryError, (energyAfter - energyBefore) / s.n, neighbours});
+        const Row& r = rows.back();
+        std::printf("%9d  %-14s %5d %7d %9.2f %11.0f %8.1f %10.2e %10.2e %11.2e %6.1f\n", r.n, r.variant.c_str(), r.lanes,
+                    r.blocks, r.usPerStep, r.stepsPerSecond, r.buildsPer1000, r.forceError, r.trajectoryError,
+                    r.energyDrift, r.neighbours);
+        std::fflush(stdout);
+        if (listsMissingPairs || forceError > kForceTolerance || trajectoryError > kTrajectoryTolerance || overflow) {
+            std::fprintf(stderr,
+                         "%s at %d particles failed: %d lists differ from the reference's pairs within rc, force "
+                         "error %.2e (tolerance %.0e), positions %.2e from chain's (tolerance %.0e), %d overflows\n",
+                         r.variant.c_str(), s.n, listsMissingPairs, forceError, kForceTolerance, trajectoryError,
+                         kTrajectoryTolerance, overflow);
+            passed = false;
+        }
+    }
+    cudaFree(firstForces);
+    cudaFree(listedWithin);
+    cudaStreamDestroy(stream);
+    cudaStreamDestroy(bodyStream);
+    free_system(s);
+    return passed;
+}
+
+Options parse(int argc, char** argv) {
+    Options options;
+    for (int a = 1; a < argc; ++a) {
+        const std::string arg = argv[a];
+        auto value = [&] {
+            if (a + 1 >= argc) {
+                std::fprintf(stderr, "%s needs a value\n", arg.c_str());
+                std::exit(2);
+            }
+            return std::string(argv[++a]);
+        };
+        if (arg == "--steps")
+            options.steps = std::stoi(value());
+        else if (arg == "--warmup")
+            options.warmup = std::stoi(value());
+        else if (arg == "--check-steps")
+            options.checkSteps = std::stoi(value());
+        else if (arg == "--csv")
+            options.csv = value();
+        else if (!arg.empty() && arg[0] != '-')
+            options.sizes.push_back(std::stoi(arg));
+        else {
+            std::fprintf(stderr,
+                         "usage: %s [--steps S] [--warmup W] [--check-steps C] [--csv PATH] [cells per edge ...]\n",
+                         argv[0]);
+            std::exit(2);
+        }
+    }
+    if (options.sizes.empty()) options.sizes = {10, 14, 25};
+    return options;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Options options = parse(argc, argv);
+    cudaDeviceProp prop{};
+    check(cudaGetDeviceProperties(&prop, 0), "device");
+    int cooperative = 0;
+    check(cudaDeviceGetAttribute(&cooperative, cudaDevAttrCooperativeLaunch, 0), "device");
+    if (!cooperative) {
+        std::fprintf(stderr, "%s cannot launch cooperative kernels\n", prop.name);
+        return 1;
+    }
+    std::printf("# %s; timed steps %d after %d warm-up steps, trajectories compared after %d steps\n", prop.name,
+                round_to_graphs(options.steps), round_to_graphs(options.warmup), round_to_graphs(options.checkSteps));
+    std::printf("%9s  %-14s %5s %7s %9s %11s %8s %10s %10s %11s %6s\n", "particles", "variant", "lanes", "blocks",
+                "us/step", "steps/s", "builds", "max|dF|", "max|dx|", "dE/N", "list");
+    std::vector<Row> rows;
+    bool passed = true;
+    for (int k : options.sizes) passed = run_size(k, options, rows) && passed;
+    if (!options.csv.empty()) {
+        FILE* out = std::fopen(options.csv.c_str(), "w");
+        if (!out) {
+            std::fprintf(stderr, "cannot write %s\n", options.csv.c_str());
+            return 1;
+        }
+        std::fprintf(out,
+                     "particles,variant,lanes,blocks,us_per_step,steps_per_s,builds_per_1000_steps,max_force_error,"
+                     "max_position_difference,energy_drift_per_particle,mean_list_length\n");
+        for (const Row& r : rows)
+            std::fprintf(out, "%d,%s,%d,%d,%.4f,%.1f,%.2f,%.3e,%.3e,%.4e,%.2f\n", r.n, r.variant.c_str(), r.lanes,
+                         r.blocks, r.usPerStep, r.stepsPerSecond, r.buildsPer1000, r.forceError, r.trajectoryError,
+                         r.energyDrift, r.neighbours);
+        std::fclose(out);
+    }
+    if (!passed) std::fprintf(stderr, "some variant failed its checks; its timings are not to be used\n");
+    return passed ? 0 : 1;
+}
