@@ -14,6 +14,8 @@
 //                the list build in an IF conditional node, the pair kernel, the closing kick), the
 //                edges between consecutive kernels programmatic (dependent launch) as in the
 //                engine. Lanes per particle as the engine sizes them (kNeighbourSum, core/lanes.hpp).
+//                The pair kernel stores the forces (nothing to clear) and the particles keep their
+//                order (sorted by cell once, at the start), so the drift has no slot copy to make.
 //   fused-L      one kernel per step at L lanes per particle: the pair kernel reads x(n) from one
 //                buffer and each particle's epilogue applies the closing kick of step n, the opening
 //                kick of step n+1 and the drift, writing x(n+1) to the other buffer; the last block
@@ -354,11 +356,13 @@ __global__ void fused_step(System s, const float4* __restrict__ in, float4* __re
         const float3 f = pair_force<L, true>(s, in, g);
         if (g.lane == 0) {
             if (forceOut) forceOut[g.item] = make_float4(f.x, f.y, f.z, 0.f);
-            if (advance_particle(s, __ldg(in + g.item), out, g.item, f, closing)) *s.rebuild = 1;
+            if (advance_particle(s, __ldg(in + g.item), out, g.item, f, closing)) {
+                *s.rebuild = 1;
+                __threadfence();  // the flag reaches the last block before this block counts itself done
+            }
         }
     }
     if (!handle) return;
-    __threadfence();
     __syncthreads();
     if (threadIdx.x == 0 && atomicAdd(s.blocksDone, 1u) == gridDim.x - 1) {
         *s.blocksDone = 0;
