@@ -14,6 +14,7 @@
 #include "engines/engine_options.hpp"
 #include "simulation/read_simulation.hpp"
 #include "simulation/simulation.hpp"
+#include "simulation/transverser_call.hpp"
 #include "structmd.h"
 
 namespace structmd {
@@ -53,6 +54,14 @@ struct structmd_sim {
     // What a force callback said through structmd_set_callback_error while it ran (callbacks.cpp).
     std::string callbackError;
     bool inCallback = false;
+    // The last registered transverser call, made from the host's arguments (transversers.cpp): a
+    // loop that runs one transverser every step parses its parameters once. The components are
+    // fixed at creation, so the same arguments always make the same call.
+    struct {
+        std::string name, parameters;
+        double cutoff = 0;
+        std::unique_ptr<const structmd::TransverserCall> call;
+    } lastTransverser;
     std::string lastError;
 };
 

@@ -1,6 +1,7 @@
 // Transversers from the host: an expression transverser run once (SimulationProbes::expression_sum),
 // and a transverser a plugin registered, run once by name, its values copied to the host
 // (SimulationProbes::traverse) or lent as a DLPack tensor (SimulationProbes::traverse_on_backend).
+// A host that runs the same transverser call after call has its parameters read once.
 #include <string>
 
 #include "api/dlpack_tensor.hpp"
@@ -10,6 +11,25 @@
 
 using namespace structmd;
 using namespace structmd::api;
+
+namespace {
+
+// make_transverser_call, or the handle's last call when the arguments are the same.
+const TransverserCall& transverser_call(structmd_sim& s, const char* name, const char* parameters, double cutoff) {
+    auto& last = s.lastTransverser;
+    const char* given = parameters ? parameters : "";
+    // A NaN cutoff never equals the last one, so it reaches the check that refuses it.
+    if (!last.call || last.name != name || last.parameters != given || !(last.cutoff == cutoff)) {
+        last.call.reset();
+        last.call = std::make_unique<const TransverserCall>(make_transverser_call(*s.components, name, parameters, cutoff));
+        last.name = name;
+        last.parameters = given;
+        last.cutoff = cutoff;
+    }
+    return *last.call;
+}
+
+}  // namespace
 
 extern "C" {
 
@@ -37,7 +57,7 @@ structmd_status structmd_traverse(structmd_sim* sim, const char* name, const cha
     return with_handle(sim, [&](structmd_sim& s) {
         Simulation& simulation = loaded(s);
         require_pointer(name, "name");
-        const TransverserCall call = make_transverser_call(*s.components, name, parameters, cutoff);
+        const TransverserCall& call = transverser_call(s, name, parameters, cutoff);
         const int64_t expected = simulation.particle_count() * call.values;
         if (n != expected)
             throw Error(STRUCTMD_ERR_ARGUMENT, "n: expected " + std::to_string(expected) + " (" +
@@ -54,7 +74,7 @@ structmd_status structmd_traverse_view(structmd_sim* sim, const char* name, cons
         Simulation& simulation = loaded(s);
         require_pointer(name, "name");
         require_pointer(view, "view");
-        const TransverserCall call = make_transverser_call(*s.components, name, parameters, cutoff);
+        const TransverserCall& call = transverser_call(s, name, parameters, cutoff);
         const SimulationProbes::TransverserOutput output = simulation.probes().traverse_on_backend(call);
         // One value per particle is a vector, as Python's Simulation.traverse gives it.
         const int ndim = output.values == 1 ? 1 : 2;

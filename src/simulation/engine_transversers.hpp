@@ -43,13 +43,13 @@ void Engine<B, R, PairR>::expression_sum(const ExpressionTransverserSpec& spec, 
     const std::string key = spec.key();
     auto found = std::find_if(transversers_.begin(), transversers_.end(), [&](const auto& t) { return t.first == key; });
     if (found == transversers_.end()) {
-        const auto list = spec.cutoff > 0 ? transverser_list(spec.cutoff) : nullptr;
-        transversers_.emplace_back(key, std::make_unique<PreparedExpressionSum<B, R>>(
-                                            backend_, spec, context_, list, list && transverser_owns(*list)));
+        transversers_.emplace_back(key, std::make_unique<PreparedExpressionSum<B, R>>(backend_, spec, context_));
         found = transversers_.end() - 1;
     }
     PreparedExpressionSum<B, R>& prepared = *found->second;
-    prepared.run(p_, spec.group >= 0 ? forceField_.group(spec.group) : nullptr);
+    const std::shared_ptr<VerletList<B, R>> list = spec.cutoff > 0 ? transverser_list(spec.cutoff) : nullptr;
+    prepared.run(p_, spec.group >= 0 ? forceField_.group(spec.group) : nullptr, list.get(),
+                 list && transverser_owns(*list));
     const std::vector<R> values = io_.download(prepared.output());
     std::copy(values.begin(), values.end(), perParticle);
 }
@@ -88,7 +88,9 @@ void Engine<B, R, PairR>::run_registered_transverser(const TransverserCall& call
     const std::shared_ptr<VerletList<B, R>> list = call.cutoff > 0 ? transverser_list(call.cutoff) : nullptr;
     const int64_t n = p_.count;
     backend_.resize(transverserOut_, n * call.values);
-    backend_.fill(transverserOut_, R(0));
+    // Without a group every particle's set writes its values (docs/plugins.md), so only a group
+    // needs the zeros.
+    if (group) backend_.fill(transverserOut_, R(0));
     if (n > 0) {
         const TransverserInputs<R> inputs{n, p_.pos.data(), p_.vel.empty() ? nullptr : p_.vel.data(),
                                           p_.charge.empty() ? nullptr : p_.charge.data(),

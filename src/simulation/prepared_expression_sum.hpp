@@ -44,11 +44,8 @@ struct CompiledKernelsOf<B, std::void_t<typename B::CompiledKernels>> {
 template <class B, class R>
 class PreparedExpressionSum {
 public:
-    // list: one that offers every pair within spec.cutoff (Engine::transverser_list); null for all
-    // pairs. adaptList: whether this sum adapts it after each run (a list of the transversers' own).
-    PreparedExpressionSum(const B& backend, const ExpressionTransverserSpec& spec, const ForceFieldContext& context,
-                          std::shared_ptr<VerletList<B, R>> list, bool adaptList)
-        : backend_(backend), spec_(spec), batch_(context.batch), list_(std::move(list)), adaptList_(adaptList) {
+    PreparedExpressionSum(const B& backend, const ExpressionTransverserSpec& spec, const ForceFieldContext& context)
+        : backend_(backend), spec_(spec), batch_(context.batch) {
         if constexpr (B::compiles_at_run_time) {
             const ExpressionSumKernels source = expression_sum_kernels(spec, real_type_name<R>());
             kernels_ = backend.compile(source.source, source.names);
@@ -58,32 +55,37 @@ public:
         }
     }
 
-    // Each particle's sum into output() (0 outside the group), for the current positions.
-    void run(Particles<B, R>& p, const uint8_t* group) {
+    // Each particle's sum into output() (0 outside the group), for the current positions. list: one
+    // that offers every pair within spec.cutoff (Engine::transverser_list), asked for at each run
+    // since the force field's lists change when it is made again; null for all pairs. adaptList:
+    // whether this run adapts it afterwards (a list of the transversers' own).
+    void run(Particles<B, R>& p, const uint8_t* group, VerletList<B, R>* list, bool adaptList) {
         backend_.resize(out_, p.count);
-        backend_.fill(out_, R(0));
+        // Without a group every particle's set writes its sum, so only a group needs the zeros.
+        if (group) backend_.fill(out_, R(0));
         if (p.count == 0) return;
         if constexpr (B::compiles_at_run_time) {
-            traverse<OpaqueSumFunction>(p, group, OpaqueSumFunction::Params<R>{{R(0)}});
+            traverse<OpaqueSumFunction>(p, group, list, OpaqueSumFunction::Params<R>{{R(0)}});
         } else {
             typename InterpretedExpression::template Params<R> params{};
             params.program = program_->view();
-            traverse<InterpretedExpression>(p, group, params);
+            traverse<InterpretedExpression>(p, group, list, params);
         }
-        if (list_ && adaptList_) list_->adapt();
+        if (list && adaptList) list->adapt();
     }
 
     const typename B::template Buffer<R>& output() const { return out_; }
 
 private:
     template <class Function>
-    void traverse(Particles<B, R>& p, const uint8_t* group, const typename Function::template Params<R>& params) {
+    void traverse(Particles<B, R>& p, const uint8_t* group, VerletList<B, R>* list,
+                  const typename Function::template Params<R>& params) {
         const ExpressionSum<Function, R> sum{params, p.charge.empty() ? nullptr : p.charge.data(),
                                              p.radius.empty() ? nullptr : p.radius.data(),
                                              p.vel.empty() ? nullptr : p.vel.data(), out_.data()};
-        if (list_) {
-            list_->update(p.pos, p.count, p.box, p.version);
-            const NeighbourTraversal<ExpressionSum<Function, R>, R> traversal{sum, list_->view(),
+        if (list) {
+            list->update(p.pos, p.count, p.box, p.version);
+            const NeighbourTraversal<ExpressionSum<Function, R>, R> traversal{sum, list->view(),
                                                                               R(spec_.cutoff * spec_.cutoff), group};
             launch(0, p.count, traversal);
         } else {
@@ -106,8 +108,6 @@ private:
     const B& backend_;
     ExpressionTransverserSpec spec_;
     const int* batch_;  // the particles' batches, numbered 0, 1, ... (null: one batch)
-    std::shared_ptr<VerletList<B, R>> list_;  // null: all pairs
-    bool adaptList_;
     std::shared_ptr<UploadedProgram<B, R>> program_;
     typename CompiledKernelsOf<B>::type kernels_{};
     typename B::template Buffer<R> out_;

@@ -26,8 +26,9 @@
 // lanes' totals with accumulate: accumulate must be associative and commutative (a sum, a max), and
 // Compute trivially copyable. Info must be plain data too: over all pairs of a large system the GPU
 // copies the partners' Info into shared-memory tiles (all_pairs_traversal.hpp). set() is called once
-// per particle traversed, with its full total.
-// What the host prepares (uploading a table, zeroing an output) it does before building the struct.
+// per particle traversed, with its full total; without a group that is every particle, so it must
+// write all of what the caller reads (the engine zeroes an output only for a group).
+// What the host prepares (uploading a table) it does before building the struct.
 #include "core/hd.hpp"
 #include "core/vec.hpp"
 

@@ -13,7 +13,8 @@
 //
 // make() is called on the host before each run, with the particles' arrays on the backend and the
 // output: Functor<R>::set(i, total) writes particle i's `values` numbers at in.out[values * i ...],
-// which the engine zeroed (particles outside the group keep 0). The host receives them in id order.
+// all of them (the engine zeroes the output only for a group: particles outside it keep 0). The host
+// receives them in id order.
 // run_transverser, instantiated where the plugin is compiled (for CUDA by nvcc), launches the
 // functor over a neighbour list or over all pairs, as the engine asks.
 #include <functional>
@@ -38,7 +39,7 @@ struct TransverserInputs {
     const Real4<R>* velocities;  // w: the mass
     const R* charge;
     const R* radius;
-    R* out;  // values * count numbers, zeroed
+    R* out;  // values * count numbers, zeroed only for a group (set writes every particle's otherwise)
 };
 
 // One run as the engine hands it to a registered transverser.

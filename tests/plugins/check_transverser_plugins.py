@@ -120,6 +120,11 @@ def check_lennard_jones(sim, tolerance, label):
     engine = np.asarray(sim.forces)
     assert np.abs(engine).max() > 1.0, "the test geometry has no force to check"
     close(forces, engine, tolerance, f"{label}: LJ transverser against the engine's LJ")
+    # The handle keeps its last call made from the same arguments: other parameters make another.
+    close(sim.traverse("LennardJonesForce", 2.5, {"epsilon": 2.0, "sigma": 1.0}), 2 * forces, tolerance,
+          f"{label}: LJ transverser at twice epsilon")
+    close(sim.traverse("LennardJonesForce", 2.5, {"epsilon": 1.0, "sigma": 1.0}), forces, tolerance,
+          f"{label}: LJ transverser back at epsilon 1")
     # And against numpy, which knows nothing of either.
     d, r = separations(sim.positions)
     with np.errstate(divide="ignore", invalid="ignore"):

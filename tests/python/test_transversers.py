@@ -210,6 +210,24 @@ def test_a_pair_terms_list_is_used_where_it_offers_every_pair(sim):
     check_a_pair_terms_list_is_shared(sim, lambda cutoff: sim.traverse_expression(f"r < {cutoff}", cutoff), 2.0, 3.0, 5)
 
 
+def test_an_expression_transverser_goes_over_the_list_of_a_force_field_made_again(sim):
+    """structmd_set_parameter makes the force field and its lists again. A prepared expression
+    transverser then goes over the new LJ list, and the list it went over before is freed: the
+    engine's memory is back to what it held before the first call, plus that call's output."""
+    from test_measures import NEIGHBOUR_LIST, lj_entry
+    positions, velocities = lattice(seed=11)
+    sim.load(document(positions, velocities, steps=100, time_step=0.002,
+                      force_field={"nl": NEIGHBOUR_LIST, "lj": lj_entry()}))
+    sim.step(5)
+    held = sim.counters["device_memory_bytes"]
+    sim.traverse_expression("r < 2", 2.0)
+    sim.set_parameter("topology.forceField.lj.parameters.cutOffFactor", 2.5)
+    sim.step(20)
+    _, r = separations(sim.positions)
+    np.testing.assert_array_equal(sim.traverse_expression("r < 2", 2.0), np.sum(r < 2, axis=1))
+    assert sim.counters["device_memory_bytes"] - held <= 8 * len(positions) + 4096
+
+
 def test_a_list_that_leaves_pairs_out_is_not_used(sim):
     """A pair term over the pairs that are not excluded (a bond excludes 0-1, lattice neighbours): a
     transverser still counts every pair, the bonded one too."""
