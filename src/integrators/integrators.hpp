@@ -36,6 +36,10 @@ void visit_builtin_integrators(Visitor& v) {
     v.template integrator<LangevinGJF, LangevinInputs>({"Langevin", "GJF"});
     v.template integrator<BrownianEulerMaruyama, BrownianInputs>({"Brownian", "EulerMaruyama"});
     v.template integrator<BrownianEulerMaruyamaRigidBody, BrownianRigidBodyInputs>({"Brownian", "EulerMaruyamaRigidBody"});
+    // The same integration: the patches' states change by the patch terms' own rule here, and no patch
+    // term of UAMMD-structured defines a probability for the transitions it adds (docs/input-format.md).
+    v.template integrator<BrownianEulerMaruyamaRigidBody, BrownianRigidBodyInputs>(
+        {"Brownian", "EulerMaruyamaRigidBodyPatchesState"});
     v.template integrator<BdhiCholesky, BdhiOpenBoundaryInputs>({"BDHIOpenBoundary", "Cholesky"});
     v.template integrator<BdhiLanczos, BdhiLanczosInputs>({"BDHIOpenBoundary", "Lanczos"});
     // UAMMD-structured registers it as BDHITriplePeriodic; its documentation says BDHITriplyPeriodic.

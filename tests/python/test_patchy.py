@@ -403,6 +403,27 @@ def test_write_patchy_particles_reads_back(options, tmp_path):
         assert list(frame[3:, 3]) == [0.1 if t == "S" else 0.2 for _, t, _ in PATCHES]
 
 
+def test_the_patches_state_integrator_moves_as_the_rigid_body_one(options):
+    """["Brownian","EulerMaruyamaRigidBodyPatchesState"] is EulerMaruyamaRigidBody with the patches'
+    state transitions, which the dynamic patch term makes by its own rule: the same input under either
+    name gives the same trajectory, bit for bit, through dynamic bonds and turning bodies."""
+    positions, directions, _, entry = bonding_system(dynamic=True)
+    trajectories = []
+    for name in ("EulerMaruyamaRigidBody", "EulerMaruyamaRigidBodyPatchesState"):
+        doc = document(positions, directions, entry)
+        doc["integrator"] = {"bd": {"type": ["Brownian", name], "parameters": {"timeStep": 0.001, "viscosity": 1.0}},
+                             "schedule": {"type": ["Schedule", "Integrator"], "labels": ["order", "integrator", "steps"],
+                                          "data": [[1, "bd", 50]]}}
+        with structmd.Simulation(options) as sim:
+            sim.load(doc)
+            sim.step(50)
+            trajectories.append((np.array(sim.positions), np.array(sim.orientations)))
+    (x, q), (x_alias, q_alias) = trajectories
+    assert np.abs(q - directions).max() > 1e-3, "the bodies did not turn"
+    np.testing.assert_array_equal(x_alias, x)
+    np.testing.assert_array_equal(q_alias, q)
+
+
 def test_potential_measure_writes_the_patches_torques(options, tmp_path):
     entry, _ = cosrap_case()
     directions = random_quaternions(3, 4)
