@@ -191,12 +191,15 @@ def check_hydrodynamics(script):
     # invariance (2 %) and radius (0.91 h, 1.5 % off the RPY one in this box) bound it, 10 %.
     # The inertial coupling methods have no one-step reference: their error is left empty. The magnetic
     # force coupling method against the force coupling method's translation at tolerance 1e-6.
+    # Dissipative particle dynamics: its kinetic temperature a few per cent over the thermostat's at
+    # dt 0.04 (a broken thermostat drifts far from it; 150 particles average to within about 5 %);
+    # smoothed particle hydrodynamics has no error column.
     expect([row["method"] for row in rows] == ["cholesky", "lanczos", "fcm", "pse", "fib", "quasi2d", "dpstokes",
-                                               "icm", "cicm", "magnetic_fcm"], f"rows {rows}")
-    bounds = {"cholesky": (1e-25, 1e-10), "lanczos": (1e-25, 1e-10), "fib": (1e-4, 0.1)}
+                                               "icm", "cicm", "magnetic_fcm", "dpd", "sph"], f"rows {rows}")
+    bounds = {"cholesky": (1e-25, 1e-10), "lanczos": (1e-25, 1e-10), "fib": (1e-4, 0.1), "dpd": (-0.05, 0.12)}
     for row in rows:
         positive_finite(row, "steps_per_second")
-        if row["method"] in ("icm", "cicm"):
+        if row["method"] in ("icm", "cicm", "sph"):
             expect(row["error"] == "", f"{row['method']} has no error to measure, got {row['error']}")
             continue
         error = float(row["error"])

@@ -35,6 +35,16 @@ Error, relative RMS of dt M F over the particles, in double precision at the met
 Lanczos is exact in its deterministic part; its tolerance bounds the noise, which
 tests/python/test_bdhi_open_boundary.py checks against Cholesky.
 
+The particle fluids are not spheres in a solvent but the fluid itself: N particles of mass 1 at random
+positions in a periodic cube, no external force, kT 1, each at its documented example's parameters:
+- dissipative particle dynamics (dpd: density 3, a = 25, gamma = 4.5, r_c = 1, dt = 0.04): its error
+  is the time step's, the relative excess of the kinetic temperature over the thermostat's (about 3 %
+  at this dt, docs/input-format.md), averaged over 100 steps after 100 of equilibration, up to
+  --reference-max (at 1,000 particles, windows of 100 steps differ by about 1.5 %);
+- smoothed particle hydrodynamics (sph: density 1, support 1, viscosity 0.1, gas stiffness 10, rest
+  density 0.5, dt 0.005): none; tests/python/test_sph.py checks its density against numpy and its
+  conservation of momentum and energy.
+
 usage: hydrodynamics_benchmark.py [--backend cuda] [--method fcm --method cholesky ...] [--n 1000 ...]
        [--precision single] [--seconds 1.0] [--csv FILE]
 Prints a markdown table (docs/benchmarks.md) and writes --csv FILE if asked."""
@@ -66,6 +76,13 @@ METHODS = {
     "icm": (["FluctuatingHydrodynamics", "IncompressibleInertialCoupling"], True, False, [1000, 10000, 100000]),
     "cicm": (["FluctuatingHydrodynamics", "CompressibleInertialCoupling"], True, False, [1000, 10000, 100000]),
     "magnetic_fcm": (["Magnetic", "ForceCouplingMethod"], True, True, [1000, 10000, 100000, 1000000]),
+    "dpd": (["DPD", "Verlet"], True, False, [1000, 10000, 100000, 1000000]),
+    "sph": (["SPH", "Verlet"], True, False, [1000, 10000, 100000, 1000000]),
+}
+# The particle fluids (see above): their number density and their integrator's parameters.
+PARTICLE_FLUIDS = {
+    "dpd": (3.0, {"timeStep": 0.04, "cutOff": 1.0, "gamma": 4.5, "alpha": 25.0}),
+    "sph": (1.0, {"timeStep": 0.005, "support": 1.0, "viscosity": 0.1, "gasStiffness": 10.0, "restDensity": 0.5}),
 }
 # The parameters a method takes beyond time step, viscosity, radius and tolerance.
 EXTRA_PARAMETERS = {
@@ -76,7 +93,7 @@ EXTRA_PARAMETERS = {
 # The magnetic methods: each particle at the identity orientation carries a unit moment along z.
 MAGNETIC = {"magnetic_fcm"}
 # The methods whose error is not measured (see above).
-UNREFERENCED = {"icm", "cicm"}
+UNREFERENCED = {"icm", "cicm", "sph"}
 # The methods that name the viscosity otherwise (a compressible fluid has a bulk viscosity too).
 VISCOSITY_KEY = {"cicm": "shearViscosity"}
 # The planar methods: particles in the plane z = 0 of an x-y periodic square at area fraction 0.05.
@@ -94,6 +111,8 @@ GRID_SPACING = RADIUS / math.sqrt(math.pi)
 
 
 def side(method, n):
+    if method in PARTICLE_FLUIDS:
+        return (n / PARTICLE_FLUIDS[method][0]) ** (1.0 / 3.0)
     if method in PLANAR:
         return math.sqrt(math.pi * RADIUS ** 2 * n / PHI)
     if method in SLAB:
@@ -132,6 +151,8 @@ def document(method, n, positions, temperature, tolerance, refinement=1, radius=
     # An open-boundary box only has to hold the particles: they are never folded back into it.
     box = [length] * 3 if periodic else [10.0 * length] * 3
     parameters = {"timeStep": DT, VISCOSITY_KEY.get(method, "viscosity"): ETA, "hydrodynamicRadius": radius, **EXTRA_PARAMETERS.get(method, {})}
+    if method in PARTICLE_FLUIDS:
+        parameters = dict(PARTICLE_FLUIDS[method][1])
     if tolerant:
         parameters["tolerance"] = tolerance
     if method in SLAB:
@@ -200,6 +221,22 @@ def rpy_product(positions, forces, chunk=512):
     return DT * velocity
 
 
+def temperature_excess(backend, method, n):
+    """The kinetic temperature's relative excess over the thermostat's (kT 1, mass 1), averaged over 100
+    steps after 100 of equilibration from random positions, in double precision."""
+    positions, _ = placement(method, n)
+    with structmd.Simulation({"backend": backend, "precision": "double", "log": "quiet"}) as sim:
+        sim.load(document(method, n, positions, 1.0, None))
+        sim.step(100)
+        samples = []
+        for _ in range(100):
+            sim.step(1)
+            v = np.array(sim.velocities)
+            v -= v.mean(axis=0)
+            samples.append(np.sum(v * v) / (3 * (n - 1)))
+    return float(np.mean(samples)) - 1.0
+
+
 def relative_error(measured, reference):
     return float(np.sqrt(np.mean((measured - reference) ** 2) / np.mean(reference ** 2)))
 
@@ -209,6 +246,8 @@ def error(backend, method, n, tolerance, reference_max):
     # would measure its own rounding, not the method.
     if method in UNREFERENCED:
         return None
+    if method in PARTICLE_FLUIDS:
+        return temperature_excess(backend, method, n) if n <= reference_max else None
     measured = displacement(backend, "double", method, n, tolerance)
     if not METHODS[method][1]:
         positions, forces = placement(method, n)
@@ -230,7 +269,8 @@ def steps_per_second(backend, precision, method, n, tolerance, seconds):
     positions, forces = placement(method, n)
     with structmd.Simulation({"backend": backend, "precision": precision, "log": "quiet"}) as sim:
         sim.load(document(method, n, positions, 1.0, tolerance))
-        sim.external_forces = forces
+        if method not in PARTICLE_FLUIDS:
+            sim.external_forces = forces
         sim.step(2)
         sim.positions  # the first launches and the FFT plans are behind
         start = time.perf_counter()
@@ -257,7 +297,8 @@ def main():
     parser.add_argument("--csv")
     args = parser.parse_args()
     rows = []
-    print("| method | N | precision | tolerance | steps/s | particle-steps/s | relative error of dt M F (double) |")
+    print("| method | N | precision | tolerance | steps/s | particle-steps/s | relative error of dt M F, or DPD's "
+          "kinetic temperature excess (double) |")
     print("| --- | ---: | --- | ---: | ---: | ---: | ---: |")
     for method in args.method or list(METHODS):
         for n in args.n or METHODS[method][3]:
@@ -267,7 +308,7 @@ def main():
                          "tolerance": args.tolerance if METHODS[method][2] else "",
                          "steps_per_second": rate, "error": err})
             shown = "-" if err is None else f"{err:.1e}"
-            untolerant = "none" if method in RPY_REFERENCED | UNREFERENCED else "exact"
+            untolerant = "none" if method in RPY_REFERENCED | UNREFERENCED | set(PARTICLE_FLUIDS) else "exact"
             tolerance = f"{args.tolerance:g}" if METHODS[method][2] else untolerant
             print(f"| {method} | {n:,} | {args.precision} | {tolerance} | {rate:,.0f} | {rate * n:.3g} | {shown} |",
                   flush=True)
