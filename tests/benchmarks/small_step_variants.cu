@@ -25,10 +25,27 @@
 //                fused step, then, when the flag read by every block after the barrier says so,
 //                the three build phases. The grid: what is co-resident, at most what the pair
 //                phase needs.
+// Two more keep no list: the pair phase reads cell tiles from shared memory. The particles are kept
+// sorted by list cell (the same cells, edge >= 2.8); the build (same half-skin criterion and flag
+// logic) wraps the positions, bins them, scans the counts into cell starts, and moves positions,
+// velocities, build positions and original ids into cell order (by original id within a cell, so
+// that no sum depends on the binning atomics). A block of 128 threads takes a (home cell, part):
+// it loads the 27 cells' positions into shared memory, each cell shifted by the periodic image that
+// puts it beside the home cell (the drift does not wrap between builds, so that shift stays right),
+// then L lanes per home member go over the ~500 candidates, keep those within rc (re-tested every
+// step; the skin only decides when to re-sort), combine by shuffles and take the fused epilogue.
+// A cell's members go in rounds of 128 / L, the rounds shared among `parts` blocks per cell
+// (enough that a cell of average size takes one round), so small liquids still fill the device.
+//   cells-fused-L       fused's graph (one kernel per step, the re-sort in the IF node) over tiles.
+//   cells-persistent-L  persistent's cooperative kernel over tiles; the re-sort takes three phases.
+// Their "list" column is the mean number of candidates per particle; the list check becomes:
+// the 27 cells around each particle hold exactly the pairs within rc that the reference finds.
+// Forces and positions are compared by original particle id.
 // Checks before timing (exit status 1 when one fails): each variant's first forces against an
 // all-pairs reference in double; each variant's first list holds exactly the pairs within rc that
 // the reference finds; each variant's positions after --check-steps steps against chain's. Then
-// a warm-up, and the timed steps with builds per 1000 steps and the total energy drift.
+// a warm-up, and the timed steps with builds per 1000 steps and the total energy drift. A size
+// with fewer than 3 list cells per edge (k = 5 and below) is skipped with a message.
 //
 //   structmd_small_step_variants [--steps S] [--warmup W] [--check-steps C] [--csv PATH] [k ...]
 //   (k: fcc cells per edge, 4 k^3 particles; default 10 14 25: 4,000, 10,976 and 62,500)
@@ -95,6 +112,14 @@ struct System {
     int* overflow = nullptr;
     unsigned* blocksDone = nullptr;
     unsigned long long* step = nullptr;
+    // The cell-tile variants: particles kept sorted by cell, cell c's members at slots
+    // cellStart[c] .. cellStart[c + 1] - 1; originalId maps a slot back to the particle; the
+    // scratch arrays hold the unsorted state during a build.
+    int* cellStart = nullptr;  // cells + 1 entries
+    int* originalId = nullptr;
+    float4* scratchPos = nullptr;
+    float4* scratchVel = nullptr;
+    int* scratchId = nullptr;
 };
 
 // --- the arithmetic every variant shares -----------------------------------------------------
@@ -187,11 +212,15 @@ __device__ __forceinline__ float3 pair_force(const System& s, const float4* pos,
 // The fused epilogue of particle i: closing kick of step n (unless this is the first step), opening
 // kick of step n+1, drift to x(n+1) in `out`. The same operations, in the same order, as chain's
 // kick and drift kernels. Returns whether the particle moved past half the skin since the build.
+// Wrap false (cell tiles): the drift leaves the box until the next build wraps it, so that a
+// neighbour cell's image shift, fixed at the build, stays right for all its members.
+template <bool Wrap = true>
 __device__ __forceinline__ bool advance_particle(const System& s, float4 x, float4* out, int i, float3 f, bool closing) {
     float4 v = s.vel[i];
     if (closing) v = kicked(v, f);
     v = kicked(v, f);
-    const float4 next = drifted(x, v, s.length);
+    const float4 next =
+        Wrap ? drifted(x, v, s.length) : make_float4(x.x + v.x * kDt, x.y + v.y * kDt, x.z + v.z * kDt, x.w);
     out[i] = next;
     s.vel[i] = v;
     return moved_past_half_skin(next, s.posAtBuild[i], s.length);
@@ -415,6 +444,295 @@ __global__ void persistent_steps(System s, int parity, long long firstStep, int 
     }
 }
 
+// --- cells: pair forces from cell tiles in shared memory, no list --------------------------------
+
+constexpr int kCellThreads = 128;  // a cell-tile block: kCellThreads / L home members a round
+constexpr int kTileCells = 27;     // home cell and its neighbours (3+ cells per edge: distinct)
+constexpr int kTileLoadBatch = 8;  // loads in flight per thread while filling a tile
+constexpr int kScanThreads = 1024;
+// The shared tiles allow 8 blocks a multiprocessor; the fused step needs 72 registers (7 blocks)
+// unbounded; the persistent one would take 128 (4 blocks), capped here at 96 (5 blocks).
+constexpr int kCellPersistentBlocksPerMultiprocessor = 5;
+
+// The candidates of one home cell: its 27 cells' positions, each shifted by the periodic image
+// that puts it beside the home cell (fixed at the build; the drift does not wrap in between).
+struct CellTile {
+    float4 pos[kTileCells * kCellCapacity];
+    int start[kTileCells];
+    int offset[kTileCells + 1];  // where each cell's members begin in pos
+    float3 shift[kTileCells];
+};
+
+// The build, step 1 (thread per particle): wrap the drifted position into the box, copy the
+// particle's state to scratch, and bin it.
+__device__ __forceinline__ void bin_for_cells(const System& s, const float4* pos, int i) {
+    float4 p = pos[i];
+    p.x = wrapped(p.x, s.length);
+    p.y = wrapped(p.y, s.length);
+    p.z = wrapped(p.z, s.length);
+    s.scratchPos[i] = p;
+    s.scratchVel[i] = s.vel[i];
+    s.scratchId[i] = s.originalId[i];
+    const int cell =
+        (cell_coordinate(p.z, s) * s.perEdge + cell_coordinate(p.y, s)) * s.perEdge + cell_coordinate(p.x, s);
+    const int slot = atomicAdd(s.cellCount + cell, 1);
+    if (slot < kCellCapacity)
+        s.cellMember[cell * kCellCapacity + slot] = i;
+    else
+        atomicAdd(s.overflow, 1);
+}
+
+// Step 2 (one block): cellStart, the exclusive prefix sum of the cells' counts.
+__device__ __forceinline__ void scan_cell_counts(const System& s) {
+    __shared__ int warpTotals[32];
+    const int lane = threadIdx.x % 32, warp = threadIdx.x / 32;
+    const int chunk = (s.cells + blockDim.x - 1) / blockDim.x;
+    const int first = min(s.cells, static_cast<int>(threadIdx.x) * chunk), last = min(s.cells, first + chunk);
+    int sum = 0;
+    for (int c = first; c < last; ++c) sum += min(s.cellCount[c], kCellCapacity);
+    int inclusive = sum;
+    for (int offset = 1; offset < 32; offset *= 2) {
+        const int below = __shfl_up_sync(0xffffffffu, inclusive, offset);
+        if (lane >= offset) inclusive += below;
+    }
+    if (lane == 31) warpTotals[warp] = inclusive;
+    __syncthreads();
+    if (warp == 0) {
+        int total = lane < static_cast<int>(blockDim.x / 32) ? warpTotals[lane] : 0;
+        for (int offset = 1; offset < 32; offset *= 2) {
+            const int below = __shfl_up_sync(0xffffffffu, total, offset);
+            if (lane >= offset) total += below;
+        }
+        warpTotals[lane] = total;
+    }
+    __syncthreads();
+    int start = inclusive - sum + (warp > 0 ? warpTotals[warp - 1] : 0);
+    for (int c = first; c < last; ++c) {
+        s.cellStart[c] = start;
+        start += min(s.cellCount[c], kCellCapacity);
+    }
+    if (threadIdx.x == blockDim.x - 1) s.cellStart[s.cells] = start;
+}
+
+// Step 3 (warp per cell): rank the cell's members by original id (so that the order, and with it
+// every force sum, does not depend on the binning atomics) and move each particle's state from
+// scratch to its sorted slot.
+__device__ __forceinline__ void place_cell(const System& s, float4* pos, int cell, int lane) {
+    const int* members = s.cellMember + cell * kCellCapacity;
+    const int count = min(s.cellCount[cell], kCellCapacity);
+    const int a = lane < count ? members[lane] : -1;
+    const int b = lane + 32 < count ? members[lane + 32] : -1;
+    const int keyA = a >= 0 ? s.scratchId[a] : INT_MAX, keyB = b >= 0 ? s.scratchId[b] : INT_MAX;
+    int rankA = 0, rankB = 0;
+    for (int t = 0; t < 32; ++t) {
+        const int otherA = __shfl_sync(0xffffffffu, keyA, t), otherB = __shfl_sync(0xffffffffu, keyB, t);
+        rankA += (otherA < keyA) + (otherB < keyA);
+        rankB += (otherA < keyB) + (otherB < keyB);
+    }
+    const int base = s.cellStart[cell];
+    auto place = [&](int j, int rank) {
+        const float4 p = s.scratchPos[j];
+        pos[base + rank] = p;
+        s.posAtBuild[base + rank] = p;
+        s.vel[base + rank] = s.scratchVel[j];
+        s.originalId[base + rank] = s.scratchId[j];
+    };
+    if (a >= 0) place(a, rankA);
+    if (b >= 0) place(b, rankB);
+}
+
+__global__ void cells_bin(System s, const float4* pos) {
+    structmd::follow_previous_kernel();
+    const int i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i == 0) {
+        *s.rebuild = 0;
+        ++*s.builds;
+    }
+    if (i < s.n) bin_for_cells(s, pos, i);
+}
+
+__global__ void cells_scan(System s) {
+    structmd::follow_previous_kernel();
+    scan_cell_counts(s);
+}
+
+__global__ void cells_place(System s, float4* pos) {
+    structmd::follow_previous_kernel();
+    const int cell = (blockIdx.x * blockDim.x + threadIdx.x) / 32;
+    if (cell < s.cells) place_cell(s, pos, cell, threadIdx.x % 32);
+}
+
+// The re-sort's four kernels on `stream`; the sorted state ends in `pos` (the step's out buffer).
+void launch_cells_build(const System& s, float4* pos, cudaStream_t stream) {
+    clear_cells<<<blocks_for(s.cells), kThreads, 0, stream>>>(s);
+    cells_bin<<<blocks_for(s.n), kThreads, 0, stream>>>(s, pos);
+    cells_scan<<<1, kScanThreads, 0, stream>>>(s);
+    cells_place<<<blocks_for(32ll * s.cells), kThreads, 0, stream>>>(s, pos);
+    check(cudaGetLastError(), "launching the cell re-sort");
+}
+
+// Fills the tile of home cell `cell`; returns the number of candidates. Warp 0 finds the 27 cells'
+// ranges and image shifts and scans their counts; then every thread loads kTileLoadBatch
+// candidates at a time (all in flight before any is stored), each finding its cell by bisection.
+template <bool ReadOnly>
+__device__ __forceinline__ int load_tile(const System& s, const float4* pos, int cell, CellTile& tile) {
+    const int e = s.perEdge;
+    __syncthreads();  // the previous tile is no longer read
+    if (threadIdx.x < 32) {
+        const int lane = threadIdx.x;
+        int count = 0;
+        if (lane < kTileCells) {
+            const int home[3] = {cell % e, (cell / e) % e, cell / (e * e)};
+            const int offset[3] = {lane % 3 - 1, (lane / 3) % 3 - 1, lane / 9 - 1};
+            int coordinate[3];
+            float shift[3];
+            for (int a = 0; a < 3; ++a) {
+                const int c = home[a] + offset[a];
+                shift[a] = c < 0 ? -s.length : (c >= e ? s.length : 0.f);
+                coordinate[a] = (c + e) % e;
+            }
+            const int neighbour = (coordinate[2] * e + coordinate[1]) * e + coordinate[0];
+            const int start = load<ReadOnly>(s.cellStart + neighbour);
+            count = load<ReadOnly>(s.cellStart + neighbour + 1) - start;
+            tile.start[lane] = start;
+            tile.shift[lane] = make_float3(shift[0], shift[1], shift[2]);
+        }
+        int inclusive = count;
+        for (int offset = 1; offset < 32; offset *= 2) {
+            const int below = __shfl_up_sync(0xffffffffu, inclusive, offset);
+            if (lane >= offset) inclusive += below;
+        }
+        if (lane < kTileCells) tile.offset[lane] = inclusive - count;
+        if (lane == kTileCells - 1) tile.offset[kTileCells] = inclusive;
+    }
+    __syncthreads();
+    const int total = tile.offset[kTileCells];
+    for (int base = threadIdx.x; base < total; base += kTileLoadBatch * blockDim.x) {
+        float4 q[kTileLoadBatch];
+        int from[kTileLoadBatch];
+#pragma unroll
+        for (int b = 0; b < kTileLoadBatch; ++b) {
+            const int t = base + b * blockDim.x;
+            from[b] = 0;
+            for (int step = 16; step > 0; step /= 2)
+                if (from[b] + step < kTileCells && tile.offset[from[b] + step] <= t) from[b] += step;
+            if (t < total) q[b] = load<ReadOnly>(pos + tile.start[from[b]] + t - tile.offset[from[b]]);
+        }
+#pragma unroll
+        for (int b = 0; b < kTileLoadBatch; ++b) {
+            const int t = base + b * blockDim.x;
+            if (t >= total) break;
+            const float3 shift = tile.shift[from[b]];
+            tile.pos[t] = make_float4(q[b].x + shift.x, q[b].y + shift.y, q[b].z + shift.z, q[b].w);
+        }
+    }
+    __syncthreads();
+    return total;
+}
+
+// Work item `item` (home cell item / parts, part item % parts): the part's home members, L lanes
+// each, sum the forces of the tile's candidates within rc (lane l takes l, l + L, ...; the member
+// itself skipped by its tile index), combine them by shuffles, and take the fused epilogue.
+template <int L, bool ReadOnly>
+__device__ __forceinline__ void cells_pair_item(const System& s, const float4* in, float4* out, int item, int parts,
+                                                bool closing, float4* forceOut, int* flag, CellTile& tile) {
+    const int cell = item / parts, part = item % parts;
+    const int total = load_tile<ReadOnly>(s, in, cell, tile);
+    const int homeOffset = tile.offset[kTileCells / 2], homeStart = tile.start[kTileCells / 2];
+    const int members = tile.offset[kTileCells / 2 + 1] - homeOffset;
+    constexpr int kMembersPerRound = kCellThreads / L;
+    const LaneGroup<L> g(threadIdx.x);
+    for (int round = part; round * kMembersPerRound < members; round += parts) {
+        const int m = round * kMembersPerRound + g.item;
+        if (m >= members) continue;
+        const int self = homeOffset + m;
+        const float4 p = tile.pos[self];
+        float3 f = {0, 0, 0};
+#pragma unroll 4
+        for (int c = g.lane; c < total; c += L) {
+            const float4 q = tile.pos[c];
+            const float3 d = make_float3(p.x - q.x, p.y - q.y, p.z - q.z);
+            const float r2 = d.x * d.x + d.y * d.y + d.z * d.z;
+            if (r2 < kCutoff2 && c != self) {
+                const float inv2 = 1.f / r2, inv6 = inv2 * inv2 * inv2;
+                const float scale = 24.f * inv2 * inv6 * (2.f * inv6 - 1.f);
+                f.x += scale * d.x;
+                f.y += scale * d.y;
+                f.z += scale * d.z;
+            }
+        }
+        for (int offset = L / 2; offset > 0; offset /= 2) {
+            f.x += __shfl_xor_sync(g.mask, f.x, offset, L);
+            f.y += __shfl_xor_sync(g.mask, f.y, offset, L);
+            f.z += __shfl_xor_sync(g.mask, f.z, offset, L);
+        }
+        if (g.lane == 0) {
+            const int i = homeStart + m;
+            if (forceOut) forceOut[s.originalId[i]] = make_float4(f.x, f.y, f.z, 0.f);
+            if (advance_particle<false>(s, p, out, i, f, closing)) {
+                *flag = 1;
+                __threadfence();  // the flag reaches the last block before this block counts itself done
+            }
+        }
+    }
+}
+
+// fused over cell tiles: a block per (home cell, part); the last block sets the IF node's condition
+// as fused_step does.
+template <int L>
+__global__ void __launch_bounds__(kCellThreads)
+    cells_fused_step(System s, const float4* __restrict__ in, float4* __restrict__ out, int parts, bool closing,
+                     cudaGraphConditionalHandle handle, float4* forceOut) {
+    __shared__ CellTile tile;
+    cells_pair_item<L, true>(s, in, out, blockIdx.x, parts, closing, forceOut, s.rebuild, tile);
+    if (!handle) return;
+    __syncthreads();
+    if (threadIdx.x == 0 && atomicAdd(s.blocksDone, 1u) == gridDim.x - 1) {
+        *s.blocksDone = 0;
+        cudaGraphSetConditional(handle, atomicAdd(s.rebuild, 0) != 0 ? 1u : 0u);
+        ++*s.step;
+    }
+}
+
+// persistent over cell tiles: the blocks take the (cell, part) items in turn, then the flag logic
+// of persistent_steps, with the re-sort's three phases in place of the list build's.
+template <int L>
+__global__ void __launch_bounds__(kCellThreads, kCellPersistentBlocksPerMultiprocessor)
+    cells_persistent_steps(System s, int parity, long long firstStep, int steps, int parts, bool closingFirst,
+                           float4* forceOut) {
+    __shared__ CellTile tile;
+    cg::grid_group grid = cg::this_grid();
+    const long long threads = static_cast<long long>(gridDim.x) * blockDim.x;
+    const long long id = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+    const int lane = threadIdx.x % 32;
+    const int items = s.cells * parts;
+    for (int step = 0; step < steps; ++step) {
+        const float4* in = s.pos[(parity + step) & 1];
+        float4* out = s.pos[(parity + step + 1) & 1];
+        const long long g = firstStep + step;
+        int* flag = s.rebuildByStep + g % 3;
+        for (long long c = id; c < s.cells; c += threads) s.cellCount[c] = 0;
+        for (int item = blockIdx.x; item < items; item += gridDim.x)
+            cells_pair_item<L, false>(s, in, out, item, parts, closingFirst || step > 0, step == 0 ? forceOut : nullptr,
+                                      flag, tile);
+        grid.sync();
+        if (id == 0) {
+            s.rebuildByStep[(g + 2) % 3] = 0;
+            ++*s.step;
+        }
+        if (*static_cast<volatile int*>(flag)) {
+            if (id == 0) ++*s.builds;
+            for (long long i = id; i < s.n; i += threads) bin_for_cells(s, out, static_cast<int>(i));
+            grid.sync();
+            if (blockIdx.x == 0) scan_cell_counts(s);
+            grid.sync();
+            for (long long cell = id / 32; cell < s.cells; cell += threads / 32)
+                place_cell(s, out, static_cast<int>(cell), lane);
+            grid.sync();
+        }
+    }
+}
+
 // --- the reference and the checks (double precision, all pairs) ---------------------------------
 
 __device__ double3 minimum_image_double(float4 p, float4 q, double length) {
@@ -470,6 +788,30 @@ __global__ void listed_within_cutoff(System s, const float4* pos, int* withinCut
         count += d.x * d.x + d.y * d.y + d.z * d.z < rc2;
     }
     withinCutoff[i] = count;
+}
+
+// The cell tiles' counterpart: how many of the candidates in the 27 cells around sorted particle
+// i lie within rc, stored at its original id.
+__global__ void candidates_within_cutoff(System s, const float4* pos, int* withinCutoff) {
+    const int i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= s.n) return;
+    const double rc2 = double(kCutoff) * kCutoff;
+    const int e = s.perEdge;
+    int cell = 0;
+    while (s.cellStart[cell + 1] <= i) ++cell;
+    const int cx = cell % e, cy = (cell / e) % e, cz = cell / (e * e);
+    int count = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int neighbour = (((cz + dz + e) % e) * e + (cy + dy + e) % e) * e + (cx + dx + e) % e;
+                for (int j = s.cellStart[neighbour]; j < s.cellStart[neighbour + 1]; ++j) {
+                    if (j == i) continue;
+                    const double3 d = minimum_image_double(pos[i], pos[j], s.length);
+                    count += d.x * d.x + d.y * d.y + d.z * d.z < rc2;
+                }
+            }
+    withinCutoff[s.originalId[i]] = count;
 }
 
 // --- host side --------------------------------------------------------------------------------------
@@ -609,19 +951,30 @@ System make_system(const Liquid& liquid) {
     s.overflow = device_array<int>(1);
     s.blocksDone = device_array<unsigned>(1);
     s.step = device_array<unsigned long long>(1);
+    s.cellStart = device_array<int>(s.cells + 1);
+    s.originalId = device_array<int>(s.n);
+    s.scratchPos = device_array<float4>(s.n);
+    s.scratchVel = device_array<float4>(s.n);
+    s.scratchId = device_array<int>(s.n);
     return s;
 }
 
 void free_system(System& s) {
-    for (void* p : {static_cast<void*>(s.pos[0]), static_cast<void*>(s.pos[1]), static_cast<void*>(s.vel),
-                    static_cast<void*>(s.force), static_cast<void*>(s.posAtBuild), static_cast<void*>(s.cellCount),
-                    static_cast<void*>(s.cellMember), static_cast<void*>(s.list), static_cast<void*>(s.listCount),
-                    static_cast<void*>(s.rebuild), static_cast<void*>(s.rebuildByStep), static_cast<void*>(s.builds),
-                    static_cast<void*>(s.overflow), static_cast<void*>(s.blocksDone), static_cast<void*>(s.step)})
+    for (void* p :
+         {static_cast<void*>(s.pos[0]),     static_cast<void*>(s.pos[1]),        static_cast<void*>(s.vel),
+          static_cast<void*>(s.force),      static_cast<void*>(s.posAtBuild),    static_cast<void*>(s.cellCount),
+          static_cast<void*>(s.cellMember), static_cast<void*>(s.list),          static_cast<void*>(s.listCount),
+          static_cast<void*>(s.rebuild),    static_cast<void*>(s.rebuildByStep), static_cast<void*>(s.builds),
+          static_cast<void*>(s.overflow),   static_cast<void*>(s.blocksDone),    static_cast<void*>(s.step),
+          static_cast<void*>(s.cellStart),  static_cast<void*>(s.originalId),    static_cast<void*>(s.scratchPos),
+          static_cast<void*>(s.scratchVel), static_cast<void*>(s.scratchId)})
         cudaFree(p);
 }
 
-enum class Design { kChain, kFused, kPersistent };
+enum class Design { kChain, kFused, kPersistent, kCellsFused, kCellsPersistent };
+
+bool over_cells(Design design) { return design == Design::kCellsFused || design == Design::kCellsPersistent; }
+bool persistent(Design design) { return design == Design::kPersistent || design == Design::kCellsPersistent; }
 
 template <class F>
 void with_lanes(int lanes, F&& f) {
@@ -695,10 +1048,18 @@ public:
     }
 
     std::string name() const {
-        if (design_ == Design::kChain) return "chain";
-        return std::string(design_ == Design::kFused ? "fused-" : "persistent-") + std::to_string(lanes_);
+        switch (design_) {
+            case Design::kChain: return "chain";
+            case Design::kFused: return "fused-" + std::to_string(lanes_);
+            case Design::kPersistent: return "persistent-" + std::to_string(lanes_);
+            case Design::kCellsFused: return "cells-fused-" + std::to_string(lanes_);
+            default: return "cells-persistent-" + std::to_string(lanes_);
+        }
     }
-    int grid() const { return design_ == Design::kPersistent ? cooperativeBlocks_ : blocks_for(static_cast<long long>(s_.n) * lanes_); }
+    int grid() const {
+        if (persistent(design_)) return cooperativeBlocks_;
+        return over_cells(design_) ? s_.cells * parts_ : blocks_for(static_cast<long long>(s_.n) * lanes_);
+    }
 
     // Puts the liquid in the state at step 0 with its list built, and lays the list out for the
     // variant's lanes (by columns for one lane per particle, by rows for several, as the engine).
@@ -712,7 +1073,17 @@ public:
         s_.entryStride = lanes_ == 1 ? s_.n : 1;
         parity_ = 0;
         persistentStep_ = 0;
-        launch_build(s_, s_.pos[0], stream_);
+        if (over_cells(design_)) {
+            std::vector<int> identity(s_.n);
+            std::iota(identity.begin(), identity.end(), 0);
+            check(cudaMemcpy(s_.originalId, identity.data(), sizeof(int) * s_.n, cudaMemcpyHostToDevice), "copy");
+            // Enough parts per cell that a cell of average size takes one round of members.
+            const int membersPerRound = kCellThreads / lanes_;
+            parts_ = std::max(1, (s_.n / s_.cells + membersPerRound - 1) / membersPerRound);
+            launch_cells_build(s_, s_.pos[0], stream_);
+        } else {
+            launch_build(s_, s_.pos[0], stream_);
+        }
         check(cudaMemsetAsync(s_.builds, 0, sizeof(int), stream_), "memset");
         check(cudaStreamSynchronize(stream_), "initial build");
     }
@@ -732,12 +1103,20 @@ public:
                 check(cudaStreamSynchronize(stream_), "first fused step");
                 if (read_one(s_.rebuild)) launch_build(s_, s_.pos[1], stream_);
                 parity_ = 1;
+            } else if (design_ == Design::kCellsFused) {
+                cells_fused_step<L><<<s_.cells * parts_, kCellThreads, 0, stream_>>>(s_, s_.pos[0], s_.pos[1], parts_,
+                                                                                     false, 0, forceOut);
+                check(cudaStreamSynchronize(stream_), "first fused step over cells");
+                if (read_one(s_.rebuild)) launch_cells_build(s_, s_.pos[1], stream_);
+                parity_ = 1;
+            } else if (design_ == Design::kCellsPersistent) {
+                launch_cells_persistent<L>(1, false, forceOut);
             } else {
                 launch_persistent<L>(1, false, forceOut);
             }
         });
         check(cudaStreamSynchronize(stream_), "first step");
-        if (design_ != Design::kPersistent) capture();
+        if (!persistent(design_)) capture();
     }
 
     // Steps on: a multiple of kStepsPerGraph for the graph designs.
@@ -746,12 +1125,24 @@ public:
             with_lanes(lanes_, [&](auto lanes) { launch_persistent<decltype(lanes)::value>(steps, true, nullptr); });
             return;
         }
+        if (design_ == Design::kCellsPersistent) {
+            with_lanes(lanes_,
+                       [&](auto lanes) { launch_cells_persistent<decltype(lanes)::value>(steps, true, nullptr); });
+            return;
+        }
         for (int done = 0; done < steps; done += kStepsPerGraph) check(cudaGraphLaunch(exec_, stream_), "graph launch");
     }
 
-    // The positions one drift after the state, x(n+1): chain's are drifted on scratch copies by its own
-    // drift kernel, the others hold them already.
+    // The positions one drift after the state, x(n+1), by original particle id: chain's are drifted on
+    // scratch copies by its own drift kernel, the others hold them already (in cell order over cells).
     std::vector<float4> next_positions() {
+        if (over_cells(design_)) {
+            const std::vector<float4> sorted = to_host(s_.pos[parity_], s_.n);
+            const std::vector<int> id = to_host(s_.originalId, s_.n);
+            std::vector<float4> next(s_.n);
+            for (int i = 0; i < s_.n; ++i) next[id[i]] = sorted[i];
+            return next;
+        }
         if (design_ != Design::kChain) return to_host(s_.pos[parity_], s_.n);
         float4 *pos = device_array<float4>(s_.n), *vel = device_array<float4>(s_.n);
         int* flag = device_array<int>(1);
@@ -770,6 +1161,26 @@ public:
     }
 
 private:
+    template <int L>
+    void launch_cells_persistent(int steps, bool closingFirst, float4* forceOut) {
+        if (!cooperativeBlocks_) {
+            int perMultiprocessor = 0, multiprocessors = 0;
+            check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perMultiprocessor, cells_persistent_steps<L>,
+                                                                kCellThreads, 0),
+                  "occupancy");
+            check(cudaDeviceGetAttribute(&multiprocessors, cudaDevAttrMultiProcessorCount, 0), "device");
+            cooperativeBlocks_ = std::max(1, std::min(perMultiprocessor * multiprocessors, s_.cells * parts_));
+        }
+        int parity = parity_, parts = parts_;
+        long long firstStep = persistentStep_;
+        void* args[] = {&s_, &parity, &firstStep, &steps, &parts, &closingFirst, &forceOut};
+        check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(cells_persistent_steps<L>), dim3(cooperativeBlocks_),
+                                          dim3(kCellThreads), args, 0, stream_),
+              "cooperative launch");
+        parity_ = (parity_ + steps) & 1;
+        persistentStep_ += steps;
+    }
+
     template <int L>
     void launch_persistent(int steps, bool closingFirst, float4* forceOut) {
         if (!cooperativeBlocks_) {
@@ -806,6 +1217,13 @@ private:
                     capture_if(stream_, bodyStream_, handle, [&](cudaStream_t body) { launch_build(s_, s_.pos[0], body); });
                     launch(chain_pair<L>, pairBlocks, kThreads, stream_, false, s_);
                     launch(chain_kick, particleBlocks, kThreads, stream_, true, s_);
+                } else if (design_ == Design::kCellsFused) {
+                    const float4* in = s_.pos[(parity_ + step) & 1];
+                    float4* out = s_.pos[(parity_ + step + 1) & 1];
+                    launch(cells_fused_step<L>, s_.cells * parts_, kCellThreads, stream_, false, s_, in, out, parts_,
+                           true, handle, static_cast<float4*>(nullptr));
+                    capture_if(stream_, bodyStream_, handle,
+                               [&](cudaStream_t body) { launch_cells_build(s_, out, body); });
                 } else {
                     const float4* in = s_.pos[(parity_ + step) & 1];
                     float4* out = s_.pos[(parity_ + step + 1) & 1];
@@ -829,6 +1247,7 @@ private:
     int parity_ = 0;
     long long persistentStep_ = 0;
     int cooperativeBlocks_ = 0;
+    int parts_ = 1;  // cell tiles: blocks per home cell
 };
 
 // The engine's lanes for a pair kernel (kNeighbourSum): the most that keep the particles' threads
@@ -889,11 +1308,31 @@ double largest_displacement(const std::vector<float4>& a, const std::vector<floa
 constexpr double kForceTolerance = 1e-4;
 constexpr double kTrajectoryTolerance = 1e-3;
 
+// The tiles' mean size per particle: each cell's members see the 27 cells around it.
+double mean_candidates(const System& s) {
+    const std::vector<int> start = to_host(s.cellStart, s.cells + 1);
+    const int e = s.perEdge;
+    double sum = 0;
+    for (int cell = 0; cell < s.cells; ++cell) {
+        const int cx = cell % e, cy = (cell / e) % e, cz = cell / (e * e);
+        int tile = 0;
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int neighbour = (((cz + dz + e) % e) * e + (cy + dy + e) % e) * e + (cx + dx + e) % e;
+                    tile += start[neighbour + 1] - start[neighbour];
+                }
+        sum += static_cast<double>(start[cell + 1] - start[cell]) * tile;
+    }
+    return sum / s.n;
+}
+
 bool run_size(int cellsPerEdge, const Options& options, std::vector<Row>& rows) {
     const Liquid liquid = make_liquid(cellsPerEdge);
-    if (liquid.perEdge < 3) {
-        std::fprintf(stderr, "k = %d: fewer than 3 list cells per edge\n", cellsPerEdge);
-        return false;
+    if (liquid.perEdge < 3) {  // the 27 cells around one would not be distinct
+        std::printf("# k = %d (%zu particles) skipped: fewer than 3 list cells per edge\n", cellsPerEdge,
+                    liquid.pos.size());
+        return true;
     }
     System s = make_system(liquid);
     cudaStream_t stream, bodyStream;
@@ -911,16 +1350,24 @@ bool run_size(int cellsPerEdge, const Options& options, std::vector<Row>& rows) 
     std::vector<std::pair<Design, int>> designs = {{Design::kChain, chainLanes}};
     for (int lanes : {1, 2, 4, 8, 16, 32}) designs.push_back({Design::kFused, lanes});
     for (int lanes : {1, 2, 4, 8, 16, 32}) designs.push_back({Design::kPersistent, lanes});
+    for (int lanes : {4, 8, 16, 32}) designs.push_back({Design::kCellsFused, lanes});
+    for (int lanes : {4, 8, 16, 32}) designs.push_back({Design::kCellsPersistent, lanes});
 
     bool passed = true;
     std::vector<float4> chainPositions;
     for (const auto& [design, lanes] : designs) {
         Variant variant(design, lanes, s, stream, bodyStream);
         variant.reset(liquid);
-        listed_within_cutoff<<<blocks_for(s.n), kThreads>>>(s, s.pos[0], listedWithin);
+        double neighbours = 0;  // mean list length, or over cells the mean number of candidates
+        if (over_cells(design)) {
+            candidates_within_cutoff<<<blocks_for(s.n), kThreads>>>(s, s.pos[0], listedWithin);
+            neighbours = mean_candidates(s);
+        } else {
+            listed_within_cutoff<<<blocks_for(s.n), kThreads>>>(s, s.pos[0], listedWithin);
+            const std::vector<int> counts = to_host(s.listCount, s.n);
+            neighbours = std::accumulate(counts.begin(), counts.end(), 0.0) / s.n;
+        }
         const std::vector<int> listed = to_host(listedWithin, s.n);
-        const std::vector<int> counts = to_host(s.listCount, s.n);
-        const double neighbours = std::accumulate(counts.begin(), counts.end(), 0.0) / s.n;
         int listsMissingPairs = 0;
         for (int i = 0; i < s.n; ++i) listsMissingPairs += listed[i] != reference.withinCutoff[i];
 
@@ -954,14 +1401,14 @@ bool run_size(int cellsPerEdge, const Options& options, std::vector<Row>& rows) 
         rows.push_back({s.n, variant.name(), lanes, variant.grid(), us, 1e6 / us, 1000.0 * builds / steps, forceError,
                         trajectoryError, (energyAfter - energyBefore) / s.n, neighbours});
         const Row& r = rows.back();
-        std::printf("%9d  %-14s %5d %7d %9.2f %11.0f %8.1f %10.2e %10.2e %11.2e %6.1f\n", r.n, r.variant.c_str(), r.lanes,
+        std::printf("%9d  %-19s %5d %7d %9.2f %11.0f %8.1f %10.2e %10.2e %11.2e %6.1f\n", r.n, r.variant.c_str(), r.lanes,
                     r.blocks, r.usPerStep, r.stepsPerSecond, r.buildsPer1000, r.forceError, r.trajectoryError,
                     r.energyDrift, r.neighbours);
         std::fflush(stdout);
         if (listsMissingPairs || forceError > kForceTolerance || trajectoryError > kTrajectoryTolerance || overflow) {
             std::fprintf(stderr,
-                         "%s at %d particles failed: %d lists differ from the reference's pairs within rc, force "
-                         "error %.2e (tolerance %.0e), positions %.2e from chain's (tolerance %.0e), %d overflows\n",
+                         "%s at %d particles failed: %d lists (or tiles) differ from the reference's pairs within rc, "
+                         "force error %.2e (tolerance %.0e), positions %.2e from chain's (tolerance %.0e), %d overflows\n",
                          r.variant.c_str(), s.n, listsMissingPairs, forceError, kForceTolerance, trajectoryError,
                          kTrajectoryTolerance, overflow);
             passed = false;
@@ -1021,7 +1468,7 @@ int main(int argc, char** argv) {
     }
     std::printf("# %s; timed steps %d after %d warm-up steps, trajectories compared after %d steps\n", prop.name,
                 round_to_graphs(options.steps), round_to_graphs(options.warmup), round_to_graphs(options.checkSteps));
-    std::printf("%9s  %-14s %5s %7s %9s %11s %8s %10s %10s %11s %6s\n", "particles", "variant", "lanes", "blocks",
+    std::printf("%9s  %-19s %5s %7s %9s %11s %8s %10s %10s %11s %6s\n", "particles", "variant", "lanes", "blocks",
                 "us/step", "steps/s", "builds", "max|dF|", "max|dx|", "dE/N", "list");
     std::vector<Row> rows;
     bool passed = true;
