@@ -20,6 +20,7 @@ README_WORDS = {
     ("Langevin", "GJF"): "Grønbech-Jensen-Farago",
     ("Brownian", "EulerMaruyama"): "Euler-Maruyama",
     ("Brownian", "EulerMaruyamaRigidBody"): "rigid body",
+    ("Brownian", "EulerMaruyamaRigidBodyPatchesState"): "rigid patchy bodies",
     ("BDHIOpenBoundary", "Cholesky"): "Cholesky",
     ("BDHIOpenBoundary", "Lanczos"): "Lanczos",
     ("BDHITriplyPeriodic", "ForceCouplingMethod"): "force coupling method",
