@@ -25,6 +25,7 @@ usage: check_benchmark_smoke.py lj|accuracy|coupling|hydrodynamics PROGRAM
        check_benchmark_smoke.py transverser PROGRAM NEIGHBOUR_COUNT_PLUGIN LJ_FORCE_PLUGIN
        check_benchmark_smoke.py domains PROGRAM MPIEXEC [MPIEXEC FLAGS...]"""
 import csv
+import json
 import math
 import os
 import subprocess
@@ -77,6 +78,15 @@ def positive_finite(row, key):
 
 
 def check_lj(program):
+    # --write-input: the liquid of 500 particles as an input, timing nothing.
+    with tempfile.TemporaryDirectory() as work:
+        path = os.path.join(work, "lj.json")
+        result = subprocess.run([program, "--n", "500", "--write-input", path], capture_output=True, text=True)
+        expect(result.returncode == 0 and result.stdout == "", f"--write-input: {result.returncode} {result.stdout}")
+        with open(path) as f:
+            document = json.load(f)
+        expect(len(document["state"]["data"]) == 500, "--write-input: 500 particles")
+        expect("NonBonded" in json.dumps(document["topology"]["forceField"]), "--write-input: the LJ term")
     # The adaptive path (steps per call from a probe) and the fixed one.
     for arguments in (["--seconds", "0.05"], ["--steps", "10"]):
         rows = run(program, ["--n", "500", "--backend", "cpu", "--precision", "single", "--precision", "double",

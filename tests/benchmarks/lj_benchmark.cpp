@@ -5,6 +5,10 @@
 //   structmd_lj_benchmark [--n N]... [--backend B]... [--precision P]... [--seconds T | --steps S]
 //                         [--repeats R] [--warmup W] [--threads K] [--pair F]... [--scene S]...
 //                         [--skin D] [--csv PATH]
+//   structmd_lj_benchmark [--n N] [--pair F] [--scene S] [--skin D] --write-input PATH
+//
+// --write-input writes the input of the first scene, pair form and N to PATH and times nothing, so
+// the same system can run under the launcher or a profiler.
 //
 // --pair builtin (the default) runs LJ as LennardJonesType1; --pair expression runs the same
 // potential as ["NonBonded","Expression"] (compiled at load time on CUDA, interpreted on the CPU).
@@ -78,6 +82,7 @@ struct BenchmarkOptions {
     std::vector<std::string> traversals{"auto"};
     double skin = 0.3;  // sigma, added to the cutoff for the Verlet list
     std::string csvPath;
+    std::string inputPath;  // write the first scene's input here instead of timing anything
 };
 
 struct Row {
@@ -257,7 +262,20 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--skin", options.skin, "Neighbour-list skin (sigma)")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--csv", options.csvPath, "Also write the rows to this CSV file");
+    app.add_option("--write-input", options.inputPath,
+                   "Write the input of the first --scene, --pair and --n to this file and time nothing (to run the "
+                   "same system with the launcher or a profiler)");
     CLI11_PARSE(app, argc, argv);
+
+    if (!options.inputPath.empty()) {
+        std::ofstream input(options.inputPath);
+        input << scene_input(options.scenes.front(), options.sizes.front(), options.pairForms.front(), options.skin);
+        if (!input.flush()) {
+            std::fprintf(stderr, "cannot write %s\n", options.inputPath.c_str());
+            return 2;
+        }
+        return 0;
+    }
 
     std::ofstream csv;
     if (!options.csvPath.empty() &&
