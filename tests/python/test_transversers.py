@@ -184,16 +184,23 @@ def test_batches_stay_apart_over_a_list_and_over_all_pairs(sim):
     np.testing.assert_array_equal(sim.traverse_expression("1"), np.sum(same, axis=1) - 1)
 
 
-def check_a_pair_terms_list_is_shared(sim, counts, within, beyond, seed):
-    """counts(cutoff): a transverser's neighbour counts. Within the cutoff of the LJ term's list (of
-    every pair) it goes over that list, which the steps keep up to date: its calls add only their
-    output to the engine's memory, where one with a cutoff beyond makes a list of its own (at least
-    20 bytes a particle); both count as numpy does, as the particles move."""
+def stepped_lattice_under_lj(sim, seed):
+    """Loads the lattice under the LJ term over its list of every pair and takes 5 steps; returns the
+    starting positions."""
     from test_measures import NEIGHBOUR_LIST, lj_entry
     positions, velocities = lattice(seed=seed)
     sim.load(document(positions, velocities, steps=100, time_step=0.002,
                       force_field={"nl": NEIGHBOUR_LIST, "lj": lj_entry()}))
     sim.step(5)
+    return positions
+
+
+def check_a_pair_terms_list_is_shared(sim, counts, within, beyond, seed):
+    """counts(cutoff): a transverser's neighbour counts. Within the cutoff of the LJ term's list (of
+    every pair) it goes over that list, which the steps keep up to date: its calls add only their
+    output to the engine's memory, where one with a cutoff beyond makes a list of its own (at least
+    20 bytes a particle); both count as numpy does, as the particles move."""
+    positions = stepped_lattice_under_lj(sim, seed)
     held = sim.counters["device_memory_bytes"]
     for _ in range(2):
         _, r = separations(sim.positions)
@@ -214,11 +221,7 @@ def test_an_expression_transverser_goes_over_the_list_of_a_force_field_made_agai
     """structmd_set_parameter makes the force field and its lists again. A prepared expression
     transverser then goes over the new LJ list, and the list it went over before is freed: the
     engine's memory is back to what it held before the first call, plus that call's output."""
-    from test_measures import NEIGHBOUR_LIST, lj_entry
-    positions, velocities = lattice(seed=11)
-    sim.load(document(positions, velocities, steps=100, time_step=0.002,
-                      force_field={"nl": NEIGHBOUR_LIST, "lj": lj_entry()}))
-    sim.step(5)
+    positions = stepped_lattice_under_lj(sim, 11)
     held = sim.counters["device_memory_bytes"]
     sim.traverse_expression("r < 2", 2.0)
     sim.set_parameter("topology.forceField.lj.parameters.cutOffFactor", 2.5)
