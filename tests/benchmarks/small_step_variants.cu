@@ -16,6 +16,9 @@
 //                engine. Lanes per particle as the engine sizes them (kNeighbourSum, core/lanes.hpp).
 //                The pair kernel stores the forces (nothing to clear) and the particles keep their
 //                order (sorted by cell once, at the start), so the drift has no slot copy to make.
+//   chain-g16    chain in graphs of 16 steps, the engine's kStepsPerGraph: what the graph length
+//                costs at small N. A run that is not a multiple of 16 ends on a shorter graph,
+//                captured before it starts (the timed 2000 steps are 125 whole graphs).
 //   fused-L      one kernel per step at L lanes per particle: the pair kernel reads x(n) from one
 //                buffer and each particle's epilogue applies the closing kick of step n, the opening
 //                kick of step n+1 and the drift, writing x(n+1) to the other buffer; the last block
@@ -38,8 +41,18 @@
 // (enough that a cell of average size takes one round), so small liquids still fill the device.
 //   cells-fused-L       fused's graph (one kernel per step, the re-sort in the IF node) over tiles.
 //   cells-persistent-L  persistent's cooperative kernel over tiles; the re-sort takes three phases.
+// Two more over cells of half the edge (>= 1.4), in a system of their own, re-sorted the same way:
+// a particle's candidates are the 5x5x5 cells around its own, all 125 of them (a corner cell's
+// nearest point lies w sqrt(3) = 2.4-2.6 from the home cell at the study's edges, within 2.8, so
+// none can be dropped), ~335 candidates at 10,976 against ~580. A half cell holds ~2.7 particles,
+// so a block takes a group of 2x2x2 home cells (~21 particles), loads their 6x6x6 cells once
+// (image-shifted as above, in cell order, x fastest) and each particle goes over its own 25
+// stencil rows of 5 cells, each row one contiguous range of the tile; 32 particles a round at L
+// lanes each (32 L threads, one round for a group of average size).
+//   half-cells-fused-L       cells-fused over the groups' tiles.
+//   half-cells-persistent-L  cells-persistent over the groups' tiles.
 // Their "list" column is the mean number of candidates per particle; the list check becomes:
-// the 27 cells around each particle hold exactly the pairs within rc that the reference finds.
+// the 27 (125) cells around each particle hold exactly the pairs within rc that the reference finds.
 // Forces and positions are compared by original particle id.
 // Checks before timing (exit status 1 when one fails): each variant's first forces against an
 // all-pairs reference in double; each variant's first list holds exactly the pairs within rc that
@@ -47,8 +60,11 @@
 // a warm-up, and the timed steps with builds per 1000 steps and the total energy drift. A size
 // with fewer than 3 list cells per edge (k = 5 and below) is skipped with a message.
 //
-//   structmd_small_step_variants [--steps S] [--warmup W] [--check-steps C] [--csv PATH] [k ...]
-//   (k: fcc cells per edge, 4 k^3 particles; default 10 14 25: 4,000, 10,976 and 62,500)
+//   structmd_small_step_variants [--steps S] [--warmup W] [--check-steps C] [--csv PATH]
+//                                [--only PREFIX,PREFIX,...] [k ...]
+//   (k: fcc cells per edge, 4 k^3 particles; default 10 14 25: 4,000, 10,976 and 62,500;
+//   --only: the variants whose names begin with one of the prefixes, e.g. --only half-cells,chain-g;
+//   chain always runs, its positions being the trajectory reference; default all)
 #include <cooperative_groups.h>
 #include <cuda_runtime.h>
 
@@ -89,6 +105,7 @@ constexpr int kCellCapacity = 64;   // two members a lane in the cell sort; ~18 
 constexpr int kListCapacity = 128;  // ~78 expected within the list radius
 constexpr int kThreads = 256;
 constexpr int kStepsPerGraph = 50;  // even: the fused graphs end on the buffer they start from
+constexpr int kEngineStepsPerGraph = 16;  // the engine's graph length (chain-g16)
 
 // The device state of one liquid. Positions are double-buffered for the fused and persistent steps.
 struct System {
@@ -184,6 +201,17 @@ struct LaneGroup {
           mask(L == 32 ? 0xffffffffu : ((1u << L) - 1u) << (static_cast<int>(virtualThread % 32) & ~(L - 1))) {}
 };
 
+// A force summed by the L lanes of a group, in every lane: a fixed butterfly of shuffles.
+template <int L>
+__device__ __forceinline__ float3 combined(float3 f, const LaneGroup<L>& g) {
+    for (int offset = L / 2; offset > 0; offset /= 2) {
+        f.x += __shfl_xor_sync(g.mask, f.x, offset, L);
+        f.y += __shfl_xor_sync(g.mask, f.y, offset, L);
+        f.z += __shfl_xor_sync(g.mask, f.z, offset, L);
+    }
+    return f;
+}
+
 // The force on particle i, summed over its list by L lanes (lane l takes entries l, l + L, ...),
 // combined by a fixed butterfly of shuffles, in every lane.
 template <int L, bool ReadOnly>
@@ -201,12 +229,7 @@ __device__ __forceinline__ float3 pair_force(const System& s, const float4* pos,
         f.y += d.y;
         f.z += d.z;
     }
-    for (int offset = L / 2; offset > 0; offset /= 2) {
-        f.x += __shfl_xor_sync(g.mask, f.x, offset, L);
-        f.y += __shfl_xor_sync(g.mask, f.y, offset, L);
-        f.z += __shfl_xor_sync(g.mask, f.z, offset, L);
-    }
-    return f;
+    return combined(f, g);
 }
 
 // The fused epilogue of particle i: closing kick of step n (unless this is the first step), opening
@@ -652,20 +675,14 @@ __device__ __forceinline__ void cells_pair_item(const System& s, const float4* i
         for (int c = g.lane; c < total; c += L) {
             const float4 q = tile.pos[c];
             const float3 d = make_float3(p.x - q.x, p.y - q.y, p.z - q.z);
-            const float r2 = d.x * d.x + d.y * d.y + d.z * d.z;
-            if (r2 < kCutoff2 && c != self) {
-                const float inv2 = 1.f / r2, inv6 = inv2 * inv2 * inv2;
-                const float scale = 24.f * inv2 * inv6 * (2.f * inv6 - 1.f);
-                f.x += scale * d.x;
-                f.y += scale * d.y;
-                f.z += scale * d.z;
+            if (c != self) {
+                const float3 pair = lj_force(d);
+                f.x += pair.x;
+                f.y += pair.y;
+                f.z += pair.z;
             }
         }
-        for (int offset = L / 2; offset > 0; offset /= 2) {
-            f.x += __shfl_xor_sync(g.mask, f.x, offset, L);
-            f.y += __shfl_xor_sync(g.mask, f.y, offset, L);
-            f.z += __shfl_xor_sync(g.mask, f.z, offset, L);
-        }
+        f = combined(f, g);
         if (g.lane == 0) {
             const int i = homeStart + m;
             if (forceOut) forceOut[s.originalId[i]] = make_float4(f.x, f.y, f.z, 0.f);
@@ -715,6 +732,244 @@ __global__ void __launch_bounds__(kCellThreads, kCellPersistentBlocksPerMultipro
         for (int item = blockIdx.x; item < items; item += gridDim.x)
             cells_pair_item<L, false>(s, in, out, item, parts, closingFirst || step > 0, step == 0 ? forceOut : nullptr,
                                       flag, tile);
+        grid.sync();
+        if (id == 0) {
+            s.rebuildByStep[(g + 2) % 3] = 0;
+            ++*s.step;
+        }
+        if (*static_cast<volatile int*>(flag)) {
+            if (id == 0) ++*s.builds;
+            for (long long i = id; i < s.n; i += threads) bin_for_cells(s, out, static_cast<int>(i));
+            grid.sync();
+            if (blockIdx.x == 0) scan_cell_counts(s);
+            grid.sync();
+            for (long long cell = id / 32; cell < s.cells; cell += threads / 32)
+                place_cell(s, out, static_cast<int>(cell), lane);
+            grid.sync();
+        }
+    }
+}
+
+// --- half cells: cells of half the edge, 2x2x2 home cells a block ------------------------------
+
+// Cells of edge >= 1.4 (half the list radius), so a particle's candidates are the 5x5x5 cells
+// around its own: all 125 are needed, since even a corner cell's nearest point lies w sqrt(3)
+// (2.4-2.6 at the edges the study's boxes give) from the home cell, within 2.8. A half cell holds
+// ~2.7 particles, too few to fill a block, so a block takes a group of 2x2x2 home cells (~21
+// particles) and loads their shared 6x6x6 neighbourhood once: 27 loads a home particle against the
+// 27 cells' ~27 (a cell of the full edge, ~21 particles, loads as many), while each particle tests
+// only its own 5x5x5 window of the tile (~335 candidates at 10,976 instead of ~580). A row of home
+// cells instead would load 8x5x5 cells for ~11 particles. The block has kHalfMembersPerRound
+// particles of L lanes each, one round for a group of average size.
+constexpr int kHalfGroupEdge = 2;
+constexpr int kHalfReach = 2;  // stencil cells on each side of the home cell
+constexpr int kHalfStencilEdge = 2 * kHalfReach + 1;
+constexpr int kHalfTileEdge = kHalfGroupEdge + 2 * kHalfReach;
+constexpr int kHalfTileCells = kHalfTileEdge * kHalfTileEdge * kHalfTileEdge;
+constexpr int kHalfHomeCells = kHalfGroupEdge * kHalfGroupEdge * kHalfGroupEdge;
+constexpr int kHalfTileCapacity = 1024;  // ~580-650 expected at the study's sizes; more counts as overflow
+constexpr int kHalfMembersPerRound = 32;
+constexpr float kHalfCellEdge = 1.4f;
+// The persistent kernel takes 114-116 registers unbounded; 16 warps a multiprocessor (128 registers:
+// 8, 4, 2 blocks at L = 2, 4, 8) keeps it unspilled and all 512 groups of 10,976 resident at L <= 4,
+// where 24 (80 registers) spills ~150 bytes a thread.
+constexpr int kHalfPersistentWarpsPerMultiprocessor = 16;
+
+__host__ __device__ constexpr int half_cell_groups_per_edge(int perEdge) {
+    return (perEdge + kHalfGroupEdge - 1) / kHalfGroupEdge;
+}
+
+// The tile of one group: the 6x6x6 cells' image-shifted positions in cell order (x fastest, so
+// that a stencil row of 5 cells is one contiguous range) and where each cell begins.
+struct HalfCellTile {
+    float4 pos[kHalfTileCapacity];
+    int start[kHalfTileCells];
+    int offset[kHalfTileCells + 1];
+    float shift[3][kHalfTileEdge];
+    int homeOffset[kHalfHomeCells + 1];  // the home members' numbering, home cell by home cell
+};
+
+// Fills the tile of group `group`; returns the number of home members. Home cells beyond the box
+// (the last group along an axis when the cells per edge are odd) have none.
+template <bool ReadOnly>
+__device__ __forceinline__ int load_half_tile(const System& s, const float4* pos, int group, HalfCellTile& tile) {
+    const int e = s.perEdge, groupsPerEdge = half_cell_groups_per_edge(e);
+    const int first[3] = {group % groupsPerEdge * kHalfGroupEdge - kHalfReach,
+                          (group / groupsPerEdge) % groupsPerEdge * kHalfGroupEdge - kHalfReach,
+                          group / (groupsPerEdge * groupsPerEdge) * kHalfGroupEdge - kHalfReach};
+    __syncthreads();  // the previous tile is no longer read
+    for (int t = threadIdx.x; t < kHalfTileCells; t += blockDim.x) {
+        const int local[3] = {t % kHalfTileEdge, (t / kHalfTileEdge) % kHalfTileEdge,
+                              t / (kHalfTileEdge * kHalfTileEdge)};
+        int coordinate[3];
+        for (int a = 0; a < 3; ++a) coordinate[a] = (first[a] + local[a] + e) % e;
+        const int neighbour = (coordinate[2] * e + coordinate[1]) * e + coordinate[0];
+        const int start = load<ReadOnly>(s.cellStart + neighbour);
+        tile.start[t] = start;
+        tile.offset[t] = load<ReadOnly>(s.cellStart + neighbour + 1) - start;  // the count, scanned below
+    }
+    if (threadIdx.x < 3 * kHalfTileEdge) {
+        const int axis = threadIdx.x / kHalfTileEdge, local = threadIdx.x % kHalfTileEdge;
+        const int c = (axis == 0 ? first[0] : axis == 1 ? first[1] : first[2]) + local;  // no local-memory array
+        tile.shift[axis][local] = c < 0 ? -s.length : (c >= e ? s.length : 0.f);
+    }
+    __syncthreads();
+    if (threadIdx.x < 32) {
+        constexpr int kCellsPerLane = (kHalfTileCells + 31) / 32;
+        const int lane = threadIdx.x, begin = lane * kCellsPerLane;
+        int count[kCellsPerLane], sum = 0;
+#pragma unroll
+        for (int k = 0; k < kCellsPerLane; ++k) {
+            count[k] = begin + k < kHalfTileCells ? tile.offset[begin + k] : 0;
+            sum += count[k];
+        }
+        int inclusive = sum;
+        for (int offset = 1; offset < 32; offset *= 2) {
+            const int below = __shfl_up_sync(0xffffffffu, inclusive, offset);
+            if (lane >= offset) inclusive += below;
+        }
+        // Clamped to the capacity so that an overflow (counted, failing the run) stays in bounds.
+        int running = inclusive - sum;
+#pragma unroll
+        for (int k = 0; k < kCellsPerLane; ++k) {
+            if (begin + k < kHalfTileCells) tile.offset[begin + k] = min(running, kHalfTileCapacity);
+            running += count[k];
+        }
+        if (lane == 31) {
+            tile.offset[kHalfTileCells] = min(running, kHalfTileCapacity);
+            if (running > kHalfTileCapacity) atomicAdd(s.overflow, 1);
+        }
+    }
+    __syncthreads();
+    if (threadIdx.x <= kHalfHomeCells) {
+        int members = 0;
+        for (int h = 0; h < static_cast<int>(threadIdx.x); ++h) {
+            const int local[3] = {h % kHalfGroupEdge, (h / kHalfGroupEdge) % kHalfGroupEdge,
+                                  h / (kHalfGroupEdge * kHalfGroupEdge)};
+            bool inBox = true;
+            for (int a = 0; a < 3; ++a) inBox = inBox && first[a] + kHalfReach + local[a] < e;
+            const int cell = ((local[2] + kHalfReach) * kHalfTileEdge + local[1] + kHalfReach) * kHalfTileEdge +
+                             local[0] + kHalfReach;
+            if (inBox) members += tile.offset[cell + 1] - tile.offset[cell];
+        }
+        tile.homeOffset[threadIdx.x] = members;
+    }
+    const int total = tile.offset[kHalfTileCells];
+    for (int base = threadIdx.x; base < total; base += kTileLoadBatch * blockDim.x) {
+        float4 q[kTileLoadBatch];
+        int from[kTileLoadBatch];
+#pragma unroll
+        for (int b = 0; b < kTileLoadBatch; ++b) {
+            const int t = base + b * blockDim.x;
+            from[b] = 0;
+            for (int step = 128; step > 0; step /= 2)
+                if (from[b] + step < kHalfTileCells && tile.offset[from[b] + step] <= t) from[b] += step;
+            if (t < total) q[b] = load<ReadOnly>(pos + tile.start[from[b]] + t - tile.offset[from[b]]);
+        }
+#pragma unroll
+        for (int b = 0; b < kTileLoadBatch; ++b) {
+            const int t = base + b * blockDim.x;
+            if (t >= total) break;
+            const int cell = from[b];
+            const float3 shift = make_float3(tile.shift[0][cell % kHalfTileEdge],
+                                             tile.shift[1][(cell / kHalfTileEdge) % kHalfTileEdge],
+                                             tile.shift[2][cell / (kHalfTileEdge * kHalfTileEdge)]);
+            tile.pos[t] = make_float4(q[b].x + shift.x, q[b].y + shift.y, q[b].z + shift.z, q[b].w);
+        }
+    }
+    __syncthreads();
+    return tile.homeOffset[kHalfHomeCells];
+}
+
+// Work item `item` (group item / parts, part item % parts): the part's home members, L lanes each,
+// go over their 25 stencil rows (5 cells, contiguous in the tile; lane l takes l, l + L, ... of
+// each row), keep the candidates within rc, combine by shuffles and take the fused epilogue.
+template <int L, bool ReadOnly>
+__device__ __forceinline__ void half_cells_pair_item(const System& s, const float4* in, float4* out, int item,
+                                                     int parts, bool closing, float4* forceOut, int* flag,
+                                                     HalfCellTile& tile) {
+    const int group = item / parts, part = item % parts;
+    const int members = load_half_tile<ReadOnly>(s, in, group, tile);
+    const LaneGroup<L> g(threadIdx.x);
+    for (int round = part; round * kHalfMembersPerRound < members; round += parts) {
+        const int m = round * kHalfMembersPerRound + g.item;
+        if (m >= members) continue;
+        int home = 0;
+        while (tile.homeOffset[home + 1] <= m) ++home;
+        const int hx = home % kHalfGroupEdge, hy = (home / kHalfGroupEdge) % kHalfGroupEdge,
+                  hz = home / (kHalfGroupEdge * kHalfGroupEdge);
+        const int homeCell = ((hz + kHalfReach) * kHalfTileEdge + hy + kHalfReach) * kHalfTileEdge + hx + kHalfReach;
+        const int rank = m - tile.homeOffset[home];
+        const int self = tile.offset[homeCell] + rank;
+        if (self >= kHalfTileCapacity) continue;  // an overflowed tile (counted): stay in bounds
+        const float4 p = tile.pos[self];
+        float3 f = {0, 0, 0};
+        for (int dz = 0; dz < kHalfStencilEdge; ++dz)
+            for (int dy = 0; dy < kHalfStencilEdge; ++dy) {
+                const int row = ((hz + dz) * kHalfTileEdge + hy + dy) * kHalfTileEdge + hx;
+                const int end = tile.offset[row + kHalfStencilEdge];
+#pragma unroll 2
+                for (int c = tile.offset[row] + g.lane; c < end; c += L) {
+                    const float4 q = tile.pos[c];
+                    const float3 d = make_float3(p.x - q.x, p.y - q.y, p.z - q.z);
+                    if (c != self) {
+                        const float3 pair = lj_force(d);
+                        f.x += pair.x;
+                        f.y += pair.y;
+                        f.z += pair.z;
+                    }
+                }
+            }
+        f = combined(f, g);
+        if (g.lane == 0) {
+            const int i = tile.start[homeCell] + rank;
+            if (forceOut) forceOut[s.originalId[i]] = make_float4(f.x, f.y, f.z, 0.f);
+            if (advance_particle<false>(s, p, out, i, f, closing)) {
+                *flag = 1;
+                __threadfence();  // the flag reaches the last block before this block counts itself done
+            }
+        }
+    }
+}
+
+// fused over half cells: a block per (group, part); the last block sets the IF node's condition
+// as fused_step does.
+template <int L>
+__global__ void __launch_bounds__(kHalfMembersPerRound* L)
+    half_cells_fused_step(System s, const float4* __restrict__ in, float4* __restrict__ out, int parts, bool closing,
+                          cudaGraphConditionalHandle handle, float4* forceOut) {
+    __shared__ HalfCellTile tile;
+    half_cells_pair_item<L, true>(s, in, out, blockIdx.x, parts, closing, forceOut, s.rebuild, tile);
+    if (!handle) return;
+    __syncthreads();
+    if (threadIdx.x == 0 && atomicAdd(s.blocksDone, 1u) == gridDim.x - 1) {
+        *s.blocksDone = 0;
+        cudaGraphSetConditional(handle, atomicAdd(s.rebuild, 0) != 0 ? 1u : 0u);
+        ++*s.step;
+    }
+}
+
+// persistent over half cells: cells_persistent_steps with the groups' tiles.
+template <int L>
+__global__ void __launch_bounds__(kHalfMembersPerRound* L, kHalfPersistentWarpsPerMultiprocessor / L)
+    half_cells_persistent_steps(System s, int parity, long long firstStep, int steps, int parts, bool closingFirst,
+                                float4* forceOut) {
+    __shared__ HalfCellTile tile;
+    cg::grid_group grid = cg::this_grid();
+    const long long threads = static_cast<long long>(gridDim.x) * blockDim.x;
+    const long long id = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+    const int lane = threadIdx.x % 32;
+    const int groupsPerEdge = half_cell_groups_per_edge(s.perEdge);
+    const int items = groupsPerEdge * groupsPerEdge * groupsPerEdge * parts;
+    for (int step = 0; step < steps; ++step) {
+        const float4* in = s.pos[(parity + step) & 1];
+        float4* out = s.pos[(parity + step + 1) & 1];
+        const long long g = firstStep + step;
+        int* flag = s.rebuildByStep + g % 3;
+        for (long long c = id; c < s.cells; c += threads) s.cellCount[c] = 0;
+        for (int item = blockIdx.x; item < items; item += gridDim.x)
+            half_cells_pair_item<L, false>(s, in, out, item, parts, closingFirst || step > 0,
+                                           step == 0 ? forceOut : nullptr, flag, tile);
         grid.sync();
         if (id == 0) {
             s.rebuildByStep[(g + 2) % 3] = 0;
@@ -790,9 +1045,10 @@ __global__ void listed_within_cutoff(System s, const float4* pos, int* withinCut
     withinCutoff[i] = count;
 }
 
-// The cell tiles' counterpart: how many of the candidates in the 27 cells around sorted particle
-// i lie within rc, stored at its original id.
-__global__ void candidates_within_cutoff(System s, const float4* pos, int* withinCutoff) {
+// The cell tiles' counterpart: how many of the candidates in the cells around sorted particle i
+// (`reach` cells on each side: the 27 cells, or the half cells' 125) lie within rc, stored at its
+// original id.
+__global__ void candidates_within_cutoff(System s, const float4* pos, int* withinCutoff, int reach) {
     const int i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= s.n) return;
     const double rc2 = double(kCutoff) * kCutoff;
@@ -801,9 +1057,9 @@ __global__ void candidates_within_cutoff(System s, const float4* pos, int* withi
     while (s.cellStart[cell + 1] <= i) ++cell;
     const int cx = cell % e, cy = (cell / e) % e, cz = cell / (e * e);
     int count = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
+    for (int dz = -reach; dz <= reach; ++dz)
+        for (int dy = -reach; dy <= reach; ++dy)
+            for (int dx = -reach; dx <= reach; ++dx) {
                 const int neighbour = (((cz + dz + e) % e) * e + (cy + dy + e) % e) * e + (cx + dx + e) % e;
                 for (int j = s.cellStart[neighbour]; j < s.cellStart[neighbour + 1]; ++j) {
                     if (j == i) continue;
@@ -931,11 +1187,13 @@ double total_energy(const System& s, const float4* pos, bool halfStep) {
     return e;
 }
 
-System make_system(const Liquid& liquid) {
+// `perEdge`: the cells per edge of the binning (the list cells' by default; the half cells' need
+// a system of their own).
+System make_system(const Liquid& liquid, int perEdge) {
     System s;
     s.n = static_cast<int>(liquid.pos.size());
     s.length = liquid.length;
-    s.perEdge = liquid.perEdge;
+    s.perEdge = perEdge;
     s.cells = s.perEdge * s.perEdge * s.perEdge;
     for (float4*& p : s.pos) p = device_array<float4>(s.n);
     s.vel = device_array<float4>(s.n);
@@ -971,10 +1229,31 @@ void free_system(System& s) {
         cudaFree(p);
 }
 
-enum class Design { kChain, kFused, kPersistent, kCellsFused, kCellsPersistent };
+enum class Design { kChain, kFused, kPersistent, kCellsFused, kCellsPersistent, kHalfCellsFused, kHalfCellsPersistent };
 
-bool over_cells(Design design) { return design == Design::kCellsFused || design == Design::kCellsPersistent; }
-bool persistent(Design design) { return design == Design::kPersistent || design == Design::kCellsPersistent; }
+bool over_half_cells(Design design) {
+    return design == Design::kHalfCellsFused || design == Design::kHalfCellsPersistent;
+}
+bool over_cells(Design design) {
+    return design == Design::kCellsFused || design == Design::kCellsPersistent || over_half_cells(design);
+}
+bool persistent(Design design) {
+    return design == Design::kPersistent || design == Design::kCellsPersistent ||
+           design == Design::kHalfCellsPersistent;
+}
+
+std::string variant_name(Design design, int lanes, int stepsPerGraph) {
+    const std::string l = std::to_string(lanes);
+    switch (design) {
+        case Design::kChain: return stepsPerGraph == kStepsPerGraph ? "chain" : "chain-g" + std::to_string(stepsPerGraph);
+        case Design::kFused: return "fused-" + l;
+        case Design::kPersistent: return "persistent-" + l;
+        case Design::kCellsFused: return "cells-fused-" + l;
+        case Design::kCellsPersistent: return "cells-persistent-" + l;
+        case Design::kHalfCellsFused: return "half-cells-fused-" + l;
+        default: return "half-cells-persistent-" + l;
+    }
+}
 
 template <class F>
 void with_lanes(int lanes, F&& f) {
@@ -1037,28 +1316,28 @@ void capture_if(cudaStream_t stream, cudaStream_t bodyStream, cudaGraphCondition
 }
 
 // One variant on one liquid: its state, its graph or cooperative grid, and its steps.
+// `stepsPerGraph`: kStepsPerGraph but for chain-g16; a run that is not a multiple of it ends on a
+// shorter graph (chain only: the fused graphs keep an even length for their buffers' parity).
 class Variant {
 public:
-    Variant(Design design, int lanes, System& s, cudaStream_t stream, cudaStream_t bodyStream)
-        : design_(design), lanes_(lanes), s_(s), stream_(stream), bodyStream_(bodyStream) {}
+    Variant(Design design, int lanes, int stepsPerGraph, System& s, cudaStream_t stream, cudaStream_t bodyStream)
+        : design_(design),
+          lanes_(lanes),
+          stepsPerGraph_(stepsPerGraph),
+          s_(s),
+          stream_(stream),
+          bodyStream_(bodyStream) {}
     Variant(const Variant&) = delete;
     Variant& operator=(const Variant&) = delete;
     ~Variant() {
         if (exec_) cudaGraphExecDestroy(exec_);
+        if (remainderExec_) cudaGraphExecDestroy(remainderExec_);
     }
 
-    std::string name() const {
-        switch (design_) {
-            case Design::kChain: return "chain";
-            case Design::kFused: return "fused-" + std::to_string(lanes_);
-            case Design::kPersistent: return "persistent-" + std::to_string(lanes_);
-            case Design::kCellsFused: return "cells-fused-" + std::to_string(lanes_);
-            default: return "cells-persistent-" + std::to_string(lanes_);
-        }
-    }
+    std::string name() const { return variant_name(design_, lanes_, stepsPerGraph_); }
     int grid() const {
         if (persistent(design_)) return cooperativeBlocks_;
-        return over_cells(design_) ? s_.cells * parts_ : blocks_for(static_cast<long long>(s_.n) * lanes_);
+        return over_cells(design_) ? tile_items() : blocks_for(static_cast<long long>(s_.n) * lanes_);
     }
 
     // Puts the liquid in the state at step 0 with its list built, and lays the list out for the
@@ -1077,9 +1356,10 @@ public:
             std::vector<int> identity(s_.n);
             std::iota(identity.begin(), identity.end(), 0);
             check(cudaMemcpy(s_.originalId, identity.data(), sizeof(int) * s_.n, cudaMemcpyHostToDevice), "copy");
-            // Enough parts per cell that a cell of average size takes one round of members.
-            const int membersPerRound = kCellThreads / lanes_;
-            parts_ = std::max(1, (s_.n / s_.cells + membersPerRound - 1) / membersPerRound);
+            // Enough parts per cell (or group) that one of average size takes one round of members.
+            const int membersPerRound = over_half_cells(design_) ? kHalfMembersPerRound : kCellThreads / lanes_;
+            const int tiles = over_half_cells(design_) ? half_cell_groups() : s_.cells;
+            parts_ = std::max(1, (s_.n / tiles + membersPerRound - 1) / membersPerRound);
             launch_cells_build(s_, s_.pos[0], stream_);
         } else {
             launch_build(s_, s_.pos[0], stream_);
@@ -1109,17 +1389,25 @@ public:
                 check(cudaStreamSynchronize(stream_), "first fused step over cells");
                 if (read_one(s_.rebuild)) launch_cells_build(s_, s_.pos[1], stream_);
                 parity_ = 1;
+            } else if (design_ == Design::kHalfCellsFused) {
+                half_cells_fused_step<L><<<tile_items(), kHalfMembersPerRound * L, 0, stream_>>>(
+                    s_, s_.pos[0], s_.pos[1], parts_, false, 0, forceOut);
+                check(cudaStreamSynchronize(stream_), "first fused step over half cells");
+                if (read_one(s_.rebuild)) launch_cells_build(s_, s_.pos[1], stream_);
+                parity_ = 1;
             } else if (design_ == Design::kCellsPersistent) {
                 launch_cells_persistent<L>(1, false, forceOut);
+            } else if (design_ == Design::kHalfCellsPersistent) {
+                launch_half_cells_persistent<L>(1, false, forceOut);
             } else {
                 launch_persistent<L>(1, false, forceOut);
             }
         });
         check(cudaStreamSynchronize(stream_), "first step");
-        if (!persistent(design_)) capture();
+        if (!persistent(design_)) exec_ = capture(stepsPerGraph_);
     }
 
-    // Steps on: a multiple of kStepsPerGraph for the graph designs.
+    // Steps on: a multiple of kStepsPerGraph for the graph designs but chain's.
     void run(int steps) {
         if (design_ == Design::kPersistent) {
             with_lanes(lanes_, [&](auto lanes) { launch_persistent<decltype(lanes)::value>(steps, true, nullptr); });
@@ -1130,7 +1418,21 @@ public:
                        [&](auto lanes) { launch_cells_persistent<decltype(lanes)::value>(steps, true, nullptr); });
             return;
         }
-        for (int done = 0; done < steps; done += kStepsPerGraph) check(cudaGraphLaunch(exec_, stream_), "graph launch");
+        if (design_ == Design::kHalfCellsPersistent) {
+            with_lanes(lanes_,
+                       [&](auto lanes) { launch_half_cells_persistent<decltype(lanes)::value>(steps, true, nullptr); });
+            return;
+        }
+        const int remainder = steps % stepsPerGraph_;
+        if (remainder && remainder != remainderSteps_) {  // captured before the steps, outside their time
+            check(cudaStreamSynchronize(stream_), "steps before a capture");
+            if (remainderExec_) cudaGraphExecDestroy(remainderExec_);
+            remainderExec_ = capture(remainder);
+            remainderSteps_ = remainder;
+        }
+        for (int done = 0; done + stepsPerGraph_ <= steps; done += stepsPerGraph_)
+            check(cudaGraphLaunch(exec_, stream_), "graph launch");
+        if (remainder) check(cudaGraphLaunch(remainderExec_, stream_), "graph launch");
     }
 
     // The positions one drift after the state, x(n+1), by original particle id: chain's are drifted on
@@ -1161,6 +1463,34 @@ public:
     }
 
 private:
+    int half_cell_groups() const {
+        const int groupsPerEdge = half_cell_groups_per_edge(s_.perEdge);
+        return groupsPerEdge * groupsPerEdge * groupsPerEdge;
+    }
+    // The blocks of one step over cells: a block per (cell or group, part).
+    int tile_items() const { return (over_half_cells(design_) ? half_cell_groups() : s_.cells) * parts_; }
+
+    template <int L>
+    void launch_half_cells_persistent(int steps, bool closingFirst, float4* forceOut) {
+        constexpr int kBlockThreads = kHalfMembersPerRound * L;
+        if (!cooperativeBlocks_) {
+            int perMultiprocessor = 0, multiprocessors = 0;
+            check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perMultiprocessor, half_cells_persistent_steps<L>,
+                                                                kBlockThreads, 0),
+                  "occupancy");
+            check(cudaDeviceGetAttribute(&multiprocessors, cudaDevAttrMultiProcessorCount, 0), "device");
+            cooperativeBlocks_ = std::max(1, std::min(perMultiprocessor * multiprocessors, tile_items()));
+        }
+        int parity = parity_, parts = parts_;
+        long long firstStep = persistentStep_;
+        void* args[] = {&s_, &parity, &firstStep, &steps, &parts, &closingFirst, &forceOut};
+        check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(half_cells_persistent_steps<L>),
+                                          dim3(cooperativeBlocks_), dim3(kBlockThreads), args, 0, stream_),
+              "cooperative launch");
+        parity_ = (parity_ + steps) & 1;
+        persistentStep_ += steps;
+    }
+
     template <int L>
     void launch_cells_persistent(int steps, bool closingFirst, float4* forceOut) {
         if (!cooperativeBlocks_) {
@@ -1201,13 +1531,15 @@ private:
         persistentStep_ += steps;
     }
 
-    void capture() {
+    // A graph of `steps` steps.
+    cudaGraphExec_t capture(int steps) {
         cudaGraph_t graph = nullptr;
+        cudaGraphExec_t exec = nullptr;
         check(cudaStreamBeginCapture(stream_, cudaStreamCaptureModeThreadLocal), "begin capture");
         with_lanes(lanes_, [&](auto lanes) {
             constexpr int L = decltype(lanes)::value;
             const int pairBlocks = blocks_for(static_cast<long long>(s_.n) * L), particleBlocks = blocks_for(s_.n);
-            for (int step = 0; step < kStepsPerGraph; ++step) {
+            for (int step = 0; step < steps; ++step) {
                 cudaGraphConditionalHandle handle{};
                 check(cudaGraphConditionalHandleCreate(&handle, capturing_graph(stream_), 0, 0), "graph condition");
                 if (design_ == Design::kChain) {
@@ -1224,6 +1556,13 @@ private:
                            true, handle, static_cast<float4*>(nullptr));
                     capture_if(stream_, bodyStream_, handle,
                                [&](cudaStream_t body) { launch_cells_build(s_, out, body); });
+                } else if (design_ == Design::kHalfCellsFused) {
+                    const float4* in = s_.pos[(parity_ + step) & 1];
+                    float4* out = s_.pos[(parity_ + step + 1) & 1];
+                    launch(half_cells_fused_step<L>, tile_items(), kHalfMembersPerRound * L, stream_, false, s_, in,
+                           out, parts_, true, handle, static_cast<float4*>(nullptr));
+                    capture_if(stream_, bodyStream_, handle,
+                               [&](cudaStream_t body) { launch_cells_build(s_, out, body); });
                 } else {
                     const float4* in = s_.pos[(parity_ + step) & 1];
                     float4* out = s_.pos[(parity_ + step + 1) & 1];
@@ -1234,16 +1573,20 @@ private:
             }
         });
         check(cudaStreamEndCapture(stream_, &graph), "end capture");
-        check(cudaGraphInstantiate(&exec_, graph, 0), "instantiate");
-        check(cudaGraphUpload(exec_, stream_), "upload");
+        check(cudaGraphInstantiate(&exec, graph, 0), "instantiate");
+        check(cudaGraphUpload(exec, stream_), "upload");
         cudaGraphDestroy(graph);
+        return exec;
     }
 
     Design design_;
     int lanes_;
+    int stepsPerGraph_;
     System& s_;
     cudaStream_t stream_, bodyStream_;
     cudaGraphExec_t exec_ = nullptr;
+    cudaGraphExec_t remainderExec_ = nullptr;  // chain-g16: the graph of a run's last steps
+    int remainderSteps_ = 0;
     int parity_ = 0;
     long long persistentStep_ = 0;
     int cooperativeBlocks_ = 0;
@@ -1268,6 +1611,14 @@ struct Options {
     int checkSteps = 100;
     std::string csv;
     std::vector<int> sizes;
+    std::vector<std::string> only;  // name prefixes of the variants to run; empty: all
+
+    // chain always runs: its positions are the other variants' trajectory reference.
+    bool selected(const std::string& name) const {
+        if (only.empty() || name == "chain") return true;
+        return std::any_of(only.begin(), only.end(),
+                           [&](const std::string& prefix) { return name.compare(0, prefix.size(), prefix) == 0; });
+    }
 };
 
 int round_to_graphs(int steps) { return std::max(1, (steps + kStepsPerGraph - 1) / kStepsPerGraph) * kStepsPerGraph; }
@@ -1308,17 +1659,18 @@ double largest_displacement(const std::vector<float4>& a, const std::vector<floa
 constexpr double kForceTolerance = 1e-4;
 constexpr double kTrajectoryTolerance = 1e-3;
 
-// The tiles' mean size per particle: each cell's members see the 27 cells around it.
-double mean_candidates(const System& s) {
+// The tiles' mean size per particle: each cell's members see the cells around it (`reach` on
+// each side).
+double mean_candidates(const System& s, int reach) {
     const std::vector<int> start = to_host(s.cellStart, s.cells + 1);
     const int e = s.perEdge;
     double sum = 0;
     for (int cell = 0; cell < s.cells; ++cell) {
         const int cx = cell % e, cy = (cell / e) % e, cz = cell / (e * e);
         int tile = 0;
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
+        for (int dz = -reach; dz <= reach; ++dz)
+            for (int dy = -reach; dy <= reach; ++dy)
+                for (int dx = -reach; dx <= reach; ++dx) {
                     const int neighbour = (((cz + dz + e) % e) * e + (cy + dy + e) % e) * e + (cx + dx + e) % e;
                     tile += start[neighbour + 1] - start[neighbour];
                 }
@@ -1334,7 +1686,7 @@ bool run_size(int cellsPerEdge, const Options& options, std::vector<Row>& rows) 
                     liquid.pos.size());
         return true;
     }
-    System s = make_system(liquid);
+    System s = make_system(liquid, liquid.perEdge);
     cudaStream_t stream, bodyStream;
     // The steps' stream synchronises with the legacy stream that the checks' copies and kernels use.
     check(cudaStreamCreate(&stream), "stream");
@@ -1347,21 +1699,40 @@ bool run_size(int cellsPerEdge, const Options& options, std::vector<Row>& rows) 
               steps = round_to_graphs(options.steps);
 
     const int chainLanes = engine_lanes(s.n);
-    std::vector<std::pair<Design, int>> designs = {{Design::kChain, chainLanes}};
-    for (int lanes : {1, 2, 4, 8, 16, 32}) designs.push_back({Design::kFused, lanes});
-    for (int lanes : {1, 2, 4, 8, 16, 32}) designs.push_back({Design::kPersistent, lanes});
-    for (int lanes : {4, 8, 16, 32}) designs.push_back({Design::kCellsFused, lanes});
-    for (int lanes : {4, 8, 16, 32}) designs.push_back({Design::kCellsPersistent, lanes});
+    struct Spec {
+        Design design;
+        int lanes;
+        int stepsPerGraph;
+    };
+    std::vector<Spec> designs = {{Design::kChain, chainLanes, kStepsPerGraph}};
+    for (int lanes : {1, 2, 4, 8, 16, 32}) designs.push_back({Design::kFused, lanes, kStepsPerGraph});
+    for (int lanes : {1, 2, 4, 8, 16, 32}) designs.push_back({Design::kPersistent, lanes, kStepsPerGraph});
+    for (int lanes : {4, 8, 16, 32}) designs.push_back({Design::kCellsFused, lanes, kStepsPerGraph});
+    for (int lanes : {4, 8, 16, 32}) designs.push_back({Design::kCellsPersistent, lanes, kStepsPerGraph});
+    for (int lanes : {2, 4, 8}) designs.push_back({Design::kHalfCellsFused, lanes, kStepsPerGraph});
+    for (int lanes : {2, 4, 8}) designs.push_back({Design::kHalfCellsPersistent, lanes, kStepsPerGraph});
+    designs.push_back({Design::kChain, chainLanes, kEngineStepsPerGraph});
+
+    // The half cells bin the same liquid into cells of edge >= kHalfCellEdge, in a system of their own.
+    const int halfPerEdge = static_cast<int>(std::floor(liquid.length / kHalfCellEdge));
+    System half;
+    const bool anyHalf = std::any_of(designs.begin(), designs.end(), [&](const Spec& spec) {
+        return over_half_cells(spec.design) && options.selected(variant_name(spec.design, spec.lanes, spec.stepsPerGraph));
+    });
+    if (anyHalf) half = make_system(liquid, halfPerEdge);  // 3+ list cells per edge: 6+ half cells
 
     bool passed = true;
     std::vector<float4> chainPositions;
-    for (const auto& [design, lanes] : designs) {
-        Variant variant(design, lanes, s, stream, bodyStream);
+    for (const auto& [design, lanes, stepsPerGraph] : designs) {
+        if (!options.selected(variant_name(design, lanes, stepsPerGraph))) continue;
+        System& vs = over_half_cells(design) ? half : s;  // the variant's system
+        Variant variant(design, lanes, stepsPerGraph, vs, stream, bodyStream);
         variant.reset(liquid);
         double neighbours = 0;  // mean list length, or over cells the mean number of candidates
         if (over_cells(design)) {
-            candidates_within_cutoff<<<blocks_for(s.n), kThreads>>>(s, s.pos[0], listedWithin);
-            neighbours = mean_candidates(s);
+            const int reach = over_half_cells(design) ? kHalfReach : 1;
+            candidates_within_cutoff<<<blocks_for(vs.n), kThreads>>>(vs, vs.pos[0], listedWithin, reach);
+            neighbours = mean_candidates(vs, reach);
         } else {
             listed_within_cutoff<<<blocks_for(s.n), kThreads>>>(s, s.pos[0], listedWithin);
             const std::vector<int> counts = to_host(s.listCount, s.n);
@@ -1375,13 +1746,13 @@ bool run_size(int cellsPerEdge, const Options& options, std::vector<Row>& rows) 
         const double forceError = relative_force_error(to_host(firstForces, s.n), reference);
         variant.run(checkSteps);
         const std::vector<float4> positions = variant.next_positions();
-        if (design == Design::kChain) chainPositions = positions;
+        if (design == Design::kChain && stepsPerGraph == kStepsPerGraph) chainPositions = positions;
         const double trajectoryError = largest_displacement(positions, chainPositions, s.length);
 
         variant.run(warmup);
         check(cudaStreamSynchronize(stream), "warm-up");
         const double energyBefore = variant.energy();
-        const int buildsBefore = read_one(s.builds);
+        const int buildsBefore = read_one(vs.builds);
         cudaEvent_t begin, end;
         check(cudaEventCreate(&begin), "event");
         check(cudaEventCreate(&end), "event");
@@ -1393,15 +1764,15 @@ bool run_size(int cellsPerEdge, const Options& options, std::vector<Row>& rows) 
         check(cudaEventElapsedTime(&ms, begin, end), "event");
         cudaEventDestroy(begin);
         cudaEventDestroy(end);
-        const int builds = read_one(s.builds) - buildsBefore;
+        const int builds = read_one(vs.builds) - buildsBefore;
         const double energyAfter = variant.energy();
-        const int overflow = read_one(s.overflow);
+        const int overflow = read_one(vs.overflow);
 
         const double us = 1000.0 * ms / steps;
         rows.push_back({s.n, variant.name(), lanes, variant.grid(), us, 1e6 / us, 1000.0 * builds / steps, forceError,
                         trajectoryError, (energyAfter - energyBefore) / s.n, neighbours});
         const Row& r = rows.back();
-        std::printf("%9d  %-19s %5d %7d %9.2f %11.0f %8.1f %10.2e %10.2e %11.2e %6.1f\n", r.n, r.variant.c_str(), r.lanes,
+        std::printf("%9d  %-23s %5d %7d %9.2f %11.0f %8.1f %10.2e %10.2e %11.2e %6.1f\n", r.n, r.variant.c_str(), r.lanes,
                     r.blocks, r.usPerStep, r.stepsPerSecond, r.buildsPer1000, r.forceError, r.trajectoryError,
                     r.energyDrift, r.neighbours);
         std::fflush(stdout);
@@ -1419,6 +1790,7 @@ bool run_size(int cellsPerEdge, const Options& options, std::vector<Row>& rows) 
     cudaStreamDestroy(stream);
     cudaStreamDestroy(bodyStream);
     free_system(s);
+    if (anyHalf) free_system(half);
     return passed;
 }
 
@@ -1441,11 +1813,20 @@ Options parse(int argc, char** argv) {
             options.checkSteps = std::stoi(value());
         else if (arg == "--csv")
             options.csv = value();
+        else if (arg == "--only") {
+            const std::string list = value();
+            for (size_t begin = 0; begin <= list.size();) {
+                const size_t end = std::min(list.find(',', begin), list.size());
+                if (end > begin) options.only.push_back(list.substr(begin, end - begin));
+                begin = end + 1;
+            }
+        }
         else if (!arg.empty() && arg[0] != '-')
             options.sizes.push_back(std::stoi(arg));
         else {
             std::fprintf(stderr,
-                         "usage: %s [--steps S] [--warmup W] [--check-steps C] [--csv PATH] [cells per edge ...]\n",
+                         "usage: %s [--steps S] [--warmup W] [--check-steps C] [--csv PATH] [--only P1,P2,...] "
+                         "[cells per edge ...]\n",
                          argv[0]);
             std::exit(2);
         }
@@ -1468,7 +1849,7 @@ int main(int argc, char** argv) {
     }
     std::printf("# %s; timed steps %d after %d warm-up steps, trajectories compared after %d steps\n", prop.name,
                 round_to_graphs(options.steps), round_to_graphs(options.warmup), round_to_graphs(options.checkSteps));
-    std::printf("%9s  %-19s %5s %7s %9s %11s %8s %10s %10s %11s %6s\n", "particles", "variant", "lanes", "blocks",
+    std::printf("%9s  %-23s %5s %7s %9s %11s %8s %10s %10s %11s %6s\n", "particles", "variant", "lanes", "blocks",
                 "us/step", "steps/s", "builds", "max|dF|", "max|dx|", "dE/N", "list");
     std::vector<Row> rows;
     bool passed = true;
