@@ -434,8 +434,13 @@ private:
     // a cutoff no pair term's list covers, the registered ones' output, and the force field's group names.
     std::vector<std::pair<double, std::shared_ptr<VerletList<B, R>>>> transverserLists_;
     typename B::template Buffer<R> transverserOut_;
-    std::shared_ptr<VerletList<B, R>> transverser_list(double cutoff);
-    bool transverser_owns(const VerletList<B, R>& list) const;
+    // The list a transverser of that cutoff runs over (engine_transversers.hpp), and whether it is one
+    // of the transversers' own, which the run itself adapts.
+    struct TransverserList {
+        std::shared_ptr<VerletList<B, R>> list;
+        bool own = false;
+    };
+    TransverserList transverser_list(double cutoff);
     // Runs a registered transverser into transverserOut_ (engine_transversers.hpp).
     void run_registered_transverser(const TransverserCall& call);
     std::vector<std::string> groupNames_;

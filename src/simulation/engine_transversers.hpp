@@ -13,27 +13,20 @@
 namespace structmd {
 
 // A pair term's list where one offers every pair within the cutoff: the steps keep it up to date, so
-// a transverser run after a step refreshes and builds nothing. Else a list of the transverser's own,
-// made at the first call with that cutoff.
+// a transverser run after a step refreshes and builds nothing, and the end of every step call adapts
+// it to what its builds needed (a copy to the host). Else a list of the transversers' own, made at the
+// first call with that cutoff, which each run adapts (an overflowed particle meanwhile scans its
+// cells, neighbour_view.hpp).
 template <class B, class R, class PairR>
-std::shared_ptr<VerletList<B, R>> Engine<B, R, PairR>::transverser_list(double cutoff) {
-    if (auto shared = forceField_.list_offering_every_pair_within(cutoff, context_.batch)) return shared;
+typename Engine<B, R, PairR>::TransverserList Engine<B, R, PairR>::transverser_list(double cutoff) {
+    if (auto shared = forceField_.list_offering_every_pair_within(cutoff, context_.batch)) return {shared, false};
     const auto found = std::find_if(transverserLists_.begin(), transverserLists_.end(),
                                     [&](const auto& l) { return l.first == cutoff; });
-    if (found != transverserLists_.end()) return found->second;
+    if (found != transverserLists_.end()) return {found->second, true};
     auto own = std::make_shared<VerletList<B, R>>(backend_, cutoff, 1.1, PairCondition::all, PairFilterInputs{},
                                                   context_.batch, context_.batches, context_.model);
     transverserLists_.emplace_back(cutoff, own);
-    return own;
-}
-
-// Whether the list is one of the transversers' own: the end of every step call adapts the pair
-// terms' lists to what their builds needed (a copy to the host), so a transverser over one of those
-// leaves it to that (an overflowed particle meanwhile scans its cells, neighbour_view.hpp).
-template <class B, class R, class PairR>
-bool Engine<B, R, PairR>::transverser_owns(const VerletList<B, R>& list) const {
-    return std::any_of(transverserLists_.begin(), transverserLists_.end(),
-                       [&](const auto& own) { return own.second.get() == &list; });
+    return {own, true};
 }
 
 template <class B, class R, class PairR>
@@ -47,9 +40,8 @@ void Engine<B, R, PairR>::expression_sum(const ExpressionTransverserSpec& spec, 
         found = transversers_.end() - 1;
     }
     PreparedExpressionSum<B, R>& prepared = *found->second;
-    const std::shared_ptr<VerletList<B, R>> list = spec.cutoff > 0 ? transverser_list(spec.cutoff) : nullptr;
-    prepared.run(p_, spec.group >= 0 ? forceField_.group(spec.group) : nullptr, list.get(),
-                 list && transverser_owns(*list));
+    const TransverserList list = spec.cutoff > 0 ? transverser_list(spec.cutoff) : TransverserList{};
+    prepared.run(p_, spec.group >= 0 ? forceField_.group(spec.group) : nullptr, list.list.get(), list.own);
     const std::vector<R> values = io_.download(prepared.output());
     std::copy(values.begin(), values.end(), perParticle);
 }
@@ -85,7 +77,8 @@ void Engine<B, R, PairR>::run_registered_transverser(const TransverserCall& call
     }
     backend_.activate();
     refresh_ghosts();
-    const std::shared_ptr<VerletList<B, R>> list = call.cutoff > 0 ? transverser_list(call.cutoff) : nullptr;
+    const TransverserList listed = call.cutoff > 0 ? transverser_list(call.cutoff) : TransverserList{};
+    VerletList<B, R>* list = listed.list.get();
     const int64_t n = p_.count;
     backend_.resize(transverserOut_, n * call.values);
     // Without a group every particle's set writes its values (docs/plugins.md), so only a group
@@ -103,7 +96,7 @@ void Engine<B, R, PairR>::run_registered_transverser(const TransverserCall& call
         runner->run(TransverserRun<B, R>{backend_, inputs, list ? &view : nullptr, R(call.cutoff * call.cutoff), p_.box,
                                          group, context_.batch},
                     call.parameters);
-        if (list && transverser_owns(*list)) list->adapt();
+        if (listed.own) list->adapt();
     }
 }
 
