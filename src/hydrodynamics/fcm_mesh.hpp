@@ -224,9 +224,10 @@ public:
         const FftGrid grid = plan_.grid;
         const int64_t points = grid.points(), spectrumPoints = grid.spectrum_points();
         bins_.sort(p.count, GaussianKernelLine<R, FcmAxis<R>>{p.pos.data(), group, axes_});
-        backend_.for_each(grid.ny * grid.nz, GaussianSpreadLine<R, FcmAxis<R>, Real4Vectors<R>>{
-                                                 p.pos.data(), {p.force.data()}, bins_.order(), bins_.line_start(),
-                                                 axes_, field_.data()});
+        backend_.for_each_lanes(grid.ny * grid.nz,
+                                GaussianSpreadLine<R, FcmAxis<R>, Real4Vectors<R>>{
+                                    p.pos.data(), {p.force.data()}, bins_.order(), bins_.line_start(), axes_, field_.data()},
+                                LaneSizing::kWarp);
         for (int d = 0; d < 3; ++d) fft_.forward(field_.data() + d * points, spectrum_.data() + d * spectrumPoints);
         const double volume = plan_.box[0] * plan_.box[1] * plan_.box[2];
         backend_.for_each(spectrumPoints,

@@ -137,9 +137,10 @@ private:
                 Complex<R>* spectrum) {
         const FftGrid grid = plan_.translation.grid;
         bins_.sort(p.count, GaussianKernelLine<R, FcmAxis<R>>{p.pos.data(), group, axes});
-        backend_.for_each(grid.ny * grid.nz, GaussianSpreadLine<R, FcmAxis<R>, Real4Vectors<R>>{
-                                                 p.pos.data(), {vectors}, bins_.order(), bins_.line_start(), axes,
-                                                 field_.data()});
+        backend_.for_each_lanes(grid.ny * grid.nz,
+                                GaussianSpreadLine<R, FcmAxis<R>, Real4Vectors<R>>{
+                                    p.pos.data(), {vectors}, bins_.order(), bins_.line_start(), axes, field_.data()},
+                                LaneSizing::kWarp);
         for (int d = 0; d < 3; ++d)
             fft_.forward(field_.data() + d * grid.points(), spectrum + d * grid.spectrum_points());
     }

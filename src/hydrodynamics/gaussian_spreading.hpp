@@ -6,13 +6,15 @@
 // weight per axis; x and y are periodic (FcmAxis), z is the method's (FcmAxis or SlabAxisZ, both
 // answering first_node, node_weight, plane and plane_below).
 //
-// Vectors go onto the grid one line along x per thread from the particles sorted by the line their
-// kernel starts on (neighbour/line_bins.hpp, as the particle-mesh Ewald of electrostatics does).
+// Vectors go onto the grid one line along x per item (a warp on the GPU) from the particles sorted
+// by the line their kernel starts on (neighbour/line_bins.hpp, as the particle-mesh Ewald of
+// electrostatics does).
 #include <cmath>
 #include <cstdint>
 
 #include "core/fft_grid.hpp"
 #include "core/hd.hpp"
+#include "core/lanes.hpp"
 #include "core/vec.hpp"
 
 namespace structmd {
@@ -85,6 +87,14 @@ struct GaussianKernelLine {
     }
 };
 
+// Whether `lanes` owns point x of a line: the lane of rank x modulo the lane count clears the point
+// and sums every term into it. Each point thus takes its terms in the order of the loops that
+// spread them, on any number of lanes, and no two lanes write one point (no atomics). A warp per
+// line has 32 times the threads of a thread per line and each lane a fraction of its points' terms:
+// with about ten particles' kernels on a point, one thread per line left the device mostly idle
+// (docs/benchmarks.md).
+SMD_HD SMD_INLINE bool owns_point(const Lanes& lanes, int x) { return (x & (lanes.count - 1)) == lanes.lane; }
+
 // One grid line along x of the three density grids (x, y, z components, one after the other),
 // cleared and then summed: a particle whose kernel starts on line (y - b, z - c) adds
 // v g_x g_y[b] g_z[c] along the line. Bins in (c, b) order and each in particle order.
@@ -97,14 +107,14 @@ struct GaussianSpreadLine {
     GaussianAxes<R, AxisZ> axes;
     R* density;
 
-    SMD_HD void operator()(int64_t line) const {
+    SMD_HD void operator()(int64_t line, Lanes lanes) const {
         const FftGrid& g = axes.grid;
         const int64_t points = g.points();
         const int y = static_cast<int>(line % g.ny), z = static_cast<int>(line / g.ny);
         R* rowX = density + g.index(0, y, z);
         R* rowY = rowX + points;
         R* rowZ = rowY + points;
-        for (int x = 0; x < g.nx; ++x) rowX[x] = rowY[x] = rowZ[x] = R(0);
+        for (int x = lanes.lane; x < g.nx; x += lanes.count) rowX[x] = rowY[x] = rowZ[x] = R(0);
         const int support = axes.x.support;
         for (int c = 0; c < axes.z.support; ++c) {
             const int binZ = axes.z.plane_below(z, c);
@@ -120,8 +130,9 @@ struct GaussianSpreadLine {
                     const R ux = axes.x.coordinate(r.x);
                     const int firstX = axes.x.first(ux);
                     for (int a = 0; a < support; ++a) {
-                        const R w = wyz * axes.x.weight(firstX, a, ux);
                         const int at = axes.x.fold(firstX + a);
+                        if (!owns_point(lanes, at)) continue;
+                        const R w = wyz * axes.x.weight(firstX, a, ux);
                         rowX[at] += w * v.x;
                         rowY[at] += w * v.y;
                         rowZ[at] += w * v.z;

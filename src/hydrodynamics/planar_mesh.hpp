@@ -88,16 +88,16 @@ struct PlanarSpreadLine {
     R* density;
     bool withNumberDensity;
 
-    SMD_HD void operator()(int64_t line) const {
+    SMD_HD void operator()(int64_t line, Lanes lanes) const {
         const FftGrid& g = axes.grid;
         const int64_t points = g.points();
         const int y = static_cast<int>(line);
         R* rowX = density + g.index(0, y, 0);
         R* rowY = rowX + points;
         R* rowN = rowY + points;
-        for (int x = 0; x < g.nx; ++x) rowX[x] = rowY[x] = R(0);
+        for (int x = lanes.lane; x < g.nx; x += lanes.count) rowX[x] = rowY[x] = R(0);
         if (withNumberDensity)
-            for (int x = 0; x < g.nx; ++x) rowN[x] = R(0);
+            for (int x = lanes.lane; x < g.nx; x += lanes.count) rowN[x] = R(0);
         const int support = axes.x.support;
         for (int b = 0; b < support; ++b) {
             const int bin = axes.y.fold(y - b);
@@ -110,8 +110,9 @@ struct PlanarSpreadLine {
                 const R ux = axes.x.coordinate(r.x);
                 const int firstX = axes.x.first(ux);
                 for (int a = 0; a < support; ++a) {
-                    const R w = wy * axes.x.weight(firstX, a, ux);
                     const int at = axes.x.fold(firstX + a);
+                    if (!owns_point(lanes, at)) continue;
+                    const R w = wy * axes.x.weight(firstX, a, ux);
                     rowX[at] += w * f.x;
                     rowY[at] += w * f.y;
                     if (withNumberDensity) rowN[at] += w;
@@ -305,8 +306,10 @@ public:
         const PlanarKernel<R> kernel{plan_.kind, R(plan_.sigma)};
         const bool drift = kT > 0.0 && kernel.compressible();
         bins_.sort(p.count, PlanarKernelLine<R>{p.pos.data(), group, axes_});
-        backend_.for_each(grid.ny, PlanarSpreadLine<R>{p.pos.data(), p.force.data(), bins_.order(), bins_.line_start(),
-                                                       axes_, field_.data(), drift});
+        backend_.for_each_lanes(grid.ny,
+                                PlanarSpreadLine<R>{p.pos.data(), p.force.data(), bins_.order(), bins_.line_start(), axes_,
+                                                    field_.data(), drift},
+                                LaneSizing::kWarp);
         for (int d = 0; d < (drift ? 3 : 2); ++d)
             fft_.forward(field_.data() + d * points, spectrum_.data() + d * spectrumPoints);
         const double area = plan_.box[0] * plan_.box[1];

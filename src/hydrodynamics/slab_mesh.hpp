@@ -156,8 +156,10 @@ public:
         const FftGrid grid = plan_.grid;
         const int64_t planePoints = int64_t(grid.nx) * grid.ny;
         const int64_t planeSpectrum = int64_t(grid.half_x()) * grid.ny;
-        backend_.for_each(grid.ny * grid.nz, GaussianSpreadLine<R, SlabAxisZ<R>, FlatVectors<R>>{
-                                                 pos_, {v}, bins_.order(), bins_.line_start(), axes_, field_.data()});
+        backend_.for_each_lanes(grid.ny * grid.nz,
+                                GaussianSpreadLine<R, SlabAxisZ<R>, FlatVectors<R>>{
+                                    pos_, {v}, bins_.order(), bins_.line_start(), axes_, field_.data()},
+                                LaneSizing::kWarp);
         fft_.forward(field_.data(), spectrum_.data());
         const double spacing = plan_.height / (grid.nz - 1);
         backend_.for_each(planeSpectrum,
