@@ -150,9 +150,11 @@ def document(method, n, positions, temperature, tolerance, refinement=1, radius=
     length = side(method, n)
     # An open-boundary box only has to hold the particles: they are never folded back into it.
     box = [length] * 3 if periodic else [10.0 * length] * 3
-    parameters = {"timeStep": DT, VISCOSITY_KEY.get(method, "viscosity"): ETA, "hydrodynamicRadius": radius, **EXTRA_PARAMETERS.get(method, {})}
     if method in PARTICLE_FLUIDS:
         parameters = dict(PARTICLE_FLUIDS[method][1])
+    else:
+        parameters = {"timeStep": DT, VISCOSITY_KEY.get(method, "viscosity"): ETA, "hydrodynamicRadius": radius,
+                      **EXTRA_PARAMETERS.get(method, {})}
     if tolerant:
         parameters["tolerance"] = tolerance
     if method in SLAB:
