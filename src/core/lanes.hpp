@@ -137,4 +137,12 @@ struct Lanes {
     }
 };
 
+// Whether `lanes` owns point x (0 <= x) of a grid line that one item spreads onto: the lane of rank
+// x modulo the lane count clears the point and sums every term into it. Each point thus takes its
+// terms in the order of the loops that spread them, on any power-of-two number of lanes (one on the
+// CPU), and no two lanes write one point (no atomics). With about ten particles' kernels on a point,
+// one thread per line left the device mostly idle (docs/benchmarks.md); the lanes share out a
+// line's points instead.
+SMD_HD SMD_INLINE bool owns_point(const Lanes& lanes, int x) { return (x & (lanes.count - 1)) == lanes.lane; }
+
 }  // namespace structmd
