@@ -329,8 +329,8 @@ private:
         const FftGrid grid = plan_.grid;
         bins_.sort(p.count, PmeChargeLine<R>{p.pos.data(), p.charge.data(), group, p.box, grid});
         backend_.for_each_lanes(grid.ny * grid.nz,
-                                PmeSpreadLine<R>{p.pos.data(), p.charge.data(), bins_.order(), bins_.line_start(), p.box,
-                                                 grid, mesh_.data()},
+                                PmeSpreadLine<R>{p.pos.data(), p.charge.data(), bins_.order(), bins_.line_start(),
+                                                 p.box, grid, mesh_.data()},
                                 LaneSizing::kFillDevice);
     }
 
