@@ -12,7 +12,8 @@ namespace structmd {
 // fill at most half the device, so each lane walks several neighbours with their loads in flight
 // (the pair kernels: 8 lanes per particle at 10,976 particles ran 9% faster than the 32 that fill
 // the device; docs/benchmarks.md). kFillDevice: lanes until the items' threads fill the device
-// (the list build, whose ~500 candidate tests per particle are arithmetic, and the scans of cells).
+// (the list build, whose ~500 candidate tests per particle are arithmetic, the scans of cells, and
+// the spreads onto grid lines, whose lanes each repeat a particle's weights: owns_point below).
 // kWarp: a whole warp per item (a cluster of particles and its partner clusters, whose lanes share
 // out the pairs of the clusters).
 enum class LaneSizing { kNeighbourSum, kFillDevice, kWarp };
