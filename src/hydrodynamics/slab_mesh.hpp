@@ -162,9 +162,11 @@ public:
                                 LaneSizing::kWarp);
         fft_.forward(field_.data(), spectrum_.data());
         const double spacing = plan_.height / (grid.nz - 1);
-        backend_.for_each(planeSpectrum,
-                          SlabStokesSolve<R>{spectrum_.data(), solved_.data(), kernel_.data(), grid, plan_.box[0], plan_.box[1],
-                                             spacing, spacing / (double(planePoints) * viscosity), plan_.walls});
+        backend_.for_each_lanes(planeSpectrum,
+                                SlabStokesSolve<R>{spectrum_.data(), solved_.data(), kernel_.data(), grid, plan_.box[0],
+                                                   plan_.box[1], spacing, spacing / (double(planePoints) * viscosity),
+                                                   plan_.walls},
+                                LaneSizing::kFillDevice);
         fft_.inverse(solved_.data(), field_.data());
         const double cellVolume = plan_.box[0] * plan_.box[1] * spacing / double(planePoints);
         backend_.for_each(count_, GaussianInterpolate<R, SlabAxisZ<R>>{pos_, group_, axes_, field_.data(),

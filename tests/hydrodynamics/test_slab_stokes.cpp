@@ -84,7 +84,7 @@ std::vector<std::complex<double>> slit_velocity(const FftGrid& grid, double leng
     for (size_t i = 0; i < force.size(); ++i) f[i] = {R(force[i].real()), R(force[i].imag())};
     const int64_t plane = int64_t(grid.half_x()) * grid.ny;
     const SlabStokesSolve<R> solve{f.data(), u.data(), table.data(), grid, length, length, hz, hz, SlabWalls::slit};
-    for (int64_t at = 0; at < plane; ++at) solve(at);
+    for (int64_t at = 0; at < plane; ++at) solve(at, Lanes{});
     std::vector<std::complex<double>> out(u.size());
     for (size_t i = 0; i < u.size(); ++i) out[i] = {double(u[i].re), double(u[i].im)};
     return out;
