@@ -122,7 +122,7 @@ TEST(SlabAxisZ, SlitWeightsAreContinuousAcrossTheMidplaneAndVanishOnTheWalls) {
     const double radius = 1.0, height = 2.0;
     const int sizes[3] = {16, 16, 15};
     const double box[2] = {4.0, 4.0};
-    const SlabPlan plan = make_slab_plan(sizes, box, height, radius, SlabWalls::slit);
+    const SlabPlan plan = make_slab_plan(sizes, box, height, radius, SlabWalls::slit, 1e-8);
     EXPECT_EQ(plan.images, 2);  // the images through either wall and the copies 2H away reach the slab
     const SlabAxisZ<double> z{-0.5 * height, height / (sizes[2] - 1), sizes[2], sizes[2],
                               0.5 / (plan.sigma * plan.sigma), 1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma),
@@ -138,7 +138,7 @@ TEST(SlabAxisZ, SlitWeightsAreContinuousAcrossTheMidplaneAndVanishOnTheWalls) {
         wall = std::max({wall, std::fabs(z.weight(0, at)), std::fabs(z.weight(sizes[2] - 1, at))});
     std::printf("weights across z = 0: jump %.2e, at the walls %.2e, of %.2e\n", jump, wall, size);
     EXPECT_LT(jump, 1e-5 * size);
-    EXPECT_LT(wall, kSlabKernelCut * size);  // the images beyond the Gaussian's reach are left out
+    EXPECT_LT(wall, plan.cut * size);  // the images beyond the Gaussian's reach are left out
     EXPECT_LT(mirror, 1e-12 * size);
 }
 
