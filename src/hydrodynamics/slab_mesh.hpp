@@ -7,14 +7,14 @@
 // there are walls), 2D transforms of every z plane, the slab's Stokes solve per wave vector
 // (slab_stokes.hpp), the inverse transforms, and J = S^T the Gaussian's average of the velocity at
 // the particle, times the cell volume. Near a wall the Gaussian has its mirror images subtracted
-// (SlabAxisZ; the spreading and the average are gaussian_spreading.hpp's); the part of a Gaussian
-// beyond the slab is left out (on both sides of the product, so M stays symmetric). The Gaussian is
-// cut where it falls to the integrator's tolerance of its peak (slab_kernel_cut), as the force
-// coupling method cuts its own. Only the group's particles take part; the product is 0 at the
-// others.
+// (SlabAxisZ); the part of a Gaussian beyond the slab is left out (on both sides of the product, so
+// M stays symmetric). The Gaussian is cut where it falls to the integrator's tolerance of its peak
+// (slab_kernel_cut), as the force coupling method cuts its own. Only the group's particles take
+// part; the product is 0 at the others.
 //
-// The positions are placed once (place) and then any number of products taken (apply), as the
-// Lanczos square root and the random finite difference need.
+// The positions are placed once (place: the Gaussians' weights are tabulated there,
+// slab_spreading.hpp) and then any number of products taken (apply), as the Lanczos square root and
+// the random finite difference need.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -24,6 +24,7 @@
 #include "core/hd.hpp"
 #include "core/vec.hpp"
 #include "hydrodynamics/gaussian_spreading.hpp"
+#include "hydrodynamics/slab_spreading.hpp"
 #include "hydrodynamics/slab_stokes.hpp"
 #include "neighbour/line_bins.hpp"
 
@@ -68,11 +69,6 @@ struct SlabAxisZ {
         const int centred = static_cast<int>(floor((z - bottom) / spacing - R(0.5) * R(support) + R(1)));
         return centred < 0 ? 0 : (centred > n - support ? n - support : centred);
     }
-    // As GaussianAxes' z axis (gaussian_spreading.hpp): nodes are planes, none below the bottom.
-    SMD_HD SMD_INLINE int first_node(R z) const { return first(z); }
-    SMD_HD SMD_INLINE R node_weight(int firstNode, int c, R z) const { return weight(firstNode + c, z); }
-    SMD_HD SMD_INLINE int plane(int i) const { return i; }
-    SMD_HD SMD_INLINE int plane_below(int plane, int c) const { return plane - c; }
 
     SMD_HD SMD_INLINE R weight(int node, R z) const {
         const R at = bottom + R(node) * spacing;
@@ -121,24 +117,27 @@ inline SlabPlan make_slab_plan(const int sizes[3], const double box[2], double h
     return plan;
 }
 
+// The Gaussian's axes for a plan: x and y periodic, z the slab's.
+template <class R>
+inline SlabAxes<R> slab_axes(const SlabPlan& plan) {
+    const int sizes[2] = {plan.grid.nx, plan.grid.ny};
+    const R inverseTwoSigma2 = R(0.5 / (plan.sigma * plan.sigma)), norm = R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma));
+    FcmAxis<R> axis[2];
+    for (int d = 0; d < 2; ++d)
+        axis[d] = FcmAxis<R>{R(plan.box[d] / sizes[d]), R(1.0 / plan.box[d]), sizes[d], plan.support, inverseTwoSigma2, norm};
+    const SlabAxisZ<R> z{R(-0.5 * plan.height), R(plan.height / (plan.grid.nz - 1)), plan.grid.nz, plan.supportZ,
+                         inverseTwoSigma2, norm, plan.walls, plan.images};
+    return {axis[0], axis[1], z, plan.grid};
+}
+
 template <class B, class R>
 class SlabMesh {
 public:
     SlabMesh(const B& backend, const SlabPlan& plan)
-        : backend_(backend), plan_(plan), fft_(backend, FftGrid{plan.grid.nx, plan.grid.ny, 3 * plan.grid.nz}, FftAxes::xy),
+        : backend_(backend), plan_(plan), axes_(slab_axes<R>(plan)),
+          fft_(backend, FftGrid{plan.grid.nx, plan.grid.ny, 3 * plan.grid.nz}, FftAxes::xy),
           bins_(backend, plan.grid.ny * plan.grid.nz) {
-        const int sizes[2] = {plan.grid.nx, plan.grid.ny};
-        for (int d = 0; d < 2; ++d)
-            axis_[d] = FcmAxis<R>{R(plan.box[d] / sizes[d]), R(1.0 / plan.box[d]), sizes[d], plan.support,
-                                  R(0.5 / (plan.sigma * plan.sigma)),
-                                  R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma))};
         const double spacing = plan.height / (plan.grid.nz - 1);
-        axes_ = SlabAxes<R>{axis_[0], axis_[1],
-                            SlabAxisZ<R>{R(-0.5 * plan.height), R(spacing), plan.grid.nz, plan.supportZ,
-                                         R(0.5 / (plan.sigma * plan.sigma)),
-                                         R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma)), plan.walls,
-                                         plan.images},
-                            plan.grid};
         backend_.resize(field_, static_cast<size_t>(3 * plan.grid.points()));
         backend_.resize(spectrum_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
         backend_.resize(solved_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
@@ -150,13 +149,15 @@ public:
 
     const SlabPlan& plan() const { return plan_; }
 
-    // The positions (backend memory, kept by pointer until the next place) and group of the
-    // products that follow.
+    // The positions (backend memory, read here only) and group (kept by pointer until the next
+    // place) of the products that follow: their Gaussians' weights are tabulated.
     void place(int64_t count, const Real4<R>* pos, const uint8_t* group) {
         count_ = count;
-        pos_ = pos;
         group_ = group;
-        bins_.sort(count, GaussianKernelLine<R, SlabAxisZ<R>>{pos, group, axes_});
+        backend_.resize(first_, static_cast<size_t>(3 * count));
+        backend_.resize(weight_, static_cast<size_t>(weights().stride() * count));
+        backend_.for_each(count, SlabWeighParticle<R, SlabAxisZ<R>>{pos, group, axes_, first_.data(), weight_.data()});
+        bins_.sort(count, SlabKernelLine{group, first_.data(), plan_.grid.ny});
     }
 
     // out = M v, both flat (three numbers a particle) in backend memory.
@@ -165,8 +166,8 @@ public:
         const int64_t planePoints = int64_t(grid.nx) * grid.ny;
         const int64_t planeSpectrum = int64_t(grid.half_x()) * grid.ny;
         backend_.for_each_lanes(grid.ny * grid.nz,
-                                GaussianSpreadLine<R, SlabAxisZ<R>, FlatVectors<R>>{
-                                    pos_, {v}, bins_.order(), bins_.line_start(), axes_, field_.data()},
+                                SlabSpreadLine<R, FlatVectors<R>>{{v}, bins_.order(), bins_.line_start(), weights(), grid,
+                                                                  field_.data()},
                                 LaneSizing::kWarp);
         fft_.forward(field_.data(), spectrum_.data());
         const double spacing = plan_.height / (grid.nz - 1);
@@ -177,20 +178,22 @@ public:
                                 LaneSizing::kFillDevice);
         fft_.inverse(solved_.data(), field_.data());
         const double cellVolume = plan_.box[0] * plan_.box[1] * spacing / double(planePoints);
-        backend_.for_each(count_, GaussianInterpolate<R, SlabAxisZ<R>>{pos_, group_, axes_, field_.data(),
-                                                                       R(cellVolume), out});
+        backend_.for_each_lanes(count_, SlabInterpolate<R>{group_, weights(), grid, field_.data(), R(cellVolume), out},
+                                LaneSizing::kFillDevice);
     }
 
 private:
+    SlabWeights<R> weights() const { return {first_.data(), weight_.data(), plan_.support, plan_.supportZ}; }
+
     const B& backend_;
     SlabPlan plan_;
-    FcmAxis<R> axis_[2];
     SlabAxes<R> axes_;
     typename B::template Fft3d<R> fft_;  // the 2D transforms of every z plane of the three components
     LineBins<B> bins_;
     int64_t count_ = 0;
-    const Real4<R>* pos_ = nullptr;
     const uint8_t* group_ = nullptr;
+    typename B::template Buffer<int> first_;  // SlabWeights'
+    typename B::template Buffer<R> weight_;
     typename B::template Buffer<R> field_;  // x, y, z grids: the density, then the velocity
     typename B::template Buffer<Complex<R>> spectrum_, solved_;
     typename B::template Buffer<double> kernel_;  // SlabKernelTable's
