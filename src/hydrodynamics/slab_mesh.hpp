@@ -171,11 +171,13 @@ public:
                                 LaneSizing::kWarp);
         fft_.forward(field_.data(), spectrum_.data());
         const double spacing = plan_.height / (grid.nz - 1);
+        // A warp per wave vector at any size: the one lane that sizing by the device gives 10^6 wave
+        // vectors (100,000 particles) would run under a register cap that spills the solve's doubles.
         backend_.for_each_lanes(planeSpectrum,
                                 SlabStokesSolve<R>{spectrum_.data(), solved_.data(), kernel_.data(), grid, plan_.box[0],
                                                    plan_.box[1], spacing, spacing / (double(planePoints) * viscosity),
                                                    plan_.walls},
-                                LaneSizing::kFillDevice);
+                                LaneSizing::kWarp);
         fft_.inverse(solved_.data(), field_.data());
         const double cellVolume = plan_.box[0] * plan_.box[1] * spacing / double(planePoints);
         backend_.for_each_lanes(count_, SlabInterpolate<R>{group_, weights(), grid, field_.data(), R(cellVolume), out},
