@@ -12,7 +12,8 @@ namespace structmd {
 // fill at most half the device, so each lane walks several neighbours with their loads in flight
 // (the pair kernels: 8 lanes per particle at 10,976 particles ran 9% faster than the 32 that fill
 // the device; docs/benchmarks.md). kFillDevice: lanes until the items' threads fill the device
-// (the list build, whose ~500 candidate tests per particle are arithmetic, and the scans of cells).
+// (the list build, whose ~500 candidate tests per particle are arithmetic, the scans of cells, and
+// the spreads onto grid lines, whose lanes each repeat a particle's weights: owns_point below).
 // kWarp: a whole warp per item (a cluster of particles and its partner clusters, whose lanes share
 // out the pairs of the clusters).
 enum class LaneSizing { kNeighbourSum, kFillDevice, kWarp };
@@ -136,5 +137,13 @@ struct Lanes {
 #endif
     }
 };
+
+// Whether `lanes` owns point x (0 <= x) of a grid line that one item spreads onto: the lane of rank
+// x modulo the lane count clears the point and sums every term into it. Each point thus takes its
+// terms in the order of the loops that spread them, on any power-of-two number of lanes (one on the
+// CPU), and no two lanes write one point (no atomics). With about ten particles' kernels on a point,
+// one thread per line left the device mostly idle (docs/benchmarks.md); the lanes share out a
+// line's points instead.
+SMD_HD SMD_INLINE bool owns_point(const Lanes& lanes, int x) { return (x & (lanes.count - 1)) == lanes.lane; }
 
 }  // namespace structmd

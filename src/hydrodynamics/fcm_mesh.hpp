@@ -227,7 +227,7 @@ public:
         backend_.for_each_lanes(grid.ny * grid.nz,
                                 GaussianSpreadLine<R, FcmAxis<R>, Real4Vectors<R>>{
                                     p.pos.data(), {p.force.data()}, bins_.order(), bins_.line_start(), axes_, field_.data()},
-                                LaneSizing::kWarp);
+                                LaneSizing::kFillDevice);
         for (int d = 0; d < 3; ++d) fft_.forward(field_.data() + d * points, spectrum_.data() + d * spectrumPoints);
         const double volume = plan_.box[0] * plan_.box[1] * plan_.box[2];
         backend_.for_each(spectrumPoints,

@@ -140,7 +140,7 @@ private:
         backend_.for_each_lanes(grid.ny * grid.nz,
                                 GaussianSpreadLine<R, FcmAxis<R>, Real4Vectors<R>>{
                                     p.pos.data(), {vectors}, bins_.order(), bins_.line_start(), axes, field_.data()},
-                                LaneSizing::kWarp);
+                                LaneSizing::kFillDevice);
         for (int d = 0; d < 3; ++d)
             fft_.forward(field_.data() + d * grid.points(), spectrum + d * grid.spectrum_points());
     }

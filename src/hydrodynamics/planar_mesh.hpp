@@ -77,7 +77,9 @@ struct PlanarKernelLine {
 
 // One grid line along x of the force-density grids (x, y components, then the particles' number
 // density where the drift needs it), cleared and then summed: a particle whose kernel starts on line
-// y - b adds F g_x g_y[b] along the line. Bins in b order and each in particle order.
+// y - b adds F g_x g_y[b] along the line. Bins in b order and each in particle order. Each lane
+// sums the points it owns (core/lanes.hpp's owns_point), so any power-of-two number of lanes gives
+// the same sums; launched with LaneSizing::kFillDevice, as GaussianSpreadLine is.
 template <class R>
 struct PlanarSpreadLine {
     const Real4<R>* pos;
@@ -309,7 +311,7 @@ public:
         backend_.for_each_lanes(grid.ny,
                                 PlanarSpreadLine<R>{p.pos.data(), p.force.data(), bins_.order(), bins_.line_start(), axes_,
                                                     field_.data(), drift},
-                                LaneSizing::kWarp);
+                                LaneSizing::kFillDevice);
         for (int d = 0; d < (drift ? 3 : 2); ++d)
             fft_.forward(field_.data() + d * points, spectrum_.data() + d * spectrumPoints);
         const double area = plan_.box[0] * plan_.box[1];

@@ -7,12 +7,14 @@
 // there are walls), 2D transforms of every z plane, the slab's Stokes solve per wave vector
 // (slab_stokes.hpp), the inverse transforms, and J = S^T the Gaussian's average of the velocity at
 // the particle, times the cell volume. Near a wall the Gaussian has its mirror images subtracted
-// (SlabAxisZ; the spreading and the average are gaussian_spreading.hpp's); the part of a Gaussian
-// beyond the slab is left out (on both sides of the product, so M stays symmetric). Only the
-// group's particles take part; the product is 0 at the others.
+// (SlabAxisZ); the part of a Gaussian beyond the slab is left out (on both sides of the product, so
+// M stays symmetric). The Gaussian is cut where it falls to the integrator's tolerance of its peak
+// (slab_kernel_cut), as the force coupling method cuts its own. Only the group's particles take
+// part; the product is 0 at the others.
 //
-// The positions are placed once (place) and then any number of products taken (apply), as the
-// Lanczos square root and the random finite difference need.
+// The positions are placed once (place: the Gaussians' weights are tabulated there,
+// slab_spreading.hpp) and then any number of products taken (apply), as the Lanczos square root and
+// the random finite difference need.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +24,7 @@
 #include "core/hd.hpp"
 #include "core/vec.hpp"
 #include "hydrodynamics/gaussian_spreading.hpp"
+#include "hydrodynamics/slab_spreading.hpp"
 #include "hydrodynamics/slab_stokes.hpp"
 #include "neighbour/line_bins.hpp"
 
@@ -33,7 +36,8 @@ struct SlabPlan {
     double box[2] = {0, 0};
     double height = 0.0;  // H
     double sigma = 0.0;
-    int support = 0;  // points the Gaussian covers along x and y
+    double cut = 0.0;  // the Gaussian reaches out to where it falls to cut of its peak
+    int support = 0;   // points the Gaussian covers along x and y
     int supportZ = 0;
     SlabWalls walls = SlabWalls::none;
     int images = 0;  // SlabAxisZ's
@@ -65,11 +69,6 @@ struct SlabAxisZ {
         const int centred = static_cast<int>(floor((z - bottom) / spacing - R(0.5) * R(support) + R(1)));
         return centred < 0 ? 0 : (centred > n - support ? n - support : centred);
     }
-    // As GaussianAxes' z axis (gaussian_spreading.hpp): nodes are planes, none below the bottom.
-    SMD_HD SMD_INLINE int first_node(R z) const { return first(z); }
-    SMD_HD SMD_INLINE R node_weight(int firstNode, int c, R z) const { return weight(firstNode + c, z); }
-    SMD_HD SMD_INLINE int plane(int i) const { return i; }
-    SMD_HD SMD_INLINE int plane_below(int plane, int c) const { return plane - c; }
 
     SMD_HD SMD_INLINE R weight(int node, R z) const {
         const R at = bottom + R(node) * spacing;
@@ -92,19 +91,24 @@ template <class R>
 using SlabAxes = GaussianAxes<R, SlabAxisZ<R>>;
 
 #if SMD_HOST_CODE
-// The Gaussian reaches out to where it falls to 1e-8 of its peak: the truncation is far below the
-// grid's own error.
-constexpr double kSlabKernelCut = 1e-8;
+// Where the Gaussian is cut for the integrator's tolerance: at the tolerance of its peak, as the
+// force coupling method (fcm_mesh.hpp) cuts its own. Every element of M then stays within
+// 0.3 tolerance mu0 of the uncut Gaussian's (measured for tolerances 1e-3 to 0.1 and grid spacings
+// 0.8 to 1.9 sigma, tests/python/test_bdhi_dpstokes.py), so the tolerance needs no floor.
+inline double slab_kernel_cut(double tolerance) { return tolerance; }
 
-inline SlabPlan make_slab_plan(const int sizes[3], const double box[2], double height, double radius, SlabWalls walls) {
+// The Gaussian reaches out to where it falls to `cut` of its peak (slab_kernel_cut).
+inline SlabPlan make_slab_plan(const int sizes[3], const double box[2], double height, double radius, SlabWalls walls,
+                               double cut) {
     SlabPlan plan;
     plan.walls = walls;
+    plan.cut = cut;
     plan.box[0] = box[0];
     plan.box[1] = box[1];
     plan.height = height;
     plan.sigma = radius / std::sqrt(M_PI);
     plan.grid = FftGrid{sizes[0], sizes[1], sizes[2]};
-    const double reach = plan.sigma * std::sqrt(2.0 * std::log(1.0 / kSlabKernelCut));
+    const double reach = plan.sigma * std::sqrt(2.0 * std::log(1.0 / cut));
     const double finest = std::min(box[0] / sizes[0], box[1] / sizes[1]);
     plan.support = static_cast<int>(std::ceil(2.0 * reach / finest)) + 1;
     plan.supportZ = std::min(static_cast<int>(std::ceil(2.0 * reach / (height / (sizes[2] - 1)))) + 1, sizes[2]);
@@ -113,24 +117,27 @@ inline SlabPlan make_slab_plan(const int sizes[3], const double box[2], double h
     return plan;
 }
 
+// The Gaussian's axes for a plan: x and y periodic, z the slab's.
+template <class R>
+inline SlabAxes<R> slab_axes(const SlabPlan& plan) {
+    const int sizes[2] = {plan.grid.nx, plan.grid.ny};
+    const R inverseTwoSigma2 = R(0.5 / (plan.sigma * plan.sigma)), norm = R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma));
+    FcmAxis<R> axis[2];
+    for (int d = 0; d < 2; ++d)
+        axis[d] = FcmAxis<R>{R(plan.box[d] / sizes[d]), R(1.0 / plan.box[d]), sizes[d], plan.support, inverseTwoSigma2, norm};
+    const SlabAxisZ<R> z{R(-0.5 * plan.height), R(plan.height / (plan.grid.nz - 1)), plan.grid.nz, plan.supportZ,
+                         inverseTwoSigma2, norm, plan.walls, plan.images};
+    return {axis[0], axis[1], z, plan.grid};
+}
+
 template <class B, class R>
 class SlabMesh {
 public:
     SlabMesh(const B& backend, const SlabPlan& plan)
-        : backend_(backend), plan_(plan), fft_(backend, FftGrid{plan.grid.nx, plan.grid.ny, 3 * plan.grid.nz}, FftAxes::xy),
+        : backend_(backend), plan_(plan), axes_(slab_axes<R>(plan)),
+          fft_(backend, FftGrid{plan.grid.nx, plan.grid.ny, 3 * plan.grid.nz}, FftAxes::xy),
           bins_(backend, plan.grid.ny * plan.grid.nz) {
-        const int sizes[2] = {plan.grid.nx, plan.grid.ny};
-        for (int d = 0; d < 2; ++d)
-            axis_[d] = FcmAxis<R>{R(plan.box[d] / sizes[d]), R(1.0 / plan.box[d]), sizes[d], plan.support,
-                                  R(0.5 / (plan.sigma * plan.sigma)),
-                                  R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma))};
         const double spacing = plan.height / (plan.grid.nz - 1);
-        axes_ = SlabAxes<R>{axis_[0], axis_[1],
-                            SlabAxisZ<R>{R(-0.5 * plan.height), R(spacing), plan.grid.nz, plan.supportZ,
-                                         R(0.5 / (plan.sigma * plan.sigma)),
-                                         R(1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma)), plan.walls,
-                                         plan.images},
-                            plan.grid};
         backend_.resize(field_, static_cast<size_t>(3 * plan.grid.points()));
         backend_.resize(spectrum_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
         backend_.resize(solved_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
@@ -142,13 +149,15 @@ public:
 
     const SlabPlan& plan() const { return plan_; }
 
-    // The positions (backend memory, kept by pointer until the next place) and group of the
-    // products that follow.
+    // The positions (backend memory, read here only) and group (kept by pointer until the next
+    // place) of the products that follow: their Gaussians' weights are tabulated.
     void place(int64_t count, const Real4<R>* pos, const uint8_t* group) {
         count_ = count;
-        pos_ = pos;
         group_ = group;
-        bins_.sort(count, GaussianKernelLine<R, SlabAxisZ<R>>{pos, group, axes_});
+        backend_.resize(first_, static_cast<size_t>(3 * count));
+        backend_.resize(weight_, static_cast<size_t>(weights().stride() * count));
+        backend_.for_each(count, SlabWeighParticle<R, SlabAxisZ<R>>{pos, group, axes_, first_.data(), weight_.data()});
+        bins_.sort(count, SlabKernelLine{group, first_.data(), plan_.grid.ny});
     }
 
     // out = M v, both flat (three numbers a particle) in backend memory.
@@ -157,30 +166,36 @@ public:
         const int64_t planePoints = int64_t(grid.nx) * grid.ny;
         const int64_t planeSpectrum = int64_t(grid.half_x()) * grid.ny;
         backend_.for_each_lanes(grid.ny * grid.nz,
-                                GaussianSpreadLine<R, SlabAxisZ<R>, FlatVectors<R>>{
-                                    pos_, {v}, bins_.order(), bins_.line_start(), axes_, field_.data()},
+                                SlabSpreadLine<R, FlatVectors<R>>{{v}, bins_.order(), bins_.line_start(), weights(), grid,
+                                                                  field_.data()},
                                 LaneSizing::kWarp);
         fft_.forward(field_.data(), spectrum_.data());
         const double spacing = plan_.height / (grid.nz - 1);
-        backend_.for_each(planeSpectrum,
-                          SlabStokesSolve<R>{spectrum_.data(), solved_.data(), kernel_.data(), grid, plan_.box[0], plan_.box[1],
-                                             spacing, spacing / (double(planePoints) * viscosity), plan_.walls});
+        // A warp per wave vector at any size: the one lane that sizing by the device gives 10^6 wave
+        // vectors (100,000 particles) would run under a register cap that spills the solve's doubles.
+        backend_.for_each_lanes(planeSpectrum,
+                                SlabStokesSolve<R>{spectrum_.data(), solved_.data(), kernel_.data(), grid, plan_.box[0],
+                                                   plan_.box[1], spacing, spacing / (double(planePoints) * viscosity),
+                                                   plan_.walls},
+                                LaneSizing::kWarp);
         fft_.inverse(solved_.data(), field_.data());
         const double cellVolume = plan_.box[0] * plan_.box[1] * spacing / double(planePoints);
-        backend_.for_each(count_, GaussianInterpolate<R, SlabAxisZ<R>>{pos_, group_, axes_, field_.data(),
-                                                                       R(cellVolume), out});
+        backend_.for_each_lanes(count_, SlabInterpolate<R>{group_, weights(), grid, field_.data(), R(cellVolume), out},
+                                LaneSizing::kFillDevice);
     }
 
 private:
+    SlabWeights<R> weights() const { return {first_.data(), weight_.data(), plan_.support, plan_.supportZ}; }
+
     const B& backend_;
     SlabPlan plan_;
-    FcmAxis<R> axis_[2];
     SlabAxes<R> axes_;
     typename B::template Fft3d<R> fft_;  // the 2D transforms of every z plane of the three components
     LineBins<B> bins_;
     int64_t count_ = 0;
-    const Real4<R>* pos_ = nullptr;
     const uint8_t* group_ = nullptr;
+    typename B::template Buffer<int> first_;  // SlabWeights'
+    typename B::template Buffer<R> weight_;
     typename B::template Buffer<R> field_;  // x, y, z grids: the density, then the velocity
     typename B::template Buffer<Complex<R>> spectrum_, solved_;
     typename B::template Buffer<double> kernel_;  // SlabKernelTable's

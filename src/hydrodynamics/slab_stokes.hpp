@@ -33,6 +33,7 @@
 
 #include "core/fft_grid.hpp"
 #include "core/hd.hpp"
+#include "core/lanes.hpp"
 
 namespace structmd {
 
@@ -196,8 +197,18 @@ struct SlabWallSolution {
     }
 };
 
+// A column's sum over an item's lanes (Lanes::sum, a fixed butterfly), number by number.
+SMD_HD SMD_INLINE Complex64 lanes_sum(const Lanes& lanes, Complex64 a) { return {lanes.sum(a.re), lanes.sum(a.im)}; }
+SMD_HD SMD_INLINE SlabColumn lanes_sum(const Lanes& lanes, const SlabColumn& c) {
+    return {lanes_sum(lanes, c.l), lanes_sum(lanes, c.t), lanes_sum(lanes, c.z)};
+}
+
 // One wave vector of the half spectrum (x fastest, then y), all its z nodes. The spectra hold the
-// three components one after the other, each nz planes of (nx/2 + 1) ny numbers.
+// three components one after the other, each nz planes of (nx/2 + 1) ny numbers. The item's lanes
+// share out its work: the unbounded fluid's velocity at the walls over the nodes j (lane,
+// lane + count, ...), summed across them, and then the nodes i likewise, each lane a row of the
+// nz x nz convolution (one lane does everything in the order of the loops). A thread per wave
+// vector, some 10^4 of them, each nz^2 terms long, left the device mostly idle.
 template <class R>
 struct SlabStokesSolve {
     const Complex<R>* force;
@@ -209,29 +220,29 @@ struct SlabStokesSolve {
     double scale;              // hz / (nx ny eta): the quadrature weight, the transforms' norm, the viscosity
     SlabWalls walls;
 
-    SMD_HD void operator()(int64_t at) const {
+    SMD_HD void operator()(int64_t at, Lanes lanes) const {
         const int hx = grid.half_x();
         const int64_t plane = int64_t(hx) * grid.ny, component = plane * grid.nz;
         const int x = static_cast<int>(at % hx), y = static_cast<int>(at / hx);
         if (2 * x == grid.nx || 2 * y == grid.ny) {
-            for (int i = 0; i < grid.nz; ++i)
+            for (int i = lanes.lane; i < grid.nz; i += lanes.count)
                 for (int c = 0; c < 3; ++c) velocity[at + i * plane + c * component] = Complex<R>{R(0), R(0)};
             return;
         }
         if (at == 0) {
-            mean_flow(plane, component);
+            for (int i = lanes.lane; i < grid.nz; i += lanes.count) mean_flow(i, plane, component);
             return;
         }
         double kx, ky;
         slab_wave_vector(grid, at, lengthX, lengthY, kx, ky);
         const double kappa = sqrt(kx * kx + ky * ky);
         const double ux = kx / kappa, uy = ky / kappa;
-        const double q = exp(-kappa * zSpacing);  // exp(-kappa |s|) = q^|i - j|
         SlabColumn bottom{}, top{};
-        if (walls != SlabWalls::none) bottom = wall_velocity(at, 0, plane, component, kappa, ux, uy, q);
-        if (walls == SlabWalls::slit) top = wall_velocity(at, grid.nz - 1, plane, component, kappa, ux, uy, q);
+        if (walls != SlabWalls::none) bottom = lanes_sum(lanes, wall_velocity(at, 0, plane, component, kappa, ux, uy, lanes));
+        if (walls == SlabWalls::slit)
+            top = lanes_sum(lanes, wall_velocity(at, grid.nz - 1, plane, component, kappa, ux, uy, lanes));
         const SlabWallSolution wall(walls, kappa, zSpacing * (grid.nz - 1), bottom, top);
-        for (int i = 0; i < grid.nz; ++i) {
+        for (int i = lanes.lane; i < grid.nz; i += lanes.count) {
             SlabColumn u = banded_velocity(at, i, plane, component, ux, uy);
             if (walls != SlabWalls::none) {
                 const SlabColumn w = wall.at(zSpacing * i);
@@ -269,15 +280,16 @@ private:
         return {scale * u.l, scale * u.t, scale * u.z};
     }
 
-    // The unbounded fluid's velocity at a wall (node 0 or nz - 1) by the exact kernel, scaled: the
-    // forces lie on one side of it, where the exact kernel is smooth and what the wall solution
-    // cancels. exp(-kappa |s|) = q^|i - j| is carried along from the wall inwards.
+    // This lane's part of the unbounded fluid's velocity at a wall (node 0 or nz - 1) by the exact
+    // kernel, scaled: the nodes lane, lane + count, ... away from it. The forces lie on one side of
+    // the wall, where the exact kernel is smooth and what the wall solution cancels.
+    // exp(-kappa |s|) is carried along from the wall inwards, a factor exp(-kappa hz count) a term.
     SMD_HD SlabColumn wall_velocity(int64_t at, int wall, int64_t plane, int64_t component, double kappa, double ux,
-                                    double uy, double q) const {
+                                    double uy, const Lanes& lanes) const {
         SlabColumn u{};
-        const double inverseKappa = 1.0 / kappa;
-        double e = 1.0;
-        for (int distance = 0; distance < grid.nz; ++distance, e *= q) {
+        const double inverseKappa = 1.0 / kappa, q = exp(-kappa * zSpacing * lanes.count);
+        double e = exp(-kappa * zSpacing * lanes.lane);
+        for (int distance = lanes.lane; distance < grid.nz; distance += lanes.count, e *= q) {
             const int j = wall == 0 ? distance : wall - distance;
             const SlabColumn f = force_at(at + j * plane, component, ux, uy);
             const double s = zSpacing * (wall - j), ks = kappa * fabs(s);
@@ -290,25 +302,23 @@ private:
         return {scale * u.l, scale * u.t, scale * u.z};
     }
 
-    // k = 0: the mean flow of the plane at every height (see the header).
-    SMD_HD void mean_flow(int64_t plane, int64_t component) const {
+    // k = 0: the mean flow of the plane at node i (see the header).
+    SMD_HD void mean_flow(int i, int64_t plane, int64_t component) const {
         const double height = zSpacing * (grid.nz - 1);
-        for (int i = 0; i < grid.nz; ++i) {
-            Complex64 ux{0, 0}, uy{0, 0};
-            if (walls != SlabWalls::none)
-                for (int j = 0; j < grid.nz; ++j) {
-                    // min(z, z') (bottom) and min (H - max) / H (slit), heights from the bottom
-                    // wall, as their smooth parts plus the band-limited kink -|s|/2.
-                    const double middle = 0.5 * zSpacing * (i + j), s = zSpacing * (i - j);
-                    const double smooth = walls == SlabWalls::bottom ? middle : (middle * (height - middle) + 0.25 * s * s) / height;
-                    const double g = smooth + kernel[4 * (i < j ? j - i : i - j)];
-                    ux = ux + (scale * g) * widened(force[j * plane]);
-                    uy = uy + (scale * g) * widened(force[j * plane + component]);
-                }
-            velocity[i * plane] = narrowed(ux);
-            velocity[i * plane + component] = narrowed(uy);
-            velocity[i * plane + 2 * component] = Complex<R>{R(0), R(0)};
-        }
+        Complex64 ux{0, 0}, uy{0, 0};
+        if (walls != SlabWalls::none)
+            for (int j = 0; j < grid.nz; ++j) {
+                // min(z, z') (bottom) and min (H - max) / H (slit), heights from the bottom
+                // wall, as their smooth parts plus the band-limited kink -|s|/2.
+                const double middle = 0.5 * zSpacing * (i + j), s = zSpacing * (i - j);
+                const double smooth = walls == SlabWalls::bottom ? middle : (middle * (height - middle) + 0.25 * s * s) / height;
+                const double g = smooth + kernel[4 * (i < j ? j - i : i - j)];
+                ux = ux + (scale * g) * widened(force[j * plane]);
+                uy = uy + (scale * g) * widened(force[j * plane + component]);
+            }
+        velocity[i * plane] = narrowed(ux);
+        velocity[i * plane + component] = narrowed(uy);
+        velocity[i * plane + 2 * component] = Complex<R>{R(0), R(0)};
     }
 };
 

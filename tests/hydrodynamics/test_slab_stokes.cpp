@@ -1,7 +1,8 @@
 // The pieces of ["BDHIDoublyPeriodic","DPStokes"] below the engine (hydrodynamics/slab_stokes.hpp,
 // slab_mesh.hpp): the band-limited kernel table against an independent quadrature on a tall grid,
 // the slit's Stokes solve in single precision against double for a slit much thinner than the box,
-// the slit's spreading weights (continuous across the mid-plane, zero on the walls), and the
+// the slit's spreading weights (continuous across the mid-plane, zero on the walls), the spreading
+// and average from the weights tabulated at placement against a direct sum over the grid, and the
 // backends' batched plane transforms against one transform a plane.
 #include <gtest/gtest.h>
 
@@ -9,12 +10,15 @@
 #include <cmath>
 #include <complex>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "backends/cpu/cpu_backend.hpp"
 #include "backends/cpu/cpu_fft.hpp"
 #include "hydrodynamics/slab_mesh.hpp"
+#include "hydrodynamics/slab_spreading.hpp"
 #include "hydrodynamics/slab_stokes.hpp"
+#include "neighbour/line_bins.hpp"
 
 namespace structmd {
 namespace {
@@ -84,7 +88,7 @@ std::vector<std::complex<double>> slit_velocity(const FftGrid& grid, double leng
     for (size_t i = 0; i < force.size(); ++i) f[i] = {R(force[i].real()), R(force[i].imag())};
     const int64_t plane = int64_t(grid.half_x()) * grid.ny;
     const SlabStokesSolve<R> solve{f.data(), u.data(), table.data(), grid, length, length, hz, hz, SlabWalls::slit};
-    for (int64_t at = 0; at < plane; ++at) solve(at);
+    for (int64_t at = 0; at < plane; ++at) solve(at, Lanes{});
     std::vector<std::complex<double>> out(u.size());
     for (size_t i = 0; i < u.size(); ++i) out[i] = {double(u[i].re), double(u[i].im)};
     return out;
@@ -122,7 +126,7 @@ TEST(SlabAxisZ, SlitWeightsAreContinuousAcrossTheMidplaneAndVanishOnTheWalls) {
     const double radius = 1.0, height = 2.0;
     const int sizes[3] = {16, 16, 15};
     const double box[2] = {4.0, 4.0};
-    const SlabPlan plan = make_slab_plan(sizes, box, height, radius, SlabWalls::slit);
+    const SlabPlan plan = make_slab_plan(sizes, box, height, radius, SlabWalls::slit, 1e-8);
     EXPECT_EQ(plan.images, 2);  // the images through either wall and the copies 2H away reach the slab
     const SlabAxisZ<double> z{-0.5 * height, height / (sizes[2] - 1), sizes[2], sizes[2],
                               0.5 / (plan.sigma * plan.sigma), 1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma),
@@ -138,8 +142,91 @@ TEST(SlabAxisZ, SlitWeightsAreContinuousAcrossTheMidplaneAndVanishOnTheWalls) {
         wall = std::max({wall, std::fabs(z.weight(0, at)), std::fabs(z.weight(sizes[2] - 1, at))});
     std::printf("weights across z = 0: jump %.2e, at the walls %.2e, of %.2e\n", jump, wall, size);
     EXPECT_LT(jump, 1e-5 * size);
-    EXPECT_LT(wall, kSlabKernelCut * size);  // the images beyond the Gaussian's reach are left out
+    EXPECT_LT(wall, plan.cut * size);  // the images beyond the Gaussian's reach are left out
     EXPECT_LT(mirror, 1e-12 * size);
+}
+
+// The `support` nodes of n (at origin + p h, periodic with period n h or not) closest to `at`, and
+// their distances from it, by sorting all of them.
+std::vector<std::pair<int, double>> closest_nodes(double at, double origin, double h, int n, bool periodic, int support) {
+    std::vector<std::pair<double, int>> byDistance;
+    for (int p = 0; p < n; ++p) {
+        double d = origin + p * h - at;
+        if (periodic) d -= n * h * std::round(d / (n * h));
+        byDistance.push_back({std::fabs(d), p});
+    }
+    std::sort(byDistance.begin(), byDistance.end());
+    std::vector<std::pair<int, double>> nodes;
+    for (int k = 0; k < support; ++k) nodes.push_back({byDistance[k].second, byDistance[k].first});
+    return nodes;
+}
+
+TEST(SlabSpreading, TabulatedWeightsSpreadAndAverageAsTheDirectSum) {
+    // A slit 6 a high, spacing a/2 (0.4 a along z), the Gaussian cut at 1e-3: 10 x 10 x 12 points of
+    // 16 x 14 x 16.
+    const CpuBackend backend{1};
+    const int sizes[3] = {16, 14, 16};
+    const double box[2] = {8.0, 7.0}, height = 6.0;
+    const SlabPlan plan = make_slab_plan(sizes, box, height, 1.0, SlabWalls::slit, 1e-3);
+    ASSERT_EQ(plan.support, 10);
+    ASSERT_EQ(plan.supportZ, 12);
+    const SlabAxes<double> axes = slab_axes<double>(plan);
+    // Across the seams of x and y, near either wall, inside; the last is outside the group.
+    const std::vector<Real4<double>> pos = {
+        {3.9, 0.1, 0.3, 0}, {-3.95, -3.4, -2.8, 0}, {0.3, 3.3, 2.9, 0}, {1.1, -1.7, 0.05, 0}, {0.2, 0.4, 0.6, 0}};
+    const std::vector<uint8_t> group = {1, 1, 1, 1, 0};
+    const int count = static_cast<int>(pos.size());
+    std::mt19937 engine(5);
+    std::normal_distribution<double> normal;
+    std::vector<double> v(3 * count), field(3 * plan.grid.points());
+    for (double& x : v) x = normal(engine);
+    for (double& x : field) x = normal(engine);
+
+    // The reference: each member's weight at every node of the support points closest to it.
+    const double norm = 1.0 / std::sqrt(2.0 * M_PI * plan.sigma * plan.sigma);
+    const auto gaussian = [&](double d) { return norm * std::exp(-d * d / (2.0 * plan.sigma * plan.sigma)); };
+    const double hz = height / (sizes[2] - 1), cellVolume = box[0] / sizes[0] * box[1] / sizes[1] * hz;
+    const int64_t points = plan.grid.points();
+    std::vector<double> density(3 * points, 0.0), average(3 * count, 0.0);
+    for (int i = 0; i < count; ++i) {
+        if (!group[i]) continue;
+        const auto xs = closest_nodes(pos[i].x, -0.5 * box[0], box[0] / sizes[0], sizes[0], true, plan.support);
+        const auto ys = closest_nodes(pos[i].y, -0.5 * box[1], box[1] / sizes[1], sizes[1], true, plan.support);
+        const auto zs = closest_nodes(pos[i].z, -0.5 * height, hz, sizes[2], false, plan.supportZ);
+        for (const auto& [z, dz] : zs)
+            for (const auto& [y, dy] : ys)
+                for (const auto& [x, dx] : xs) {
+                    const double w = gaussian(dx) * gaussian(dy) * axes.z.weight(z, pos[i].z);
+                    const int64_t at = plan.grid.index(x, y, z);
+                    for (int c = 0; c < 3; ++c) {
+                        density[at + c * points] += w * v[3 * i + c];
+                        average[3 * i + c] += cellVolume * w * field[at + c * points];
+                    }
+                }
+    }
+
+    std::vector<int> first(3 * count);
+    std::vector<double> weights(size_t(2 * plan.support + plan.supportZ) * count);
+    const SlabWeighParticle<double, SlabAxisZ<double>> weigh{pos.data(), group.data(), axes, first.data(), weights.data()};
+    for (int i = 0; i < count; ++i) weigh(i);
+    LineBins<CpuBackend> bins(backend, sizes[1] * sizes[2]);
+    bins.sort(count, SlabKernelLine{group.data(), first.data(), sizes[1]});
+    const SlabWeights<double> table{first.data(), weights.data(), plan.support, plan.supportZ};
+    std::vector<double> spread(3 * points, -1.0), averaged(3 * count, -1.0);
+    const SlabSpreadLine<double, FlatVectors<double>> spreadLine{{v.data()}, bins.order(), bins.line_start(), table,
+                                                                 plan.grid, spread.data()};
+    for (int line = 0; line < sizes[1] * sizes[2]; ++line) spreadLine(line, Lanes{});
+    const SlabInterpolate<double> interpolate{group.data(), table, plan.grid, field.data(), cellVolume, averaged.data()};
+    for (int i = 0; i < count; ++i) interpolate(i, Lanes{});
+
+    double size = 0.0, error = 0.0;
+    for (int64_t k = 0; k < 3 * points; ++k) {
+        size = std::max(size, std::fabs(density[k]));
+        error = std::max(error, std::fabs(spread[k] - density[k]));
+    }
+    EXPECT_LT(error, 1e-13 * size) << "spreading, of " << size;
+    for (int k = 0; k < 3 * count; ++k) EXPECT_NEAR(averaged[k], average[k], 1e-13 * size * cellVolume) << "average " << k;
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(averaged[3 * (count - 1) + c], 0.0) << "outside the group";
 }
 
 TEST(CpuFft3d, BatchedPlaneTransformsAreThePlanesTransforms) {

@@ -126,6 +126,22 @@ def test_the_open_mobility_matches_the_fourier_sum(options):
     assert np.max(np.abs(measured - reference)) < 1e-4 * MU0, np.round((measured - reference) / MU0, 6)
 
 
+def test_the_tolerance_cuts_the_gaussian_within_it(options):
+    """The Gaussian is cut where it falls to the tolerance of its peak: four particles (one 0.5 a
+    from the bottom wall, one across the box's seam) above a wall and in a slit, every element of M
+    at tolerances 1e-2 and 1e-3 within the tolerance (times mu0) of M at 1e-9 on the same grid (at
+    most 0.3 of it measured, at grid spacings from 0.8 to 1.9 sigma), and the looser cut more than
+    ten times farther from it than the tighter (the tolerance reaches the kernel)."""
+    positions = [[0.4, 0.3, -2.2], [2.6, -1.1, -0.9], [-5.9, 5.95, 1.1], [1.0, 1.0, -3.5]]
+    for mode in ("bottom", "slit"):
+        exact = mobility(options, positions, 12.0, 8.0, 24, mode, tolerance=1e-9)
+        errors = {tolerance: np.max(np.abs(mobility(options, positions, 12.0, 8.0, 24, mode, tolerance=tolerance)
+                                           - exact)) / MU0 for tolerance in (1e-2, 1e-3)}
+        for tolerance, error in errors.items():
+            assert error < tolerance, (mode, errors)
+        assert errors[1e-2] > 10 * errors[1e-3], (mode, errors)
+
+
 def test_the_open_mobility_converges_as_the_grid_is_refined(options):
     """The error against the Fourier sum falls from the coarsest grid allowed (spacing 1.8 sigma)
     through 1.2 sigma to 0.9 sigma, by at least 10 at each refinement."""
