@@ -20,8 +20,9 @@ Error, relative RMS of dt M F over the particles, in double precision at the met
   2 % with where a particle is in its cell): positively split Ewald's periodic RPY mobility at
   tolerance 1e-6 for that radius, up to --reference-max;
 - the slab (DPStokes, two walls 16 radii apart, particles at least 2 radii from them, grid spacing
-  sigma = a / sqrt(pi)): the same method on a grid of half that spacing at tolerance 1e-6 (the
-  tolerance cuts its Gaussian as well as the noise's Lanczos iteration), up to --reference-max;
+  sigma = a / sqrt(pi) or a little less, the grid's size rounded up to one with factors 2, 3, 5 and 7
+  alone): the same method on a grid of about half that spacing at tolerance 1e-6 (the tolerance cuts
+  its Gaussian as well as the noise's Lanczos iteration), up to --reference-max;
 - the magnetic force coupling method (magnetic_fcm: moments along z, no field, so no torque): the force
   coupling method's translation at tolerance 1e-6, up to --reference-max;
 - the inertial coupling method (icm, fluid density 1): none. A particle moves with the fluid, whose
@@ -100,7 +101,7 @@ VISCOSITY_KEY = {"cicm": "shearViscosity"}
 PLANAR = {"quasi2d"}
 # The slab methods: particles between two walls SLAB_HEIGHT apart, at least 2 radii from each, at
 # volume fraction 0.05 of the slab they can reach; the grid's spacing is GRID_SPACING (sigma = a /
-# sqrt(pi), the Gaussian's width), and the reference halves it.
+# sqrt(pi), the Gaussian's width) or a little less (fft_friendly), and the reference about halves it.
 SLAB = {"dpstokes"}
 SLAB_HEIGHT = 16.0 * RADIUS
 # The methods whose reference is another method's mobility: the periodic RPY one of positively split Ewald.
@@ -132,16 +133,28 @@ def placement(method, n, seed=11):
     return positions, rng.normal(size=(n, 3))
 
 
+def smooth(m, primes):
+    """Whether m has no prime factor but those of `primes`: a size cuFFT and FFTW transform fast."""
+    for p in primes:
+        while m % p == 0:
+            m //= p
+    return m == 1
+
+
+def fft_friendly(m):
+    """The smallest size >= m with factors 2, 3, 5 and 7 alone, as UAMMD's own DPStokes set-up rounds its
+    grid: a prime size such as 149 takes cuFFT's slower general algorithm (H200: 159 against 200 steps/s
+    at 1,000 particles, docs/benchmarks.md)."""
+    while not smooth(m, (2, 3, 5, 7)):
+        m += 1
+    return m
+
+
 def immersed_boundary_radius(length):
     """The radius the immersed boundary method gives for RADIUS: 0.91 L / n, n the even size with
     factors 2, 3 and 5 closest in ratio to 0.91 L / RADIUS (docs/input-format.md)."""
-    def friendly(m):
-        for p in (2, 3, 5):
-            while m % p == 0:
-                m //= p
-        return m == 1
     wanted = 0.91 * length / RADIUS
-    cells = min((m for m in range(2, 2 * int(wanted) + 8, 2) if friendly(m)), key=lambda m: abs(wanted / m - 1))
+    cells = min((m for m in range(2, 2 * int(wanted) + 8, 2) if smooth(m, (2, 3, 5))), key=lambda m: abs(wanted / m - 1))
     return 0.91 * length / cells
 
 
@@ -159,7 +172,7 @@ def document(method, n, positions, temperature, tolerance, refinement=1, radius=
         parameters["tolerance"] = tolerance
     if method in SLAB:
         box[2] = SLAB_HEIGHT
-        cells = math.ceil(length / GRID_SPACING) * refinement
+        cells = fft_friendly(math.ceil(length / GRID_SPACING) * refinement)
         parameters.update({"nx": cells, "ny": cells, "Lx": length, "Ly": length, "H": SLAB_HEIGHT, "w": 6,
                            "mode": "slit", "nz": math.ceil(SLAB_HEIGHT / GRID_SPACING) * refinement + 1})
     if method in MAGNETIC:
