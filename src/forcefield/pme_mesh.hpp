@@ -6,10 +6,9 @@
 // energy (analytical differentiation of the B-splines), so energy and forces agree to rounding.
 //
 // The FFT is the backend's (B::Fft3d, core/fft_grid.hpp). Spreading gives each grid line along x
-// to one item (up to a warp on the GPU, each lane summing the points it owns: core/lanes.hpp's
-// owns_point), which sums the charges whose splines reach it from the particles binned by the line
-// of their spline base (neighbour/line_bins.hpp): no atomics on the mesh, and each charge is read by
-// the 36 lines it reaches, not by every thread.
+// to one thread, which sums the charges whose splines reach it from the particles binned by the
+// line of their spline base (neighbour/line_bins.hpp): no atomics on the mesh, and each charge is
+// read by the 36 lines it reaches, not by every thread.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -19,7 +18,6 @@
 #include "core/error.hpp"
 #include "core/fft_grid.hpp"
 #include "core/hd.hpp"
-#include "core/lanes.hpp"
 #include "core/vec.hpp"
 #include "forcefield/interactor.hpp"
 #include "neighbour/line_bins.hpp"
@@ -101,10 +99,7 @@ struct PmeChargeLine {
 
 // One grid line along x, cleared and then summed: a charge whose spline base lies on line
 // (y + b, z + c) adds q w_y[b] w_z[c] w_x[a] at x = base_x - a. Bins are read in (c, b) order and
-// each in particle order, so the sum does not depend on thread timing. Each lane clears and sums
-// only the points it owns, the same terms in the same order on any power-of-two number of lanes;
-// every lane computes each charge's splines, so it is launched with LaneSizing::kFillDevice: lanes
-// only until the lines fill the device.
+// each in particle order, so the sum does not depend on thread timing.
 template <class R>
 struct PmeSpreadLine {
     const Real4<R>* pos;
@@ -115,10 +110,10 @@ struct PmeSpreadLine {
     FftGrid grid;
     R* mesh;
 
-    SMD_HD void operator()(int64_t line, Lanes lanes) const {
+    SMD_HD void operator()(int64_t line) const {
         const int y = static_cast<int>(line % grid.ny), z = static_cast<int>(line / grid.ny);
         R* row = mesh + grid.index(0, y, z);
-        for (int x = lanes.lane; x < grid.nx; x += lanes.count) row[x] = R(0);
+        for (int x = 0; x < grid.nx; ++x) row[x] = R(0);
         for (int c = 0; c < kPmeOrder; ++c) {
             const int binZ = (z + c) % grid.nz;
             for (int b = 0; b < kPmeOrder; ++b) {
@@ -130,10 +125,7 @@ struct PmeSpreadLine {
                     const BSplineWeights<R> wy(grid_coordinate(r.y, box.inverse.y, grid.ny), grid.ny);
                     const BSplineWeights<R> wz(grid_coordinate(r.z, box.inverse.z, grid.nz), grid.nz);
                     const R qyz = charge[i] * wy.w[b] * wz.w[c];
-                    for (int a = 0; a < kPmeOrder; ++a) {
-                        const int at = fold_index(wx.base - a, grid.nx);
-                        if (owns_point(lanes, at)) row[at] += qyz * wx.w[a];
-                    }
+                    for (int a = 0; a < kPmeOrder; ++a) row[fold_index(wx.base - a, grid.nx)] += qyz * wx.w[a];
                 }
             }
         }
@@ -324,14 +316,12 @@ public:
     }
 
 private:
-    // The charges onto mesh_: binned by grid line, then one item (lanes) a line.
+    // The charges onto mesh_: binned by grid line, then one thread a line.
     void spread(Particles<B, R>& p, const uint8_t* group) {
         const FftGrid grid = plan_.grid;
         bins_.sort(p.count, PmeChargeLine<R>{p.pos.data(), p.charge.data(), group, p.box, grid});
-        backend_.for_each_lanes(grid.ny * grid.nz,
-                                PmeSpreadLine<R>{p.pos.data(), p.charge.data(), bins_.order(), bins_.line_start(),
-                                                 p.box, grid, mesh_.data()},
-                                LaneSizing::kFillDevice);
+        backend_.for_each(grid.ny * grid.nz, PmeSpreadLine<R>{p.pos.data(), p.charge.data(), bins_.order(),
+                                                              bins_.line_start(), p.box, grid, mesh_.data()});
     }
 
     void add_virial(Particles<B, R>& p, const uint8_t* group, Tensor3<R>* virial) {

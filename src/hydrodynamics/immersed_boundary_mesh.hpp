@@ -23,9 +23,8 @@
 // kT times the divergence of S; the midpoint step (bdhi_fluctuating_immersed_boundary.hpp) gives the
 // rest of kT div M.
 //
-// Spreading is one grid line along x per item (up to a warp on the GPU, each lane summing the points
-// it owns: core/lanes.hpp's owns_point), from the particles sorted by the line their kernel window
-// starts on (neighbour/line_bins.hpp), as the force coupling method does: no atomics on the grid.
+// Spreading is one grid line along x per thread, from the particles sorted by the line their kernel
+// window starts on (neighbour/line_bins.hpp), as the force coupling method does: no atomics on the grid.
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -33,7 +32,6 @@
 #include "core/error.hpp"
 #include "core/fft_grid.hpp"
 #include "core/hd.hpp"
-#include "core/lanes.hpp"
 #include "core/random.hpp"
 #include "core/vec.hpp"
 #include "hydrodynamics/fcm_mesh.hpp"
@@ -111,10 +109,6 @@ struct StaggeredKernelLine {
 // and then summed: S F of the particles whose window reaches it, and, where rfdNoise is given, the
 // random finite difference rfdScale [S(q + offset) - S(q - offset)] W~ with offset = rfdHalfStep W~
 // (rfdScale = kT / delta, rfdHalfStep = delta / 2).
-// Each lane sums only the points it owns, the same terms in the same order on any power-of-two
-// number of lanes; every lane computes each particle's y and z weights (square roots), so it is
-// launched with LaneSizing::kFillDevice, as GaussianSpreadLine is: lanes only until the lines fill
-// the device.
 template <class R>
 struct StaggeredSpreadLine {
     const Real4<R>* pos;
@@ -126,14 +120,14 @@ struct StaggeredSpreadLine {
     StaggeredAxes<R> axes;
     R* field;
 
-    SMD_HD void operator()(int64_t line, Lanes lanes) const {
+    SMD_HD void operator()(int64_t line) const {
         const FftGrid& g = axes.grid;
         const int64_t points = g.points();
         const int y = static_cast<int>(line % g.ny), z = static_cast<int>(line / g.ny);
         R* rows[3] = {field + g.index(0, y, z), nullptr, nullptr};
         rows[1] = rows[0] + points;
         rows[2] = rows[1] + points;
-        for (int x = lanes.lane; x < g.nx; x += lanes.count) rows[0][x] = rows[1][x] = rows[2][x] = R(0);
+        for (int x = 0; x < g.nx; ++x) rows[0][x] = rows[1][x] = rows[2][x] = R(0);
         for (int c = 0; c < kPeskinWindow; ++c) {
             const int binZ = axes.z.fold(z - c);
             for (int b = 0; b < kPeskinWindow; ++b) {
@@ -146,33 +140,31 @@ struct StaggeredSpreadLine {
                     const Vec3<R> node{R(0), R(axes.y.first(u.y) + b) - u.y, R(axes.z.first(u.z) + c) - u.z};
                     const Vec3<R> zero{R(0), R(0), R(0)};
                     const Real4<R> f = force[i];
-                    deposit(rows, lanes, u.x, node, zero, Vec3<R>{f.x, f.y, f.z});
+                    deposit(rows, u.x, node, zero, Vec3<R>{f.x, f.y, f.z});
                     if (rfdNoise) {
                         const Vec3<R> w{rfdNoise[3 * i], rfdNoise[3 * i + 1], rfdNoise[3 * i + 2]};
                         // The offset in grid units along each axis.
                         const Vec3<R> offset{rfdHalfStep * w.x * R(axes.x.n) * axes.x.inverseLength,
                                              rfdHalfStep * w.y * R(axes.y.n) * axes.y.inverseLength,
                                              rfdHalfStep * w.z * R(axes.z.n) * axes.z.inverseLength};
-                        deposit(rows, lanes, u.x, node, offset, rfdScale * w);
-                        deposit(rows, lanes, u.x, node, R(-1) * offset, R(-1) * rfdScale * w);
+                        deposit(rows, u.x, node, offset, rfdScale * w);
+                        deposit(rows, u.x, node, R(-1) * offset, R(-1) * rfdScale * w);
                     }
                 }
             }
         }
     }
 
-    // Adds v, spread from u + offset (grid units), to the points of this line that `lanes` owns:
-    // component a on the a-faces. The offset is added to the node's distance rather than to u so
-    // that a small one keeps its digits.
-    SMD_HD void deposit(R* const rows[3], Lanes lanes, R ux, Vec3<R> node, Vec3<R> offset, Vec3<R> v) const {
+    // Adds v, spread from u + offset (grid units), to this line: component a on the a-faces. The
+    // offset is added to the node's distance rather than to u so that a small one keeps its digits.
+    SMD_HD void deposit(R* const rows[3], R ux, Vec3<R> node, Vec3<R> offset, Vec3<R> v) const {
         const NodeWeights<R> wy = NodeWeights<R>::at(node.y - offset.y), wz = NodeWeights<R>::at(node.z - offset.z);
         const Vec3<R> scale{wy.centre * wz.centre * v.x, wy.face * wz.centre * v.y, wy.centre * wz.face * v.z};
         if (scale.x == R(0) && scale.y == R(0) && scale.z == R(0)) return;
         const int firstX = axes.x.first(ux);
         for (int a = 0; a < kPeskinWindow; ++a) {
-            const int at = axes.x.fold(firstX + a);
-            if (!owns_point(lanes, at)) continue;
             const NodeWeights<R> wx = NodeWeights<R>::at(R(firstX + a) - ux - offset.x);
+            const int at = axes.x.fold(firstX + a);
             rows[0][at] += axes.inverseCellVolume * wx.face * scale.x;
             rows[1][at] += axes.inverseCellVolume * wx.centre * scale.y;
             rows[2][at] += axes.inverseCellVolume * wx.centre * scale.z;
@@ -397,11 +389,10 @@ public:
         const FftGrid grid = plan_.grid;
         const int64_t points = grid.points(), spectrumPoints = grid.spectrum_points();
         bins_.sort(p.count, StaggeredKernelLine<R>{p.pos.data(), group, axes_});
-        backend_.for_each_lanes(grid.ny * grid.nz,
-                                StaggeredSpreadLine<R>{p.pos.data(), p.force.data(), rfdNoise, R(kT / rfdDelta),
-                                                       R(0.5 * rfdDelta), bins_.order(), bins_.line_start(), axes_,
-                                                       field_.data()},
-                                LaneSizing::kFillDevice);
+        backend_.for_each(grid.ny * grid.nz,
+                          StaggeredSpreadLine<R>{p.pos.data(), p.force.data(), rfdNoise, R(kT / rfdDelta),
+                                                 R(0.5 * rfdDelta), bins_.order(), bins_.line_start(), axes_,
+                                                 field_.data()});
         const Vec3<R> inverseSpacing{R(1.0 / plan_.spacing[0]), R(1.0 / plan_.spacing[1]), R(1.0 / plan_.spacing[2])};
         if (kT > 0.0) {
             backend_.resize(stress_, static_cast<size_t>(6 * points));

@@ -20,7 +20,6 @@
 
 #include "core/fft_grid.hpp"
 #include "core/hd.hpp"
-#include "core/lanes.hpp"
 #include "core/random.hpp"
 #include "core/vec.hpp"
 #include "hydrodynamics/peskin_kernel.hpp"
@@ -95,10 +94,7 @@ struct StaggeredParticleLine {
 // Adds scale S v (v: each particle's vector) to one line along x of a field, from the particles whose
 // cells lie on lines y - 1 .. y + 2, z - 1 .. z + 2 (the three-point kernel's reach on the staggered
 // grid; the grid has at least four cells along each axis, so those lines differ). Each bin in particle
-// order: the sum is the same whatever the thread count. Each lane adds only to the points it owns
-// (core/lanes.hpp's owns_point), the same terms in the same order on any power-of-two number of
-// lanes; every lane computes each particle's weights (square roots), so it is launched with
-// LaneSizing::kFillDevice: lanes only until the lines fill the device.
+// order: the sum is the same whatever the thread count.
 template <class R, class Vectors>
 struct InertialFluidSpreadLine {
     const Real4<R>* pos;
@@ -109,7 +105,7 @@ struct InertialFluidSpreadLine {
     R scale;
     R* field;
 
-    SMD_HD void operator()(int64_t line, Lanes lanes) const {
+    SMD_HD void operator()(int64_t line) const {
         const FftGrid& g = grid.cells;
         const int64_t points = g.points();
         const int y = static_cast<int>(line % g.ny), z = static_cast<int>(line / g.ny);
@@ -130,10 +126,8 @@ struct InertialFluidSpreadLine {
                     for (int c = 0; c < 3; ++c) {
                         const R wyz = w.weight(c, 1, jy) * w.weight(c, 2, jz) * value[c];
                         if (wyz == R(0)) continue;
-                        for (int jx = 0; jx < 4; ++jx) {
-                            const int at = StaggeredGrid<R>::fold(w.first[0] + jx, g.nx);
-                            if (owns_point(lanes, at)) row[c][at] += wyz * w.weight(c, 0, jx);
-                        }
+                        for (int jx = 0; jx < 4; ++jx)
+                            row[c][StaggeredGrid<R>::fold(w.first[0] + jx, g.nx)] += wyz * w.weight(c, 0, jx);
                     }
                 }
             }

@@ -113,11 +113,10 @@ public:
         // The fluid's step with the force density S F at q^{n+1/2}.
         fluid_->clear_forcing();
         bins_->sort(p.count, StaggeredParticleLine<R>{p.pos.data(), s.group, fluid_->grid()});
-        backend_.for_each_lanes(int64_t(fluid_->grid().cells.ny) * fluid_->grid().cells.nz,
-                                InertialFluidSpreadLine<R, Real4Vectors<R>>{
-                                    p.pos.data(), Real4Vectors<R>{p.force.data()}, bins_->order(), bins_->line_start(),
-                                    fluid_->grid(), R(1.0 / fluid_->cell_volume()), fluid_->forcing()},
-                                LaneSizing::kFillDevice);
+        backend_.for_each(int64_t(fluid_->grid().cells.ny) * fluid_->grid().cells.nz,
+                          InertialFluidSpreadLine<R, Real4Vectors<R>>{p.pos.data(), Real4Vectors<R>{p.force.data()},
+                                                                      bins_->order(), bins_->line_start(), fluid_->grid(),
+                                                                      R(1.0 / fluid_->cell_volume()), fluid_->forcing()});
         fluid_->step(s.timeStep, s.kT, p.noise.seed, static_cast<uint64_t>(NoisePurpose::hydrodynamics) << 48, p.now());
 
         // q^{n+1} = q^n + dt/2 J^{n+1/2} (v^n + v^{n+1}), from q^{n+1/2}.

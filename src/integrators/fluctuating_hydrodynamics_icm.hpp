@@ -325,10 +325,9 @@ private:
     template <class Vectors>
     void spread(const Particles<B, R>& p, const Real4<R>* positions, const Vectors& vectors, R scale) {
         bins_->sort(p.count, StaggeredParticleLine<R>{positions, this->scope().group, grid_});
-        backend_.for_each_lanes(int64_t(grid_.cells.ny) * grid_.cells.nz,
-                                InertialFluidSpreadLine<R, Vectors>{positions, vectors, bins_->order(),
-                                                                    bins_->line_start(), grid_, scale, rhs_.data()},
-                                LaneSizing::kFillDevice);
+        backend_.for_each(int64_t(grid_.cells.ny) * grid_.cells.nz,
+                          InertialFluidSpreadLine<R, Vectors>{positions, vectors, bins_->order(), bins_->line_start(), grid_,
+                                                          scale, rhs_.data()});
     }
 
     // (dt / rho) (kT / delta) [S(q + delta/2 W') - S(q - delta/2 W')] W', delta = 1e-6 a (1e-4 a in

@@ -1,10 +1,11 @@
-// The spreads that give each grid line along x to one item of several lanes (core/lanes.hpp's
-// owns_point: a lane clears and sums the points x with x modulo the lane count equal to its rank):
-// for every power-of-two lane count up to a warp, running each line's lanes one rank after the other
-// on the host gives the grid of one lane bit for bit. A point no lane clears keeps the sentinel the
-// grid starts with, a point two lanes own takes its terms twice, and a lane that clears after another
-// summed loses those terms; the lanes run in both rank orders, so either way round shows. The GPU runs
-// the same functors with the lanes side by side; the CPU backend runs them with one lane.
+// The spreads that give each grid line along x to one item of several lanes, Gaussian (FCM and PSE's
+// far field) and planar (Quasi2D) (core/lanes.hpp's owns_point: a lane clears and sums the points x
+// with x modulo the lane count equal to its rank): for every power-of-two lane count up to a warp,
+// running each line's lanes one rank after the other on the host gives the grid of one lane bit for
+// bit. A point no lane clears keeps the sentinel the grid starts with, a point two lanes own takes
+// its terms twice, and a lane that clears after another summed loses those terms; the lanes run in
+// both rank orders, so either way round shows. The GPU runs the same functors with the lanes side by
+// side; the CPU backend runs them with one lane.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -13,14 +14,10 @@
 #include <vector>
 
 #include "backends/cpu/cpu_backend.hpp"
-#include "core/box.hpp"
 #include "core/lanes.hpp"
-#include "forcefield/pme_mesh.hpp"
 #include "hydrodynamics/fcm_mesh.hpp"
 #include "hydrodynamics/gaussian_spreading.hpp"
-#include "hydrodynamics/immersed_boundary_mesh.hpp"
 #include "hydrodynamics/planar_mesh.hpp"
-#include "hydrodynamics/staggered_fluid.hpp"
 #include "neighbour/line_bins.hpp"
 
 namespace structmd {
@@ -28,29 +25,25 @@ namespace {
 
 constexpr int kWarpLanes = 32;
 
-// count particles in the box [-L/2, L/2) of sides `box`, with vectors (forces) and numbers (charges,
-// noise) of mixed signs and sizes, so that a term added twice or lost shows in every bit.
+// count particles in the box [-L/2, L/2) of sides `box`, with vectors (forces) of mixed signs and
+// sizes, so that a term added twice or lost shows in every bit.
 template <class R>
 struct SpreadInputs {
     HostBuffer<Real4<R>> pos, vectors;
-    HostBuffer<R> numbers;  // three a particle
 
     SpreadInputs(const CpuBackend& backend, int count, const double box[3], unsigned seed) {
         std::mt19937 engine(seed);
         std::uniform_real_distribution<double> unit(-0.5, 0.5), value(-2.0, 2.0);
         std::vector<Real4<R>> p(count), v(count);
-        std::vector<R> n(3 * count);
         for (int i = 0; i < count; ++i) {
             // A few on the box's lower faces, whose kernels wrap around every periodic axis.
             const double x = i % 7 == 0 ? -0.5 : unit(engine), y = unit(engine);
             const double z = i % 5 == 0 ? -0.5 : unit(engine);
             p[i] = {R(x * box[0]), R(y * box[1]), R(z * box[2]), R(0)};
             v[i] = {R(value(engine)), R(value(engine)), R(value(engine)), R(0)};
-            for (int k = 0; k < 3; ++k) n[3 * i + k] = R(value(engine));
         }
         backend.upload(pos, p.data(), p.size());
         backend.upload(vectors, v.data(), v.size());
-        backend.upload(numbers, n.data(), n.size());
     }
 };
 
@@ -142,74 +135,6 @@ void check_planar(bool withNumberDensity) {
     expect_same_on_every_lane_count(spread, plan.grid.ny, density.data(), sentinel_grid<R>(3 * plan.grid.points()));
 }
 
-template <class R>
-void check_immersed_boundary(bool withRandomFiniteDifference) {
-    CpuBackend backend{1};
-    ImmersedBoundaryPlan plan;
-    plan.grid = FftGrid{10, 8, 6};
-    for (int d = 0; d < 3; ++d) plan.spacing[d] = 1.25;
-    plan.box[0] = 12.5;
-    plan.box[1] = 10.0;
-    plan.box[2] = 7.5;
-    const StaggeredAxes<R> axes = staggered_axes<R>(plan);
-    SpreadInputs<R> p(backend, 40, plan.box, 13);
-    const int lines = plan.grid.ny * plan.grid.nz;
-    LineBins<CpuBackend> bins(backend, lines);
-    bins.sort(40, StaggeredKernelLine<R>{p.pos.data(), nullptr, axes});
-    HostBuffer<R> field;
-    backend.resize(field, 3 * plan.grid.points());
-    const StaggeredSpreadLine<R> spread{p.pos.data(),
-                                        p.vectors.data(),
-                                        withRandomFiniteDifference ? p.numbers.data() : nullptr,
-                                        R(0.75),
-                                        R(0.05),
-                                        bins.order(),
-                                        bins.line_start(),
-                                        axes,
-                                        field.data()};
-    expect_same_on_every_lane_count(spread, lines, field.data(), sentinel_grid<R>(3 * plan.grid.points()));
-}
-
-template <class R>
-void check_inertial_fluid() {
-    CpuBackend backend{1};
-    StaggeredGrid<R> grid;
-    grid.cells = FftGrid{12, 8, 6};
-    grid.length = Vec3<R>{R(15.0), R(10.0), R(7.5)};
-    grid.spacing = Vec3<R>{R(1.25), R(1.25), R(1.25)};
-    const double box[3] = {15.0, 10.0, 7.5};
-    SpreadInputs<R> p(backend, 40, box, 14);
-    const int lines = grid.cells.ny * grid.cells.nz;
-    LineBins<CpuBackend> bins(backend, lines);
-    bins.sort(40, StaggeredParticleLine<R>{p.pos.data(), nullptr, grid});
-    HostBuffer<R> field;
-    backend.resize(field, 3 * grid.cells.points());
-    const InertialFluidSpreadLine<R, Real4Vectors<R>> spread{
-        p.pos.data(), {p.vectors.data()}, bins.order(), bins.line_start(), grid, R(0.8), field.data()};
-    // This spread adds to the field: it starts as a pattern of its own, every point different.
-    std::vector<R> initial(static_cast<size_t>(3 * grid.cells.points()));
-    for (size_t k = 0; k < initial.size(); ++k) initial[k] = R(0.001) * R(int(k % 97) - 48);
-    expect_same_on_every_lane_count(spread, lines, field.data(), initial);
-}
-
-template <class R>
-void check_pme() {
-    CpuBackend backend{1};
-    const FftGrid grid{24, 12, 8};
-    const double side[3] = {12.0, 6.0, 4.0};
-    const Box<R> box = Box<R>::make(side[0], side[1], side[2]);
-    SpreadInputs<R> p(backend, 50, side, 15);
-    const int lines = grid.ny * grid.nz;
-    LineBins<CpuBackend> bins(backend, lines);
-    bins.sort(50, PmeChargeLine<R>{p.pos.data(), p.numbers.data(), nullptr, box, grid});
-    HostBuffer<R> mesh;
-    backend.resize(mesh, grid.points());
-    // The charges: particle i's is numbers[i], of mixed signs.
-    const PmeSpreadLine<R> spread{
-        p.pos.data(), p.numbers.data(), bins.order(), bins.line_start(), box, grid, mesh.data()};
-    expect_same_on_every_lane_count(spread, lines, mesh.data(), sentinel_grid<R>(grid.points()));
-}
-
 TEST(LineSpreadLanes, GaussianSpreadLineIsTheSameOnEveryLaneCount) {
     check_gaussian<float>();
     check_gaussian<double>();
@@ -221,24 +146,6 @@ TEST(LineSpreadLanes, PlanarSpreadLineIsTheSameOnEveryLaneCount) {
         check_planar<float>(withNumberDensity);
         check_planar<double>(withNumberDensity);
     }
-}
-
-TEST(LineSpreadLanes, StaggeredSpreadLineIsTheSameOnEveryLaneCount) {
-    for (bool rfd : {false, true}) {
-        SCOPED_TRACE(rfd ? "with the random finite difference" : "forces alone");
-        check_immersed_boundary<float>(rfd);
-        check_immersed_boundary<double>(rfd);
-    }
-}
-
-TEST(LineSpreadLanes, InertialFluidSpreadLineIsTheSameOnEveryLaneCount) {
-    check_inertial_fluid<float>();
-    check_inertial_fluid<double>();
-}
-
-TEST(LineSpreadLanes, PmeSpreadLineIsTheSameOnEveryLaneCount) {
-    check_pme<float>();
-    check_pme<double>();
 }
 
 }  // namespace

@@ -110,9 +110,8 @@ TEST(StaggeredFluid, SpreadingPutsInTheForcesAndIsTheAdjointOfInterpolation) {
     LineBins<CpuBackend> bins(f.backend, 36);
     bins.sort(count, StaggeredParticleLine<double>{pos.data(), nullptr, f.grid});
     f.backend.fill(f.rhs, 0.0);
-    f.backend.for_each_lanes(
-        36, InertialFluidSpreadLine<double, Real4Vectors<double>>{
-                pos.data(), {force.data()}, bins.order(), bins.line_start(), f.grid, 1.0, f.rhs.data()});
+    f.backend.for_each(36, InertialFluidSpreadLine<double, Real4Vectors<double>>{pos.data(), {force.data()}, bins.order(),
+                                                                             bins.line_start(), f.grid, 1.0, f.rhs.data()});
     const int64_t p = f.points();
     for (int c = 0; c < 3; ++c) {
         double onGrid = 0, given = 0;
