@@ -1,10 +1,11 @@
 #pragma once
 // Spreading particles' vectors onto a 3D grid with a Gaussian, and averaging a grid's field back at
 // the particles with the same Gaussian (S and J = S^T of the grid methods for hydrodynamics): the
-// force coupling method and the positively split Ewald far field (fcm_mesh.hpp, periodic along z)
-// and the doubly periodic slab (slab_mesh.hpp, bounded along z). The Gaussian is a product of one
-// weight per axis; x and y are periodic (FcmAxis), z is the method's (FcmAxis or SlabAxisZ, both
-// answering first_node, node_weight, plane and plane_below).
+// force coupling method and the positively split Ewald far field (fcm_mesh.hpp, periodic along z).
+// The Gaussian is a product of one weight per axis; x and y are periodic (FcmAxis), z is the
+// method's (here FcmAxis, answering first_node, node_weight, plane and plane_below). The doubly
+// periodic slab (slab_mesh.hpp, bounded along z: SlabAxisZ) tabulates the same axes' weights once
+// per placement and spreads them with its own functors (slab_spreading.hpp).
 //
 // Vectors go onto the grid one line along x per item (up to a warp on the GPU, each lane summing the
 // points it owns: core/lanes.hpp's owns_point) from the particles sorted by the line their kernel
