@@ -9,7 +9,7 @@
 // the particle, times the cell volume. Near a wall the Gaussian has its mirror images subtracted
 // (SlabAxisZ); the part of a Gaussian beyond the slab is left out (on both sides of the product, so
 // M stays symmetric). The Gaussian is cut where it falls to the integrator's tolerance of its peak
-// (slab_kernel_cut), as the force coupling method cuts its own. Only the group's particles take
+// (make_slab_plan's cut), as the force coupling method cuts its own. Only the group's particles take
 // part; the product is 0 at the others.
 //
 // The positions are placed once (place: the Gaussians' weights are tabulated there,
@@ -91,13 +91,11 @@ template <class R>
 using SlabAxes = GaussianAxes<R, SlabAxisZ<R>>;
 
 #if SMD_HOST_CODE
-// Where the Gaussian is cut for the integrator's tolerance: at the tolerance of its peak, as the
-// force coupling method (fcm_mesh.hpp) cuts its own. Every element of M then stays within
-// 0.3 tolerance mu0 of the uncut Gaussian's (measured for tolerances 1e-3 to 0.1 and grid spacings
-// 0.8 to 1.9 sigma, tests/python/test_bdhi_dpstokes.py), so the tolerance needs no floor.
-inline double slab_kernel_cut(double tolerance) { return tolerance; }
-
-// The Gaussian reaches out to where it falls to `cut` of its peak (slab_kernel_cut).
+// The Gaussian reaches out to where it falls to `cut` of its peak. The integrator cuts it at its
+// tolerance, as the force coupling method (fcm_mesh.hpp) cuts its own: every element of M then
+// stays within 0.3 tolerance mu0 of the uncut Gaussian's (measured for tolerances 1e-3 to 0.1 and
+// grid spacings 0.8 to 1.9 sigma, tests/python/test_bdhi_dpstokes.py), so the tolerance needs no
+// floor.
 inline SlabPlan make_slab_plan(const int sizes[3], const double box[2], double height, double radius, SlabWalls walls,
                                double cut) {
     SlabPlan plan;

@@ -121,7 +121,7 @@ struct BdhiDPStokesInputs : IntegratorInputs {
         const int sizes[3] = {static_cast<int>(v["nx"]), static_cast<int>(v["ny"]), static_cast<int>(nz_wanted(v))};
         const double box[2] = {v["Lx"], v["Ly"]};
         return make_slab_plan(sizes, box, v["H"], v["hydrodynamicRadius"], static_cast<SlabWalls>(static_cast<int>(v["mode"])),
-                              slab_kernel_cut(v["tolerance"]));
+                              v["tolerance"]);
     }
 };
 
