@@ -88,6 +88,27 @@ struct GaussianKernelLine {
     }
 };
 
+// The x, y and z rows of grid line (y, z) along x in a density of three grids one after the other
+// (x, y, z components), with the points each lane owns cleared (owns_point: x modulo the lane count).
+template <class R>
+struct DensityLine {
+    R* x;
+    R* y;
+    R* z;
+
+    SMD_HD SMD_INLINE DensityLine(R* density, const FftGrid& grid, int lineY, int lineZ, const Lanes& lanes)
+        : x(density + grid.index(0, lineY, lineZ)), y(x + grid.points()), z(y + grid.points()) {
+        for (int at = lanes.lane; at < grid.nx; at += lanes.count) x[at] = y[at] = z[at] = R(0);
+    }
+
+    // Adds w v at point `at`.
+    SMD_HD SMD_INLINE void add(int at, R w, const Vec3<R>& v) const {
+        x[at] += w * v.x;
+        y[at] += w * v.y;
+        z[at] += w * v.z;
+    }
+};
+
 // One grid line along x of the three density grids (x, y, z components, one after the other),
 // cleared and then summed: a particle whose kernel starts on line (y - b, z - c) adds
 // v g_x g_y[b] g_z[c] along the line. Bins in (c, b) order and each in particle order.
@@ -106,12 +127,8 @@ struct GaussianSpreadLine {
 
     SMD_HD void operator()(int64_t line, Lanes lanes) const {
         const FftGrid& g = axes.grid;
-        const int64_t points = g.points();
         const int y = static_cast<int>(line % g.ny), z = static_cast<int>(line / g.ny);
-        R* rowX = density + g.index(0, y, z);
-        R* rowY = rowX + points;
-        R* rowZ = rowY + points;
-        for (int x = lanes.lane; x < g.nx; x += lanes.count) rowX[x] = rowY[x] = rowZ[x] = R(0);
+        const DensityLine<R> row(density, g, y, z, lanes);
         const int support = axes.x.support;
         for (int c = 0; c < axes.z.support; ++c) {
             const int binZ = axes.z.plane_below(z, c);
@@ -129,10 +146,7 @@ struct GaussianSpreadLine {
                     for (int a = 0; a < support; ++a) {
                         const int at = axes.x.fold(firstX + a);
                         if (!owns_point(lanes, at)) continue;
-                        const R w = wyz * axes.x.weight(firstX, a, ux);
-                        rowX[at] += w * v.x;
-                        rowY[at] += w * v.y;
-                        rowZ[at] += w * v.z;
+                        row.add(at, wyz * axes.x.weight(firstX, a, ux), v);
                     }
                 }
             }

@@ -96,12 +96,8 @@ struct SlabSpreadLine {
     R* density;
 
     SMD_HD void operator()(int64_t line, Lanes lanes) const {
-        const int64_t points = grid.points();
         const int y = static_cast<int>(line % grid.ny), z = static_cast<int>(line / grid.ny);
-        R* rowX = density + grid.index(0, y, z);
-        R* rowY = rowX + points;
-        R* rowZ = rowY + points;
-        for (int x = lanes.lane; x < grid.nx; x += lanes.count) rowX[x] = rowY[x] = rowZ[x] = R(0);
+        const DensityLine<R> row(density, grid, y, z, lanes);
         const int support = weights.support;
         for (int c = 0; c < weights.supportZ && c <= z; ++c) {
             const int binRow = (z - c) * grid.ny;
@@ -122,10 +118,7 @@ struct SlabSpreadLine {
                         int at = weights.first_x(i);
                         for (int a = 0; a < support; ++a, at = at + 1 == grid.nx ? 0 : at + 1) {
                             if (!owns_point(lanes, at)) continue;
-                            const R w = wyz * weights.x(i, a);
-                            rowX[at] += w * v.x;
-                            rowY[at] += w * v.y;
-                            rowZ[at] += w * v.z;
+                            row.add(at, wyz * weights.x(i, a), v);
                         }
                     }
                 }
