@@ -197,10 +197,13 @@ struct SlabWallSolution {
     }
 };
 
-// A column's sum over an item's lanes (Lanes::sum, a fixed butterfly), number by number.
-SMD_HD SMD_INLINE Complex64 lanes_sum(const Lanes& lanes, Complex64 a) { return {lanes.sum(a.re), lanes.sum(a.im)}; }
+SMD_HD SMD_INLINE SlabColumn operator+(const SlabColumn& a, const SlabColumn& b) {
+    return {a.l + b.l, a.t + b.t, a.z + b.z};
+}
+
+// A column's sum over an item's lanes (Lanes::combine, the fixed butterfly of Lanes::sum).
 SMD_HD SMD_INLINE SlabColumn lanes_sum(const Lanes& lanes, const SlabColumn& c) {
-    return {lanes_sum(lanes, c.l), lanes_sum(lanes, c.t), lanes_sum(lanes, c.z)};
+    return lanes.combine(c, [](SlabColumn& total, const SlabColumn& other) { total = total + other; });
 }
 
 // One wave vector of the half spectrum (x fastest, then y), all its z nodes. The spectra hold the
@@ -244,10 +247,7 @@ struct SlabStokesSolve {
         const SlabWallSolution wall(walls, kappa, zSpacing * (grid.nz - 1), bottom, top);
         for (int i = lanes.lane; i < grid.nz; i += lanes.count) {
             SlabColumn u = banded_velocity(at, i, plane, component, ux, uy);
-            if (walls != SlabWalls::none) {
-                const SlabColumn w = wall.at(zSpacing * i);
-                u = {u.l + w.l, u.t + w.t, u.z + w.z};
-            }
+            if (walls != SlabWalls::none) u = u + wall.at(zSpacing * i);
             const int64_t node = at + i * plane;
             velocity[node] = narrowed(ux * u.l + (-uy) * u.t);
             velocity[node + component] = narrowed(uy * u.l + ux * u.t);
