@@ -33,6 +33,7 @@ public:
           batch_(batch),
           radius_(radius) {
         backend_.upload(table_, table.data(), table.size());
+        if (PairKernel<Potential, R, PairR, true, false, false>::kCellLocal) list_->keep_cell_local_positions();
     }
 
     bool pairwise() const override { return true; }

@@ -11,6 +11,7 @@
 #include "core/lanes.hpp"
 #include "neighbour/cell_grid.hpp"
 #include "neighbour/pair_filter.hpp"
+#include "state/cell_local_positions.hpp"
 
 namespace structmd {
 
@@ -32,6 +33,7 @@ struct NeighbourView {
     const int* batch = nullptr;  // batch by particle, numbered as the grid's batches; null: one batch
     Box<R> box;
     PairFilter filter;
+    CellLocalPositions<R> cellLocal;  // this step's positions in float by slot, where the list keeps them
 
     SMD_HD SMD_INLINE int* entries_of(int64_t k) const { return list + k * particleStride; }
     SMD_HD SMD_INLINE int batch_of_slot(int64_t k) const { return batch ? batch[order[k]] : 0; }

@@ -110,6 +110,10 @@ public:
 
     void invalidate() { forceRebuild_ = true; }
 
+    // A pair kernel that evaluates in float over positions in double asks for the positions relative
+    // to their cells in float as well (state/cell_local_positions.hpp); kept where the grid allows.
+    void keep_cell_local_positions() { cellLocalWanted_ = true; }
+
     // Neighbours a particle the list has room for (or will have at its next layout); reserve()
     // raises it before the first layout.
     int capacity() const { return std::max(capacity_, pendingCapacity_); }
@@ -125,7 +129,8 @@ public:
     }
     SlotMirror<R> mirror() {
         const R halfSkin = R(0.5 * (listRadius_ - cutoff_));
-        return SlotMirror<R>{positions_.data(), binned_.data(), box_, halfSkin * halfSkin, control_.data()};
+        return SlotMirror<R>{positions_.data(), binned_.data(), box_, halfSkin * halfSkin, control_.data(),
+                             cell_local()};
     }
     // A drift kernel mirrored the positions of `version` (every particle's).
     void mirrored(int64_t version) { mirroredAt_ = version; }
@@ -181,7 +186,21 @@ private:
         v.batch = batch_;
         v.box = box_;
         v.filter = filter_;
+        v.cellLocal = cell_local();
         return v;
+    }
+
+    CellLocalPositions<R> cell_local() {
+        CellLocalPositions<R> local;
+        if (!cellLocalKept_) return local;
+        local.local = cellLocal_.data();
+        local.set_width({R(box_.length.x / grid_.nx), R(box_.length.y / grid_.ny), R(box_.length.z / grid_.nz)});
+        local.halfLength = {R(0.5) * box_.length.x, R(0.5) * box_.length.y, R(0.5) * box_.length.z};
+        local.nx = grid_.nx;
+        local.ny = grid_.ny;
+        local.nz = grid_.nz;
+        local.reach = grid_.reach;
+        return local;
     }
 
     bool same_box(const Box<R>& box) const {
@@ -211,7 +230,8 @@ private:
                                     LaneSizing::kFillDevice);
         } else {
             backend_.for_each(cells, SortCells<R>{pos.data(), control_.data(), cellStart_.data(), order_.data(),
-                                                  slotOf_.data(), positions_.data(), binned_.data()});
+                                                  slotOf_.data(), positions_.data(), binned_.data(), cell_local(),
+                                                  box_});
         }
         if (particleListsBuilt_)
             backend_.for_each_lanes(n, BuildLists<R>{particle_view(), R(listRadius_ * listRadius_), control_.data(),
@@ -257,6 +277,14 @@ private:
         // Clusters need the minimum image of two bounding boxes' centres to be the one of their
         // particles: four cells or more along every axis.
         clusters_ = clustersAllowed_ && grid_.nx >= 4 && grid_.ny >= 4 && grid_.nz >= 4;
+        // Cells' distances fold across the boundary once: periodic axes of 2 reach + 1 cells or more,
+        // and a reach of at most 2, whose multiples of a float width are exact.
+        const auto packable = [&](int cells, bool open) {
+            return !open && grid_.reach <= 2 && cells > 2 * grid_.reach && cells <= CellLocalPositions<R>::kAxisCells;
+        };
+        cellLocalKept_ = cellLocalWanted_ && !clusters_ && packable(grid_.nx, grid_.openX) &&
+                         packable(grid_.ny, grid_.openY) && packable(grid_.nz, grid_.openZ);
+        if (cellLocalKept_) backend_.fit(cellLocal_, n);
         if (clusters_) {
             clusterIds_ = static_cast<int>(n / kClusterSize) + cells;
             if (clusterCapacity_ == 0) {
@@ -298,6 +326,8 @@ private:
     bool clusters_ = false;              // cluster pairs kept for the current layout
     bool particleListsWanted_ = false;   // some caller asked for the per-particle lists
     bool particleListsBuilt_ = true;     // the builds since the last forced one made them
+    bool cellLocalWanted_ = false;       // some pair kernel asked for cell-local positions
+    bool cellLocalKept_ = false;         // and the current layout keeps them
     int clusterIds_ = 0;
     int clusterCapacity_ = 0;
     int pendingClusterCapacity_ = 0;
@@ -309,6 +339,7 @@ private:
     typename B::template Buffer<int> control_;
     typename B::template Buffer<int> list_, count_, order_, slotOf_, cellOf_, rankInCell_, cellCount_, cellStart_, chunkTotal_;
     typename B::template Buffer<Real4<R>> positions_, binned_;
+    typename B::template Buffer<Real4<float>> cellLocal_;
     typename B::template Buffer<int> clusterBounds_, clusterCell_, clusterList_, clusterCount_;
     typename B::template Buffer<Real4<R>> clusterCentre_, clusterHalfExtent_;
 };

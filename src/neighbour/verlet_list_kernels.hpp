@@ -169,6 +169,7 @@ SMD_HD SMD_INLINE void heap_sort(int* a, int n) {
 // Each cell's range sorted by particle, so the slots, the lists and the order of force sums are
 // the same on every run and every thread count; then the positions copied into slot order, as
 // this step's and as the reference for the displacement check, and each particle's slot noted.
+// Where the list keeps cell-local positions, the reference's w takes the cell's packed coordinates.
 template <class R>
 struct SortCells {
     const Real4<R>* pos;
@@ -178,6 +179,8 @@ struct SortCells {
     int* slotOf;
     Real4<R>* positions;
     Real4<R>* binned;
+    CellLocalPositions<R> cellLocal;
+    Box<R> box;
     SMD_HD void operator()(int64_t c) const {
         if (!control[kRebuild]) return;
         const int first = cellStart[c], members = cellStart[c + 1] - first;
@@ -185,18 +188,26 @@ struct SortCells {
             insertion_sort(order + first, members);
         else
             heap_sort(order + first, members);
+        const int cell = static_cast<int>(c);
+        const float packed = CellLocalPositions<R>::pack(cell % cellLocal.nx, cell / cellLocal.nx % cellLocal.ny,
+                                                         cell / (cellLocal.nx * cellLocal.ny) % cellLocal.nz);
         for (int s = first; s < first + members; ++s) {
             const Real4<R> p = pos[order[s]];
             positions[s] = p;
             binned[s] = p;
             slotOf[order[s]] = s;
+            if (cellLocal.local) {
+                binned[s].w = R(packed);
+                cellLocal.local[s] = cellLocal.of(xyz(p), packed, box);
+            }
         }
     }
 };
 
 // Each slot's lanes take the candidates of a cell in rounds, one candidate per lane, and append
 // those within the list radius in lane order: the list comes out in cell order, independent of
-// thread timing.
+// thread timing. Where the list keeps cell-local positions (mixed precision), the candidates'
+// distances are taken from those, half the bytes of the double positions.
 template <class R>
 struct BuildLists {
     NeighbourView<R> view;
@@ -204,10 +215,21 @@ struct BuildLists {
     int* control;
     bool byParticle;  // sort each list by particle (see below)
 
+    SMD_HD SMD_INLINE bool within_list_radius(int s, const Vec3<R>& rk, const Real4<float>& localK) const {
+        const NeighbourView<R>& v = view;
+        if (v.cellLocal.local) {
+            const Vec3<float> d = v.cellLocal.separation(localK, v.cellLocal.local[s]);
+            return dot(d, d) < static_cast<float>(listRadius2);
+        }
+        const Vec3<R> d = v.box.minimum_image(xyz(v.positions[s]) - rk);
+        return dot(d, d) < listRadius2;
+    }
+
     SMD_HD void operator()(int64_t k, Lanes lanes) const {
         if (!control[kRebuild]) return;
         const NeighbourView<R>& v = view;
         const Vec3<R> rk = xyz(v.positions[k]);
+        const Real4<float> localK = v.cellLocal.local ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
         int* entries = v.entries_of(k);
         int n = 0;
         int cx, cy, cz;
@@ -217,10 +239,7 @@ struct BuildLists {
             for (int base = v.cellStart[c]; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
                 bool accepted = false;
-                if (s < end && v.accepts(static_cast<int>(k), s)) {
-                    const Vec3<R> d = v.box.minimum_image(xyz(v.positions[s]) - rk);
-                    accepted = dot(d, d) < listRadius2;
-                }
+                if (s < end && v.accepts(static_cast<int>(k), s)) accepted = within_list_radius(s, rk, localK);
                 int found = 0;
                 const int slot = n + lanes.rank_among(accepted, found);
                 if (accepted && slot < v.capacity) entries[slot * v.entryStride] = s;

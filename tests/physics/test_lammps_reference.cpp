@@ -110,8 +110,9 @@ TEST_P(LammpsReference, Virial) {
 // angle terms, a few ulps of the largest terms; the issue asks 1e-10 for the LJ cases and 1e-9 for the
 // force-field cases. Single: float rounding of positions (about 5e-7 of a coordinate near the box
 // edge) magnified by the steepest pair forces at r = 0.8 sigma gives a few 1e-6 of the largest force,
-// and of the molecules' LJ energy, a sum of terms of both signs. Mixed: separations in double, the
-// pair potential in float: the float rounding of r^2 and of the potential's own arithmetic remains.
+// and of the molecules' LJ energy, a sum of terms of both signs. Mixed: separations in float from
+// cell-local positions (state/cell_local_positions.hpp), rounded by about 1e-7 of a cell's width
+// whatever the box, and the pair potential in float.
 // Surfaces: mixed precision evaluates external fields in double, so it agrees as double does; in
 // single the 9-3 wall's energy (0.41) sums 40 terms from -0.52 to +1.11, on which float
 // positions (rounded by 3e-7 near |z| = 5) and arithmetic leave about 2e-5 of it.

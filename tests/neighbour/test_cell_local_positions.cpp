@@ -1,0 +1,177 @@
+// Cell-local positions (state/cell_local_positions.hpp): a list that keeps them gives, for every
+// listed pair, the separation of the double positions to within the rounding of a cell's width,
+// after builds, after moves under half the skin and across the periodic boundary; the
+// mixed-precision pair kernel over them agrees with the double one, within a few times the rounding
+// of separations taken in double; and a grid they do not fit leaves them out.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "forcefield/lennard_jones.hpp"
+#include "forcefield/pair_kernel.hpp"
+#include "neighbour/verlet_list.hpp"
+#include "random_particles.hpp"
+
+namespace structmd {
+namespace {
+
+using List = VerletList<CpuBackend, double>;
+
+// A liquid-like configuration: a cubic lattice at about the LJ liquid's density, each site
+// jittered, two types; no pair closer than about 0.75.
+void place_on_jittered_lattice(RandomParticles& s, double spacing) {
+    const int nx = static_cast<int>(s.box.length.x / spacing), ny = static_cast<int>(s.box.length.y / spacing);
+    for (int64_t i = 0; i < s.n; ++i) {
+        Real4<double>& p = s.pos.data()[i];
+        const int64_t a = i % nx, b = (i / nx) % ny, c = i / (nx * ny);
+        const Vec3<double> r = s.box.wrap({(a + 0.25 * p.x / s.box.length.x) * spacing,
+                                           (b + 0.25 * p.y / s.box.length.y) * spacing,
+                                           (c + 0.25 * p.z / s.box.length.z) * spacing});
+        p = {r.x, r.y, r.z, static_cast<double>(i % 2)};
+    }
+}
+
+// The largest difference, over every listed pair, between the cell-local separation and the
+// minimum image of the double positions.
+double largest_separation_error(List& list, RandomParticles& s) {
+    list.update(s.pos, s.n, s.box, ++s.version);
+    const NeighbourView<double> v = list.view();
+    EXPECT_NE(v.cellLocal.local, nullptr) << "the list was meant to keep cell-local positions";
+    if (!v.cellLocal.local) return INFINITY;
+    double largest = 0.0;
+    int64_t pairs = 0;
+    for (int k = 0; k < s.n; ++k)
+        v.for_each_neighbour(k, [&](int t) {
+            const Vec3<float> local = v.cellLocal.separation(v.cellLocal.local[k], v.cellLocal.local[t]);
+            const Vec3<double> exact = s.box.minimum_image(xyz(v.positions[t]) - xyz(v.positions[k]));
+            largest = std::max({largest, std::abs(local.x - exact.x), std::abs(local.y - exact.y),
+                                std::abs(local.z - exact.z)});
+            ++pairs;
+        });
+    EXPECT_GT(pairs, 20 * s.n) << "the list was meant to hold a liquid's neighbours";
+    return largest;
+}
+
+// A box 120 long: an absolute position in float would be rounded by up to ulp(60) / 2 = 3.8e-6, so
+// the separations would be off by several 1e-6. Relative to cells 1.4 wide (the CPU's half-width
+// cells) the rounding is a few 1e-8, and the cells' distances are exact multiples of a float width.
+TEST(CellLocalPositions, SeparationsMatchTheDoublePositionsAcrossTheBoundary) {
+    RandomParticles s(120 * 12 * 12, 120.0, 12.0, 12.0, 3);
+    place_on_jittered_lattice(s, 1.0);
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
+    list.keep_cell_local_positions();
+    EXPECT_LT(largest_separation_error(list, s), 4e-7);
+    // Moves under half the skin (no build): the positions are refreshed relative to the same cells,
+    // some of them across the periodic boundary.
+    for (int k = 0; k < 3; ++k) {
+        s.jiggle(0.045, 30 + k);
+        EXPECT_LT(largest_separation_error(list, s), 4e-7);
+    }
+    list.adapt();
+    EXPECT_EQ(list.builds(), 1);
+    s.jiggle(0.2, 40);  // over half the skin: a build, with new cells
+    EXPECT_LT(largest_separation_error(list, s), 4e-7);
+    list.adapt();
+    EXPECT_EQ(list.builds(), 2);
+}
+
+// The mixed-precision kernel (double positions and sums, float potential) over cell-local positions
+// against the double kernel, in a box 100 long.
+TEST(CellLocalPositions, MixedPairKernelAgreesWithDouble) {
+    RandomParticles s(100 * 11 * 11, 100.0, 11.0, 11.0, 4);
+    place_on_jittered_lattice(s, 1.0);
+    using LJ = LennardJonesType1;
+    const auto table_in = [](auto real) {
+        using T = decltype(real);
+        std::vector<LJ::Params<T>> table;
+        for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b)
+                table.push_back(LJ::make_pair_params<T>(1.0 + 0.2 * (a + b), 1.0 + 0.05 * (a + b), 2.5, true));
+        return table;
+    };
+    HostBuffer<LJ::Params<double>> doubles;
+    HostBuffer<LJ::Params<float>> floats;
+    s.backend.upload(doubles, table_in(0.0).data(), 4);
+    s.backend.upload(floats, table_in(0.0f).data(), 4);
+    struct Result {
+        std::vector<Real4<double>> force;
+        std::vector<double> energy;
+        std::vector<Tensor3<double>> virial;
+    };
+    const auto run = [&](auto kernel, bool keep) {
+        List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
+        if (keep) list.keep_cell_local_positions();
+        list.update(s.pos, s.n, s.box, 1);
+        EXPECT_EQ(list.view().cellLocal.local != nullptr, keep);
+        Result r{std::vector<Real4<double>>(s.n, Real4<double>{0, 0, 0, 0}), std::vector<double>(s.n, 0.0),
+                 std::vector<Tensor3<double>>(s.n, zero_tensor<double>())};
+        kernel.neighbours = list.view();
+        kernel.out.force = r.force.data();
+        kernel.out.energy = r.energy.data();
+        kernel.out.virial = r.virial.data();
+        s.backend.for_each_lanes(s.n, kernel);
+        return r;
+    };
+    const Result reference =
+        run(PairKernel<LJ, double, double, true, true, true>{nullptr, nullptr, nullptr, {}, {doubles.data(), 2, nullptr}, {}},
+            false);
+    const Result mixed =
+        run(PairKernel<LJ, double, float, true, true, true>{nullptr, nullptr, nullptr, {}, {floats.data(), 2, nullptr}, {}},
+            true);
+    // The same float potential over separations taken in double: the rounding mixed precision
+    // had before cell-local positions.
+    const Result doubleSeparations =
+        run(PairKernel<LJ, double, float, true, true, true>{nullptr, nullptr, nullptr, {}, {floats.data(), 2, nullptr}, {}},
+            false);
+    double largestForce = 0.0;
+    for (int64_t i = 0; i < s.n; ++i)
+        largestForce = std::max({largestForce, std::abs(reference.force[i].x), std::abs(reference.force[i].y)});
+    ASSERT_GT(largestForce, 10.0) << "the configuration was meant to have forces";
+    struct Deviation {
+        double force = 0.0, energy = 0.0, virial = 0.0;
+    };
+    const auto deviation = [&](const Result& r) {
+        Deviation d;
+        for (int64_t i = 0; i < s.n; ++i) {
+            d.force = std::max({d.force, std::abs(r.force[i].x - reference.force[i].x),
+                                std::abs(r.force[i].y - reference.force[i].y),
+                                std::abs(r.force[i].z - reference.force[i].z)});
+            d.energy = std::max(d.energy, std::abs(r.energy[i] - reference.energy[i]));
+            d.virial = std::max({d.virial, std::abs(r.virial[i].xx - reference.virial[i].xx),
+                                 std::abs(r.virial[i].yz - reference.virial[i].yz)});
+        }
+        return d;
+    };
+    const Deviation local = deviation(mixed), before = deviation(doubleSeparations);
+    std::printf("[ deviation ] largest force %.1f; cell-local: force %.2e energy %.2e virial %.2e; "
+                "double separations: force %.2e energy %.2e virial %.2e\n",
+                largestForce, local.force, local.energy, local.virial, before.force, before.energy, before.virial);
+    // Pairs here come as close as 0.75 sigma, where the force is steepest (r^-14): a separation off
+    // by 1e-7 (the float rounding of the two local positions and of their difference) moves it by
+    // 2e-6 of itself, three times the double separations' rounding of r^2 alone. Absolute positions
+    // in float, off by ulp(50) / 2 = 1.9e-6 each, would move it by about 5e-5.
+    EXPECT_LT(local.force, 3e-6 * largestForce);
+    EXPECT_LT(local.force, 4.0 * before.force);
+    EXPECT_LT(local.energy, 4.0 * before.energy);
+    EXPECT_LT(local.virial, 4.0 * before.virial);
+}
+
+// Where the cells' distances cannot be folded once (too few cells along an axis) or an axis is
+// open, the list keeps no cell-local positions and the kernels take the double ones.
+TEST(CellLocalPositions, LeftOutWhereTheGridCannotFoldTheCells) {
+    for (const Vec3<double>& length : {Vec3<double>{6.0, 20.0, 20.0}, Vec3<double>{20.0, 20.0, kOpenAxis}}) {
+        RandomParticles s(400, length.x, length.y, std::isinf(length.z) ? 20.0 : length.z, 5);
+        s.box = Box<double>::make(length.x, length.y, length.z);
+        List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
+        list.keep_cell_local_positions();
+        list.update(s.pos, s.n, s.box, 1);
+        EXPECT_EQ(list.view().cellLocal.local, nullptr) << "box " << length.x << " x " << length.y << " x " << length.z;
+        EXPECT_EQ(list.mirror().cellLocal.local, nullptr);
+    }
+}
+
+}  // namespace
+}  // namespace structmd
