@@ -204,32 +204,29 @@ struct PairKernel {
             const Box<R> box = v.box;
             const Params first = row[0];
             // Element by element (no copies of whole structures, which keep the compiler from
-            // turning the minimum image's branches into selects).
+            // turning the minimum image's branches into selects): entry m, slot s, its separation
+            // and the square of it.
+            const auto store = [&](int m, int s, R x, R y, R z, R squared) {
+                dx[m] = x;
+                dy[m] = y;
+                dz[m] = z;
+                r2[m] = squared;
+                typeJ[m] = positions[s].w;
+                if (charges) chargeJ[m] = charge[order[s]];
+                if (radii) radiusJ[m] = radius[order[s]];
+                within[m] = PairR(squared) < first.cutoff2 ? R(1) : R(0);
+            };
             const auto separation = [&](int m) {
                 const int s = entries[m];
                 const Vec3<R> rij =
                     box.minimum_image(Vec3<R>{positions[s].x - ri.x, positions[s].y - ri.y, positions[s].z - ri.z});
-                dx[m] = rij.x;
-                dy[m] = rij.y;
-                dz[m] = rij.z;
-                r2[m] = dot(rij, rij);
-                typeJ[m] = positions[s].w;
-                if (charges) chargeJ[m] = charge[order[s]];
-                if (radii) radiusJ[m] = radius[order[s]];
-                within[m] = PairR(r2[m]) < first.cutoff2 ? R(1) : R(0);
+                store(m, s, rij.x, rij.y, rij.z, dot(rij, rij));
             };
             // Mixed precision: the separations from the cell-local positions, as operator() takes them.
             const auto separation_in_cells = [&](int m, const CellLocalPositions<R>& local, const Real4<float>& li) {
                 const int s = entries[m];
                 const Vec3<float> rij = local.separation(li, local.local[s]);
-                dx[m] = rij.x;
-                dy[m] = rij.y;
-                dz[m] = rij.z;
-                r2[m] = dot(rij, rij);
-                typeJ[m] = positions[s].w;
-                if (charges) chargeJ[m] = charge[order[s]];
-                if (radii) radiusJ[m] = radius[order[s]];
-                within[m] = PairR(r2[m]) < first.cutoff2 ? R(1) : R(0);
+                store(m, s, rij.x, rij.y, rij.z, dot(rij, rij));
             };
             if (kCellLocal && v.cellLocal.local) {
                 const CellLocalPositions<R> local = v.cellLocal;
