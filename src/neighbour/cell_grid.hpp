@@ -117,6 +117,12 @@ struct CellGrid {
     }
 
     SMD_HD SMD_INLINE int index(int cx, int cy, int cz) const { return (cz * ny + cy) * nx + cx; }
+    // The coordinates of the cell with this index in its batch's grid (index's inverse).
+    SMD_HD SMD_INLINE void coordinates_of(int cell, int& cx, int& cy, int& cz) const {
+        cx = cell % nx;
+        cy = cell / nx % ny;
+        cz = cell / (nx * ny) % nz;
+    }
     SMD_HD SMD_INLINE int index(int cx, int cy, int cz, int batch) const {
         return (batch * nz + cz) * ny * nx + cy * nx + cx;
     }

@@ -51,8 +51,8 @@ struct SortCellsIntoClusters {
         if (!control[kRebuild]) return;
         const int first = cellStart[c], members = cellStart[c + 1] - first;
         if (members <= kSortable) {
-            const int cell = static_cast<int>(c);
-            const int cx = cell % grid.nx, cy = (cell / grid.nx) % grid.ny, cz = cell / (grid.nx * grid.ny);
+            int cx, cy, cz;
+            grid.coordinates_of(static_cast<int>(c), cx, cy, cz);
             uint64_t key[kSortable];
             for (int m = 0; m < members; ++m) {
                 const int i = order[first + m];

@@ -230,8 +230,8 @@ private:
                                     LaneSizing::kFillDevice);
         } else {
             backend_.for_each(cells, SortCells<R>{pos.data(), control_.data(), cellStart_.data(), order_.data(),
-                                                  slotOf_.data(), positions_.data(), binned_.data(), cell_local(),
-                                                  box_});
+                                                  slotOf_.data(), positions_.data(), binned_.data(), grid_,
+                                                  cell_local(), box_});
         }
         if (particleListsBuilt_)
             backend_.for_each_lanes(n, BuildLists<R>{particle_view(), R(listRadius_ * listRadius_), control_.data(),

@@ -179,6 +179,7 @@ struct SortCells {
     int* slotOf;
     Real4<R>* positions;
     Real4<R>* binned;
+    CellGrid<R> grid;
     CellLocalPositions<R> cellLocal;
     Box<R> box;
     SMD_HD void operator()(int64_t c) const {
@@ -188,9 +189,12 @@ struct SortCells {
             insertion_sort(order + first, members);
         else
             heap_sort(order + first, members);
-        const int cell = static_cast<int>(c);
-        const float packed = CellLocalPositions<R>::pack(cell % cellLocal.nx, cell / cellLocal.nx % cellLocal.ny,
-                                                         cell / (cellLocal.nx * cellLocal.ny) % cellLocal.nz);
+        float packed = 0;
+        if (cellLocal.local) {
+            int cx, cy, cz;
+            grid.coordinates_of(static_cast<int>(c), cx, cy, cz);
+            packed = CellLocalPositions<R>::pack(cx, cy, cz);
+        }
         for (int s = first; s < first + members; ++s) {
             const Real4<R> p = pos[order[s]];
             positions[s] = p;
