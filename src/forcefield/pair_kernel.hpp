@@ -81,7 +81,10 @@ SMD_HD SMD_INLINE PairTerm<T> evaluate_pair_of(T r2, const typename Potential::t
 // Sums in R; the potential itself in PairR. Separations in R, except where the potential is
 // evaluated in float over positions in double (mixed precision) and the list keeps its positions
 // relative to their cells in float (state/cell_local_positions.hpp): half the bytes gathered per
-// neighbour, with a rounding of about 1e-7 of a cell's width whatever the size of the box.
+// neighbour, with a rounding of about 1e-7 of a cell's width whatever the size of the box. There
+// each lane's force runs in float too, as OpenMM's mixed precision sums a thread's: a pair costs
+// no conversion to double, the GPU's slowest arithmetic (16 a cycle per multiprocessor on the
+// H100), and the lanes' sums, energies and virials stay in R.
 // Runs over the list's slots (neighbour_view.hpp); what belongs to a particle (charge, group,
 // radius, outputs) is looked up through the slot's particle.
 template <class Potential, class R, class PairR, bool WantForce, bool WantEnergy, bool WantVirial>
@@ -107,7 +110,7 @@ struct PairKernel {
                 const CellLocalPositions<R>& local = v.cellLocal;
                 const Real4<float> li = local.local[k];
                 const bool oneType = table.ntypes == 1;
-                sum_pairs(k, i, row, lanes, [&](int s, int& typeJ) {
+                sum_pairs<float>(k, i, row, lanes, [&](int s, int& typeJ) {
                     typeJ = oneType ? 0 : static_cast<int>(v.positions[s].w);
                     return local.separation(li, local.local[s]);
                 });
@@ -115,34 +118,36 @@ struct PairKernel {
             }
         }
         const Vec3<R> ri = xyz(pi);
-        sum_pairs(k, i, row, lanes, [&](int s, int& typeJ) {
+        sum_pairs<R>(k, i, row, lanes, [&](int s, int& typeJ) {
             const Real4<R> pj = v.positions[s];
             typeJ = static_cast<int>(pj.w);
             return v.box.minimum_image(xyz(pj) - ri);
         });
     }
 
-    // Slot k's terms with its neighbours, separation(s, typeJ) giving the separation to slot s (in R
-    // or in float) and its particle's type.
-    template <class Separation>
+    // Slot k's terms with its neighbours, separation(s, typeJ) giving the separation to slot s (in
+    // S, R or float) and its particle's type; each lane's force runs in S.
+    template <class S, class Separation>
     SMD_HD SMD_INLINE void sum_pairs(int64_t k, int i, const Params* row, Lanes lanes, Separation&& separation) const {
         const NeighbourView<R>& v = neighbours;
-        Vec3<R> f{0, 0, 0};
+        Vec3<S> laneForce{0, 0, 0};
         R e = 0;
         Tensor3<R> w = zero_tensor<R>();
         v.for_each_neighbour(static_cast<int>(k), [&](int s) {
             int typeJ;
-            const auto d = separation(s, typeJ);
+            const Vec3<S> d = separation(s, typeJ);
             const PairR r2 = PairR(dot(d, d));
             const Params& p = row[typeJ];
             if (!(r2 < p.cutoff2) || (group && !group[v.order[s]])) return;
-            const Vec3<R> rij{R(d.x), R(d.y), R(d.z)};
             const PairTerm<PairR> t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, v.order[s]);
-            const R dudrOverR = R(t.dudr_over_r);
-            if (WantForce) f += dudrOverR * rij;
+            if (WantForce) laneForce += S(t.dudr_over_r) * d;
             if (WantEnergy) e += R(0.5) * R(t.energy);
-            if (WantVirial) w += (R(-0.5) * dudrOverR) * outer(rij, rij);
+            if (WantVirial) {
+                const Vec3<R> rij{R(d.x), R(d.y), R(d.z)};
+                w += (R(-0.5) * R(t.dudr_over_r)) * outer(rij, rij);
+            }
         }, lanes);
+        Vec3<R> f{R(laneForce.x), R(laneForce.y), R(laneForce.z)};
         if (WantForce) f = lanes.sum(f);
         if (WantEnergy) e = lanes.sum(e);
         if (WantVirial) w = lanes.sum(w);
