@@ -173,6 +173,25 @@ TEST(VerletList, BatchesOverlaidInOneBoxPairOnlyWithinABatch) {
     EXPECT_EQ(grid.count(), 3 * grid.nx * grid.ny * grid.nz);
 }
 
+// The cell sorts decode a cell index back into its coordinates (the cell-local positions' packed
+// cell, the clusters' sub-cells): coordinates_of inverts index in every batch of an uneven grid.
+TEST(CellGrid, CoordinatesOfInvertsIndexInEveryBatch) {
+    const Box<double> box = Box<double>::make(11.0, 15.0, 20.0);
+    const CellGrid<double> grid = CellGrid<double>::make(box, 2.0, 4000, 3);
+    ASSERT_EQ(grid.batches, 3);
+    ASSERT_TRUE(grid.nx != grid.ny && grid.ny != grid.nz) << "the axes were meant to differ";
+    for (int b = 0; b < grid.batches; ++b)
+        for (int cz = 0; cz < grid.nz; ++cz)
+            for (int cy = 0; cy < grid.ny; ++cy)
+                for (int cx = 0; cx < grid.nx; ++cx) {
+                    int x = -1, y = -1, z = -1;
+                    grid.coordinates_of(grid.index(cx, cy, cz, b), x, y, z);
+                    ASSERT_EQ(x, cx);
+                    ASSERT_EQ(y, cy);
+                    ASSERT_EQ(z, cz) << "batch " << b;
+                }
+}
+
 TEST(VerletList, SlotsAreAPermutationInCellOrder) {
     System s(900, 11.0, 12.0, 13.0, 9);
     List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
