@@ -125,8 +125,8 @@ struct PairKernel {
         });
     }
 
-    // Slot k's terms with its neighbours, separation(s, typeJ) giving the separation to slot s (in
-    // S, R or float) and its particle's type; each lane's force runs in S.
+    // Slot k's terms with its neighbours, separation(s, typeJ) giving the separation to slot s in S
+    // (R, or float from cell-local positions) and its particle's type; each lane's force runs in S.
     template <class S, class Separation>
     SMD_HD SMD_INLINE void sum_pairs(int64_t k, int i, const Params* row, Lanes lanes, Separation&& separation) const {
         const NeighbourView<R>& v = neighbours;
