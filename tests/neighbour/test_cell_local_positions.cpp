@@ -101,7 +101,9 @@ TEST(CellLocalPositions, MixedPairKernelAgreesWithDouble) {
         std::vector<double> energy;
         std::vector<Tensor3<double>> virial;
     };
-    const auto run = [&](auto kernel, bool keep) {
+    // perSlot: the kernel's own per-slot path, the one the GPU runs (float lane sums), instead of the
+    // CPU's row pass.
+    const auto run = [&](auto kernel, bool keep, bool perSlot = false) {
         List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
         if (keep) list.keep_cell_local_positions();
         list.update(s.pos, s.n, s.box, 1);
@@ -112,7 +114,10 @@ TEST(CellLocalPositions, MixedPairKernelAgreesWithDouble) {
         kernel.out.force = r.force.data();
         kernel.out.energy = r.energy.data();
         kernel.out.virial = r.virial.data();
-        s.backend.for_each_lanes(s.n, kernel);
+        if (perSlot)
+            for (int64_t k = 0; k < s.n; ++k) kernel(k, Lanes{});
+        else
+            s.backend.for_each_lanes(s.n, kernel);
         return r;
     };
     const Result reference =
@@ -121,6 +126,9 @@ TEST(CellLocalPositions, MixedPairKernelAgreesWithDouble) {
     const Result mixed =
         run(PairKernel<LJ, double, float, true, true, true>{nullptr, nullptr, nullptr, {}, {floats.data(), 2, nullptr}, {}},
             true);
+    const Result mixedPerSlot =
+        run(PairKernel<LJ, double, float, true, true, true>{nullptr, nullptr, nullptr, {}, {floats.data(), 2, nullptr}, {}},
+            true, true);
     // The same float potential over separations taken in double: the rounding mixed precision
     // had before cell-local positions.
     const Result doubleSeparations =
@@ -145,7 +153,7 @@ TEST(CellLocalPositions, MixedPairKernelAgreesWithDouble) {
         }
         return d;
     };
-    const Deviation local = deviation(mixed), before = deviation(doubleSeparations);
+    const Deviation local = deviation(mixed), perSlot = deviation(mixedPerSlot), before = deviation(doubleSeparations);
     std::printf("[ deviation ] largest force %.1f; cell-local: force %.2e energy %.2e virial %.2e; "
                 "double separations: force %.2e energy %.2e virial %.2e\n",
                 largestForce, local.force, local.energy, local.virial, before.force, before.energy, before.virial);
@@ -157,6 +165,13 @@ TEST(CellLocalPositions, MixedPairKernelAgreesWithDouble) {
     EXPECT_LT(local.force, 4.0 * before.force);
     EXPECT_LT(local.energy, 4.0 * before.energy);
     EXPECT_LT(local.virial, 4.0 * before.virial);
+    // The per-slot path sums each lane's force in float: the same bounds.
+    std::printf("[ deviation ] per slot: force %.2e energy %.2e virial %.2e\n", perSlot.force, perSlot.energy,
+                perSlot.virial);
+    EXPECT_LT(perSlot.force, 3e-6 * largestForce);
+    EXPECT_LT(perSlot.force, 4.0 * before.force);
+    EXPECT_LT(perSlot.energy, 4.0 * before.energy);
+    EXPECT_LT(perSlot.virial, 4.0 * before.virial);
 }
 
 // Where the cells' distances cannot be folded once (too few cells along an axis) or an axis is
