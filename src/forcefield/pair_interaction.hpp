@@ -86,10 +86,17 @@ public:
         }
         const NeighbourView<R> view = list_->view();
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
-            backend_.for_each_lanes(particles.count,
-                              PairKernel<Potential, R, PairR, decltype(force)::value, decltype(energy)::value,
-                                         decltype(virial)::value>{particles.charge.data(), radii(particles),
-                                                                  this->group(), view, table_of(table_), out});
+            using Kernel = PairKernel<Potential, R, PairR, decltype(force)::value, decltype(energy)::value,
+                                      decltype(virial)::value>;
+            const Kernel kernel{particles.charge.data(), radii(particles), this->group(), view, table_of(table_), out};
+            if constexpr (Kernel::kCellLocal) {
+                if (view.cellLocal.local)
+                    backend_.for_each_lanes(particles.count, PairKernelWithSeparations<Kernel, true>{kernel});
+                else
+                    backend_.for_each_lanes(particles.count, PairKernelWithSeparations<Kernel, false>{kernel});
+            } else {
+                backend_.for_each_lanes(particles.count, kernel);
+            }
         });
     }
 

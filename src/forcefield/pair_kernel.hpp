@@ -100,23 +100,38 @@ struct PairKernel {
     ForceOutputs<R> out;
 
     SMD_HD void operator()(int64_t k, Lanes lanes) const {
+        if constexpr (kCellLocal) {
+            if (neighbours.cellLocal.local) {
+                over_cells(k, lanes);
+                return;
+            }
+        }
+        over_positions(k, lanes);
+    }
+
+    // Slot k's pairs with separations from the cell-local positions. The double positions only for
+    // types: none read where there is one type.
+    SMD_HD SMD_INLINE void over_cells(int64_t k, Lanes lanes) const {
+        const NeighbourView<R>& v = neighbours;
+        const int i = v.order[k];
+        if (group && !group[i]) return;
+        const CellLocalPositions<R>& local = v.cellLocal;
+        const Real4<float> li = local.local[k];
+        const bool oneType = table.ntypes == 1;
+        const Params* row = table.row_of(i, oneType ? 0 : static_cast<int>(v.positions[k].w));
+        sum_pairs<float>(k, i, row, lanes, [&](int s, int& typeJ) {
+            typeJ = oneType ? 0 : static_cast<int>(v.positions[s].w);
+            return local.separation(li, local.local[s]);
+        });
+    }
+
+    // Slot k's pairs with separations from the positions in R.
+    SMD_HD SMD_INLINE void over_positions(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = neighbours;
         const int i = v.order[k];
         if (group && !group[i]) return;
         const Real4<R> pi = v.positions[k];
         const Params* row = table.row_of(i, static_cast<int>(pi.w));
-        if constexpr (kCellLocal) {
-            if (v.cellLocal.local) {
-                const CellLocalPositions<R>& local = v.cellLocal;
-                const Real4<float> li = local.local[k];
-                const bool oneType = table.ntypes == 1;
-                sum_pairs<float>(k, i, row, lanes, [&](int s, int& typeJ) {
-                    typeJ = oneType ? 0 : static_cast<int>(v.positions[s].w);
-                    return local.separation(li, local.local[s]);
-                });
-                return;
-            }
-        }
         const Vec3<R> ri = xyz(pi);
         sum_pairs<R>(k, i, row, lanes, [&](int s, int& typeJ) {
             const Real4<R> pj = v.positions[s];
@@ -312,6 +327,21 @@ struct PairKernel {
         }
     }
 #endif
+};
+
+// A PairKernel whose separations are chosen at launch: where the list keeps cell-local positions, the
+// mixed-precision kernel runs over them alone, else over the positions alone, so that neither GPU
+// kernel holds the other path's registers. Under the lone-lane kernel's cap of 40 (one lane per
+// particle, a large system) the two paths together spilled 224 bytes a thread, the cell-local
+// path alone 64, as single precision's kernel does.
+template <class Kernel, bool OverCells>
+struct PairKernelWithSeparations : Kernel {
+    SMD_HD void operator()(int64_t k, Lanes lanes) const {
+        if constexpr (OverCells)
+            this->over_cells(k, lanes);
+        else
+            this->over_positions(k, lanes);
+    }
 };
 
 }  // namespace structmd
