@@ -49,8 +49,8 @@ public:
         this->backend_.for_each(p.count, GjfDrift<R>{this->particles(p)});
         forces.positions_moved(s.timeStep, true);
         forces.update_forces();
-        this->backend_.for_each(p.count, ClosingHalfKick<R>{s.group, p.pos.data(), p.vel.data(), p.force.data(),
-                                                            R(s.timeStep), p.fault_slot()});
+        this->backend_.for_each(p.count, ClosingHalfKick<R>{s.group, p.vel.data(), p.force.data(), R(s.timeStep),
+                                                            p.fault_slot()});
     }
 };
 

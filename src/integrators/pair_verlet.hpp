@@ -57,8 +57,8 @@ public:
         forces.positions_moved(s.timeStep, true);
         forces.update_forces();
         update_pair_forces(p);
-        backend_.for_each(p.count, ClosingHalfKick<R>{s.group, p.pos.data(), p.vel.data(), p.force.data(), dt,
-                                                      p.fault_slot(), pairForce_.data()});
+        backend_.for_each(p.count, ClosingHalfKick<R>{s.group, p.vel.data(), p.force.data(), dt, p.fault_slot(),
+                                                      pairForce_.data()});
         // The list's capacity grows from what its builds needed (a host round trip, so now and then);
         // until then a particle with more neighbours is served by scanning its cells.
         if (++stepsSinceAdapt_ >= kStepsBetweenAdapts) {

@@ -49,7 +49,7 @@ public:
                                                       p.force.data(), p.box, dt, p.fault_slot(1), p.drift});
         forces.positions_moved(this->time_step(), true);
         forces.update_forces();
-        backend_.for_each(p.count, ClosingHalfKick<R>{this->scope().group, p.pos.data(), p.vel.data(), p.force.data(), dt, p.fault_slot()});
+        backend_.for_each(p.count, ClosingHalfKick<R>{this->scope().group, p.vel.data(), p.force.data(), dt, p.fault_slot()});
     }
 
 private:

@@ -43,6 +43,11 @@ struct FaultSlot {
         if (!finite(velocity)) report(i, FaultQuantity::velocity);
         else check(i, position, force);
     }
+    template <class R>
+    SMD_HD SMD_INLINE void check_kick(int64_t i, const Real4<R>& velocity, const Real4<R>& force) const {
+        if (!finite(velocity)) report(i, FaultQuantity::velocity);
+        else if (!finite(force)) report(i, FaultQuantity::force);
+    }
     // A particle that jumps farther than the skin in one step has left the reach of the lists it
     // was counted in: the time step is too large for the forces.
     template <class R>
