@@ -72,8 +72,9 @@ SMD_HD SMD_INLINE Real4<R> kick_force(const Real4<R>* force, const Real4<R>* ext
 // The half kick that closes an inertial step (velocity Verlet, Langevin GJF) also checks the
 // particle's new velocity and force, so a blow-up is recorded in the step that produced it at no
 // extra pass over memory. Not the position: the drift made it from a finite one (the API takes
-// finite positions only) and the velocity checked here, and not reading it saves a quarter of the
-// kernel's bytes.
+// finite positions only) and a velocity checked here, and a move that overflowed is longer than the
+// skin (the drift's check) or makes this step's forces non-finite. Not reading it saves a quarter of
+// the kernel's bytes.
 template <class R>
 struct ClosingHalfKick {
     const uint8_t* group;

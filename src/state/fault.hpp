@@ -43,6 +43,7 @@ struct FaultSlot {
         if (!finite(velocity)) report(i, FaultQuantity::velocity);
         else check(i, position, force);
     }
+    // A kick's check: it moves no particle, so it has no position to check.
     template <class R>
     SMD_HD SMD_INLINE void check_kick(int64_t i, const Real4<R>& velocity, const Real4<R>& force) const {
         if (!finite(velocity)) report(i, FaultQuantity::velocity);
