@@ -135,7 +135,10 @@ STRUCTMD_API const char* structmd_version(void);
  *                      particles) | "particles" (a list per particle). Same physics either way,
  *                      summed in another order; lists with a condition, exclusions or batches, boxes
  *                      under four list radii a side, spatial domains and expression or plugin
- *                      potentials walk per-particle lists whatever is asked (docs/c-api.md).
+ *                      potentials walk per-particle lists whatever is asked (docs/c-api.md);
+ *                      "step_graphs": true (default: the CUDA backend runs the steps of a call as
+ *                      CUDA graphs) | false (each kernel launched as it comes: slower at small N,
+ *                      for profilers and debuggers; no effect on the CPU backend).
  *                      Read during the call only.
  * @param[out] out      receives the new handle, owned by the caller until structmd_destroy; set to
  *                      NULL on failure.

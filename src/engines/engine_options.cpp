@@ -116,9 +116,12 @@ EngineOptions parse_engine_options(const char* text) {
                 else if (how == "clusters") options.pairTraversal = EngineOptions::PairTraversal::clusters;
                 else if (how == "particles") options.pairTraversal = EngineOptions::PairTraversal::particles;
                 else throw option_error(key, "expected \"auto\", \"clusters\" or \"particles\", got \"" + how + "\"");
+            } else if (key == "step_graphs") {
+                if (!value.is_boolean()) throw option_error(key, "expected true or false, got " + shown(value));
+                options.stepGraphs = value.get<bool>();
             } else {
                 throw option_error(key, "unknown option (known: backend, device, precision, threads, log, log_file, "
-                                        "plugins, mpi_comm, ghost_exchange, pair_traversal)");
+                                        "plugins, mpi_comm, ghost_exchange, pair_traversal, step_graphs)");
             }
         }
     }

@@ -31,6 +31,10 @@ struct EngineOptions {
     // backends), "clusters" or "particles" (neighbour/cluster_view.hpp). Lists with a condition,
     // exclusions or batches, and spatial domains, always use per-particle lists.
     enum class PairTraversal { automatic, clusters, particles } pairTraversal = PairTraversal::automatic;
+    // Whether the CUDA backend runs the steps of a call as CUDA graphs (the default). Without them
+    // each kernel is launched as it comes: slower at small N, for profilers and debuggers (Nsight
+    // Compute cannot time the kernels of a graph with conditional nodes).
+    bool stepGraphs = true;
 };
 
 // Parses the options JSON (NULL or "" for defaults) and resolves "auto". Throws Error(ERR_ARGUMENT)

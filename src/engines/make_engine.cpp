@@ -18,6 +18,7 @@ std::unique_ptr<LocalEngine> make_simulation(const EngineOptions& options, Simul
                                             const ForceFieldComponents& components, const Logger& log) {
     const bool cuda = options.backend == BackendKind::cuda;
     spec.forceField.clusterPairs = cluster_pairs(options);
+    spec.stepGraphs = options.stepGraphs;
 #ifdef STRUCTMD_WITH_SINGLE
     if (options.precision == Precision::single)
         return cuda ? make_cuda_engine_single(options.device, std::move(spec), components, log)

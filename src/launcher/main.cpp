@@ -61,6 +61,7 @@ struct RunOptions {
     std::string precision = "single";
     int threads = 0;  // 0: the engine's default (all threads OpenMP offers)
     std::vector<std::string> plugins;  // the handle's "plugins" option
+    bool noStepGraphs = false;         // the handle's "step_graphs": false
     int64_t steps = -1;                // -1: until the schedule ends
     int64_t thermo = 0;                // 0: no energies on screen
     double progressSeconds = 10.0;     // between progress lines without a terminal
@@ -261,6 +262,7 @@ std::string create_options(const RunOptions& options) {
                            {"log", options.quiet || !options.prints() ? "warning" : "info"}};
     if (options.threads > 0) json["threads"] = options.threads;
     if (!options.plugins.empty()) json["plugins"] = options.plugins;
+    if (options.noStepGraphs) json["step_graphs"] = false;
     if (options.session) json["mpi_comm"] = options.session->world_handle();
     return json.dump();
 }
@@ -409,6 +411,8 @@ void add_engine_options(CLI::App* command, RunOptions& options) {
         ->check(CLI::PositiveNumber);
     command->add_option("--plugin", options.plugins,
                         "A plugin library whose components the input may use (docs/plugins.md); repeatable");
+    command->add_flag("--no-step-graphs", options.noStepGraphs,
+                      "Launch each GPU kernel as it comes, not as CUDA graphs: slower, for profilers");
 }
 
 }  // namespace

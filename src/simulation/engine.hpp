@@ -90,7 +90,8 @@ public:
           host_{spec.typeIndex, spec.batchId, spec.mass, spec.radius, spec.typeNames},
           boxLengths_(spec.box),
           boltzmann_(spec.constants.boltzmann),
-          largestCutoff_(spec.forceField.largest_cutoff()) {
+          largestCutoff_(spec.forceField.largest_cutoff()),
+          stepGraphs_(spec.stepGraphs) {
         steps_.all = std::move(spec.steps);
         backend_.activate();
         load_particles(spec);
@@ -163,10 +164,10 @@ public:
         rollback_.save(backend_, p_, activeStage_, integrators_);
         lambdaAtCallStart_ = lambda_;
         steps_.stoppedBy.clear();
-        backend_.begin_steps();
+        if (stepGraphs_) backend_.begin_steps();
         try {
             for (int64_t k = 0; k < n; ++k) {
-                backend_.begin_step();
+                if (stepGraphs_) backend_.begin_step();
                 fire_steps(current_step() == last);  // the schedule's final state, passed through
                 if (!steps_.stoppedBy.empty()) break;
                 const int stage = schedule_.stage_after(current_step());
@@ -180,15 +181,15 @@ public:
                 p_.timeline.commit(integrator.time_advance());
             }
         } catch (const Error& e) {
-            backend_.end_steps();
+            end_step_graphs();
             // A host callback that fails stops the call as a blow-up does: back to its start.
             if (e.status() == STRUCTMD_ERR_CALLBACK) roll_back();
             throw;
         } catch (...) {
-            backend_.end_steps();
+            end_step_graphs();
             throw;
         }
-        backend_.end_steps();
+        end_step_graphs();
         check_fault(io_.gather_watched_positions());
         // What is due at the step the call ends on is written now, as LAMMPS and OpenMM do, not at
         // the start of a next call that a host may never make.
@@ -391,6 +392,11 @@ private:
     double potential_energy(int batch);
     double kinetic_energy(int batch);
 
+    // Closes the call's last step graph, which runs what was recorded since the one before.
+    void end_step_graphs() {
+        if (stepGraphs_) backend_.end_steps();
+    }
+
     // Simulation steps see the state before the step is taken; the final state of the schedule
     // is given to every step whose window holds it.
     void fire_steps(bool final) {
@@ -417,6 +423,7 @@ private:
     std::array<double, 3> boxLengths_{};
     double boltzmann_ = 1.0;
     double largestCutoff_ = 0.0;  // of the pair terms: the box may not shrink below twice it
+    bool stepGraphs_ = true;      // the engine option "step_graphs"
     int activeStage_ = -1;        // the schedule stage whose integrator has begun
     Rollback<B, R> rollback_;
     ForceCache<B, R> cache_;

@@ -46,6 +46,7 @@ struct SystemSpec {
 
 struct SimulationSpec : SystemSpec {
     std::vector<std::unique_ptr<SimulationStep>> steps;
+    bool stepGraphs = true;  // the engine option "step_graphs": a call's steps as CUDA graphs
 };
 
 }  // namespace structmd

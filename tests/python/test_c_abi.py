@@ -297,6 +297,8 @@ def test_create_with_default_options(options):
     ({"log": "loud"}, "log"),
     ({"device": "first"}, "device"),
     ({"threads": "many"}, "threads"),
+    ({"step_graphs": "no"}, "step_graphs"),
+    ({"step_graphs": 0}, "step_graphs"),
 ])
 def test_create_rejects_bad_options(options, culprit):
     out = ffi.new("structmd_sim**")

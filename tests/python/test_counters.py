@@ -2,6 +2,7 @@
 scene builds no neighbour list; steps between measures evaluate no energy or virial; asking for the
 forces twice evaluates them once; stepping moves no particle data to the host."""
 
+import numpy as np
 import pytest
 
 import structmd
@@ -165,3 +166,21 @@ def test_cuda_replays_steps_as_graphs(sim, options):
         assert counters["step_graphs_replayed"] >= 1000 // 16 - 4
     else:
         assert counters["step_graphs_captured"] == counters["step_graphs_replayed"] == 0
+
+
+def test_steps_without_graphs_repeat_the_run_bit_for_bit(options, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    runs = {}
+    for graphs in (True, False):
+        with structmd.Simulation({**options, "step_graphs": graphs}) as s:
+            s.load(document(steps=2000))
+            s.step(300)
+            runs[graphs] = (np.array(s.positions), np.array(s.velocities), s.counters)
+    (positions, velocities, with_graphs), (positions_issued, velocities_issued, issued) = runs[True], runs[False]
+    # the lists were rebuilt during the steps, so the build's conditional kernels ran both ways
+    assert issued["neighbour_list_builds"] == with_graphs["neighbour_list_builds"] > 2
+    assert np.array_equal(positions_issued, positions)
+    assert np.array_equal(velocities_issued, velocities)
+    assert issued["step_graphs_captured"] == issued["step_graphs_replayed"] == 0
+    if options["backend"] == "cuda":
+        assert with_graphs["step_graphs_replayed"] >= 300 // 16 - 4
