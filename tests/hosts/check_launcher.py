@@ -100,6 +100,12 @@ with tempfile.TemporaryDirectory() as work:
     expect("\r" not in calm.stderr, "a carriage return in a log that is not a terminal")
     expect(any(line.split() == ["steps", "50"] for line in calm.stdout.splitlines()), "summary does not say 50 steps")
 
+    # --no-step-graphs reaches the engine, which accepts it (the CPU backend has no graphs): the same run.
+    issued = run(launcher, work, "issued", lattice_input(6, 1.12, 0.002, 20), "--steps", "50", "--thermo", "10",
+                 "--no-step-graphs")
+    expect(issued.returncode == 0, f"run with --no-step-graphs exited {issued.returncode}")
+    expect(thermo_rows(issued.stdout) == rows, "--no-step-graphs changed the thermo rows")
+
     # --steps ends the run where it says, past the schedule's end or before it, and the outputs get
     # the final state there as at a schedule's end, though their interval does not land on it.
     for name, schedule_steps, steps, expected in (("longer", 20, 50, [0, 15, 30, 45, 50]),
