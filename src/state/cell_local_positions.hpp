@@ -56,18 +56,33 @@ struct CellLocalPositions {
     }
 #endif
 
+    // What separation() adds to a difference of local positions for cells a given number apart
+    // along each axis: that many widths, as hi and lo parts, each exact (at most reach <= 2 cells).
+    struct CellShift {
+        Vec3<float> hi, lo;
+    };
+    SMD_HD SMD_INLINE CellShift shift(int cellsX, int cellsY, int cellsZ) const {
+        const float x = static_cast<float>(cellsX), y = static_cast<float>(cellsY), z = static_cast<float>(cellsZ);
+        return {{x * widthHi.x, y * widthHi.y, z * widthHi.z}, {x * widthLo.x, y * widthLo.y, z * widthLo.z}};
+    }
+
+    // b - a for local positions whose cells are `cells` apart: a list build, which takes a whole
+    // cell's candidates at one shift, unpacks no cell per candidate.
+    static SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const CellShift& cells) {
+        return {(cells.hi.x + (b.x - a.x)) + cells.lo.x, (cells.hi.y + (b.y - a.y)) + cells.lo.y,
+                (cells.hi.z + (b.z - a.z)) + cells.lo.z};
+    }
+
     // b - a for two slots' local positions: their difference plus the cells' distance, each axis's
     // folded across the periodic boundary.
     SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b) const {
         const int ca = static_cast<int>(a.w), cb = static_cast<int>(b.w);
-        const auto along = [this](float d, int from, int to, int n, float hi, float lo) {
+        const auto folded = [this](int from, int to, int n) {
             const int c = to - from;
-            const float cells = static_cast<float>(c > reach ? c - n : (c < -reach ? c + n : c));
-            return (cells * hi + d) + cells * lo;  // cells * hi exact: |cells| <= reach <= 2
+            return c > reach ? c - n : (c < -reach ? c + n : c);
         };
-        return {along(b.x - a.x, cell_x(ca), cell_x(cb), nx, widthHi.x, widthLo.x),
-                along(b.y - a.y, cell_y(ca), cell_y(cb), ny, widthHi.y, widthLo.y),
-                along(b.z - a.z, cell_z(ca), cell_z(cb), nz, widthHi.z, widthLo.z)};
+        return separation(a, b, shift(folded(cell_x(ca), cell_x(cb), nx), folded(cell_y(ca), cell_y(cb), ny),
+                                      folded(cell_z(ca), cell_z(cb), nz)));
     }
 };
 
