@@ -56,8 +56,24 @@ struct CellLocalPositions {
     }
 #endif
 
-    // What separation() adds to a difference of local positions for cells a given number apart
-    // along each axis: that many widths, as hi and lo parts, each exact (at most reach <= 2 cells).
+    // b - a for two slots' local positions: their difference plus the cells' distance, each axis's
+    // folded across the periodic boundary.
+    SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b) const {
+        const int ca = static_cast<int>(a.w), cb = static_cast<int>(b.w);
+        const auto along = [this](float d, int from, int to, int n, float hi, float lo) {
+            const int c = to - from;
+            const float cells = static_cast<float>(c > reach ? c - n : (c < -reach ? c + n : c));
+            return (cells * hi + d) + cells * lo;  // cells * hi exact: |cells| <= reach <= 2
+        };
+        return {along(b.x - a.x, cell_x(ca), cell_x(cb), nx, widthHi.x, widthLo.x),
+                along(b.y - a.y, cell_y(ca), cell_y(cb), ny, widthHi.y, widthLo.y),
+                along(b.z - a.z, cell_z(ca), cell_z(cb), nz, widthHi.z, widthLo.z)};
+    }
+
+    // The cells' distance that separation() adds for cells a given number apart along each axis,
+    // as its hi and lo parts (each product exact). A list build takes a whole cell's candidates at
+    // one such shift and unpacks no cell per candidate; the pair kernel, whose neighbours' cells
+    // differ, keeps separation() above (with the shift as a variable it spilled more registers).
     struct CellShift {
         Vec3<float> hi, lo;
     };
@@ -65,24 +81,10 @@ struct CellLocalPositions {
         const float x = static_cast<float>(cellsX), y = static_cast<float>(cellsY), z = static_cast<float>(cellsZ);
         return {{x * widthHi.x, y * widthHi.y, z * widthHi.z}, {x * widthLo.x, y * widthLo.y, z * widthLo.z}};
     }
-
-    // b - a for local positions whose cells are `cells` apart: a list build, which takes a whole
-    // cell's candidates at one shift, unpacks no cell per candidate.
+    // separation(a, b) for local positions whose cells are `cells` apart: the same sums.
     static SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const CellShift& cells) {
         return {(cells.hi.x + (b.x - a.x)) + cells.lo.x, (cells.hi.y + (b.y - a.y)) + cells.lo.y,
                 (cells.hi.z + (b.z - a.z)) + cells.lo.z};
-    }
-
-    // b - a for two slots' local positions: their difference plus the cells' distance, each axis's
-    // folded across the periodic boundary.
-    SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b) const {
-        const int ca = static_cast<int>(a.w), cb = static_cast<int>(b.w);
-        const auto folded = [this](int from, int to, int n) {
-            const int c = to - from;
-            return c > reach ? c - n : (c < -reach ? c + n : c);
-        };
-        return separation(a, b, shift(folded(cell_x(ca), cell_x(cb), nx), folded(cell_y(ca), cell_y(cb), ny),
-                                      folded(cell_z(ca), cell_z(cb), nz)));
     }
 };
 
