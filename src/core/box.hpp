@@ -100,10 +100,14 @@ struct Box {
         return x;
     }
 
+    // Selects, not branches (nvcc made the second compare a branch and a reconvergence point in
+    // every loop over neighbours), and 2 d against L rather than d against L / 2, which a kernel
+    // short of registers recomputed for every pair. 2 d and L / 2 are both exact, so the compares
+    // are those of d against L / 2.
     static SMD_HD SMD_INLINE R fold(R d, R length) {
-        if (d >= R(0.5) * length) return d - length;
-        if (d < R(-0.5) * length) return d + length;
-        return d;
+        const R twice = d + d;
+        const R down = d - length, up = d + length;
+        return twice >= length ? down : (twice < -length ? up : d);
     }
 };
 

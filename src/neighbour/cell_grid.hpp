@@ -135,13 +135,21 @@ struct CellGrid {
     }
     static SMD_HD SMD_INLINE int periodic(int c, int n) { return c < 0 ? c + n : (c >= n ? c - n : c); }
 
-    // Calls visit(cell) once for each distinct cell within reach of (cx, cy, cz) in a batch's grid.
+    // Calls visit(cell, dx, dy, dz) once for each distinct cell within reach of (cx, cy, cz) in a
+    // batch's grid, (dx, dy, dz) being its offset in cells from (cx, cy, cz) before the wrap.
     template <class Visit>
-    SMD_HD SMD_INLINE void for_each_adjacent(int cx, int cy, int cz, int batch, Visit&& visit) const {
+    SMD_HD SMD_INLINE void for_each_adjacent_offset(int cx, int cy, int cz, int batch, Visit&& visit) const {
         for (int dz = first_offset(nz); dz <= last_offset(nz); ++dz)
             for (int dy = first_offset(ny); dy <= last_offset(ny); ++dy)
                 for (int dx = first_offset(nx); dx <= last_offset(nx); ++dx)
-                    visit(index(periodic(cx + dx, nx), periodic(cy + dy, ny), periodic(cz + dz, nz), batch));
+                    visit(index(periodic(cx + dx, nx), periodic(cy + dy, ny), periodic(cz + dz, nz), batch), dx, dy,
+                          dz);
+    }
+
+    // Calls visit(cell) once for each distinct cell within reach of (cx, cy, cz) in a batch's grid.
+    template <class Visit>
+    SMD_HD SMD_INLINE void for_each_adjacent(int cx, int cy, int cz, int batch, Visit&& visit) const {
+        for_each_adjacent_offset(cx, cy, cz, batch, [&](int c, int, int, int) { visit(c); });
     }
 };
 

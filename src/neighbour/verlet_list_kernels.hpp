@@ -219,38 +219,57 @@ struct BuildLists {
     int* control;
     bool byParticle;  // sort each list by particle (see below)
 
-    SMD_HD SMD_INLINE bool within_list_radius(int s, const Vec3<R>& rk, const Real4<float>& localK) const {
+    // Lists slot k's candidates within the list radius, returns how many. Where the list keeps
+    // cell-local positions, every candidate of a cell is the same number of cells from slot k
+    // (those grids have more than 2 reach cells along each axis, so the offset needs no fold): the
+    // cell's shift is taken once, and a candidate costs a load and a distance.
+    template <bool kCellLocal, bool kAnyPair>
+    SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = view;
-        if (v.cellLocal.local) {
-            const Vec3<float> d = v.cellLocal.separation(localK, v.cellLocal.local[s]);
-            return dot(d, d) < static_cast<float>(listRadius2);
-        }
-        const Vec3<R> d = v.box.minimum_image(xyz(v.positions[s]) - rk);
-        return dot(d, d) < listRadius2;
+        const int self = static_cast<int>(k);
+        const Vec3<R> rk = xyz(v.positions[k]);
+        const Real4<float> localK = kCellLocal ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
+        const float localRadius2 = static_cast<float>(listRadius2);
+        // Where this slot's next entry goes: a pointer moved along, not an index times the stride
+        // computed again for every candidate.
+        int* next = v.entries_of(k);
+        int n = 0;
+        int cx, cy, cz;
+        v.grid.coordinates(rk, v.box, cx, cy, cz);
+        v.grid.for_each_adjacent_offset(cx, cy, cz, v.batch_of_slot(k), [&](int c, int dx, int dy, int dz) {
+            typename CellLocalPositions<R>::CellShift cells{};
+            if (kCellLocal) cells = v.cellLocal.shift(dx, dy, dz);
+            const int end = v.cellStart[c + 1];
+            for (int base = v.cellStart[c]; base < end; base += lanes.count) {
+                const int s = base + lanes.lane;
+                bool accepted = s < end && (kAnyPair ? s != self : v.accepts(self, s));
+                if (accepted && kCellLocal) {
+                    const Vec3<float> d = CellLocalPositions<R>::separation(localK, v.cellLocal.local[s], cells);
+                    accepted = dot(d, d) < localRadius2;
+                } else if (accepted) {
+                    const Vec3<R> d = v.box.minimum_image(xyz(v.positions[s]) - rk);
+                    accepted = dot(d, d) < listRadius2;
+                }
+                int found = 0;
+                const int rank = lanes.rank_among(accepted, found);
+                if (accepted && n + rank < v.capacity) next[rank * v.entryStride] = s;
+                n += found;
+                next += found * v.entryStride;
+            }
+        });
+        return n;
     }
 
     SMD_HD void operator()(int64_t k, Lanes lanes) const {
         if (!control[kRebuild]) return;
-        const NeighbourView<R>& v = view;
-        const Vec3<R> rk = xyz(v.positions[k]);
-        const Real4<float> localK = v.cellLocal.local ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
-        int* entries = v.entries_of(k);
-        int n = 0;
-        int cx, cy, cz;
-        v.grid.coordinates(rk, v.box, cx, cy, cz);
-        v.grid.for_each_adjacent(cx, cy, cz, v.batch_of_slot(k), [&](int c) {
-            const int end = v.cellStart[c + 1];
-            for (int base = v.cellStart[c]; base < end; base += lanes.count) {
-                const int s = base + lanes.lane;
-                bool accepted = false;
-                if (s < end && v.accepts(static_cast<int>(k), s)) accepted = within_list_radius(s, rk, localK);
-                int found = 0;
-                const int slot = n + lanes.rank_among(accepted, found);
-                if (accepted && slot < v.capacity) entries[slot * v.entryStride] = s;
-                n += found;
-            }
-        });
+        // The kind of positions and of filter are chosen once a slot, not once a candidate: the
+        // candidate loop is a build's time, and its branches were half of the loop's instructions.
+        const bool cellLocal = view.cellLocal.local != nullptr, anyPair = view.filter.trivial();
+        const int n = cellLocal ? (anyPair ? collect<true, true>(k, lanes) : collect<true, false>(k, lanes))
+                                : (anyPair ? collect<false, true>(k, lanes) : collect<false, false>(k, lanes));
         if (!lanes.leader()) return;
+        const NeighbourView<R>& v = view;
+        int* entries = v.entries_of(k);
         // In particle order, so a particle's force sum does not depend on where the particles
         // happened to be at this build: a restarted run repeats the same sums bit for bit.
         const int stored = !byParticle ? 0 : (n < v.capacity ? n : v.capacity);

@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
 #include <random>
 #include <set>
 #include <vector>
 
 #include "backends/cpu/cpu_backend.hpp"
 #include "neighbour/verlet_list.hpp"
+#include "neighbour/verlet_list_kernels.hpp"
 #include "random_particles.hpp"
 
 namespace structmd {
@@ -246,6 +249,65 @@ TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
         one.jiggle(0.4, 20 + round);  // past half the skin: every round rebuilds
         four.jiggle(0.4, 20 + round);
     }
+}
+
+// The build loop a GPU runs (BuildLists::operator(), one slot at a time with one lane) against the
+// CPU's row pass that built the list: the same slots in every list, for each kind of candidate test
+// it chooses once per slot (positions or cell-local positions, any pair or a filter). A pair on
+// which they differ may only be one the two roundings put on either side of the list radius.
+template <class Configure>
+void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, PairCondition condition,
+                                          const PairFilterInputs& inputs, bool cellLocal) {
+    List list(s.backend, 2.5, 1.12, condition, inputs, nullptr, 1, nullptr);
+    configure(list);
+    list.update(s.pos, s.n, s.box, ++s.version);
+    NeighbourView<double> v = list.view();
+    ASSERT_EQ(v.cellLocal.local != nullptr, cellLocal);
+    ASSERT_EQ(v.filter.trivial(), condition == PairCondition::all && inputs.excluded.empty());
+    std::vector<int> entries(static_cast<size_t>(v.capacity) * s.n), counts(s.n);
+    const int* built = v.list;
+    const int* builtCount = v.count;
+    v.list = entries.data();
+    v.count = counts.data();
+    int control[kControlSlots] = {};
+    control[kRebuild] = 1;
+    const double radius = 2.5 + list.skin();
+    const BuildLists<double> loop{v, radius * radius, control, false};
+    int64_t listed = 0, borderline = 0;
+    for (int64_t k = 0; k < s.n; ++k) {
+        loop(k, Lanes{});
+        ASSERT_LE(counts[k], v.capacity) << "slot " << k << " overflowed";
+        std::set<int> mine, theirs;
+        for (int m = 0; m < counts[k]; ++m) mine.insert(entries[k * v.particleStride + m * v.entryStride]);
+        for (int m = 0; m < builtCount[k]; ++m) theirs.insert(built[k * v.particleStride + m * v.entryStride]);
+        listed += static_cast<int64_t>(theirs.size());
+        std::vector<int> differing;
+        std::set_symmetric_difference(mine.begin(), mine.end(), theirs.begin(), theirs.end(),
+                                      std::back_inserter(differing));
+        for (int t : differing) {
+            const Vec3<double> d = s.box.minimum_image(xyz(v.positions[t]) - xyz(v.positions[k]));
+            EXPECT_NEAR(std::sqrt(dot(d, d)), radius, 1e-5) << "slot " << k << " and " << t << " listed by one loop only";
+            ++borderline;
+        }
+    }
+    EXPECT_GT(listed, 20 * s.n) << "the lists were meant to hold a liquid's neighbours";
+    EXPECT_LE(borderline, 2);
+}
+
+TEST(VerletList, GpuBuildLoopListsWhatTheCpuRowsList) {
+    System s(3000, 14.0, 15.0, 16.0, 12);
+    const auto asIs = [](List&) {};
+    const auto keepCellLocal = [](List& list) { list.keep_cell_local_positions(); };
+    // Each particle excludes the next three: a filter that is not trivial.
+    PairFilterInputs exclusions;
+    exclusions.excluded.resize(s.n);
+    for (int i = 0; i < s.n; ++i)
+        for (int j = i - 3; j <= i + 3; ++j)
+            if (j != i && j >= 0 && j < s.n) exclusions.excluded[i].push_back(j);
+    expect_gpu_loop_lists_what_rows_list(s, asIs, PairCondition::all, {}, false);
+    expect_gpu_loop_lists_what_rows_list(s, asIs, PairCondition::all, exclusions, false);
+    expect_gpu_loop_lists_what_rows_list(s, keepCellLocal, PairCondition::all, {}, true);
+    expect_gpu_loop_lists_what_rows_list(s, keepCellLocal, PairCondition::all, exclusions, true);
 }
 
 }  // namespace
