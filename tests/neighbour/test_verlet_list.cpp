@@ -256,14 +256,14 @@ TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
 // it chooses once per slot (positions or cell-local positions, any pair or a filter). A pair on
 // which they differ may only be one the two roundings put on either side of the list radius.
 template <class Configure>
-void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, PairCondition condition,
-                                          const PairFilterInputs& inputs, bool cellLocal) {
-    List list(s.backend, 2.5, 1.12, condition, inputs, nullptr, 1, nullptr);
+void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const PairFilterInputs& inputs,
+                                          bool cellLocal) {
+    List list(s.backend, 2.5, 1.12, PairCondition::all, inputs, nullptr, 1, nullptr);
     configure(list);
     list.update(s.pos, s.n, s.box, ++s.version);
     NeighbourView<double> v = list.view();
     ASSERT_EQ(v.cellLocal.local != nullptr, cellLocal);
-    ASSERT_EQ(v.filter.trivial(), condition == PairCondition::all && inputs.excluded.empty());
+    ASSERT_EQ(v.filter.trivial(), inputs.excluded.empty());
     std::vector<int> entries(static_cast<size_t>(v.capacity) * s.n), counts(s.n);
     const int* built = v.list;
     const int* builtCount = v.count;
@@ -298,16 +298,16 @@ TEST(VerletList, GpuBuildLoopListsWhatTheCpuRowsList) {
     System s(3000, 14.0, 15.0, 16.0, 12);
     const auto asIs = [](List&) {};
     const auto keepCellLocal = [](List& list) { list.keep_cell_local_positions(); };
-    // Each particle excludes the next three: a filter that is not trivial.
+    // Each particle excludes the three before and after it in id: a filter that is not trivial.
     PairFilterInputs exclusions;
     exclusions.excluded.resize(s.n);
     for (int i = 0; i < s.n; ++i)
         for (int j = i - 3; j <= i + 3; ++j)
             if (j != i && j >= 0 && j < s.n) exclusions.excluded[i].push_back(j);
-    expect_gpu_loop_lists_what_rows_list(s, asIs, PairCondition::all, {}, false);
-    expect_gpu_loop_lists_what_rows_list(s, asIs, PairCondition::all, exclusions, false);
-    expect_gpu_loop_lists_what_rows_list(s, keepCellLocal, PairCondition::all, {}, true);
-    expect_gpu_loop_lists_what_rows_list(s, keepCellLocal, PairCondition::all, exclusions, true);
+    expect_gpu_loop_lists_what_rows_list(s, asIs, {}, false);
+    expect_gpu_loop_lists_what_rows_list(s, asIs, exclusions, false);
+    expect_gpu_loop_lists_what_rows_list(s, keepCellLocal, {}, true);
+    expect_gpu_loop_lists_what_rows_list(s, keepCellLocal, exclusions, true);
 }
 
 }  // namespace
