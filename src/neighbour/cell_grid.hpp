@@ -135,6 +135,22 @@ struct CellGrid {
     }
     static SMD_HD SMD_INLINE int periodic(int c, int n) { return c < 0 ? c + n : (c >= n ? c - n : c); }
 
+    // Whether the image of a wrapped position in an adjacent cell is the one the cell's offset names
+    // (across the boundary where the offset wraps, else the position itself), for every pair closer
+    // than the list radius: every periodic axis has at least 2 reach + 2 cells, so a neighbour cell
+    // across the boundary is at least L / 2 away and one inside it less (the minimum image would
+    // shift the same way). Open axes never wrap.
+    SMD_HD SMD_INLINE bool images_by_offset() const {
+        const auto fits = [this](int n, bool open) { return open || n >= 2 * reach + 2; };
+        return fits(nx, openX) && fits(ny, openY) && fits(nz, openZ);
+    }
+    // The shift, along an axis of n cells and this length, that brings a position in the cell
+    // `offset` cells from cell c to the image next to c: -length or +length where the offset wraps.
+    static SMD_HD SMD_INLINE R image_shift(int c, int offset, int n, R length, bool open) {
+        const int to = c + offset;
+        return open ? R(0) : (to < 0 ? -length : (to >= n ? length : R(0)));
+    }
+
     // Calls visit(cell, dx, dy, dz) once for each distinct cell within reach of (cx, cy, cz) in a
     // batch's grid, (dx, dy, dz) being its offset in cells from (cx, cy, cz) before the wrap.
     template <class Visit>

@@ -219,16 +219,20 @@ struct BuildLists {
     int* control;
     bool byParticle;  // sort each list by particle (see below)
 
-    // Lists slot k's candidates within the list radius, returns how many. Where the list keeps
-    // cell-local positions, every candidate of a cell is the same number of cells from slot k
-    // (those grids have more than 2 reach cells along each axis, so the offset needs no fold): the
-    // cell's shift is taken once, and a candidate costs a load and a distance.
-    template <bool kCellLocal, bool kAnyPair>
+    // How a candidate's separation is taken: the minimum image of the positions (any grid), the
+    // positions plus the image shift of the candidate's cell (a grid where images_by_offset()), or
+    // the list's cell-local positions plus the cells' distance.
+    enum Separations { kMinimumImage, kCellImage, kCellLocal };
+
+    // Lists slot k's candidates within the list radius, returns how many. The shift of a
+    // candidate cell (its image, or its distance in cells) is the same for all its members, so it
+    // is taken once a cell, and a candidate costs a load, a difference and a distance.
+    template <Separations kHow, bool kAnyPair>
     SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = view;
         const int self = static_cast<int>(k);
         const Vec3<R> rk = xyz(v.positions[k]);
-        const Real4<float> localK = kCellLocal ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
+        const Real4<float> localK = kHow == kCellLocal ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
         const float localRadius2 = static_cast<float>(listRadius2);
         // Where this slot's next entry goes: a pointer moved along, not an index times the stride
         // computed again for every candidate.
@@ -238,16 +242,25 @@ struct BuildLists {
         v.grid.coordinates(rk, v.box, cx, cy, cz);
         v.grid.for_each_adjacent_offset(cx, cy, cz, v.batch_of_slot(k), [&](int c, int dx, int dy, int dz) {
             typename CellLocalPositions<R>::CellShift cells{};
-            if (kCellLocal) cells = v.cellLocal.shift(dx, dy, dz);
+            if (kHow == kCellLocal) cells = v.cellLocal.shift(dx, dy, dz);
+            Vec3<R> image{R(0), R(0), R(0)};
+            if (kHow == kCellImage) {
+                const CellGrid<R>& g = v.grid;
+                image = {CellGrid<R>::image_shift(cx, dx, g.nx, v.box.length.x, g.openX),
+                         CellGrid<R>::image_shift(cy, dy, g.ny, v.box.length.y, g.openY),
+                         CellGrid<R>::image_shift(cz, dz, g.nz, v.box.length.z, g.openZ)};
+            }
             const int end = v.cellStart[c + 1];
             for (int base = v.cellStart[c]; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
                 bool accepted = s < end && (kAnyPair ? s != self : v.accepts(self, s));
-                if (accepted && kCellLocal) {
+                if (accepted && kHow == kCellLocal) {
                     const Vec3<float> d = CellLocalPositions<R>::separation(localK, v.cellLocal.local[s], cells);
                     accepted = dot(d, d) < localRadius2;
                 } else if (accepted) {
-                    const Vec3<R> d = v.box.minimum_image(xyz(v.positions[s]) - rk);
+                    // (x_s - x_k) + shift rounds as the minimum image's (x_s - x_k) -+ L does.
+                    const Vec3<R> d = kHow == kCellImage ? (xyz(v.positions[s]) - rk) + image
+                                                         : v.box.minimum_image(xyz(v.positions[s]) - rk);
                     accepted = dot(d, d) < listRadius2;
                 }
                 int found = 0;
@@ -260,13 +273,18 @@ struct BuildLists {
         return n;
     }
 
+    template <Separations kHow>
+    SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
+        return view.filter.trivial() ? collect<kHow, true>(k, lanes) : collect<kHow, false>(k, lanes);
+    }
+
     SMD_HD void operator()(int64_t k, Lanes lanes) const {
         if (!control[kRebuild]) return;
-        // The kind of positions and of filter are chosen once a slot, not once a candidate: the
-        // candidate loop is a build's time, and its branches were half of the loop's instructions.
-        const bool cellLocal = view.cellLocal.local != nullptr, anyPair = view.filter.trivial();
-        const int n = cellLocal ? (anyPair ? collect<true, true>(k, lanes) : collect<true, false>(k, lanes))
-                                : (anyPair ? collect<false, true>(k, lanes) : collect<false, false>(k, lanes));
+        // How separations are taken, and the filter, are chosen once a slot, not once a candidate:
+        // the candidate loop is a build's time, and its branches were half of its instructions.
+        const int n = view.cellLocal.local ? collect<kCellLocal>(k, lanes)
+                      : view.grid.images_by_offset() ? collect<kCellImage>(k, lanes)
+                                                     : collect<kMinimumImage>(k, lanes);
         if (!lanes.leader()) return;
         const NeighbourView<R>& v = view;
         int* entries = v.entries_of(k);

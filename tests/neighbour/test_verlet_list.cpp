@@ -252,17 +252,19 @@ TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
 }
 
 // The build loop a GPU runs (BuildLists::operator(), one slot at a time with one lane) against the
-// CPU's row pass that built the list: the same slots in every list, for each kind of candidate test
-// it chooses once per slot (positions or cell-local positions, any pair or a filter). A pair on
-// which they differ may only be one the two roundings put on either side of the list radius.
+// CPU's row pass that built the list: the same slots in every list, for each way of taking
+// separations it chooses once per slot (the minimum image, the image of the candidate's cell, or
+// cell-local positions) and each filter (any pair, or exclusions). A pair on which they differ may
+// only be one the two roundings put on either side of the list radius.
 template <class Configure>
 void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const PairFilterInputs& inputs,
-                                          bool cellLocal) {
+                                          bool cellLocal, bool imagesByOffset) {
     List list(s.backend, 2.5, 1.12, PairCondition::all, inputs, nullptr, 1, nullptr);
     configure(list);
     list.update(s.pos, s.n, s.box, ++s.version);
     NeighbourView<double> v = list.view();
     ASSERT_EQ(v.cellLocal.local != nullptr, cellLocal);
+    ASSERT_EQ(v.grid.images_by_offset(), imagesByOffset);
     ASSERT_EQ(v.filter.trivial(), inputs.excluded.empty());
     std::vector<int> entries(static_cast<size_t>(v.capacity) * s.n), counts(s.n);
     const int* built = v.list;
@@ -294,20 +296,33 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     EXPECT_LE(borderline, 2);
 }
 
+// Each particle excludes the three before and after it: a filter that is not trivial.
+PairFilterInputs exclusions_of_neighbours_in_id(int64_t n) {
+    PairFilterInputs inputs;
+    inputs.excluded.resize(n);
+    for (int64_t i = 0; i < n; ++i)
+        for (int64_t j = i - 3; j <= i + 3; ++j)
+            if (j != i && j >= 0 && j < n) inputs.excluded[i].push_back(static_cast<int>(j));
+    return inputs;
+}
+
 TEST(VerletList, GpuBuildLoopListsWhatTheCpuRowsList) {
-    System s(3000, 14.0, 15.0, 16.0, 12);
     const auto asIs = [](List&) {};
     const auto keepCellLocal = [](List& list) { list.keep_cell_local_positions(); };
-    // Each particle excludes the three before and after it in id: a filter that is not trivial.
-    PairFilterInputs exclusions;
-    exclusions.excluded.resize(s.n);
-    for (int i = 0; i < s.n; ++i)
-        for (int j = i - 3; j <= i + 3; ++j)
-            if (j != i && j >= 0 && j < s.n) exclusions.excluded[i].push_back(j);
-    expect_gpu_loop_lists_what_rows_list(s, asIs, {}, false);
-    expect_gpu_loop_lists_what_rows_list(s, asIs, exclusions, false);
-    expect_gpu_loop_lists_what_rows_list(s, keepCellLocal, {}, true);
-    expect_gpu_loop_lists_what_rows_list(s, keepCellLocal, exclusions, true);
+    // Cells 1.4 wide, 10 or 11 along each axis (reach 2): images by the cells' offsets.
+    System wide(3000, 14.0, 15.0, 16.0, 12);
+    const PairFilterInputs wideExclusions = exclusions_of_neighbours_in_id(wide.n);
+    expect_gpu_loop_lists_what_rows_list(wide, asIs, {}, false, true);
+    expect_gpu_loop_lists_what_rows_list(wide, asIs, wideExclusions, false, true);
+    expect_gpu_loop_lists_what_rows_list(wide, keepCellLocal, {}, true, true);
+    expect_gpu_loop_lists_what_rows_list(wide, keepCellLocal, wideExclusions, true, true);
+    // Five cells along each axis (reach 2): a cell across the boundary may be nearer than L / 2,
+    // so the loop takes the minimum image.
+    System narrow(430, 8.0, 8.0, 8.0, 13);
+    const PairFilterInputs narrowExclusions = exclusions_of_neighbours_in_id(narrow.n);
+    expect_gpu_loop_lists_what_rows_list(narrow, asIs, {}, false, false);
+    expect_gpu_loop_lists_what_rows_list(narrow, asIs, narrowExclusions, false, false);
+    expect_gpu_loop_lists_what_rows_list(narrow, keepCellLocal, {}, true, false);
 }
 
 }  // namespace
