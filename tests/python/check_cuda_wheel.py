@@ -125,9 +125,21 @@ def nvcc():
     return found if found and Path(found).is_file() else None
 
 
+def gpu_visible():
+    try:
+        return subprocess.run(["nvidia-smi", "-L"], capture_output=True).returncode == 0
+    except OSError:
+        return False
+
+
 def build_wheel(python, source, build, wheelhouse, clean_env):
-    """pip wheel with the CUDA backend, double precision only (check_wheel.wheel_build_options)."""
-    options, env = wheel_build_options(["STRUCTMD_CUDA=ON", "STRUCTMD_PRECISIONS=double"], source, clean_env)
+    """pip wheel with the CUDA backend, double precision only (check_wheel.wheel_build_options). Where
+    no GPU is visible nothing will run the device code: it is compiled to PTX for sm_90 alone, without
+    ptxas's machine code, which still fails on device code that does not compile."""
+    defines = ["STRUCTMD_CUDA=ON", "STRUCTMD_PRECISIONS=double"]
+    if not gpu_visible():
+        defines.append("CMAKE_CUDA_ARCHITECTURES=90-virtual")
+    options, env = wheel_build_options(defines, source, clean_env)
     built = run([python, "-m", "pip", "wheel", source, "--no-deps", "--no-build-isolation", "-w", wheelhouse,
                  *options, "-C", f"build-dir={build}"], env=env)
     wheels = list(Path(wheelhouse).glob("structmd_engine-*.whl"))
