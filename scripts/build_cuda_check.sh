@@ -2,7 +2,7 @@
 # Compiles the CUDA engines in single precision in build-cuda-check/ (the engines' library only: no
 # examples or MPI, and of the tests only the check that the runtime kernels' headers compile under
 # NVRTC), where nvcc is installed: device code that does not compile fails here, on a machine
-# without a GPU. scripts/test.sh runs it when it builds without CUDA.
+# without a GPU, in the precision that the suite's python_cuda_wheel (double) does not compile.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/compiler_cache.sh

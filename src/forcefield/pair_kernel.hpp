@@ -78,6 +78,202 @@ SMD_HD SMD_INLINE PairTerm<T> evaluate_pair_of(T r2, const typename Potential::t
                                     radii ? T(radius[j]) : T(0));
 }
 
+#if SMD_HOST_CODE
+// The CPU backend's loop of PairKernel (its host_rows) over slots begin .. end - 1 on one thread: the
+// kernel's data, which outputs are asked for, and the kernel's operator() for a slot this loop does not
+// take. One body for the seven choices of outputs: they differ in the last pass alone (sum_outputs).
+template <class Potential, class R, class PairR>
+struct PairRowsOnHost {
+    using Params = typename Potential::template Params<PairR>;
+    static constexpr bool kCellLocal = sizeof(PairR) == sizeof(float) && sizeof(R) == sizeof(double);
+    const R* charge;
+    const R* radius;
+    const uint8_t* group;
+    NeighbourView<R> neighbours;
+    PairTable<Params> table;
+    ForceOutputs<R> out;
+    bool wantForce, wantEnergy, wantVirial;
+    const void* kernel;
+    void (*slotByOperator)(const void* kernel, int64_t k);
+
+    // Running sums of a slot's terms, one per lane of a vector (GCC's and Clang's vector extension).
+    static constexpr int kSums = 4;
+    typedef R Sums __attribute__((vector_size(kSums * sizeof(R))));
+
+    // Each slot in three passes over per-thread arrays, the first and last of independent
+    // iterations the compiler vectorises: the separations of every list entry, those within the
+    // cutoff moved to the front (core/left_pack.hpp), and the pair terms of those alone.
+    // Their sums then run in an order fixed by the pairs within the cutoff: the same after a rebuild
+    // at another step, a restart, or in a spatial domain's list, whatever pairs beyond the cutoff
+    // the list happens to hold. flatten: every call inlined (the box's minimum image, the
+    // potential), which the inliner otherwise declines in a body this size. A slot of a group, or
+    // whose list overflowed, takes operator().
+    SMD_HOST_LOOP void rows(int64_t begin, int64_t end) const {
+        constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
+        const NeighbourView<R>& v = neighbours;
+        const int capacity = v.capacity > 0 ? v.capacity : 0;
+        const size_t length = static_cast<size_t>(LeftPack<R>::padded(capacity));
+        thread_local std::vector<R> scratch;
+        if (scratch.size() < 10 * length) scratch.resize(10 * length);
+        // By list entry, then packed: the separation, its square, and what the potential reads of
+        // the partner (its type, when the types differ; its charge; its radius).
+        R* const dx = scratch.data();
+        R* const dy = dx + length;
+        R* const dz = dy + length;
+        R* const r2 = dz + length;
+        R* const typeJ = r2 + length;
+        R* const chargeJ = typeJ + length;
+        R* const radiusJ = chargeJ + length;
+        R* const within = radiusJ + length;  // 1 within the cutoff, else 0
+        R* const g = within + length;        // dU/dr / r of the packed pairs
+        R* const u = g + length;             // U of the packed pairs
+        R* packed[7] = {dx, dy, dz, r2, typeJ};
+        int packedArrays = 5;
+        if (charges) packed[packedArrays++] = chargeJ;
+        if (radii) packed[packedArrays++] = radiusJ;
+        // One type and one table: the same parameters for every pair, kept out of the loops.
+        const bool oneTable = table.ntypes == 1 && table.batch == nullptr;
+        for (int64_t k = begin; k < end; ++k) {
+            const int n = v.count[k];
+            if (group || n > v.capacity || v.entryStride != 1) {
+                slotByOperator(kernel, k);
+                continue;
+            }
+            const int i = v.order[k];
+            const Real4<R> pi = v.positions[k];
+            const Vec3<R> ri = xyz(pi);
+            const Params* row = table.row_of(i, static_cast<int>(pi.w));
+            const int* entries = v.entries_of(k);
+            const Real4<R>* const positions = v.positions;
+            const int* const order = v.order;
+            const Box<R> box = v.box;
+            const Params first = row[0];
+            // Element by element (no copies of whole structures, which keep the compiler from
+            // turning the minimum image's branches into selects): entry m, slot s, its separation
+            // and the square of it.
+            const auto store = [&](int m, int s, R x, R y, R z, R squared) {
+                dx[m] = x;
+                dy[m] = y;
+                dz[m] = z;
+                r2[m] = squared;
+                typeJ[m] = positions[s].w;
+                if (charges) chargeJ[m] = charge[order[s]];
+                if (radii) radiusJ[m] = radius[order[s]];
+                within[m] = PairR(squared) < first.cutoff2 ? R(1) : R(0);
+            };
+            const auto separation = [&](int m) {
+                const int s = entries[m];
+                const Vec3<R> rij =
+                    box.minimum_image(Vec3<R>{positions[s].x - ri.x, positions[s].y - ri.y, positions[s].z - ri.z});
+                store(m, s, rij.x, rij.y, rij.z, dot(rij, rij));
+            };
+            // Mixed precision: the separations from the cell-local positions, as operator() takes them.
+            const auto separation_in_cells = [&](int m, const CellLocalPositions<R>& local, const Real4<float>& li) {
+                const int s = entries[m];
+                const Vec3<float> rij = local.separation(li, local.local[s]);
+                store(m, s, rij.x, rij.y, rij.z, dot(rij, rij));
+            };
+            if (kCellLocal && v.cellLocal.local) {
+                const CellLocalPositions<R> local = v.cellLocal;
+                const Real4<float> li = local.local[k];
+#pragma omp simd
+                for (int m = 0; m < n; ++m) separation_in_cells(m, local, li);
+            } else {
+#pragma omp simd
+                for (int m = 0; m < n; ++m) separation(m);
+            }
+            if (!oneTable) {
+                for (int m = 0; m < n; ++m)
+                    within[m] = PairR(r2[m]) < row[static_cast<int>(typeJ[m])].cutoff2 ? R(1) : R(0);
+            }
+            for (int m = n; m < LeftPack<R>::padded(n); ++m) within[m] = R(0);
+            const int kept = LeftPack<R>::pack(packed, packedArrays, within, n);
+            const auto term = [&](int c, const Params& p) {
+                const PairTerm<PairR> t =
+                    evaluate_pair<Potential>(PairR(r2[c]), p, charges ? PairR(charge[i] * chargeJ[c]) : PairR(0),
+                                             radii ? PairR(radius[i]) : PairR(0), radii ? PairR(radiusJ[c]) : PairR(0));
+                g[c] = R(t.dudr_over_r);
+                return R(t.energy);
+            };
+            // U stored only where it is summed, so that the potential's energy is not computed else.
+            if (oneTable && wantEnergy) {
+#pragma omp simd
+                for (int c = 0; c < kept; ++c) u[c] = term(c, first);
+            } else if (oneTable) {
+#pragma omp simd
+                for (int c = 0; c < kept; ++c) term(c, first);
+            } else if (wantEnergy) {
+                for (int c = 0; c < kept; ++c) u[c] = term(c, row[static_cast<int>(typeJ[c])]);
+            } else {
+                for (int c = 0; c < kept; ++c) term(c, row[static_cast<int>(typeJ[c])]);
+            }
+            sum_outputs(i, kept, g, u, dx, dy, dz);
+        }
+    }
+
+    // Slot i's sums of its kept pair terms (dU/dr / r in g, U in u, the separations in dx, dy, dz),
+    // added to the outputs asked for. Four running sums, term m into sum m % 4 (a vector's lanes),
+    // added pairwise at the end: an order fixed by the pairs within the cutoff alone, the same on
+    // every machine, whose four chains of additions run side by side where one chain of dependent
+    // additions bounded the loop (and which the compiler cannot turn into an in-order reduction by
+    // shuffles).
+    void sum_outputs(int i, int kept, const R* g, const R* u, const R* dx, const R* dy, const R* dz) const {
+        if (wantForce && !wantEnergy && !wantVirial) return sum_outputs<true, false, false>(i, kept, g, u, dx, dy, dz);
+        if (wantForce && wantEnergy && !wantVirial) return sum_outputs<true, true, false>(i, kept, g, u, dx, dy, dz);
+        if (wantForce && !wantEnergy) return sum_outputs<true, false, true>(i, kept, g, u, dx, dy, dz);
+        if (wantForce) return sum_outputs<true, true, true>(i, kept, g, u, dx, dy, dz);
+        if (wantEnergy && !wantVirial) return sum_outputs<false, true, false>(i, kept, g, u, dx, dy, dz);
+        if (wantEnergy) return sum_outputs<false, true, true>(i, kept, g, u, dx, dy, dz);
+        if (wantVirial) return sum_outputs<false, false, true>(i, kept, g, u, dx, dy, dz);
+    }
+    template <bool F, bool E, bool V>
+    void sum_outputs(int i, int kept, const R* g, const R* u, const R* dx, const R* dy, const R* dz) const {
+        Sums fx{}, fy{}, fz{}, e{}, w[9]{};
+        int m = 0;
+        for (; m + kSums <= kept; m += kSums) {
+            Sums gm, x, y, z;
+            std::memcpy(&gm, g + m, sizeof(Sums));
+            std::memcpy(&x, dx + m, sizeof(Sums));
+            std::memcpy(&y, dy + m, sizeof(Sums));
+            std::memcpy(&z, dz + m, sizeof(Sums));
+            if (F) {
+                fx += gm * x;
+                fy += gm * y;
+                fz += gm * z;
+            }
+            if (E) {
+                Sums um;
+                std::memcpy(&um, u + m, sizeof(Sums));
+                e += R(0.5) * um;
+            }
+            if (V) {
+                const Sums h = R(-0.5) * gm, r[3] = {x, y, z};
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < 3; ++b) w[3 * a + b] += h * (r[a] * r[b]);
+            }
+        }
+        for (int lane = 0; m + lane < kept; ++lane) {
+            const int last = m + lane;
+            if (F) {
+                fx[lane] += g[last] * dx[last];
+                fy[lane] += g[last] * dy[last];
+                fz[lane] += g[last] * dz[last];
+            }
+            if (E) e[lane] += R(0.5) * u[last];
+            if (V) {
+                const R h = R(-0.5) * g[last], r[3] = {dx[last], dy[last], dz[last]};
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < 3; ++b) w[3 * a + b][lane] += h * (r[a] * r[b]);
+            }
+        }
+        const auto total = [](const Sums& a) { return (a[0] + a[1]) + (a[2] + a[3]); };
+        add_to_outputs<F, E, V>(out, i, Vec3<R>{total(fx), total(fy), total(fz)}, total(e),
+                                Tensor3<R>{total(w[0]), total(w[1]), total(w[2]), total(w[3]), total(w[4]), total(w[5]),
+                                           total(w[6]), total(w[7]), total(w[8])});
+    }
+};
+#endif
+
 // Sums in R; the potential itself in PairR. Separations in R, except where the potential is
 // evaluated in float over positions in double (mixed precision) and the list keeps its positions
 // relative to their cells in float (state/cell_local_positions.hpp): half the bytes gathered per
@@ -148,20 +344,23 @@ struct PairKernel {
         Vec3<S> laneForce{0, 0, 0};
         R e = 0;
         Tensor3<R> w = zero_tensor<R>();
-        v.for_each_neighbour(static_cast<int>(k), [&](int s) {
-            int typeJ;
-            const Vec3<S> d = separation(s, typeJ);
-            const PairR r2 = PairR(dot(d, d));
-            const Params& p = row[typeJ];
-            if (!(r2 < p.cutoff2) || (group && !group[v.order[s]])) return;
-            const PairTerm<PairR> t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, v.order[s]);
-            if (WantForce) laneForce += S(t.dudr_over_r) * d;
-            if (WantEnergy) e += R(0.5) * R(t.energy);
-            if (WantVirial) {
-                const Vec3<R> rij{R(d.x), R(d.y), R(d.z)};
-                w += (R(-0.5) * R(t.dudr_over_r)) * outer(rij, rij);
-            }
-        }, lanes);
+        v.for_each_neighbour(
+            static_cast<int>(k),
+            [&](int s) {
+                int typeJ;
+                const Vec3<S> d = separation(s, typeJ);
+                const PairR r2 = PairR(dot(d, d));
+                const Params& p = row[typeJ];
+                if (!(r2 < p.cutoff2) || (group && !group[v.order[s]])) return;
+                const PairTerm<PairR> t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, v.order[s]);
+                if (WantForce) laneForce += S(t.dudr_over_r) * d;
+                if (WantEnergy) e += R(0.5) * R(t.energy);
+                if (WantVirial) {
+                    const Vec3<R> rij{R(d.x), R(d.y), R(d.z)};
+                    w += (R(-0.5) * R(t.dudr_over_r)) * outer(rij, rij);
+                }
+            },
+            lanes);
         Vec3<R> f{R(laneForce.x), R(laneForce.y), R(laneForce.z)};
         if (WantForce) f = lanes.sum(f);
         if (WantEnergy) e = lanes.sum(e);
@@ -170,161 +369,17 @@ struct PairKernel {
     }
 
 #if SMD_HOST_CODE
-    // Running sums of a slot's terms, one per lane of a vector (GCC's and Clang's vector extension).
-    static constexpr int kSums = 4;
-    typedef R Sums __attribute__((vector_size(kSums * sizeof(R))));
-
     // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
-    // one thread. Each slot in three passes over per-thread arrays, the first and last of independent
-    // iterations the compiler vectorises: the separations of every list entry, those within the
-    // cutoff moved to the front (core/left_pack.hpp), and the pair terms of those alone.
-    // Their sums then run in an order fixed by the pairs within the cutoff: the same after a rebuild
-    // at another step, a restart, or in a spatial domain's list, whatever pairs beyond the cutoff
-    // the list happens to hold. flatten: every call inlined (the box's minimum image, the
-    // potential), which the inliner otherwise declines in a body this size. A slot of a group, or
-    // whose list overflowed, takes operator().
-    SMD_HOST_LOOP void host_rows(int64_t begin, int64_t end) const {
-        constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
-        const NeighbourView<R>& v = neighbours;
-        const int capacity = v.capacity > 0 ? v.capacity : 0;
-        const size_t length = static_cast<size_t>(LeftPack<R>::padded(capacity));
-        thread_local std::vector<R> scratch;
-        if (scratch.size() < 10 * length) scratch.resize(10 * length);
-        // By list entry, then packed: the separation, its square, and what the potential reads of
-        // the partner (its type, when the types differ; its charge; its radius).
-        R* const dx = scratch.data();
-        R* const dy = dx + length;
-        R* const dz = dy + length;
-        R* const r2 = dz + length;
-        R* const typeJ = r2 + length;
-        R* const chargeJ = typeJ + length;
-        R* const radiusJ = chargeJ + length;
-        R* const within = radiusJ + length;  // 1 within the cutoff, else 0
-        R* const g = within + length;         // dU/dr / r of the packed pairs
-        R* const u = g + length;              // U of the packed pairs
-        R* packed[7] = {dx, dy, dz, r2, typeJ};
-        int packedArrays = 5;
-        if (charges) packed[packedArrays++] = chargeJ;
-        if (radii) packed[packedArrays++] = radiusJ;
-        // One type and one table: the same parameters for every pair, kept out of the loops.
-        const bool oneTable = table.ntypes == 1 && table.batch == nullptr;
-        for (int64_t k = begin; k < end; ++k) {
-            const int n = v.count[k];
-            if (group || n > v.capacity || v.entryStride != 1) {
-                (*this)(k, Lanes{});
-                continue;
-            }
-            const int i = v.order[k];
-            const Real4<R> pi = v.positions[k];
-            const Vec3<R> ri = xyz(pi);
-            const Params* row = table.row_of(i, static_cast<int>(pi.w));
-            const int* entries = v.entries_of(k);
-            const Real4<R>* const positions = v.positions;
-            const int* const order = v.order;
-            const Box<R> box = v.box;
-            const Params first = row[0];
-            // Element by element (no copies of whole structures, which keep the compiler from
-            // turning the minimum image's branches into selects): entry m, slot s, its separation
-            // and the square of it.
-            const auto store = [&](int m, int s, R x, R y, R z, R squared) {
-                dx[m] = x;
-                dy[m] = y;
-                dz[m] = z;
-                r2[m] = squared;
-                typeJ[m] = positions[s].w;
-                if (charges) chargeJ[m] = charge[order[s]];
-                if (radii) radiusJ[m] = radius[order[s]];
-                within[m] = PairR(squared) < first.cutoff2 ? R(1) : R(0);
-            };
-            const auto separation = [&](int m) {
-                const int s = entries[m];
-                const Vec3<R> rij =
-                    box.minimum_image(Vec3<R>{positions[s].x - ri.x, positions[s].y - ri.y, positions[s].z - ri.z});
-                store(m, s, rij.x, rij.y, rij.z, dot(rij, rij));
-            };
-            // Mixed precision: the separations from the cell-local positions, as operator() takes them.
-            const auto separation_in_cells = [&](int m, const CellLocalPositions<R>& local, const Real4<float>& li) {
-                const int s = entries[m];
-                const Vec3<float> rij = local.separation(li, local.local[s]);
-                store(m, s, rij.x, rij.y, rij.z, dot(rij, rij));
-            };
-            if (kCellLocal && v.cellLocal.local) {
-                const CellLocalPositions<R> local = v.cellLocal;
-                const Real4<float> li = local.local[k];
-#pragma omp simd
-                for (int m = 0; m < n; ++m) separation_in_cells(m, local, li);
-            } else {
-#pragma omp simd
-                for (int m = 0; m < n; ++m) separation(m);
-            }
-            if (!oneTable) {
-                for (int m = 0; m < n; ++m)
-                    within[m] = PairR(r2[m]) < row[static_cast<int>(typeJ[m])].cutoff2 ? R(1) : R(0);
-            }
-            for (int m = n; m < LeftPack<R>::padded(n); ++m) within[m] = R(0);
-            const int kept = LeftPack<R>::pack(packed, packedArrays, within, n);
-            const auto term = [&](int c, const Params& p) {
-                const PairTerm<PairR> t = evaluate_pair<Potential>(
-                    PairR(r2[c]), p, charges ? PairR(charge[i] * chargeJ[c]) : PairR(0), radii ? PairR(radius[i]) : PairR(0),
-                    radii ? PairR(radiusJ[c]) : PairR(0));
-                g[c] = R(t.dudr_over_r);
-                if (WantEnergy) u[c] = R(t.energy);
-            };
-            if (oneTable) {
-#pragma omp simd
-                for (int c = 0; c < kept; ++c) term(c, first);
-            } else {
-                for (int c = 0; c < kept; ++c) term(c, row[static_cast<int>(typeJ[c])]);
-            }
-            // Four running sums, term m into sum m % 4 (a vector's lanes), added pairwise at the
-            // end: an order fixed by the pairs within the cutoff alone, the same on every machine,
-            // whose four chains of additions run side by side where one chain of dependent additions
-            // bounded the loop (and which the compiler cannot turn into an in-order reduction by
-            // shuffles).
-            Sums fx{}, fy{}, fz{}, e{}, w[9]{};
-            int m = 0;
-            for (; m + kSums <= kept; m += kSums) {
-                Sums gm, x, y, z;
-                std::memcpy(&gm, g + m, sizeof(Sums));
-                std::memcpy(&x, dx + m, sizeof(Sums));
-                std::memcpy(&y, dy + m, sizeof(Sums));
-                std::memcpy(&z, dz + m, sizeof(Sums));
-                if (WantForce) {
-                    fx += gm * x;
-                    fy += gm * y;
-                    fz += gm * z;
-                }
-                if (WantEnergy) {
-                    Sums um;
-                    std::memcpy(&um, u + m, sizeof(Sums));
-                    e += R(0.5) * um;
-                }
-                if (WantVirial) {
-                    const Sums h = R(-0.5) * gm, r[3] = {x, y, z};
-                    for (int a = 0; a < 3; ++a)
-                        for (int b = 0; b < 3; ++b) w[3 * a + b] += h * (r[a] * r[b]);
-                }
-            }
-            for (int lane = 0; m + lane < kept; ++lane) {
-                const int last = m + lane;
-                if (WantForce) {
-                    fx[lane] += g[last] * dx[last];
-                    fy[lane] += g[last] * dy[last];
-                    fz[lane] += g[last] * dz[last];
-                }
-                if (WantEnergy) e[lane] += R(0.5) * u[last];
-                if (WantVirial) {
-                    const R h = R(-0.5) * g[last], r[3] = {dx[last], dy[last], dz[last]};
-                    for (int a = 0; a < 3; ++a)
-                        for (int b = 0; b < 3; ++b) w[3 * a + b][lane] += h * (r[a] * r[b]);
-                }
-            }
-            const auto total = [](const Sums& a) { return (a[0] + a[1]) + (a[2] + a[3]); };
-            add_to_outputs<WantForce, WantEnergy, WantVirial>(
-                out, i, Vec3<R>{total(fx), total(fy), total(fz)}, total(e),
-                Tensor3<R>{total(w[0]), total(w[1]), total(w[2]), total(w[3]), total(w[4]), total(w[5]), total(w[6]),
-                           total(w[7]), total(w[8])});
-        }
+    // one thread, in PairRowsOnHost, whose one body serves every choice of outputs (asked for at run
+    // time there), so that a term's unit compiles that large flattened loop once, not once a choice.
+    // A slot it cannot take runs operator() of this kernel.
+    void host_rows(int64_t begin, int64_t end) const {
+        PairRowsOnHost<Potential, R, PairR>{charge,     radius,     group, neighbours,       table, out, WantForce,
+                                            WantEnergy, WantVirial, this,  &slot_by_operator}
+            .rows(begin, end);
+    }
+    static void slot_by_operator(const void* kernel, int64_t k) {
+        (*static_cast<const PairKernel*>(kernel))(k, Lanes{});
     }
 #endif
 };

@@ -13,6 +13,7 @@ Exit status 77 (skipped) only when a virtual environment with pip cannot be made
 does not build, install or work is a failure."""
 
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -23,6 +24,21 @@ SKIPPED = 77
 # The Python tests run against the installed package: the binding itself, the input builder (with
 # ASE) and the plots of the `structmd plot` command.
 INSTALLED_SUITES = ("binding", "builder", "plot")
+
+
+
+def wheel_build_options(defines, source, env):
+    """pip's -C options for a wheel of these tests, and the environment to build it in: the defines
+    given, unoptimised host code (these tests check packaging, and the suite checks the optimised
+    library; -O0 compiles the engines several times faster) and ccache where it is installed."""
+    defines = [*defines, *(f"CMAKE_{language}_FLAGS_DEBUG=-O0" for language in ("C", "CXX", "CUDA"))]
+    env = dict(env)
+    if shutil.which("ccache"):
+        defines += [f"CMAKE_{language}_COMPILER_LAUNCHER=ccache" for language in ("C", "CXX", "CUDA")]
+        env["CCACHE_BASEDIR"] = str(Path(source).resolve())
+    options = ["-C", "cmake.build-type=Debug"]
+    return options + [option for define in defines for option in ("-C", f"cmake.define.{define}")], env
+
 
 # The check above: it runs inside the venv; everything printed is for the log, the exit status is the verdict.
 INSTALLED_CHECK = r"""
@@ -110,9 +126,9 @@ def main(source, build, example):
         if python is None:
             return SKIPPED
         wheelhouse = work / "wheels"
+        options, build_env = wheel_build_options(["STRUCTMD_CUDA=OFF", "STRUCTMD_PRECISIONS=double"], source, clean_env)
         built = run([python, "-m", "pip", "wheel", source, "--no-deps", "--no-build-isolation", "-w", wheelhouse,
-                     "-C", "cmake.define.STRUCTMD_CUDA=OFF",
-                     "-C", "cmake.define.STRUCTMD_PRECISIONS=double", "-C", f"build-dir={build}"], env=clean_env)
+                     *options, "-C", f"build-dir={build}"], env=build_env)
         wheels = list(wheelhouse.glob("structmd_engine-*.whl"))
         if built.returncode != 0 or len(wheels) != 1:
             print(f"FAILED: pip wheel exited {built.returncode}, wheels: {wheels}")
