@@ -2,7 +2,7 @@
 # Compiles the CUDA engines in single precision in build-cuda-check/ (the engines' library only: no
 # examples or MPI, and of the tests only the check that the runtime kernels' headers compile under
 # NVRTC), where nvcc is installed: device code that does not compile fails here, on a machine
-# without a GPU, in the precision that the suite's python_cuda_wheel (double) does not compile.
+# without a GPU. The suite does not run it (scripts/test.sh says why).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/compiler_cache.sh
