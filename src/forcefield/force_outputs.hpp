@@ -5,6 +5,10 @@
 #include "core/hd.hpp"
 #include "core/vec.hpp"
 
+#if SMD_HOST_CODE
+#include <type_traits>
+#endif
+
 namespace structmd {
 
 template <class R>
@@ -51,5 +55,26 @@ SMD_HD SMD_INLINE void add_to_outputs(const ForceOutputs<R>& out, int64_t i, con
     add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
     if (WantForce && out.torque) accumulate(out.torque[i], t);
 }
+
+#if SMD_HOST_CODE
+// Calls launch(want_force, want_energy, want_virial) with std::bool_constant arguments for the
+// outputs asked for, so that a kernel is instantiated with the unwanted ones compiled out; nothing
+// where none is asked for.
+template <class Launch>
+void dispatch_wanted(bool force, bool energy, bool virial, Launch&& launch) {
+    using T = std::true_type;
+    using F = std::false_type;
+    switch ((force ? 1 : 0) | (energy ? 2 : 0) | (virial ? 4 : 0)) {
+        case 1: launch(T{}, F{}, F{}); break;
+        case 2: launch(F{}, T{}, F{}); break;
+        case 3: launch(T{}, T{}, F{}); break;
+        case 4: launch(F{}, F{}, T{}); break;
+        case 5: launch(T{}, F{}, T{}); break;
+        case 6: launch(F{}, T{}, T{}); break;
+        case 7: launch(T{}, T{}, T{}); break;
+        default: break;
+    }
+}
+#endif
 
 }  // namespace structmd

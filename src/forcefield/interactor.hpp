@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
-#include <type_traits>
 
 #include "core/error.hpp"
 #include "core/vec.hpp"
@@ -15,23 +15,10 @@
 
 namespace structmd {
 
-// Calls launch(want_force, want_energy, want_virial) with std::bool_constant arguments, so a kernel
-// can be instantiated with the unwanted outputs compiled out.
+// dispatch_wanted (force_outputs.hpp) for the outputs that out holds.
 template <class R, class Launch>
 void dispatch_outputs(const ForceOutputs<R>& out, Launch&& launch) {
-    using T = std::true_type;
-    using F = std::false_type;
-    const int mask = (out.force ? 1 : 0) | (out.energy ? 2 : 0) | (out.virial ? 4 : 0);
-    switch (mask) {
-        case 1: launch(T{}, F{}, F{}); break;
-        case 2: launch(F{}, T{}, F{}); break;
-        case 3: launch(T{}, T{}, F{}); break;
-        case 4: launch(F{}, F{}, T{}); break;
-        case 5: launch(T{}, F{}, T{}); break;
-        case 6: launch(F{}, T{}, T{}); break;
-        case 7: launch(T{}, T{}, T{}); break;
-        default: break;
-    }
+    dispatch_wanted(out.force != nullptr, out.energy != nullptr, out.virial != nullptr, std::forward<Launch>(launch));
 }
 
 // Where and when an interactor acts: active for startStep <= step < endStep, on the particles whose

@@ -79,6 +79,117 @@ SMD_HD SMD_INLINE PairTerm<T> evaluate_pair_of(T r2, const typename Potential::t
 }
 
 #if SMD_HOST_CODE
+template <class Potential, class R, class PairR>
+struct PairRowsOnHost;  // below: PairKernel's loop on the CPU
+#endif
+
+// Sums in R; the potential itself in PairR. Separations in R, except where the potential is
+// evaluated in float over positions in double (mixed precision) and the list keeps its positions
+// relative to their cells in float (state/cell_local_positions.hpp): half the bytes gathered per
+// neighbour, with a rounding of about 1e-7 of a cell's width whatever the size of the box. There
+// each lane's force runs in float too, as OpenMM's mixed precision sums a thread's: a pair costs
+// no conversion to double, the GPU's slowest arithmetic (16 a cycle per multiprocessor on the
+// H100), and the lanes' sums, energies and virials stay in R.
+// Runs over the list's slots (neighbour_view.hpp); what belongs to a particle (charge, group,
+// radius, outputs) is looked up through the slot's particle.
+template <class Potential, class R, class PairR, bool WantForce, bool WantEnergy, bool WantVirial>
+struct PairKernel {
+    using Params = typename Potential::template Params<PairR>;
+    // A float potential over double positions (sizes, not types: no standard library here).
+    static constexpr bool kCellLocal = sizeof(PairR) == sizeof(float) && sizeof(R) == sizeof(double);
+    const R* charge;       // by particle, read only by potentials of charges
+    const R* radius;       // by particle, read only by potentials of radii
+    const uint8_t* group;  // by particle; null: every particle takes part
+    NeighbourView<R> neighbours;
+    PairTable<Params> table;
+    ForceOutputs<R> out;
+
+    SMD_HD void operator()(int64_t k, Lanes lanes) const {
+        if constexpr (kCellLocal) {
+            if (neighbours.cellLocal.local) {
+                over_cells(k, lanes);
+                return;
+            }
+        }
+        over_positions(k, lanes);
+    }
+
+    // Slot k's pairs with separations from the cell-local positions. The double positions only for
+    // types: none read where there is one type.
+    SMD_HD SMD_INLINE void over_cells(int64_t k, Lanes lanes) const {
+        const NeighbourView<R>& v = neighbours;
+        const int i = v.order[k];
+        if (group && !group[i]) return;
+        const CellLocalPositions<R>& local = v.cellLocal;
+        const Real4<float> li = local.local[k];
+        const bool oneType = table.ntypes == 1;
+        const Params* row = table.row_of(i, oneType ? 0 : static_cast<int>(v.positions[k].w));
+        sum_pairs<float>(k, i, row, lanes, [&](int s, int& typeJ) {
+            typeJ = oneType ? 0 : static_cast<int>(v.positions[s].w);
+            return local.separation(li, local.local[s]);
+        });
+    }
+
+    // Slot k's pairs with separations from the positions in R.
+    SMD_HD SMD_INLINE void over_positions(int64_t k, Lanes lanes) const {
+        const NeighbourView<R>& v = neighbours;
+        const int i = v.order[k];
+        if (group && !group[i]) return;
+        const Real4<R> pi = v.positions[k];
+        const Params* row = table.row_of(i, static_cast<int>(pi.w));
+        const Vec3<R> ri = xyz(pi);
+        sum_pairs<R>(k, i, row, lanes, [&](int s, int& typeJ) {
+            const Real4<R> pj = v.positions[s];
+            typeJ = static_cast<int>(pj.w);
+            return v.box.minimum_image(xyz(pj) - ri);
+        });
+    }
+
+    // Slot k's terms with its neighbours, separation(s, typeJ) giving the separation to slot s in S
+    // (R, or float from cell-local positions) and its particle's type; each lane's force runs in S.
+    template <class S, class Separation>
+    SMD_HD SMD_INLINE void sum_pairs(int64_t k, int i, const Params* row, Lanes lanes, Separation&& separation) const {
+        const NeighbourView<R>& v = neighbours;
+        Vec3<S> laneForce{0, 0, 0};
+        R e = 0;
+        Tensor3<R> w = zero_tensor<R>();
+        v.for_each_neighbour(static_cast<int>(k), [&](int s) {
+            int typeJ;
+            const Vec3<S> d = separation(s, typeJ);
+            const PairR r2 = PairR(dot(d, d));
+            const Params& p = row[typeJ];
+            if (!(r2 < p.cutoff2) || (group && !group[v.order[s]])) return;
+            const PairTerm<PairR> t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, v.order[s]);
+            if (WantForce) laneForce += S(t.dudr_over_r) * d;
+            if (WantEnergy) e += R(0.5) * R(t.energy);
+            if (WantVirial) {
+                const Vec3<R> rij{R(d.x), R(d.y), R(d.z)};
+                w += (R(-0.5) * R(t.dudr_over_r)) * outer(rij, rij);
+            }
+        }, lanes);
+        Vec3<R> f{R(laneForce.x), R(laneForce.y), R(laneForce.z)};
+        if (WantForce) f = lanes.sum(f);
+        if (WantEnergy) e = lanes.sum(e);
+        if (WantVirial) w = lanes.sum(w);
+        if (lanes.leader()) add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
+    }
+
+#if SMD_HOST_CODE
+    // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
+    // one thread, in PairRowsOnHost, whose one body serves every choice of outputs (asked for at run
+    // time there), so that a term's unit compiles that large flattened loop once, not once a choice.
+    // A slot it cannot take runs operator() of this kernel.
+    void host_rows(int64_t begin, int64_t end) const {
+        const PairRowsOnHost<Potential, R, PairR> loop{
+            charge, radius, group, neighbours, table, out, WantForce, WantEnergy, WantVirial, this, &slot_by_operator,
+        };
+        loop.rows(begin, end);
+    }
+    static void slot_by_operator(const void* kernel, int64_t k) { (*static_cast<const PairKernel*>(kernel))(k, Lanes{}); }
+#endif
+};
+
+#if SMD_HOST_CODE
 // The CPU backend's loop of PairKernel (its host_rows) over slots begin .. end - 1 on one thread: the
 // kernel's data, which outputs are asked for, and the kernel's operator() for a slot this loop does not
 // take. One body for the seven choices of outputs: they differ in the last pass alone (sum_outputs).
@@ -86,6 +197,7 @@ template <class Potential, class R, class PairR>
 struct PairRowsOnHost {
     using Params = typename Potential::template Params<PairR>;
     static constexpr bool kCellLocal = sizeof(PairR) == sizeof(float) && sizeof(R) == sizeof(double);
+    // PairKernel's data (its comments say what each is), then the outputs asked for.
     const R* charge;
     const R* radius;
     const uint8_t* group;
@@ -125,8 +237,8 @@ struct PairRowsOnHost {
         R* const chargeJ = typeJ + length;
         R* const radiusJ = chargeJ + length;
         R* const within = radiusJ + length;  // 1 within the cutoff, else 0
-        R* const g = within + length;        // dU/dr / r of the packed pairs
-        R* const u = g + length;             // U of the packed pairs
+        R* const g = within + length;         // dU/dr / r of the packed pairs
+        R* const u = g + length;              // U of the packed pairs
         R* packed[7] = {dx, dy, dz, r2, typeJ};
         int packedArrays = 5;
         if (charges) packed[packedArrays++] = chargeJ;
@@ -218,13 +330,10 @@ struct PairRowsOnHost {
     // additions bounded the loop (and which the compiler cannot turn into an in-order reduction by
     // shuffles).
     void sum_outputs(int i, int kept, const R* g, const R* u, const R* dx, const R* dy, const R* dz) const {
-        if (wantForce && !wantEnergy && !wantVirial) return sum_outputs<true, false, false>(i, kept, g, u, dx, dy, dz);
-        if (wantForce && wantEnergy && !wantVirial) return sum_outputs<true, true, false>(i, kept, g, u, dx, dy, dz);
-        if (wantForce && !wantEnergy) return sum_outputs<true, false, true>(i, kept, g, u, dx, dy, dz);
-        if (wantForce) return sum_outputs<true, true, true>(i, kept, g, u, dx, dy, dz);
-        if (wantEnergy && !wantVirial) return sum_outputs<false, true, false>(i, kept, g, u, dx, dy, dz);
-        if (wantEnergy) return sum_outputs<false, true, true>(i, kept, g, u, dx, dy, dz);
-        if (wantVirial) return sum_outputs<false, false, true>(i, kept, g, u, dx, dy, dz);
+        dispatch_wanted(wantForce, wantEnergy, wantVirial, [&](auto force, auto energy, auto virial) {
+            sum_outputs<decltype(force)::value, decltype(energy)::value, decltype(virial)::value>(i, kept, g, u, dx, dy,
+                                                                                                   dz);
+        });
     }
     template <bool F, bool E, bool V>
     void sum_outputs(int i, int kept, const R* g, const R* u, const R* dx, const R* dy, const R* dz) const {
@@ -273,116 +382,6 @@ struct PairRowsOnHost {
     }
 };
 #endif
-
-// Sums in R; the potential itself in PairR. Separations in R, except where the potential is
-// evaluated in float over positions in double (mixed precision) and the list keeps its positions
-// relative to their cells in float (state/cell_local_positions.hpp): half the bytes gathered per
-// neighbour, with a rounding of about 1e-7 of a cell's width whatever the size of the box. There
-// each lane's force runs in float too, as OpenMM's mixed precision sums a thread's: a pair costs
-// no conversion to double, the GPU's slowest arithmetic (16 a cycle per multiprocessor on the
-// H100), and the lanes' sums, energies and virials stay in R.
-// Runs over the list's slots (neighbour_view.hpp); what belongs to a particle (charge, group,
-// radius, outputs) is looked up through the slot's particle.
-template <class Potential, class R, class PairR, bool WantForce, bool WantEnergy, bool WantVirial>
-struct PairKernel {
-    using Params = typename Potential::template Params<PairR>;
-    // A float potential over double positions (sizes, not types: no standard library here).
-    static constexpr bool kCellLocal = sizeof(PairR) == sizeof(float) && sizeof(R) == sizeof(double);
-    const R* charge;       // by particle, read only by potentials of charges
-    const R* radius;       // by particle, read only by potentials of radii
-    const uint8_t* group;  // by particle; null: every particle takes part
-    NeighbourView<R> neighbours;
-    PairTable<Params> table;
-    ForceOutputs<R> out;
-
-    SMD_HD void operator()(int64_t k, Lanes lanes) const {
-        if constexpr (kCellLocal) {
-            if (neighbours.cellLocal.local) {
-                over_cells(k, lanes);
-                return;
-            }
-        }
-        over_positions(k, lanes);
-    }
-
-    // Slot k's pairs with separations from the cell-local positions. The double positions only for
-    // types: none read where there is one type.
-    SMD_HD SMD_INLINE void over_cells(int64_t k, Lanes lanes) const {
-        const NeighbourView<R>& v = neighbours;
-        const int i = v.order[k];
-        if (group && !group[i]) return;
-        const CellLocalPositions<R>& local = v.cellLocal;
-        const Real4<float> li = local.local[k];
-        const bool oneType = table.ntypes == 1;
-        const Params* row = table.row_of(i, oneType ? 0 : static_cast<int>(v.positions[k].w));
-        sum_pairs<float>(k, i, row, lanes, [&](int s, int& typeJ) {
-            typeJ = oneType ? 0 : static_cast<int>(v.positions[s].w);
-            return local.separation(li, local.local[s]);
-        });
-    }
-
-    // Slot k's pairs with separations from the positions in R.
-    SMD_HD SMD_INLINE void over_positions(int64_t k, Lanes lanes) const {
-        const NeighbourView<R>& v = neighbours;
-        const int i = v.order[k];
-        if (group && !group[i]) return;
-        const Real4<R> pi = v.positions[k];
-        const Params* row = table.row_of(i, static_cast<int>(pi.w));
-        const Vec3<R> ri = xyz(pi);
-        sum_pairs<R>(k, i, row, lanes, [&](int s, int& typeJ) {
-            const Real4<R> pj = v.positions[s];
-            typeJ = static_cast<int>(pj.w);
-            return v.box.minimum_image(xyz(pj) - ri);
-        });
-    }
-
-    // Slot k's terms with its neighbours, separation(s, typeJ) giving the separation to slot s in S
-    // (R, or float from cell-local positions) and its particle's type; each lane's force runs in S.
-    template <class S, class Separation>
-    SMD_HD SMD_INLINE void sum_pairs(int64_t k, int i, const Params* row, Lanes lanes, Separation&& separation) const {
-        const NeighbourView<R>& v = neighbours;
-        Vec3<S> laneForce{0, 0, 0};
-        R e = 0;
-        Tensor3<R> w = zero_tensor<R>();
-        v.for_each_neighbour(
-            static_cast<int>(k),
-            [&](int s) {
-                int typeJ;
-                const Vec3<S> d = separation(s, typeJ);
-                const PairR r2 = PairR(dot(d, d));
-                const Params& p = row[typeJ];
-                if (!(r2 < p.cutoff2) || (group && !group[v.order[s]])) return;
-                const PairTerm<PairR> t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, v.order[s]);
-                if (WantForce) laneForce += S(t.dudr_over_r) * d;
-                if (WantEnergy) e += R(0.5) * R(t.energy);
-                if (WantVirial) {
-                    const Vec3<R> rij{R(d.x), R(d.y), R(d.z)};
-                    w += (R(-0.5) * R(t.dudr_over_r)) * outer(rij, rij);
-                }
-            },
-            lanes);
-        Vec3<R> f{R(laneForce.x), R(laneForce.y), R(laneForce.z)};
-        if (WantForce) f = lanes.sum(f);
-        if (WantEnergy) e = lanes.sum(e);
-        if (WantVirial) w = lanes.sum(w);
-        if (lanes.leader()) add_to_outputs<WantForce, WantEnergy, WantVirial>(out, i, f, e, w);
-    }
-
-#if SMD_HOST_CODE
-    // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
-    // one thread, in PairRowsOnHost, whose one body serves every choice of outputs (asked for at run
-    // time there), so that a term's unit compiles that large flattened loop once, not once a choice.
-    // A slot it cannot take runs operator() of this kernel.
-    void host_rows(int64_t begin, int64_t end) const {
-        PairRowsOnHost<Potential, R, PairR>{charge,     radius,     group, neighbours,       table, out, WantForce,
-                                            WantEnergy, WantVirial, this,  &slot_by_operator}
-            .rows(begin, end);
-    }
-    static void slot_by_operator(const void* kernel, int64_t k) {
-        (*static_cast<const PairKernel*>(kernel))(k, Lanes{});
-    }
-#endif
-};
 
 // A PairKernel whose separations are chosen at launch: where the list keeps cell-local positions, the
 // mixed-precision kernel runs over them alone, else over the positions alone, so that neither GPU
