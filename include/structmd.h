@@ -1017,7 +1017,11 @@ STRUCTMD_API structmd_status structmd_get_info(const structmd_sim* sim, char* bu
  * handle's buffers hold on its backend now (GPU memory on CUDA, the CUDA context not counted);
  * "step_graphs_captured", "step_graphs_replayed": batches of up to 16 steps captured as CUDA
  * graphs, and batches that replayed one (0 on the CPU); "domain_rebuilds": how often a system
- * split in space over MPI ranks rebuilt its domains (0 otherwise)}. Under spatial domains the
+ * split in space over MPI ranks rebuilt its domains (0 otherwise); "steps_joined": steps whose
+ * last pass over the particles the integrator joined to the next step's first, because nothing
+ * read the state between them (velocity Verlet's closing and opening half kicks as one pass: the
+ * same arithmetic, so the same trajectory; never the last step of a call, nor a step before one
+ * where a simulation step fires, nor with a force callback set)}. Under spatial domains the
  * other counts are this rank's. It shows that work a scene does not
  * need is skipped: no list without pair terms, no energy between the steps that read it, no
  * particle data leaving the device while stepping.

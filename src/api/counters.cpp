@@ -22,6 +22,7 @@ structmd_status structmd_get_counters(structmd_sim* sim, char* buffer, size_t si
         counters["step_graphs_captured"] = c.stepGraphsCaptured;
         counters["step_graphs_replayed"] = c.stepGraphsReplayed;
         counters["domain_rebuilds"] = c.domainRebuilds;
+        counters["steps_joined"] = c.stepsJoined;
         copy_text(counters.dump(), buffer, size);
     });
 }

@@ -165,15 +165,28 @@ public:
     // Called before the first step of each stage of the schedule this integrator runs.
     virtual void begin(Particles<B, R>&, ForceSource&) {}
     virtual void step(Particles<B, R>& particles, ForceSource& forces) = 0;
+    // Whether step() can leave its last pass over the particles to the next step's first, when the
+    // engine says the next step follows with nothing reading the state in between (join_steps).
+    virtual bool joins_steps() const { return false; }
+    // Set by the engine before each step: whether the last step left its end to this one, and
+    // whether this one may leave its end to the next. Never set for an integrator that does not
+    // join steps; the last step of a call never leaves its end, so a call ends on a whole state.
+    struct StepJoin {
+        bool fromLast = false;
+        bool toNext = false;
+    };
+    void join_steps(StepJoin join) { join_ = join; }
     // State the integrator carries between steps beyond the particles (a checkpoint saves it).
     virtual std::vector<double> state() const { return {}; }
     virtual void restore(const std::vector<double>&) {}
 
 protected:
     const IntegratorScope& scope() const { return scope_; }
+    StepJoin step_join() const { return join_; }
 
 private:
     IntegratorScope scope_;
+    StepJoin join_;
 };
 
 }  // namespace structmd

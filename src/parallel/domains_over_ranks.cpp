@@ -353,6 +353,7 @@ Counters DomainsOverRanks::counters() {
     c.deviceToHostBytes += retired_.deviceToHostBytes;
     c.stepGraphsCaptured += retired_.stepGraphsCaptured;
     c.stepGraphsReplayed += retired_.stepGraphsReplayed;
+    c.stepsJoined += retired_.stepsJoined;
     c.domainRebuilds = static_cast<uint64_t>(rebuilds_);
     return c;
 }

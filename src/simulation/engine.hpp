@@ -166,6 +166,7 @@ public:
         steps_.stoppedBy.clear();
         if (stepGraphs_) backend_.begin_steps();
         try {
+            bool endOwed = false;  // the last step left its end to this one (Integrator::join_steps)
             for (int64_t k = 0; k < n; ++k) {
                 if (stepGraphs_) backend_.begin_step();
                 fire_steps(current_step() == last);  // the schedule's final state, passed through
@@ -176,7 +177,11 @@ public:
                     integrator.begin(p_, *this);
                     activeStage_ = stage;
                 }
+                const bool joinsNext = integrator.joins_steps() && k + 1 < n && unobserved_before(current_step() + 1, stage);
+                if (integrator.joins_steps()) integrator.join_steps({endOwed, joinsNext});
                 integrator.step(p_, *this);
+                endOwed = joinsNext;
+                evaluations_.stepsJoined += joinsNext ? 1 : 0;
                 backend_.for_each(1, AdvanceClock{p_.clock.data(), integrator.time_advance()});
                 p_.timeline.commit(integrator.time_advance());
             }
@@ -395,6 +400,17 @@ private:
     // Closes the call's last step graph, which runs what was recorded since the one before.
     void end_step_graphs() {
         if (stepGraphs_) backend_.end_steps();
+    }
+
+    // Whether the state between this step and the one that starts at `next` goes unseen, so that the
+    // integrator may leave the end of this one to the next: the same stage runs it, no simulation
+    // step fires before it (fire_steps), and no force callback is set (a device callback could read
+    // the velocities through a view the host kept).
+    bool unobserved_before(int64_t next, int stage) const {
+        if (!callbacks_.empty() || schedule_.stage_after(next) != stage) return false;
+        const bool final = next == final_step();
+        return std::none_of(steps_.all.begin(), steps_.all.end(),
+                            [&](const auto& s) { return final ? s->in_window(next) : s->due(next); });
     }
 
     // Simulation steps see the state before the step is taken; the final state of the schedule

@@ -38,6 +38,7 @@ struct Counters {
     uint64_t stepGraphsCaptured = 0;  // CUDA graphs of steps made, and launches of ones made before
     uint64_t stepGraphsReplayed = 0;
     uint64_t domainRebuilds = 0;  // a system split in space: how often its domains were rebuilt
+    uint64_t stepsJoined = 0;     // steps that left their end to the next (Integrator::join_steps)
 };
 
 // Where the simulation is along its schedule.

@@ -63,7 +63,7 @@ def test_counters_are_json_with_every_field(sim):
     assert set(sim.counters) == {"force_evaluations", "energy_evaluations", "virial_evaluations",
                                  "neighbour_list_builds", "host_to_device_bytes", "device_to_host_bytes",
                                  "device_memory_bytes", "step_graphs_captured", "step_graphs_replayed",
-                                 "domain_rebuilds"}
+                                 "domain_rebuilds", "steps_joined"}
     assert all(isinstance(value, int) and value >= 0 for value in sim.counters.values())
     sim.step(100)
     assert sim.counters["domain_rebuilds"] == 0  # one process: no spatial domains
@@ -184,3 +184,39 @@ def test_steps_without_graphs_repeat_the_run_bit_for_bit(options, tmp_path, monk
     assert issued["step_graphs_captured"] == issued["step_graphs_replayed"] == 0
     if options["backend"] == "cuda":
         assert with_graphs["step_graphs_replayed"] >= 300 // 16 - 4
+
+
+def run_thermo_steps(options, calls, steps):
+    """Positions, velocities, steps_joined and the thermodynamic output after `steps` steps of
+    velocity Verlet taken in `calls` equal calls, a measure every 10 steps."""
+    with structmd.Simulation(options) as s:
+        s.load(document(thermo_interval=10, steps=2000))
+        # a lattice at rest feels no force: random velocities make the kicks matter
+        s.velocities = np.random.default_rng(7).normal(0.0, 1.0, (SIDE**3, 3))
+        for _ in range(calls):
+            s.step(steps // calls)
+        return np.array(s.positions), np.array(s.velocities), s.counters["steps_joined"]
+
+
+def test_joined_steps_repeat_the_unjoined_run_bit_for_bit(options, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    positions, velocities, joined = run_thermo_steps(options, 1, 120)
+    thermo = (tmp_path / "thermo.dat").read_text()
+    (tmp_path / "thermo.dat").unlink()
+    positions_apart, velocities_apart, joined_apart = run_thermo_steps(options, 120, 120)
+    # Steps 0 .. 119 in one call: each joined to the next, but the last of the call and the 11 before
+    # the steps the measure fires at (10 .. 110), which must see full-step velocities.
+    assert joined == 119 - 11
+    assert joined_apart == 0  # a call of one step ends on its closing kick
+    assert np.array_equal(positions, positions_apart)
+    assert np.array_equal(velocities, velocities_apart)
+    # what the measure saw: the kinetic energy of full-step velocities, as the unjoined run's
+    assert (tmp_path / "thermo.dat").read_text() == thermo
+    assert not np.allclose(velocities, run_thermo_steps(options, 120, 0)[1])  # the kicks moved them
+
+
+def test_no_step_joined_while_a_force_callback_is_set(sim):
+    sim.load(document(steps=2000))
+    sim.set_force_callback(lambda positions, forces, step: 0.0)
+    sim.step(50)
+    assert sim.counters["steps_joined"] == 0
