@@ -23,8 +23,9 @@ struct VerletKickDrift {
     DriftBookkeeping<R> bookkeeping;
     const Real4<R>* extraForce = nullptr;  // added to force (kick_force); null: none
     // The last step's closing half kick, left to this pass (steps joined, integrator.hpp): the same
-    // two half kicks with the same force, in one pass over the particles instead of two, and the
-    // closing one's check reported at the last step, as ClosingHalfKick would have.
+    // two half kicks with the same force, in one pass over the particles instead of two. Its check
+    // reports at this step, the one whose state it makes, as ClosingHalfKick would have (after the
+    // last step's drift its fault slot looked one step ahead).
     bool closesLastStep = false;
     FaultSlot lastStepFault{};
     SMD_HD void operator()(int64_t i) const {
@@ -64,7 +65,7 @@ public:
         VerletKickDrift<R> kickDrift{this->scope().group, p.pos.data(), p.image.data(), p.vel.data(),
                                      p.force.data(), p.box, dt, p.fault_slot(1), p.drift};
         kickDrift.closesLastStep = join.fromLast;
-        kickDrift.lastStepFault = p.fault_slot(-1);
+        kickDrift.lastStepFault = p.fault_slot();
         backend_.for_each(p.count, kickDrift);
         forces.positions_moved(this->time_step(), true);
         forces.update_forces();
