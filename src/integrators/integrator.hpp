@@ -169,8 +169,8 @@ public:
     // engine says the next step follows with nothing reading the state in between (join_steps).
     virtual bool joins_steps() const { return false; }
     // Set by the engine before each step: whether the last step left its end to this one, and
-    // whether this one may leave its end to the next. Never set for an integrator that does not
-    // join steps; the last step of a call never leaves its end, so a call ends on a whole state.
+    // whether this one may leave its end to the next (never where joins_steps() is false); the last
+    // step of a call never leaves its end, so a call ends on a whole state.
     struct StepJoin {
         bool fromLast = false;
         bool toNext = false;

@@ -24,8 +24,7 @@ struct VerletKickDrift {
     const Real4<R>* extraForce = nullptr;  // added to force (kick_force); null: none
     // The last step's closing half kick, left to this pass (steps joined, integrator.hpp): the same
     // two half kicks with the same force, in one pass over the particles instead of two. Its check
-    // reports at this step, the one whose state it makes, as ClosingHalfKick would have (after the
-    // last step's drift its fault slot looked one step ahead).
+    // reports at the step whose state it makes, this one, as ClosingHalfKick would have.
     bool closesLastStep = false;
     FaultSlot lastStepFault{};
     SMD_HD void operator()(int64_t i) const {

@@ -177,8 +177,8 @@ public:
                     integrator.begin(p_, *this);
                     activeStage_ = stage;
                 }
-                const bool joinsNext = integrator.joins_steps() && k + 1 < n && unobserved_before(current_step() + 1, stage);
-                if (integrator.joins_steps()) integrator.join_steps({endOwed, joinsNext});
+                const bool joinsNext = k + 1 < n && integrator.joins_steps() && unobserved_before(current_step() + 1, stage);
+                integrator.join_steps({endOwed, joinsNext});
                 integrator.step(p_, *this);
                 endOwed = joinsNext;
                 evaluations_.stepsJoined += joinsNext ? 1 : 0;
