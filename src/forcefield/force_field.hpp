@@ -95,8 +95,8 @@ public:
                 return;
             }
     }
-    void drift_mirrored(int64_t version) {
-        if (mirrored_) mirrored_->mirrored(version);
+    void drift_mirrored(int64_t version, bool withPositions) {
+        if (mirrored_) mirrored_->mirrored(version, withPositions);
     }
     void invalidate_lists() {
         for (auto* lists : {&lists_, &siteLists_})

@@ -33,7 +33,7 @@ public:
           batch_(batch),
           radius_(radius) {
         backend_.upload(table_, table.data(), table.size());
-        if (PairKernel<Potential, R, PairR, true, false, false>::kCellLocal) list_->keep_cell_local_positions();
+        if (kCellLocal) list_->keep_cell_local_positions();
     }
 
     bool pairwise() const override { return true; }
@@ -65,7 +65,7 @@ public:
             backend_.for_each_lanes(particles.count,
                                     PairKernel<PairLambdaDerivative<Potential>, R, PairR, false, true, false>{
                                         particles.charge.data(), radii(particles), this->group(),
-                                        list_->view(), table_of(table_), out});
+                                        kCellLocal ? list_->cell_local_view() : list_->view(), table_of(table_), out});
         }
     }
 
@@ -84,7 +84,7 @@ public:
             });
             return;
         }
-        const NeighbourView<R> view = list_->view();
+        const NeighbourView<R> view = kCellLocal ? list_->cell_local_view() : list_->view();
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
             using Kernel = PairKernel<Potential, R, PairR, decltype(force)::value, decltype(energy)::value,
                                       decltype(virial)::value>;
@@ -107,6 +107,8 @@ private:
         return PairTable<P>{table.data(), ntypes_, batch_};
     }
     static constexpr bool couples_to_lambda_v = structmd::couples_to_lambda<Potential>::value;
+    // Its kernels take separations from cell-local positions where the list keeps them.
+    static constexpr bool kCellLocal = PairKernel<Potential, R, PairR, true, false, false>::kCellLocal;
 
     const B& backend_;
     std::shared_ptr<VerletList<B, R>> list_;

@@ -127,17 +127,35 @@ public:
         return particles_ == n && n > 0 && source_ == pos && !needsLayout_ && !forceRebuild_ ? slotOf_.data()
                                                                                                : nullptr;
     }
+    // Where the list keeps cell-local positions and no caller has read its positions by slot yet
+    // (view()), the mirror leaves them out: the cell-local pair kernels read their w (the type, set
+    // by the build) alone, and a step writes 32 bytes a particle less (mixed precision).
     SlotMirror<R> mirror() {
         const R halfSkin = R(0.5 * (listRadius_ - cutoff_));
-        return SlotMirror<R>{positions_.data(), binned_.data(), box_, halfSkin * halfSkin, control_.data(),
-                             cell_local()};
+        return SlotMirror<R>{positions_read() ? positions_.data() : nullptr, binned_.data(), box_,
+                             halfSkin * halfSkin, control_.data(), cell_local()};
     }
-    // A drift kernel mirrored the positions of `version` (every particle's).
-    void mirrored(int64_t version) { mirroredAt_ = version; }
+    // A drift kernel mirrored the positions of `version` (every particle's), the slots' positions
+    // among them or not (`withPositions`). Without them where a view() has asked for them since
+    // the drift was armed (an integrator whose step begins with the last one's armed drift), the
+    // next update copies them instead.
+    void mirrored(int64_t version, bool withPositions) {
+        if (withPositions || !positions_read()) mirroredAt_ = version;
+    }
     int64_t builds() const { return builds_; }
 
     // The per-particle lists. With clusters, the first call has them built from the next update on.
+    // The slots' positions are this update's: the first call copies them where the mirror had left
+    // them out, and from then on the mirror keeps them.
     NeighbourView<R> view() {
+        if (!positions_read() && source_ && particles_ > 0)
+            backend_.for_each(particles_, CopyToSlots<R>{source_, order_.data(), positions_.data()});
+        positionsRead_ = true;
+        return cell_local_view();
+    }
+    // The same lists for a pair kernel that takes its separations from the cell-local positions where
+    // they are kept (view.cellLocal.local) and reads only the w (type) of the slots' positions there.
+    NeighbourView<R> cell_local_view() {
         if (clusters_ && !particleListsWanted_) {
             particleListsWanted_ = true;
             forceRebuild_ = true;
@@ -202,6 +220,8 @@ private:
         local.reach = grid_.reach;
         return local;
     }
+
+    bool positions_read() const { return positionsRead_ || !cellLocalKept_; }
 
     bool same_box(const Box<R>& box) const {
         return box.length.x == box_.length.x && box.length.y == box_.length.y && box.length.z == box_.length.z;
@@ -328,6 +348,7 @@ private:
     bool particleListsBuilt_ = true;     // the builds since the last forced one made them
     bool cellLocalWanted_ = false;       // some pair kernel asked for cell-local positions
     bool cellLocalKept_ = false;         // and the current layout keeps them
+    bool positionsRead_ = false;         // some caller read the slots' positions (view())
     int clusterIds_ = 0;
     int clusterCapacity_ = 0;
     int pendingClusterCapacity_ = 0;

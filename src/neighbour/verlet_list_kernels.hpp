@@ -45,6 +45,15 @@ struct RefreshPositions {
     SMD_HD void operator()(int64_t k) const { mirror.record(k, pos[order[k]]); }
 };
 
+// The slots' positions copied from the particles', for a list whose mirror had left them out.
+template <class R>
+struct CopyToSlots {
+    const Real4<R>* pos;
+    const int* order;
+    Real4<R>* positions;
+    SMD_HD void operator()(int64_t k) const { positions[k] = pos[order[k]]; }
+};
+
 template <class R>
 struct BinParticles {
     const Real4<R>* pos;

@@ -333,7 +333,7 @@ private:
         p_.timeline.positions_moved(elapsed);
         if (!driftBookkept) return;
         if (p_.drift.force) cache_.forces_cleared(p_.version);
-        if (p_.drift.slotOf) forceField_.drift_mirrored(p_.version);
+        if (p_.drift.slotOf) forceField_.drift_mirrored(p_.version, p_.drift.mirror.positions != nullptr);
     }
     // Never cached: the field changes with the moments, which the magnetic integrators turn between
     // force evaluations. Only the terms that make a field are evaluated.

@@ -16,7 +16,7 @@ constexpr int kListRebuildFlag = 0;
 
 template <class R>
 struct SlotMirror {
-    Real4<R>* positions = nullptr;     // this step's, by slot
+    Real4<R>* positions = nullptr;     // this step's, by slot; null: not kept (VerletList::mirror)
     const Real4<R>* binned = nullptr;  // the last build's, by slot; w: its packed cell where cellLocal is kept
     Box<R> box{};
     R halfSkin2 = R(0);
@@ -27,13 +27,13 @@ struct SlotMirror {
     // Asks the CPU's caches for what record(slot, ...) will touch.
     void prefetch(int64_t slot) const {
         __builtin_prefetch(binned + slot);
-        __builtin_prefetch(positions + slot, 1);
+        if (positions) __builtin_prefetch(positions + slot, 1);
         if (cellLocal.local) __builtin_prefetch(cellLocal.local + slot, 1);
     }
 #endif
 
     SMD_HD SMD_INLINE void record(int64_t slot, const Real4<R>& p) const {
-        positions[slot] = p;
+        if (positions) positions[slot] = p;
         const Real4<R> b = binned[slot];
         const Vec3<R> d = box.minimum_image(xyz(p) - xyz(b));
         if (dot(d, d) > halfSkin2) atomic_max(control + kListRebuildFlag, 1);

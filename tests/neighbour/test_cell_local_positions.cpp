@@ -2,7 +2,8 @@
 // listed pair, the separation of the double positions to within the rounding of a cell's width,
 // after builds, after moves under half the skin and across the periodic boundary; the
 // mixed-precision pair kernel over them agrees with the double one, within a few times the rounding
-// of separations taken in double; and a grid they do not fit leaves them out.
+// of separations taken in double; a grid they do not fit leaves them out; and the list's positions
+// in slot order are copied each step only once some caller reads them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -172,6 +173,66 @@ TEST(CellLocalPositions, MixedPairKernelAgreesWithDouble) {
     EXPECT_LT(perSlot.force, 4.0 * before.force);
     EXPECT_LT(perSlot.energy, 4.0 * before.energy);
     EXPECT_LT(perSlot.virial, 4.0 * before.virial);
+}
+
+// The list's copy of the positions in slot order is left to the builds while only cell-local pair
+// kernels read the list (cell_local_view(): the types alone, which a build sets), so a drift writes
+// the cell-local positions alone; the first view() copies the positions and the mirror keeps them
+// from then on, also where that view() came between a drift's arming and its run.
+TEST(CellLocalPositions, SlotPositionsKeptOnlyOnceSomeCallerReadsThem) {
+    RandomParticles s(20 * 12 * 12, 20.0, 12.0, 12.0, 6);
+    place_on_jittered_lattice(s, 1.0);
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
+    list.keep_cell_local_positions();
+    const auto slots_hold_positions = [&](const NeighbourView<double>& v) {
+        int64_t same = 0;
+        for (int k = 0; k < s.n; ++k) {
+            const Real4<double>& p = s.pos.data()[v.order[k]];
+            same += v.positions[k].x == p.x && v.positions[k].y == p.y && v.positions[k].z == p.z;
+            EXPECT_EQ(v.positions[k].w, p.w) << "slot " << k << ": the type a cell-local kernel reads";
+        }
+        return same == s.n;
+    };
+    // The cell-local positions follow the moves whether or not the slots' positions do.
+    const auto cell_local_current = [&](const NeighbourView<double>& v) {
+        double largest = 0.0;
+        for (int k = 0; k < s.n; ++k)
+            v.for_each_neighbour(k, [&](int t) {
+                const Vec3<float> local = v.cellLocal.separation(v.cellLocal.local[k], v.cellLocal.local[t]);
+                const Vec3<double> exact =
+                    s.box.minimum_image(xyz(s.pos.data()[v.order[t]]) - xyz(s.pos.data()[v.order[k]]));
+                largest = std::max({largest, std::abs(local.x - exact.x), std::abs(local.y - exact.y),
+                                    std::abs(local.z - exact.z)});
+            });
+        return largest < 4e-7;
+    };
+    // A drift under half the skin with the bookkeeping `armed` (state/drift_bookkeeping.hpp), then
+    // the list brought up to date as the engine's next force evaluation does.
+    const auto drift = [&](const SlotMirror<double>& armed, unsigned seed) {
+        const int* slotOf = list.slot_of(s.pos.data(), s.n);
+        ASSERT_NE(slotOf, nullptr);
+        s.jiggle(0.045, seed);
+        ++s.version;
+        for (int64_t i = 0; i < s.n; ++i) armed.record(slotOf[i], s.pos.data()[i]);
+        list.mirrored(s.version, armed.positions != nullptr);
+        list.update(s.pos, s.n, s.box, s.version);
+    };
+    list.update(s.pos, s.n, s.box, ++s.version);  // the build copies every slot's position
+    EXPECT_TRUE(slots_hold_positions(list.cell_local_view()));
+    EXPECT_EQ(list.mirror().positions, nullptr);
+    drift(list.mirror(), 50);
+    EXPECT_FALSE(slots_hold_positions(list.cell_local_view()));
+    EXPECT_TRUE(cell_local_current(list.cell_local_view()));
+    const SlotMirror<double> armedBeforeTheView = list.mirror();
+    EXPECT_TRUE(slots_hold_positions(list.view()));  // copied for the caller that reads them
+    EXPECT_NE(list.mirror().positions, nullptr);
+    drift(armedBeforeTheView, 51);  // without the positions: the update copies them
+    EXPECT_TRUE(slots_hold_positions(list.cell_local_view()));
+    drift(list.mirror(), 52);  // with them
+    EXPECT_TRUE(slots_hold_positions(list.cell_local_view()));
+    EXPECT_TRUE(cell_local_current(list.cell_local_view()));
+    list.adapt();
+    EXPECT_EQ(list.builds(), 1);
 }
 
 // Where the cells' distances cannot be folded once (too few cells along an axis) or an axis is
