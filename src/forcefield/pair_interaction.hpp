@@ -65,7 +65,7 @@ public:
             backend_.for_each_lanes(particles.count,
                                     PairKernel<PairLambdaDerivative<Potential>, R, PairR, false, true, false>{
                                         particles.charge.data(), radii(particles), this->group(),
-                                        kCellLocal ? list_->cell_local_view() : list_->view(), table_of(table_), out});
+                                        kernel_view(), table_of(table_), out});
         }
     }
 
@@ -84,7 +84,7 @@ public:
             });
             return;
         }
-        const NeighbourView<R> view = kCellLocal ? list_->cell_local_view() : list_->view();
+        const NeighbourView<R> view = kernel_view();
         dispatch_outputs(out, [&](auto force, auto energy, auto virial) {
             using Kernel = PairKernel<Potential, R, PairR, decltype(force)::value, decltype(energy)::value,
                                       decltype(virial)::value>;
@@ -109,6 +109,8 @@ private:
     static constexpr bool couples_to_lambda_v = structmd::couples_to_lambda<Potential>::value;
     // Its kernels take separations from cell-local positions where the list keeps them.
     static constexpr bool kCellLocal = PairKernel<Potential, R, PairR, true, false, false>::kCellLocal;
+    // The list as its PairKernels read it.
+    NeighbourView<R> kernel_view() const { return kCellLocal ? list_->cell_local_view() : list_->view(); }
 
     const B& backend_;
     std::shared_ptr<VerletList<B, R>> list_;

@@ -148,9 +148,9 @@ public:
     // The slots' positions are this update's: the first call copies them where the mirror had left
     // them out, and from then on the mirror keeps them.
     NeighbourView<R> view() {
-        if (!positions_read() && source_ && particles_ > 0)
-            backend_.for_each(particles_, CopyToSlots<R>{source_, order_.data(), positions_.data()});
+        const bool copy = !positions_read() && source_ && particles_ > 0;
         positionsRead_ = true;
+        if (copy) backend_.for_each(particles_, RefreshPositions<R>{source_, order_.data(), mirror()});
         return cell_local_view();
     }
     // The same lists for a pair kernel that takes its separations from the cell-local positions where

@@ -35,23 +35,15 @@ enum ListControl : int {
     kControlSlots = 4
 };
 
-// Every step whose drift did not mirror the positions (state/drift_bookkeeping.hpp): copies them
-// into slot order with the displacement check.
+// Every step whose drift did not mirror the positions (state/drift_bookkeeping.hpp), and the first
+// view() of a list whose mirror had left the slots' positions out: copies them into slot order with
+// the displacement check (the drift's, for the same positions: it raises nothing new).
 template <class R>
 struct RefreshPositions {
     const Real4<R>* pos;
     const int* order;
     SlotMirror<R> mirror;
     SMD_HD void operator()(int64_t k) const { mirror.record(k, pos[order[k]]); }
-};
-
-// The slots' positions copied from the particles', for a list whose mirror had left them out.
-template <class R>
-struct CopyToSlots {
-    const Real4<R>* pos;
-    const int* order;
-    Real4<R>* positions;
-    SMD_HD void operator()(int64_t k) const { positions[k] = pos[order[k]]; }
 };
 
 template <class R>
