@@ -113,10 +113,23 @@ public:
             for (const auto& list : *lists) total += list->builds();
         return total;
     }
-    // Adds the terms active at the particles' step; an inactive term costs nothing.
+    // Adds the terms active at the particles' step; an inactive term costs nothing. out.storeForce
+    // goes to the first of them alone (the one first_term_stores_forces names).
     void compute_all(Particles<B, R>& p, const ForceOutputs<R>& out) {
+        ForceOutputs<R> adding = out;
+        adding.storeForce = 0;
+        bool first = true;
         for (auto& it : interactors_)
-            if (it->active(p.timeline.evaluating_step())) it->compute(p, out);
+            if (it->active(p.timeline.evaluating_step())) {
+                it->compute(p, first ? out : adding);
+                first = false;
+            }
+    }
+    // Whether the first term active at the particles' step stores the forces (Interactor::stores_forces).
+    bool first_term_stores_forces(const Particles<B, R>& p) const {
+        for (const auto& it : interactors_)
+            if (it->active(p.timeline.evaluating_step())) return it->stores_forces();
+        return false;
     }
     // Adds only the active non-bonded pair terms.
     void compute_pairwise(Particles<B, R>& p, const ForceOutputs<R>& out) {

@@ -20,6 +20,13 @@ struct ForceOutputs {
     // The magnetic field B at each particle (lab frame) from the terms that make one (["External",
     // "ConstantMagneticField"], dipoles), asked for alone by the magnetic integrators.
     Real4<R>* magneticField = nullptr;
+    // Set for the first term of a force evaluation whose kernels write every particle's force once
+    // (Interactor::stores_forces): it stores forceBase[i] (zero where null) plus its own rather than
+    // adding to a buffer cleared first, which saves a pass that writes the forces and a read of them.
+    // A word rather than a bool: no padding, since kernel arguments are compared byte by byte
+    // (backends/cuda/step_graphs.cuh).
+    const Real4<R>* forceBase = nullptr;
+    long long storeForce = 0;
 };
 
 // Outputs that take each particle's energy alone (a dU/dlambda, an energy probe).
@@ -42,7 +49,15 @@ SMD_HD SMD_INLINE void accumulate(Real4<R>& to, const Vec3<R>& v) {
 template <bool WantForce, bool WantEnergy, bool WantVirial, class R>
 SMD_HD SMD_INLINE void add_to_outputs(const ForceOutputs<R>& out, int64_t i, const Vec3<R>& f, R e,
                                       const Tensor3<R>& w) {
-    if (WantForce) accumulate(out.force[i], f);
+    if (WantForce) {
+        if (out.storeForce) {
+            // the sums InitForces and accumulate would have made
+            const Real4<R> base = out.forceBase ? out.forceBase[i] : Real4<R>{R(0), R(0), R(0), R(0)};
+            out.force[i] = Real4<R>{base.x + f.x, base.y + f.y, base.z + f.z, base.w};
+        } else {
+            accumulate(out.force[i], f);
+        }
+    }
     if (WantEnergy) out.energy[i] += e;
     if (WantVirial) out.virial[i] += w;
 }

@@ -47,6 +47,9 @@ public:
     // Brings what compute() needs up to date for the present positions (a neighbour list).
     virtual void prepare(Particles<B, R>&) {}
     virtual void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) = 0;
+    // Whether compute(), for the layout prepare() left, writes every particle's force exactly once
+    // through add_to_outputs, so that it can be handed ForceOutputs::storeForce.
+    virtual bool stores_forces() const { return false; }
 
     // Exact second derivatives (hessian_kernels.hpp), made only for an input that measures them:
     // whether this term has them, and its share of the Hessian column of particle `seed`, added to

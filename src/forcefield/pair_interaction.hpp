@@ -70,6 +70,9 @@ public:
     }
 
     void prepare(Particles<B, R>& p) override { list_->update(p.pos, p.count, p.box, p.version); }
+    // Each slot's leader writes its particle's sums, for every particle without a group; the cluster
+    // kernels add from several tiles.
+    bool stores_forces() const override { return !this->group() && !list_->clusters(); }
 
     void compute(Particles<B, R>& particles, const ForceOutputs<R>& out) override {
         if (list_->clusters()) {

@@ -347,10 +347,11 @@ private:
     void magnetization_changed() override { cache_.invalidate(); }
 
     // What the next drift kernel can take over (state/drift_bookkeeping.hpp): clearing the forces,
-    // unless torques are kept (they are cleared with them), and the first list's position copy.
+    // unless torques are kept (they are cleared with them) or the first term stores them
+    // (ForceOutputs::storeForce), and the first list's position copy.
     void arm_drift() {
         DriftBookkeeping<R> drift;
-        if (p_.torque.empty()) {
+        if (p_.torque.empty() && !forceField_.first_term_stores_forces(p_)) {
             drift.force = p_.force.data();
             drift.external = p_.externalForce.empty() ? nullptr : p_.externalForce.data();
         }

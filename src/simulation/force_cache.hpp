@@ -20,10 +20,10 @@ public:
     void evaluate(unsigned flags, const B& backend, Particles<B, R>& p, ForceField<B, R>& forceField,
                   CallbackTerm<B, R>& callbacks, Counters& counters) {
         ForceOutputs<R> out;
-        if ((flags & kForces) && forces_ != p.version) {
-            if (cleared_ != p.version)
-                backend.for_each(p.count, InitForces<R>{p.force.data(), p.externalForce.empty() ? nullptr
-                                                                                               : p.externalForce.data()});
+        const bool forces = (flags & kForces) && forces_ != p.version;
+        bool clearForces = false;
+        if (forces) {
+            clearForces = cleared_ != p.version;
             cleared_ = kStale;  // a second try at these positions starts from zero again
             out.force = p.force.data();
             // Torques, where kept, go with the forces: the same pass makes both.
@@ -45,6 +45,15 @@ public:
         if (!out.force && !out.energy && !out.virial) return;
         callbacks.evaluate(backend, p);
         forceField.prepare(p);
+        if (clearForces) {
+            const Real4<R>* external = p.externalForce.empty() ? nullptr : p.externalForce.data();
+            if (forceField.first_term_stores_forces(p)) {
+                out.storeForce = 1;
+                out.forceBase = external;
+            } else {
+                backend.for_each(p.count, InitForces<R>{p.force.data(), external});
+            }
+        }
         forceField.compute_all(p, out);
         if (out.force && !callbacks.empty()) callbacks.add_forces(backend, p);
         count(out, counters);

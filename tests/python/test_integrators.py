@@ -621,6 +621,45 @@ def test_the_forces_after_each_call_are_those_of_a_fresh_evaluation_of_its_posit
         assert sim.counters["neighbour_list_builds"] > 1
 
 
+@pytest.mark.parametrize("group", [None, "half"])
+def test_the_first_term_stores_the_forces_only_where_it_writes_every_particle(options, group):
+    """Where the first term of an evaluation writes every particle's force once (a pair term of no
+    group), it stores them instead of adding to a buffer the drift cleared (ForceOutputs::storeForce);
+    the terms after it add. A pair term of a group leaves the particles outside it to the clearing.
+    After calls of velocity Verlet the forces must be those of a fresh handle at the same positions,
+    and the constant force over them (a later term applied twice, stored over the pair forces, or
+    added to a stale force outside the group would break one or the other)."""
+    positions, box = perturbed_lattice(7, 1.2, 0.1, seed=4)
+    n = len(positions)
+    gravity = np.array([0.0, 0.3, -0.7])
+    def field(with_gravity):
+        force_field = lennard_jones()
+        if group:
+            force_field["groups"] = {"type": ["Groups", "GroupsList"], "labels": ["name", "type", "selection"],
+                                     "data": [[group, "Ids", list(range(0, n, 2))]]}
+            force_field["lj"]["parameters"] = dict(force_field["lj"]["parameters"], group=group)
+        if with_gravity:
+            force_field["gravity"] = {"type": ["External", "ConstantForce"],
+                                      "parameters": {"constantForce": gravity.tolist()}}
+        return force_field
+    def doc(with_gravity):
+        return document(positions, half_light_half_heavy(n), {"integrate": verlet(0.005)}, [("integrate", 1000)],
+                        force_field=field(with_gravity), box=box,
+                        velocities=np.random.default_rng(3).normal(size=(n, 3)))
+    with structmd.Simulation(options) as sim, structmd.Simulation(options) as fresh, \
+            structmd.Simulation(options) as pairs_alone:
+        sim.load(doc(True))
+        fresh.load(doc(True))
+        pairs_alone.load(doc(False))
+        for _ in range(4):
+            sim.step(25)
+            fresh.positions = pairs_alone.positions = sim.positions
+            scale = np.max(np.abs(fresh.forces))
+            np.testing.assert_allclose(sim.forces, fresh.forces, rtol=0, atol=1e-9 * scale)
+            np.testing.assert_allclose(sim.forces - pairs_alone.forces, np.broadcast_to(gravity, (n, 3)),
+                                       rtol=0, atol=1e-9 * scale)
+
+
 @pytest.mark.parametrize("kind", BOOKKEEPING_CASES)
 def test_external_forces_set_after_a_call_act_on_the_next_step(options, kind):
     """With no force field the forces are the host's external forces alone. The drift kernel of the
