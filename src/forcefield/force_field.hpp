@@ -116,13 +116,11 @@ public:
     // Adds the terms active at the particles' step; an inactive term costs nothing. out.storeForce
     // goes to the first of them alone (the one first_term_stores_forces names).
     void compute_all(Particles<B, R>& p, const ForceOutputs<R>& out) {
-        ForceOutputs<R> adding = out;
-        adding.storeForce = 0;
-        bool first = true;
+        ForceOutputs<R> outputs = out;
         for (auto& it : interactors_)
             if (it->active(p.timeline.evaluating_step())) {
-                it->compute(p, first ? out : adding);
-                first = false;
+                it->compute(p, outputs);
+                outputs.storeForce = 0;
             }
     }
     // Whether the first term active at the particles' step stores the forces (Interactor::stores_forces).

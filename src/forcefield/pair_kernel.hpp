@@ -196,7 +196,7 @@ struct PairKernel {
 template <class Potential, class R, class PairR>
 struct PairRowsOnHost {
     using Params = typename Potential::template Params<PairR>;
-    static constexpr bool kCellLocal = sizeof(PairR) == sizeof(float) && sizeof(R) == sizeof(double);
+    static constexpr bool kCellLocal = PairKernel<Potential, R, PairR, true, false, false>::kCellLocal;
     // PairKernel's data (its comments say what each is), then the outputs asked for.
     const R* charge;
     const R* radius;
@@ -237,8 +237,8 @@ struct PairRowsOnHost {
         R* const chargeJ = typeJ + length;
         R* const radiusJ = chargeJ + length;
         R* const within = radiusJ + length;  // 1 within the cutoff, else 0
-        R* const g = within + length;         // dU/dr / r of the packed pairs
-        R* const u = g + length;              // U of the packed pairs
+        R* const g = within + length;        // dU/dr / r of the packed pairs
+        R* const u = g + length;             // U of the packed pairs
         R* packed[7] = {dx, dy, dz, r2, typeJ};
         int packedArrays = 5;
         if (charges) packed[packedArrays++] = chargeJ;
