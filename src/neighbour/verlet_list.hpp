@@ -214,7 +214,7 @@ private:
         local.local = cellLocal_.data();
         local.set_width({R(box_.length.x / grid_.nx), R(box_.length.y / grid_.ny), R(box_.length.z / grid_.nz)});
         local.halfLength = {R(0.5) * box_.length.x, R(0.5) * box_.length.y, R(0.5) * box_.length.z};
-        local.set_cells(grid_.nx, grid_.ny, grid_.nz, grid_.reach);
+        local.set_cells(grid_.nx, grid_.ny, grid_.nz);
         return local;
     }
 

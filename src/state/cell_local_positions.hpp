@@ -6,7 +6,7 @@
 // with the box (ulp(L / 2), 4e-6 at a million LJ particles).
 //
 // The cell's coordinates travel in w, packed as cx + bx (cy + by cz), an integer that a float holds
-// exactly, with digits bx and by powers of two above twice the cells along x and y: the difference
+// exactly, with digits bx and by powers of two at least twice the cells along x and y: the difference
 // of two codes then splits into the cells' differences by rounding alone, in float arithmetic at the
 // GPU's full rate (the integer unpacking and conversions it replaces ran at a quarter of it). Two
 // particles of a pair within the cutoff were in the same or adjacent cells at the build (within
@@ -29,7 +29,6 @@ struct CellLocalPositions {
     Vec3<float> widthHi{0.0f, 0.0f, 0.0f}, widthLo{0.0f, 0.0f, 0.0f};
     Vec3<R> halfLength{R(0), R(0), R(0)};
     int nx = 1, ny = 1, nz = 1;
-    int reach = 1;  // cells between a particle's cell and its neighbours' along each axis
     int bitsX = 1, bitsY = 1;  // the code's digits along x and y: bx = 2^bitsX, by = 2^bitsY
     // The same as floats for separation(): the cells along each axis and their inverses, bx and
     // bx by, and their inverses (exact: powers of two).
@@ -70,11 +69,10 @@ struct CellLocalPositions {
     static bool codes_fit(int cellsX, int cellsY, int cellsZ) {
         return (1LL << (digit_bits(cellsX) + digit_bits(cellsY))) * cellsZ <= (1LL << 24);
     }
-    void set_cells(int cellsX, int cellsY, int cellsZ, int cellReach) {
+    void set_cells(int cellsX, int cellsY, int cellsZ) {
         nx = cellsX;
         ny = cellsY;
         nz = cellsZ;
-        reach = cellReach;
         bitsX = digit_bits(nx);
         bitsY = digit_bits(ny);
         cells = {static_cast<float>(nx), static_cast<float>(ny), static_cast<float>(nz)};
@@ -98,8 +96,8 @@ struct CellLocalPositions {
     // folded across the periodic boundary.
     // The codes' difference bx by dz + bx dy + dx, each |d| below half its digit, splits by
     // rounding: dz, then dy, then dx, all exact integers in float. A difference of cells n - 1
-    // apart is the fold of one apart: d - n round(d / n) (n > 2 reach, so a neighbour's d / n
-    // is at least 1/(2n) from a half).
+    // apart is the fold of one apart: d - n round(d / n) (n > 2 reach and reach <= 2, so a
+    // neighbour's d / n is at least 1/10 from a half).
     SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b) const {
         const float code = b.w - a.w;
         const float dz = nearest(code * inverseDigitZ);
@@ -108,7 +106,7 @@ struct CellLocalPositions {
         const float dx = rest - dy * digitY;
         const auto along = [](float d, float raw, float n, float inverseN, float hi, float lo) {
             const float c = raw - n * nearest(raw * inverseN);
-            return (c * hi + d) + c * lo;  // c * hi exact: |c| <= reach <= 2
+            return (c * hi + d) + c * lo;  // c * hi exact: |c| <= 2
         };
         return {along(b.x - a.x, dx, cells.x, inverseCells.x, widthHi.x, widthLo.x),
                 along(b.y - a.y, dy, cells.y, inverseCells.y, widthHi.y, widthLo.y),

@@ -258,7 +258,7 @@ TEST(CellLocalPositions, CellCodesSplitIntoEveryNeighbouringCellsDistance) {
         CellLocalPositions<double> local;
         local.set_width({edge, edge, edge});
         local.halfLength = {0.5 * box.length.x, 0.5 * box.length.y, 0.5 * box.length.z};
-        local.set_cells(g.nx, g.ny, g.nz, g.reach);
+        local.set_cells(g.nx, g.ny, g.nz);
         // The cells of a row along each axis that reach the boundary, and some inside.
         const auto cells_along = [&](int n) {
             std::vector<int> c{0, 1, n / 2, n - 2, n - 1};
