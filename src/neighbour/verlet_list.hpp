@@ -214,10 +214,7 @@ private:
         local.local = cellLocal_.data();
         local.set_width({R(box_.length.x / grid_.nx), R(box_.length.y / grid_.ny), R(box_.length.z / grid_.nz)});
         local.halfLength = {R(0.5) * box_.length.x, R(0.5) * box_.length.y, R(0.5) * box_.length.z};
-        local.nx = grid_.nx;
-        local.ny = grid_.ny;
-        local.nz = grid_.nz;
-        local.reach = grid_.reach;
+        local.set_cells(grid_.nx, grid_.ny, grid_.nz);
         return local;
     }
 
@@ -298,12 +295,12 @@ private:
         // particles: four cells or more along every axis.
         clusters_ = clustersAllowed_ && grid_.nx >= 4 && grid_.ny >= 4 && grid_.nz >= 4;
         // Cells' distances fold across the boundary once: periodic axes of 2 reach + 1 cells or more,
-        // and a reach of at most 2, whose multiples of a float width are exact.
-        const auto packable = [&](int cells, bool open) {
-            return !open && grid_.reach <= 2 && cells > 2 * grid_.reach && cells <= CellLocalPositions<R>::kAxisCells;
-        };
-        cellLocalKept_ = cellLocalWanted_ && !clusters_ && packable(grid_.nx, grid_.openX) &&
-                         packable(grid_.ny, grid_.openY) && packable(grid_.nz, grid_.openZ);
+        // and a reach of at most 2, whose multiples of a float width are exact; the cells' codes
+        // exact in float.
+        const auto foldable = [&](int cells, bool open) { return !open && grid_.reach <= 2 && cells > 2 * grid_.reach; };
+        cellLocalKept_ = cellLocalWanted_ && !clusters_ && foldable(grid_.nx, grid_.openX) &&
+                         foldable(grid_.ny, grid_.openY) && foldable(grid_.nz, grid_.openZ) &&
+                         CellLocalPositions<R>::codes_fit(grid_.nx, grid_.ny, grid_.nz);
         if (cellLocalKept_) backend_.fit(cellLocal_, n);
         if (clusters_) {
             clusterIds_ = static_cast<int>(n / kClusterSize) + cells;

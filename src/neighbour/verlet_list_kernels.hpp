@@ -194,7 +194,7 @@ struct SortCells {
         if (cellLocal.local) {
             int cx, cy, cz;
             grid.coordinates_of(static_cast<int>(c), cx, cy, cz);
-            packed = CellLocalPositions<R>::pack(cx, cy, cz);
+            packed = cellLocal.pack(cx, cy, cz);
         }
         for (int s = first; s < first + members; ++s) {
             const Real4<R> p = pos[order[s]];

@@ -5,20 +5,21 @@
 // (about 1e-7 of a few sigma), not of the box's: taken in float from absolute positions it would grow
 // with the box (ulp(L / 2), 4e-6 at a million LJ particles).
 //
-// The cell's coordinates travel in w, packed as cx + 256 cy + 65536 cz, an integer that a float holds
-// exactly. Two particles of a pair within the cutoff were in the same or adjacent cells at the build
-// (within `reach` cells), so their separation is the difference of their local positions plus the
+// The cell's coordinates travel in w, packed as cx + bx (cy + by cz), an integer that a float holds
+// exactly, with digits bx and by powers of two at least twice the cells along x and y: the difference
+// of two codes then splits into the cells' differences by rounding alone, in float arithmetic at the
+// GPU's full rate (the integer unpacking and conversions it replaces ran at a quarter of it). Two
+// particles of a pair within the cutoff were in the same or adjacent cells at the build (within
+// `reach` cells), so their separation is the difference of their local positions plus the
 // difference of their cells, folded once across the periodic boundary: no minimum image of the box.
-// Kept only where every axis is periodic and has 2 reach + 1 to 256 cells (verlet_list.hpp).
+// Kept only where every axis is periodic and has more than 2 reach cells, and the codes fit in 24
+// bits (verlet_list.hpp).
 #include "core/box.hpp"
 
 namespace structmd {
 
 template <class R>
 struct CellLocalPositions {
-    static constexpr int kAxisBits = 8;
-    static constexpr int kAxisCells = 1 << kAxisBits;  // the most cells along an axis that w packs
-
     Real4<float>* local = nullptr;  // by slot; null: not kept
     Vec3<R> width{R(0), R(0), R(0)};  // a cell's edge along each axis
     // The width as the sum of two floats, hi + lo: the cells' distance, a small integer times it,
@@ -28,14 +29,18 @@ struct CellLocalPositions {
     Vec3<float> widthHi{0.0f, 0.0f, 0.0f}, widthLo{0.0f, 0.0f, 0.0f};
     Vec3<R> halfLength{R(0), R(0), R(0)};
     int nx = 1, ny = 1, nz = 1;
-    int reach = 1;  // cells between a particle's cell and its neighbours' along each axis
+    int bitsX = 1, bitsY = 1;  // the code's digits along x and y: bx = 2^bitsX, by = 2^bitsY
+    // The same as floats for separation(): the cells along each axis and their inverses, bx and
+    // bx by, and their inverses (exact: powers of two).
+    Vec3<float> cells{1.0f, 1.0f, 1.0f}, inverseCells{1.0f, 1.0f, 1.0f};
+    float digitY = 2.0f, digitZ = 4.0f, inverseDigitY = 0.5f, inverseDigitZ = 0.25f;
 
-    static SMD_HD SMD_INLINE float pack(int cx, int cy, int cz) {
-        return static_cast<float>(cx | cy << kAxisBits | cz << 2 * kAxisBits);
+    SMD_HD SMD_INLINE float pack(int cx, int cy, int cz) const {
+        return static_cast<float>(cx | (cy | cz << bitsY) << bitsX);
     }
-    static SMD_HD SMD_INLINE int cell_x(int code) { return code & (kAxisCells - 1); }
-    static SMD_HD SMD_INLINE int cell_y(int code) { return code >> kAxisBits & (kAxisCells - 1); }
-    static SMD_HD SMD_INLINE int cell_z(int code) { return code >> 2 * kAxisBits; }
+    SMD_HD SMD_INLINE int cell_x(int code) const { return code & ((1 << bitsX) - 1); }
+    SMD_HD SMD_INLINE int cell_y(int code) const { return code >> bitsX & ((1 << bitsY) - 1); }
+    SMD_HD SMD_INLINE int cell_z(int code) const { return code >> (bitsX + bitsY); }
 
     // The position x (wrapped or not) relative to the centre of the cell packed in `cell`.
     SMD_HD SMD_INLINE Real4<float> of(const Vec3<R>& x, float cell, const Box<R>& box) const {
@@ -54,20 +59,58 @@ struct CellLocalPositions {
         widthLo = {static_cast<float>(edge.x - R(widthHi.x)), static_cast<float>(edge.y - R(widthHi.y)),
                    static_cast<float>(edge.z - R(widthHi.z))};
     }
+    // The digits for a grid of these cells (each difference of cells below half its digit).
+    static int digit_bits(int cellsAlong) {
+        int bits = 1;
+        while ((1 << bits) < 2 * cellsAlong) ++bits;
+        return bits;
+    }
+    // Whether the codes of such a grid, below bx by nz, are integers a float holds exactly.
+    static bool codes_fit(int cellsX, int cellsY, int cellsZ) {
+        return (1LL << (digit_bits(cellsX) + digit_bits(cellsY))) * cellsZ <= (1LL << 24);
+    }
+    void set_cells(int cellsX, int cellsY, int cellsZ) {
+        nx = cellsX;
+        ny = cellsY;
+        nz = cellsZ;
+        bitsX = digit_bits(nx);
+        bitsY = digit_bits(ny);
+        cells = {static_cast<float>(nx), static_cast<float>(ny), static_cast<float>(nz)};
+        inverseCells = {1.0f / cells.x, 1.0f / cells.y, 1.0f / cells.z};
+        digitY = static_cast<float>(1 << bitsX);
+        digitZ = static_cast<float>(1 << (bitsX + bitsY));
+        inverseDigitY = 1.0f / digitY;
+        inverseDigitZ = 1.0f / digitZ;
+    }
 #endif
+
+    // x rounded to the nearest integer, for |x| < 2^22: adding 1.5 2^23 leaves no fraction bits
+    // (two additions at the full rate, where a conversion runs at a quarter of it). No use here
+    // rounds a half: the codes' quotients are exact, and a fold's at least 1/10 from one.
+    static SMD_HD SMD_INLINE float nearest(float x) {
+        constexpr float kShifter = 12582912.0f;
+        return (x + kShifter) - kShifter;
+    }
 
     // b - a for two slots' local positions: their difference plus the cells' distance, each axis's
     // folded across the periodic boundary.
+    // The codes' difference bx by dz + bx dy + dx, each |d| below half its digit, splits by
+    // rounding: dz, then dy, then dx, all exact integers in float. A difference of cells n - 1
+    // apart is the fold of one apart: d - n round(d / n) (n > 2 reach and reach <= 2, so a
+    // neighbour's d / n is at least 1/10 from a half).
     SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b) const {
-        const int ca = static_cast<int>(a.w), cb = static_cast<int>(b.w);
-        const auto along = [this](float d, int from, int to, int n, float hi, float lo) {
-            const int c = to - from;
-            const float cells = static_cast<float>(c > reach ? c - n : (c < -reach ? c + n : c));
-            return (cells * hi + d) + cells * lo;  // cells * hi exact: |cells| <= reach <= 2
+        const float code = b.w - a.w;
+        const float dz = nearest(code * inverseDigitZ);
+        const float rest = code - dz * digitZ;
+        const float dy = nearest(rest * inverseDigitY);
+        const float dx = rest - dy * digitY;
+        const auto along = [](float d, float raw, float n, float inverseN, float hi, float lo) {
+            const float c = raw - n * nearest(raw * inverseN);
+            return (c * hi + d) + c * lo;  // c * hi exact: |c| <= 2
         };
-        return {along(b.x - a.x, cell_x(ca), cell_x(cb), nx, widthHi.x, widthLo.x),
-                along(b.y - a.y, cell_y(ca), cell_y(cb), ny, widthHi.y, widthLo.y),
-                along(b.z - a.z, cell_z(ca), cell_z(cb), nz, widthHi.z, widthLo.z)};
+        return {along(b.x - a.x, dx, cells.x, inverseCells.x, widthHi.x, widthLo.x),
+                along(b.y - a.y, dy, cells.y, inverseCells.y, widthHi.y, widthLo.y),
+                along(b.z - a.z, dz, cells.z, inverseCells.z, widthHi.z, widthLo.z)};
     }
 
     // The cells' distance that separation() adds for cells a given number apart along each axis,

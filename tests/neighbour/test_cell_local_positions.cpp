@@ -2,7 +2,8 @@
 // listed pair, the separation of the double positions to within the rounding of a cell's width,
 // after builds, after moves under half the skin and across the periodic boundary; the
 // mixed-precision pair kernel over them agrees with the double one, within a few times the rounding
-// of separations taken in double; a grid they do not fit leaves them out; and the list's positions
+// of separations taken in double; the cells' codes give every neighbouring cells' distance up to the
+// largest grid they fit; a grid they do not fit leaves them out; and the list's positions
 // in slot order are copied each step only once some caller reads them.
 #include <gtest/gtest.h>
 
@@ -233,6 +234,66 @@ TEST(CellLocalPositions, SlotPositionsKeptOnlyOnceSomeCallerReadsThem) {
     EXPECT_TRUE(cell_local_current(list.cell_local_view()));
     list.adapt();
     EXPECT_EQ(list.builds(), 1);
+}
+
+// The cells' codes, up to the largest grid whose codes a float holds: for every pair of cells within
+// reach of each other (across the periodic boundary too), separation() adds the cells' distance
+// that the double positions have, whichever cell of the grid the pair sits in. Digits of the
+// codes: a power of two of at least twice the cells along x and y.
+TEST(CellLocalPositions, CellCodesSplitIntoEveryNeighbouringCellsDistance) {
+    EXPECT_EQ(CellLocalPositions<double>::digit_bits(5), 4);
+    EXPECT_EQ(CellLocalPositions<double>::digit_bits(8), 4);
+    EXPECT_EQ(CellLocalPositions<double>::digit_bits(9), 5);
+    EXPECT_TRUE(CellLocalPositions<double>::codes_fit(128, 128, 256));   // 2^8 2^8 256 = 2^24
+    EXPECT_FALSE(CellLocalPositions<double>::codes_fit(128, 128, 257));
+    EXPECT_FALSE(CellLocalPositions<double>::codes_fit(129, 128, 256));  // x's digit 2^9
+    EXPECT_TRUE(CellLocalPositions<double>::codes_fit(60, 60, 60));      // 4M LJ particles
+    struct Grid {
+        int nx, ny, nz, reach;
+    };
+    for (const Grid& g : {Grid{5, 6, 7, 2}, Grid{3, 4, 3, 1}, Grid{128, 97, 256, 1}, Grid{100, 128, 255, 2}}) {
+        ASSERT_TRUE(CellLocalPositions<double>::codes_fit(g.nx, g.ny, g.nz));
+        const double edge = 1.3;
+        const Box<double> box = Box<double>::make(g.nx * edge, g.ny * edge, g.nz * edge);
+        CellLocalPositions<double> local;
+        local.set_width({edge, edge, edge});
+        local.halfLength = {0.5 * box.length.x, 0.5 * box.length.y, 0.5 * box.length.z};
+        local.set_cells(g.nx, g.ny, g.nz);
+        // The cells of a row along each axis that reach the boundary, and some inside.
+        const auto cells_along = [&](int n) {
+            std::vector<int> c{0, 1, n / 2, n - 2, n - 1};
+            if (g.reach == 2) c.push_back(2);
+            return c;
+        };
+        const auto centre = [&](int cx, int cy, int cz) {
+            return Vec3<double>{(cx + 0.5) * edge - local.halfLength.x, (cy + 0.5) * edge - local.halfLength.y,
+                                (cz + 0.5) * edge - local.halfLength.z};
+        };
+        double largest = 0.0;
+        int pairs = 0;
+        for (int ax : cells_along(g.nx))
+            for (int ay : cells_along(g.ny))
+                for (int az : cells_along(g.nz))
+                    for (int dx = -g.reach; dx <= g.reach; ++dx)
+                        for (int dy = -g.reach; dy <= g.reach; ++dy)
+                            for (int dz = -g.reach; dz <= g.reach; ++dz) {
+                                const int bx = (ax + dx + g.nx) % g.nx, by = (ay + dy + g.ny) % g.ny,
+                                          bz = (az + dz + g.nz) % g.nz;
+                                // Positions off their cells' centres, less than half the box apart
+                                // (as a listed pair is) on the smallest grid.
+                                const Vec3<double> xa = centre(ax, ay, az) + Vec3<double>{0.21, -0.27, 0.17};
+                                const Vec3<double> xb = centre(bx, by, bz) + Vec3<double>{-0.23, 0.25, -0.29};
+                                const Real4<float> la = local.of(xa, local.pack(ax, ay, az), box);
+                                const Real4<float> lb = local.of(xb, local.pack(bx, by, bz), box);
+                                const Vec3<float> d = local.separation(la, lb);
+                                const Vec3<double> exact = box.minimum_image(xb - xa);
+                                largest = std::max({largest, std::abs(d.x - exact.x), std::abs(d.y - exact.y),
+                                                    std::abs(d.z - exact.z)});
+                                ++pairs;
+                            }
+        EXPECT_LT(largest, 1e-6) << g.nx << " x " << g.ny << " x " << g.nz << " cells, reach " << g.reach;
+        EXPECT_GT(pairs, 1000);
+    }
 }
 
 // Where the cells' distances cannot be folded once (too few cells along an axis) or an axis is
