@@ -36,15 +36,11 @@
 #include "backends/cuda/launch_kernels.cuh"
 #include "forcefield/lennard_jones.hpp"
 #include "forcefield/pair_kernel.hpp"
+#include "standalone_cuda.cuh"
 
 namespace {
 
-void check(cudaError_t status, const char* what) {
-    if (status != cudaSuccess) {
-        std::fprintf(stderr, "%s: %s\n", what, cudaGetErrorString(status));
-        std::exit(1);
-    }
-}
+using standalone::check;
 
 constexpr float kCutoff2 = 2.5f * 2.5f;
 constexpr float kListRadius = 2.8f;

@@ -21,15 +21,11 @@
 
 #include "backends/cuda/launch_kernels.cuh"
 #include "hydrodynamics/slab_stokes.hpp"
+#include "standalone_cuda.cuh"
 
 namespace {
 
-void check(cudaError_t status, const char* what) {
-    if (status != cudaSuccess) {
-        std::fprintf(stderr, "%s: %s\n", what, cudaGetErrorString(status));
-        std::exit(1);
-    }
-}
+using standalone::check;
 
 template <class R>
 void run(structmd::FftGrid grid, int launches) {

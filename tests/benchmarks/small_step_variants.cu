@@ -81,17 +81,13 @@
 #include <vector>
 
 #include "core/dependent_launch.hpp"
+#include "standalone_cuda.cuh"
 
 namespace cg = cooperative_groups;
 
 namespace {
 
-void check(cudaError_t status, const char* what) {
-    if (status != cudaSuccess) {
-        std::fprintf(stderr, "%s: %s\n", what, cudaGetErrorString(status));
-        std::exit(1);
-    }
-}
+using standalone::check;
 
 constexpr double kDensity = 0.8442;
 constexpr double kTemperature = 1.44;
