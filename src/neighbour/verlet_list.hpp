@@ -262,7 +262,11 @@ private:
         box_ = box;
         capacity_ = std::max(capacity_, pendingCapacity_);
         // The cluster kernels take their partners from the 27 cells around a cluster.
-        grid_ = CellGrid<R>::make(box, listRadius_, n, batches_, clustersAllowed_ ? 1 : B::list_cell_reach);
+        grid_ = CellGrid<R>::make(box, listRadius_, n, batches_, clustersAllowed_ ? 1 : backend_.list_cell_reach(n));
+        // Cell-local positions need codes a float holds: cells twice as wide where half-width ones
+        // have too many (16 million LJ particles).
+        if (cellLocalWanted_ && grid_.reach > 1 && !CellLocalPositions<R>::codes_fit(grid_.nx, grid_.ny, grid_.nz))
+            grid_ = CellGrid<R>::make(box, listRadius_, n, batches_, 1);
         if (capacity_ == 0) {
             // No particle has more neighbours than there are particles, whatever the list radius;
             // batches overlaid in the box each fill it at their own density (over an open axis, as

@@ -225,9 +225,14 @@ struct BuildLists {
     // the list's cell-local positions plus the cells' distance.
     enum Separations { kMinimumImage, kCellImage, kCellLocal };
 
-    // Lists slot k's candidates within the list radius, returns how many. The shift of a
-    // candidate cell (its image, or its distance in cells) is the same for all its members, so it
-    // is taken once a cell, and a candidate costs a load, a difference and a distance.
+    // Cells are skipped against a radius this much larger (squared) than the list's, so that
+    // rounding in the cells' geometry never drops a candidate the exact test would accept.
+    static constexpr double kPruneMargin = 1.002;
+
+    // Lists slot k's candidates within the list radius, returns how many, from the cells that
+    // come within the list radius of the slot's position. The shift of a candidate cell (its
+    // image, or its distance in cells) is the same for all its members, so it is taken once a
+    // cell, and a candidate costs a load, a difference and a distance.
     template <Separations kHow, bool kAnyPair>
     SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = view;
@@ -241,7 +246,9 @@ struct BuildLists {
         int n = 0;
         int cx, cy, cz;
         v.grid.coordinates(rk, v.box, cx, cy, cz);
-        v.grid.for_each_adjacent_offset(cx, cy, cz, v.batch_of_slot(k), [&](int c, int dx, int dy, int dz) {
+        const Vec3<R> u = v.grid.scaled(rk, v.box);
+        const R prune2 = listRadius2 * R(kPruneMargin);
+        v.grid.for_each_cell_near(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int c, int dx, int dy, int dz) {
             typename CellLocalPositions<R>::CellShift cells{};
             if (kHow == kCellLocal) cells = v.cellLocal.shift(dx, dy, dz);
             Vec3<R> image{R(0), R(0), R(0)};
@@ -309,13 +316,6 @@ struct BuildLists {
     // Rows are skipped for reaches up to this (the CPU's lists use 2); a wider one scans every cell.
     static constexpr int kMaxRowReach = 4;
 
-    // Distance, in cells, from the coordinate u (in cells, inside cell c) to the cell `offset`
-    // cells from c along the same axis: 0 for c itself.
-    static R cell_gap(R u, int c, int offset) {
-        const R gap = offset > 0 ? R(c + offset) - u : (offset < 0 ? u - R(c + offset + 1) : R(0));
-        return gap > R(0) ? gap : R(0);
-    }
-
     // A list of up to this many entries is put in particle order by ranking (below); a longer one,
     // in a crowded or collapsed system, by a sort in n log n.
     static constexpr int kRankedListLimit = 256;
@@ -348,9 +348,7 @@ struct BuildLists {
         const int* const order = v.order;
         const Box<R> box = v.box;
         const R radius2 = listRadius2;
-        // Rows are skipped against a radius a little larger than the list's, so that rounding in
-        // the cell geometry never drops a candidate the exact test below would accept.
-        const R prune2 = listRadius2 * R(1.002);
+        const R prune2 = listRadius2 * R(kPruneMargin);
         const Vec3<R> width{R(1) / v.grid.cellsPerLength.x, R(1) / v.grid.cellsPerLength.y,
                             R(1) / v.grid.cellsPerLength.z};
         const bool trivial = v.filter.trivial();
@@ -415,7 +413,7 @@ struct BuildLists {
                 // scanned only over the cells the radius reaches along x from this particle.
                 R gapY2[2 * kMaxRowReach + 1], gapZ2[2 * kMaxRowReach + 1];
                 for (int d = -reach; d <= reach; ++d) {
-                    const R gy = cell_gap(u.y, cy, d) * width.y, gz = cell_gap(u.z, cz, d) * width.z;
+                    const R gy = CellGrid<R>::gap(u.y, cy, d) * width.y, gz = CellGrid<R>::gap(u.z, cz, d) * width.z;
                     gapY2[d + reach] = gy * gy;
                     gapZ2[d + reach] = gz * gz;
                 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <random>
 #include <set>
 #include <vector>
@@ -193,6 +194,54 @@ TEST(CellGrid, CoordinatesOfInvertsIndexInEveryBatch) {
                     ASSERT_EQ(y, cy);
                     ASSERT_EQ(z, cz) << "batch " << b;
                 }
+}
+
+// for_each_cell_near() visits a cell exactly where its nearest point lies within the radius of the
+// point (the distance measured from the cells' bounds, not through gap()), and each such cell once;
+// over the points a particle may take, about 21 of 27 cells at reach 1 and 84 of 125 at reach 2.
+void expect_cells_near_a_point_are_the_ones_the_radius_reaches(int reach, double mostVisited) {
+    const Box<double> box = Box<double>::make(14.0, 15.0, 16.0);
+    const double radius = 2.8;
+    const CellGrid<double> grid = CellGrid<double>::make(box, radius, 3000, 1, reach);
+    ASSERT_EQ(grid.reach, reach);
+    const Vec3<double> width{box.length.x / grid.nx, box.length.y / grid.ny, box.length.z / grid.nz};
+    std::mt19937 random(21);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    long visitedCells = 0, points = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const Vec3<double> u{uniform(random) * grid.nx, uniform(random) * grid.ny, uniform(random) * grid.nz};
+        const int cx = static_cast<int>(u.x), cy = static_cast<int>(u.y), cz = static_cast<int>(u.z);
+        std::map<int, int> visits;
+        grid.for_each_cell_near(u, cx, cy, cz, 0, radius * radius, [&](int c, int, int, int) { ++visits[c]; });
+        for (int dz = -reach; dz <= reach; ++dz)
+            for (int dy = -reach; dy <= reach; ++dy)
+                for (int dx = -reach; dx <= reach; ++dx) {
+                    // The point of cell (cx + dx, ...) nearest u, along each axis, in length units.
+                    const auto nearest = [](double at, int c, int offset, double w) {
+                        const double low = (c + offset) * w, high = low + w;
+                        return at * w < low ? low - at * w : (at * w > high ? at * w - high : 0.0);
+                    };
+                    const double gx = nearest(u.x, cx, dx, width.x), gy = nearest(u.y, cy, dy, width.y),
+                                 gz = nearest(u.z, cz, dz, width.z);
+                    const bool reached = gx * gx + gy * gy + gz * gz < radius * radius;
+                    const int cell = grid.index(CellGrid<double>::periodic(cx + dx, grid.nx),
+                                                CellGrid<double>::periodic(cy + dy, grid.ny),
+                                                CellGrid<double>::periodic(cz + dz, grid.nz));
+                    const auto found = visits.find(cell);
+                    ASSERT_EQ(found != visits.end(), reached) << "offset " << dx << " " << dy << " " << dz;
+                    if (reached) ASSERT_EQ(found->second, 1);
+                }
+        visitedCells += static_cast<long>(visits.size());
+        ++points;
+    }
+    const double stencil = (2 * reach + 1) * (2 * reach + 1) * (2 * reach + 1);
+    EXPECT_LT(visitedCells, mostVisited * stencil * points) << "cells out of reach are skipped";
+    EXPECT_GT(visitedCells, 0.5 * stencil * points);
+}
+
+TEST(CellGrid, CellsNearAPointAreTheOnesTheRadiusReaches) {
+    expect_cells_near_a_point_are_the_ones_the_radius_reaches(1, 0.85);
+    expect_cells_near_a_point_are_the_ones_the_radius_reaches(2, 0.75);
 }
 
 TEST(VerletList, SlotsAreAPermutationInCellOrder) {

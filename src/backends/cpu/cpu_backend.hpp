@@ -83,7 +83,7 @@ public:
     static constexpr bool ordered_neighbour_lists = true;
     // Cells half the list radius wide: a core skips the candidates out of a particle's reach
     // (neighbour/cell_grid.hpp).
-    static constexpr int list_cell_reach = 2;
+    int list_cell_reach(int64_t) const { return 2; }
 
     explicit CpuBackend(int threads) : threads_(threads > 0 ? threads : omp_get_max_threads()) {}
 

@@ -110,8 +110,10 @@ public:
     // from 9.5e8 to 5.7e8 particle-steps/s on an H200; on the GPU a restart agrees with the
     // uninterrupted run to rounding instead.
     static constexpr bool ordered_neighbour_lists = false;
-    // Cells as wide as the list radius: a warp's lanes take a cell's members in rounds.
-    static constexpr int list_cell_reach = 1;
+    // Cells as wide as the list radius where several lanes take a particle's candidates, a cell's
+    // members in rounds; half as wide where a thread takes them alone (a million particles), which
+    // then skips the cells out of the particle's reach (neighbour/cell_grid.hpp).
+    int list_cell_reach(int64_t n) const { return lanes_for(n, LaneSizing::kFillDevice) == 1 ? 2 : 1; }
 
     explicit CudaBackend(int device) : device_(device) {
         int count = 0;
