@@ -237,6 +237,7 @@ struct BuildLists {
     SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = view;
         const int self = static_cast<int>(k);
+        const int particle = kAnyPair ? 0 : v.order[k];  // for the filter
         const Vec3<R> rk = xyz(v.positions[k]);
         const Real4<float> localK = kHow == kCellLocal ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
         const float localRadius2 = static_cast<float>(listRadius2);
@@ -261,7 +262,7 @@ struct BuildLists {
             const int end = v.cellStart[c + 1];
             for (int base = v.cellStart[c]; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
-                bool accepted = s < end && (kAnyPair ? s != self : v.accepts(self, s));
+                bool accepted = s < end && s != self;
                 if (accepted && kHow == kCellLocal) {
                     const Vec3<float> d = CellLocalPositions<R>::separation(localK, v.cellLocal.local[s], cells);
                     accepted = dot(d, d) < localRadius2;
@@ -271,6 +272,9 @@ struct BuildLists {
                                                          : v.box.minimum_image(xyz(v.positions[s]) - rk);
                     accepted = dot(d, d) < listRadius2;
                 }
+                // The filter after the distance: it looks the partner up (its particle, a search of
+                // the exclusions), and about one candidate in six is within the list radius.
+                if (!kAnyPair && accepted) accepted = v.filter.accepts(particle, v.order[s]);
                 int found = 0;
                 const int rank = lanes.rank_among(accepted, found);
                 if (accepted && n + rank < v.capacity) next[rank * v.entryStride] = s;
