@@ -94,10 +94,17 @@ struct Box {
             x -= length;
             ++shift;
         }
-        // Saturates: a particle that blew up may wrap by a billion boxes step after step.
-        const long long images = static_cast<long long>(image) + shift;
-        image = images > 2147483647LL ? 2147483647 : (images < -2147483647LL ? -2147483647 : static_cast<int>(images));
+        image = image_added(image, shift);
         return x;
+    }
+
+    // image + shift, saturated: a particle that blew up may wrap by a billion boxes step after step.
+    static SMD_HD SMD_INLINE int image_added(int image, int shift) {
+        const long long images = static_cast<long long>(image) + shift;
+        return images > 2147483647LL ? 2147483647 : (images < -2147483647LL ? -2147483647 : static_cast<int>(images));
+    }
+    static SMD_HD SMD_INLINE Image images_added(const Image& image, const Image& shift) {
+        return {image_added(image.x, shift.x), image_added(image.y, shift.y), image_added(image.z, shift.z)};
     }
 
     // Selects, not branches (nvcc made the second compare a branch and a reconvergence point in

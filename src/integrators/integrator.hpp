@@ -32,10 +32,13 @@ public:
 };
 
 // The particle moved by d, wrapped into the box (its image counts the crossings); the type in w
-// stays.
+// stays. The image, in memory, is read and written only on a step that crosses the box, which
+// few particles do: 24 bytes a particle-step less for every integrator's drift.
 template <class R>
 SMD_HD SMD_INLINE Real4<R> displaced(Real4<R> p, const Vec3<R>& d, const Box<R>& box, Image& image) {
-    const Vec3<R> r = box.wrap(Vec3<R>{p.x + d.x, p.y + d.y, p.z + d.z}, image);
+    Image crossed{0, 0, 0};
+    const Vec3<R> r = box.wrap(Vec3<R>{p.x + d.x, p.y + d.y, p.z + d.z}, crossed);
+    if (crossed.x != 0 || crossed.y != 0 || crossed.z != 0) image = Box<R>::images_added(image, crossed);
     p.x = r.x;
     p.y = r.y;
     p.z = r.z;
