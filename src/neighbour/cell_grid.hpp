@@ -170,13 +170,24 @@ struct CellGrid {
         return g > R(0) ? g : R(0);
     }
 
+    // radius2 grown by what rounding may take off a distance measured from the cells' geometry: a
+    // thousandth of the radius, and a millionth of the grid's extent (a float coordinate's ulp is
+    // 1.2e-7 of it, which a dilute system's large box makes larger than the thousandth), so that
+    // skipping the cells beyond it never drops a pair the exact distance test would accept.
+    SMD_HD SMD_INLINE R pruning_radius2(R radius2) const {
+        const R ex = R(nx) / cellsPerLength.x, ey = R(ny) / cellsPerLength.y, ez = R(nz) / cellsPerLength.z;
+        const R extent = ex > ey ? (ex > ez ? ex : ez) : (ey > ez ? ey : ez);
+        const R radius = sqrt(radius2) * R(1.001) + R(1e-6) * extent;
+        return radius * radius;
+    }
+
     // for_each_adjacent_offset(), less the cells that lie radius2 or farther from the point u (in
     // cells, inside cell (cx, cy, cz)). A sphere about a point of the middle cell reaches about 21
     // of 27 cells as wide as its radius, and about 84 of 125 cells half as wide: a list build over
-    // the narrow cells tests about 40% fewer candidates than over the 27 wide ones. radius2 needs a
-    // margin for the rounding of the cells' geometry. Where an axis has 2 reach cells or fewer
-    // (offsets that name one cell twice), or u is outside the grid (a particle that blew up),
-    // every cell within reach.
+    // the narrow cells tests about 40% fewer candidates than over the 27 wide ones. A caller that
+    // must not miss a pair passes pruning_radius2() of its radius. Where an axis has 2 reach cells
+    // or fewer (offsets that name one cell twice), or u is outside the grid (a particle that blew
+    // up), every cell within reach.
     template <class Visit>
     SMD_HD SMD_INLINE void for_each_cell_near(Vec3<R> u, int cx, int cy, int cz, int batch, R radius2,
                                               Visit&& visit) const {

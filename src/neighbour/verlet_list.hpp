@@ -257,6 +257,15 @@ private:
         backend_.write(control_, kRebuild, 0);
     }
 
+    // Whether cell-local positions work over this grid: cells' distances fold across the boundary
+    // once (periodic axes of 2 reach + 1 cells or more, a reach of at most 2, whose multiples of a
+    // float width are exact) and the cells' codes are exact in float.
+    static bool keeps_cell_local(const CellGrid<R>& grid) {
+        const auto foldable = [&](int cells, bool open) { return !open && grid.reach <= 2 && cells > 2 * grid.reach; };
+        return foldable(grid.nx, grid.openX) && foldable(grid.ny, grid.openY) && foldable(grid.nz, grid.openZ) &&
+               CellLocalPositions<R>::codes_fit(grid.nx, grid.ny, grid.nz);
+    }
+
     // Sizes every buffer for n particles in this box and schedules a full rebuild.
     void layout(int64_t n, const Box<R>& box) {
         box_ = box;
@@ -264,9 +273,11 @@ private:
         // The cluster kernels take their partners from the 27 cells around a cluster.
         grid_ = CellGrid<R>::make(box, listRadius_, n, batches_, clustersAllowed_ ? 1 : backend_.list_cell_reach(n));
         // Cell-local positions need codes a float holds: cells twice as wide where half-width ones
-        // have too many (16 million LJ particles).
-        if (cellLocalWanted_ && grid_.reach > 1 && !CellLocalPositions<R>::codes_fit(grid_.nx, grid_.ny, grid_.nz))
-            grid_ = CellGrid<R>::make(box, listRadius_, n, batches_, 1);
+        // have too many (16 million LJ particles) and the wide ones keep them.
+        if (cellLocalWanted_ && grid_.reach > 1 && !keeps_cell_local(grid_)) {
+            const CellGrid<R> wide = CellGrid<R>::make(box, listRadius_, n, batches_, 1);
+            if (keeps_cell_local(wide)) grid_ = wide;
+        }
         if (capacity_ == 0) {
             // No particle has more neighbours than there are particles, whatever the list radius;
             // batches overlaid in the box each fill it at their own density (over an open axis, as
@@ -298,13 +309,7 @@ private:
         // Clusters need the minimum image of two bounding boxes' centres to be the one of their
         // particles: four cells or more along every axis.
         clusters_ = clustersAllowed_ && grid_.nx >= 4 && grid_.ny >= 4 && grid_.nz >= 4;
-        // Cells' distances fold across the boundary once: periodic axes of 2 reach + 1 cells or more,
-        // and a reach of at most 2, whose multiples of a float width are exact; the cells' codes
-        // exact in float.
-        const auto foldable = [&](int cells, bool open) { return !open && grid_.reach <= 2 && cells > 2 * grid_.reach; };
-        cellLocalKept_ = cellLocalWanted_ && !clusters_ && foldable(grid_.nx, grid_.openX) &&
-                         foldable(grid_.ny, grid_.openY) && foldable(grid_.nz, grid_.openZ) &&
-                         CellLocalPositions<R>::codes_fit(grid_.nx, grid_.ny, grid_.nz);
+        cellLocalKept_ = cellLocalWanted_ && !clusters_ && keeps_cell_local(grid_);
         if (cellLocalKept_) backend_.fit(cellLocal_, n);
         if (clusters_) {
             clusterIds_ = static_cast<int>(n / kClusterSize) + cells;

@@ -225,10 +225,6 @@ struct BuildLists {
     // the list's cell-local positions plus the cells' distance.
     enum Separations { kMinimumImage, kCellImage, kCellLocal };
 
-    // Cells are skipped against a radius this much larger (squared) than the list's, so that
-    // rounding in the cells' geometry never drops a candidate the exact test would accept.
-    static constexpr double kPruneMargin = 1.002;
-
     // Lists slot k's candidates within the list radius, returns how many, from the cells that
     // come within the list radius of the slot's position. The shift of a candidate cell (its
     // image, or its distance in cells) is the same for all its members, so it is taken once a
@@ -248,7 +244,7 @@ struct BuildLists {
         int cx, cy, cz;
         v.grid.coordinates(rk, v.box, cx, cy, cz);
         const Vec3<R> u = v.grid.scaled(rk, v.box);
-        const R prune2 = listRadius2 * R(kPruneMargin);
+        const R prune2 = v.grid.pruning_radius2(listRadius2);
         v.grid.for_each_cell_near(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int c, int dx, int dy, int dz) {
             typename CellLocalPositions<R>::CellShift cells{};
             if (kHow == kCellLocal) cells = v.cellLocal.shift(dx, dy, dz);
@@ -352,7 +348,7 @@ struct BuildLists {
         const int* const order = v.order;
         const Box<R> box = v.box;
         const R radius2 = listRadius2;
-        const R prune2 = listRadius2 * R(kPruneMargin);
+        const R prune2 = v.grid.pruning_radius2(listRadius2);
         const Vec3<R> width{R(1) / v.grid.cellsPerLength.x, R(1) / v.grid.cellsPerLength.y,
                             R(1) / v.grid.cellsPerLength.z};
         const bool trivial = v.filter.trivial();

@@ -212,7 +212,13 @@ void expect_cells_near_a_point_are_the_ones_the_radius_reaches(int reach, double
         const Vec3<double> u{uniform(random) * grid.nx, uniform(random) * grid.ny, uniform(random) * grid.nz};
         const int cx = static_cast<int>(u.x), cy = static_cast<int>(u.y), cz = static_cast<int>(u.z);
         std::map<int, int> visits;
-        grid.for_each_cell_near(u, cx, cy, cz, 0, radius * radius, [&](int c, int, int, int) { ++visits[c]; });
+        grid.for_each_cell_near(u, cx, cy, cz, 0, radius * radius, [&](int c, int dx, int dy, int dz) {
+            const int named = grid.index(CellGrid<double>::periodic(cx + dx, grid.nx),
+                                         CellGrid<double>::periodic(cy + dy, grid.ny),
+                                         CellGrid<double>::periodic(cz + dz, grid.nz));
+            EXPECT_EQ(c, named) << "the offsets name the cell";
+            ++visits[c];
+        });
         for (int dz = -reach; dz <= reach; ++dz)
             for (int dy = -reach; dy <= reach; ++dy)
                 for (int dx = -reach; dx <= reach; ++dx) {
