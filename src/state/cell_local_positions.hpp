@@ -28,10 +28,9 @@ struct CellLocalPositions {
     // its instructions without holding registers for them.
     Vec3<float> widthHi{0.0f, 0.0f, 0.0f}, widthLo{0.0f, 0.0f, 0.0f};
     Vec3<R> halfLength{R(0), R(0), R(0)};
-    int nx = 1, ny = 1, nz = 1;
     int bitsX = 1, bitsY = 1;  // the code's digits along x and y: bx = 2^bitsX, by = 2^bitsY
-    // The same as floats for separation(): the cells along each axis and their inverses, bx and
-    // bx by, and their inverses (exact: powers of two).
+    // For separation(), as floats: the cells along each axis and their inverses, bx and bx by, and
+    // their inverses (exact: powers of two).
     Vec3<float> cells{1.0f, 1.0f, 1.0f}, inverseCells{1.0f, 1.0f, 1.0f};
     float digitY = 2.0f, digitZ = 4.0f, inverseDigitY = 0.5f, inverseDigitZ = 0.25f;
 
@@ -70,12 +69,9 @@ struct CellLocalPositions {
         return (1LL << (digit_bits(cellsX) + digit_bits(cellsY))) * cellsZ <= (1LL << 24);
     }
     void set_cells(int cellsX, int cellsY, int cellsZ) {
-        nx = cellsX;
-        ny = cellsY;
-        nz = cellsZ;
-        bitsX = digit_bits(nx);
-        bitsY = digit_bits(ny);
-        cells = {static_cast<float>(nx), static_cast<float>(ny), static_cast<float>(nz)};
+        bitsX = digit_bits(cellsX);
+        bitsY = digit_bits(cellsY);
+        cells = {static_cast<float>(cellsX), static_cast<float>(cellsY), static_cast<float>(cellsZ)};
         inverseCells = {1.0f / cells.x, 1.0f / cells.y, 1.0f / cells.z};
         digitY = static_cast<float>(1 << bitsX);
         digitZ = static_cast<float>(1 << (bitsX + bitsY));
