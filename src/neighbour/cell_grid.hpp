@@ -181,18 +181,25 @@ struct CellGrid {
         return radius * radius;
     }
 
+    // Whether the cells around the point u (in cells) can be skipped by their distance from it: u
+    // inside the grid (not NaN, not a particle that blew up out of the box, so the cell arithmetic
+    // stays in the range of an int), and more than 2 reach cells along every axis (offsets that
+    // name distinct cells).
+    SMD_HD SMD_INLINE bool prunable_at(Vec3<R> u) const {
+        const bool inside = u.x >= R(0) && u.x < R(nx) && u.y >= R(0) && u.y < R(ny) && u.z >= R(0) && u.z < R(nz);
+        return inside && nx > 2 * reach && ny > 2 * reach && nz > 2 * reach;
+    }
+
     // for_each_adjacent_offset(), less the cells that lie radius2 or farther from the point u (in
     // cells, inside cell (cx, cy, cz)). A sphere about a point of the middle cell reaches about 21
     // of 27 cells as wide as its radius, and about 84 of 125 cells half as wide: a list build over
     // the narrow cells tests about 40% fewer candidates than over the 27 wide ones. A caller that
-    // must not miss a pair passes pruning_radius2() of its radius. Where an axis has 2 reach cells
-    // or fewer (offsets that name one cell twice), or u is outside the grid (a particle that blew
-    // up), every cell within reach.
+    // must not miss a pair passes pruning_radius2() of its radius. Where the cells are not
+    // prunable_at(u), every cell within reach.
     template <class Visit>
     SMD_HD SMD_INLINE void for_each_cell_near(Vec3<R> u, int cx, int cy, int cz, int batch, R radius2,
                                               Visit&& visit) const {
-        const bool inside = u.x >= R(0) && u.x < R(nx) && u.y >= R(0) && u.y < R(ny) && u.z >= R(0) && u.z < R(nz);
-        if (!inside || nx <= 2 * reach || ny <= 2 * reach || nz <= 2 * reach) {
+        if (!prunable_at(u)) {
             for_each_adjacent_offset(cx, cy, cz, batch, visit);
             return;
         }

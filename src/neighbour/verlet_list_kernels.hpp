@@ -401,12 +401,7 @@ struct BuildLists {
             const CellGrid<R>& grid = v.grid;
             const int reach = grid.reach;
             const Vec3<R> u = grid.scaled(rk, box);
-            // Inside the grid (not NaN, not a particle that blew up out of the box): the cell
-            // arithmetic below then stays in the range of an int.
-            const bool inside = u.x >= R(0) && u.x < R(grid.nx) && u.y >= R(0) && u.y < R(grid.ny) && u.z >= R(0) &&
-                                u.z < R(grid.nz);
-            if (byParticle && inside && reach <= kMaxRowReach && grid.nx > 2 * reach && grid.ny > 2 * reach &&
-                grid.nz > 2 * reach) {
+            if (byParticle && reach <= kMaxRowReach && grid.prunable_at(u)) {
                 // The cells of a row along x are consecutive slots, scanned as one range (the list
                 // is sorted by particle below, so the order of discovery does not matter). A row
                 // whose cells all lie beyond the list radius in y and z is skipped, and a row is
