@@ -4,10 +4,12 @@
 // would find out need a GPU; NVRTC itself needs none, so this runs wherever the CUDA toolkit is
 // (scripts/build_cuda_check.sh runs it on the CI machine). The expression transverser's kernels, as the
 // engine writes them (simulation/expression_transverser.hpp), are instantiated too: a template body
-// (the lanes' combine, the traversals) is checked only where it is instantiated.
+// (the lanes' combine, the traversals) is checked only where it is instantiated. A functor's
+// kResidentBlocks reaches the launch bounds of the kernels compiled for it (launch_kernels.cuh).
 #include <nvrtc.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -17,9 +19,13 @@
 
 namespace {
 
-// The compiler's messages for `source` with the kernels `kernels` (name expressions) instantiated,
-// or "" when it compiles.
-std::string compile(const std::string& source, const std::vector<std::string>& kernels = {}) {
+struct Compiled {
+    std::string log;  // the compiler's messages, "" when it compiles
+    std::string ptx;
+};
+
+// `source` with the kernels `kernels` (name expressions) instantiated.
+Compiled compile(const std::string& source, const std::vector<std::string>& kernels = {}) {
     using structmd::kRuntimeKernelHeaderCount;
     using structmd::kRuntimeKernelHeaders;
     std::vector<const char*> names, texts;
@@ -30,21 +36,72 @@ std::string compile(const std::string& source, const std::vector<std::string>& k
     nvrtcProgram program = nullptr;
     if (nvrtcCreateProgram(&program, source.c_str(), "header_check.cu", kRuntimeKernelHeaderCount, texts.data(),
                            names.data()) != NVRTC_SUCCESS)
-        return "nvrtcCreateProgram failed";
+        return {"nvrtcCreateProgram failed", ""};
     for (const std::string& kernel : kernels) nvrtcAddNameExpression(program, kernel.c_str());
     // A virtual architecture: no GPU is asked which one it is.
     const char* options[] = {"--std=c++17", "--gpu-architecture=compute_90"};
     const nvrtcResult result = nvrtcCompileProgram(program, 2, options);
-    std::string log;
+    Compiled compiled;
     if (result != NVRTC_SUCCESS) {
         size_t size = 0;
         nvrtcGetProgramLogSize(program, &size);
-        log.resize(size);
-        nvrtcGetProgramLog(program, log.data());
-        log = std::string(nvrtcGetErrorString(result)) + "\n" + log;
+        compiled.log.resize(size);
+        nvrtcGetProgramLog(program, compiled.log.data());
+        compiled.log = std::string(nvrtcGetErrorString(result)) + "\n" + compiled.log;
+    } else {
+        size_t size = 0;
+        nvrtcGetPTXSize(program, &size);
+        compiled.ptx.resize(size);
+        nvrtcGetPTX(program, compiled.ptx.data());
     }
     nvrtcDestroyProgram(&program);
-    return log;
+    return compiled;
+}
+
+// The blocks per multiprocessor that the PTX asks for the entry whose mangled name contains `functor`,
+// or -1 where it names none.
+int resident_blocks(const std::string& ptx, const std::string& functor) {
+    size_t entry = ptx.find(".entry");
+    while (entry != std::string::npos) {
+        const size_t next = ptx.find(".entry", entry + 1);
+        const std::string body = ptx.substr(entry, next == std::string::npos ? std::string::npos : next - entry);
+        const size_t nameEnd = body.find('(');
+        const size_t bound = body.find(".minnctapersm");
+        if (body.substr(0, nameEnd).find(functor) != std::string::npos && bound != std::string::npos)
+            return std::atoi(body.c_str() + bound + std::string(".minnctapersm").size());
+        entry = next;
+    }
+    return -1;
+}
+
+// Whether a functor naming kResidentBlocks gets them under both launches, and one naming none the
+// launches' defaults.
+int check_resident_blocks() {
+    const Compiled compiled = compile(
+        "#include \"backends/cuda/launch_kernels.cuh\"\n"
+        "struct NamesFive { static constexpr int kResidentBlocks = 5;\n"
+        "    __device__ void operator()(int64_t, structmd::Lanes) const {} };\n"
+        "struct NamesNone { __device__ void operator()(int64_t, structmd::Lanes) const {} };\n",
+        {"structmd::for_each_lanes_kernel<NamesFive>", "structmd::for_each_lone_lane_kernel<NamesFive>",
+         "structmd::for_each_lanes_kernel<NamesNone>", "structmd::for_each_lone_lane_kernel<NamesNone>"});
+    if (!compiled.log.empty()) {
+        std::printf("the launches with a functor's resident blocks do not compile under NVRTC:\n%s\n", compiled.log.c_str());
+        return 1;
+    }
+    struct Expected {
+        const char* entry;  // mangled: the launch, then the functor
+        int blocks;
+    };
+    int failed = 0;
+    for (const Expected expected : {Expected{"for_each_lanes_kernelI9NamesFive", 5},
+                                    Expected{"for_each_lone_lane_kernelI9NamesFive", 5},
+                                    Expected{"for_each_lanes_kernelI9NamesNone", 8},
+                                    Expected{"for_each_lone_lane_kernelI9NamesNone", 12}}) {
+        const int blocks = resident_blocks(compiled.ptx, expected.entry);
+        std::printf("%s: %d resident blocks (expected %d)\n", expected.entry, blocks, expected.blocks);
+        failed += blocks != expected.blocks;
+    }
+    return failed;
 }
 
 }  // namespace
@@ -53,7 +110,7 @@ int main() {
     int failed = 0;
     for (int h = 0; h < structmd::kRuntimeKernelHeaderCount; ++h) {
         const std::string header = structmd::kRuntimeKernelHeaders[h].name;
-        const std::string log = compile("#include \"" + header + "\"\n");
+        const std::string log = compile("#include \"" + header + "\"\n").log;
         if (log.empty()) continue;
         ++failed;
         std::printf("%s does not compile under NVRTC:\n%s\n", header.c_str(), log.c_str());
@@ -64,10 +121,11 @@ int main() {
         "4 * (r^-12 - r^-6) + (r < 1.5) * mass_j + dx * charge_i", "compute", 2.5, -1);
     for (const char* real : {"float", "double"}) {
         const structmd::ExpressionSumKernels kernels = structmd::expression_sum_kernels(spec, real);
-        const std::string log = compile(kernels.source, kernels.names);
+        const std::string log = compile(kernels.source, kernels.names).log;
         if (log.empty()) continue;
         ++failed;
         std::printf("the expression transverser's kernels in %s do not compile under NVRTC:\n%s\n", real, log.c_str());
     }
+    failed += check_resident_blocks();
     return failed == 0 ? 0 : 1;
 }
