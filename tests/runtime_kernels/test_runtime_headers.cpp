@@ -16,7 +16,6 @@
 #include "backends/cuda/runtime_kernel_headers.hpp"
 #include "simulation/expression_transverser.hpp"
 
-
 namespace {
 
 struct Compiled {
@@ -85,7 +84,8 @@ int check_resident_blocks() {
         {"structmd::for_each_lanes_kernel<NamesFive>", "structmd::for_each_lone_lane_kernel<NamesFive>",
          "structmd::for_each_lanes_kernel<NamesNone>", "structmd::for_each_lone_lane_kernel<NamesNone>"});
     if (!compiled.log.empty()) {
-        std::printf("the launches with a functor's resident blocks do not compile under NVRTC:\n%s\n", compiled.log.c_str());
+        std::printf("the launches with a functor's resident blocks do not compile under NVRTC:\n%s\n",
+                    compiled.log.c_str());
         return 1;
     }
     struct Expected {

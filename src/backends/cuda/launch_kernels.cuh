@@ -51,9 +51,9 @@ __global__ void __launch_bounds__(128, (ResidentBlocks<F, 8>::value)) for_each_l
 }
 
 // for_each_lanes_kernel where every item has one lane (a large system): no shuffles and fewer values
-// live, so by default 12 blocks per multiprocessor (at most 40 registers) fit. The LJ pair kernel at a million
-// particles then keeps about 3/4 of the warps resident instead of half and runs 20% faster; with
-// several lanes the same cap spills and cost 2-7% (docs/benchmarks.md).
+// live, so by default 12 blocks per multiprocessor (at most 40 registers) fit. The LJ pair kernel at
+// a million particles then keeps about 3/4 of the warps resident instead of half and runs 20% faster;
+// with several lanes the same cap spills and cost 2-7% (docs/benchmarks.md).
 template <class F>
 __global__ void __launch_bounds__(128, (ResidentBlocks<F, 12>::value)) for_each_lone_lane_kernel(int64_t n, int, F f) {
     follow_previous_kernel();
