@@ -263,12 +263,12 @@ def error(backend, method, n, tolerance, reference_max):
         return None
     if method in PARTICLE_FLUIDS:
         return temperature_excess(backend, method, n) if n <= reference_max else None
+    if METHODS[method][1] and n > reference_max:
+        return None
     measured = displacement(backend, "double", method, n, tolerance)
     if not METHODS[method][1]:
         positions, forces = placement(method, n)
         return relative_error(measured, rpy_product(positions, forces))
-    if n > reference_max:
-        return None
     if method in RPY_REFERENCED:
         return relative_error(measured, displacement(backend, "double", "pse", n, REFERENCE_TOLERANCE,
                                                      radius=immersed_boundary_radius(side(method, n))))
