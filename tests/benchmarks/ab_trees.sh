@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# Before and after in one GPU lease: the working tree against an earlier commit, both built on the
+# device machine and their benchmarks alternated, so that a change's gain is not confused with the
+# spread between leases (docs/benchmarks.md quotes such pairs). Run from the repository root:
+#
+#   tests/benchmarks/ab_trees.sh prepare REV     here: the tree at REV into .deps/ab/before, the headers
+#                                                the device lacks into .deps/include, wheels into .whl
+#   tests/benchmarks/ab_trees.sh build           device: both trees built under /tmp/ab; a call cut
+#                                                short by its time limit goes on where it stopped
+#   tests/benchmarks/ab_trees.sh label           device: ctest -L gpu in the working tree's build
+#   tests/benchmarks/ab_trees.sh round K OUT     device: both trees' benchmarks, before first on odd K
+#
+# The device calls carry .deps and .whl (the device tool's `carry`). Environment (optional):
+#   AB_BACKEND      cuda (default) or cpu (a smoke run on a machine without a GPU)
+#   AB_PRECISIONS   the precisions built and run (default "single mixed double"; the LJ liquid runs all
+#                   but double, and DPStokes's error, against a double-precision run, needs double)
+#   AB_LJ_SIZES     default "4000 10976 62500 1000188 4000000"
+#   AB_CHAINS_SIZE  default 1000000 (0: no chains)
+#   AB_DPSTOKES     DPStokes sizes, default "1000 10000" ("": none)
+#   AB_SECONDS      seconds a timed call of the LJ benchmark (default 0.3; DPStokes: AB_HYDRO_SECONDS, 0.5)
+#
+# Each round writes OUT/round-K-TREE.csv (structmd_lj_benchmark's rows, liquid and chains) and
+# OUT/round-K-TREE-hydro.csv (hydrodynamics_benchmark.py's), TREE being before or after, and prints the
+# after/before ratio of every row.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+backend=${AB_BACKEND:-cuda}
+precisions=${AB_PRECISIONS:-single mixed double}
+work=/tmp/ab
+
+tree_source() { [ "$1" = before ] && echo "$work/before" || echo "$work/after"; }
+
+# The carried wheels into /tmp/site, where python3 lacks what they hold (the device machine).
+install_wheels() {
+  PYTHONPATH=/tmp/site python3 -c "import cffi, ase" 2> /dev/null && return
+  python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --upgrade --target /tmp/site .whl/*.whl
+}
+
+case "${1:-}" in
+  prepare)
+    rev=${2:?prepare needs a commit}
+    rm -rf .deps/ab && mkdir -p .deps/ab/before
+    git archive "$rev" | tar -x -C .deps/ab/before
+    bash scripts/install-deps.sh build
+    for header in Random123 CLI dlpack; do
+      [ -d ".deps/include/$header" ] || cp -r "/usr/include/$header" .deps/include/
+    done
+    # cffi for the Python binding; ase for the GPU label's Python tests (numpy and scipy are there).
+    python3 -m pip download -q --no-deps --only-binary=:all: --python-version 3.12 --implementation cp \
+      --platform manylinux_2_28_x86_64 --platform manylinux_2_17_x86_64 --platform manylinux2014_x86_64 \
+      -d .whl cffi==1.17.1 pycparser==2.22 ase==3.23.0
+    echo "prepared: .deps/ab/before at $(git rev-parse --short "$rev"), wheels in .whl"
+    ;;
+  build)
+    if [ ! -d "$work/after" ]; then
+      mkdir -p "$work/after" "$work/before"
+      tar --exclude=./.deps --exclude=./.whl --exclude='./build*' -cf - . | tar -xf - -C "$work/after"
+      cp -r .deps/ab/before/. "$work/before/"
+      for tree in after before; do mkdir -p "$work/$tree/.deps" && cp -r .deps/include "$work/$tree/.deps/"; done
+    fi
+    cuda=$([ "$backend" = cuda ] && echo ON || echo OFF)
+    for tree in after before; do
+      source_dir=$(tree_source "$tree")
+      targets=(structmd structmd_lj_benchmark)
+      [ $tree = after ] && [ "$backend" = cuda ] && targets=(all)
+      start=$SECONDS
+      cmake -S "$source_dir" -B "$source_dir/build" -DCMAKE_BUILD_TYPE=Release -DSTRUCTMD_CUDA="$cuda" \
+        "-DSTRUCTMD_PRECISIONS=${precisions// /;}" > "$work/$tree-configure.log" 2>&1
+      if cmake --build "$source_dir/build" -j"$(nproc)" --target "${targets[@]}" > "$work/$tree-build.log" 2>&1; then
+        echo "$tree built in $((SECONDS - start)) s"
+      else
+        grep -m 20 -B 2 -A 8 "error" "$work/$tree-build.log"
+        echo "$tree: build failed after $((SECONDS - start)) s ($work/$tree-build.log)"
+        exit 1
+      fi
+    done
+    ;;
+  label)
+    export PYTHONPATH=/tmp/site
+    install_wheels
+    cd "$work/after/build" && ctest -L gpu -j12 --output-on-failure
+    ;;
+  round)
+    round=${2:?round needs its number} out=${3:?round needs an output folder}
+    mkdir -p "$out"
+    install_wheels
+    order="before after"
+    [ $((round % 2)) -eq 0 ] && order="after before"
+    precision_flags=()
+    for p in $precisions; do [ "$p" = double ] || precision_flags+=(--precision "$p"); done
+    size_flags=()
+    for n in ${AB_LJ_SIZES:-4000 10976 62500 1000188 4000000}; do size_flags+=(--n "$n"); done
+    for tree in $order; do
+      source_dir=$(tree_source "$tree")
+      bench="$source_dir/build/tests/benchmarks/structmd_lj_benchmark"
+      common=(--backend "$backend" --seconds "${AB_SECONDS:-0.3}" --repeats 2)
+      "$bench" "${common[@]}" "${precision_flags[@]}" "${size_flags[@]}" --csv "$work/lj.csv" > /dev/null
+      cp "$work/lj.csv" "$out/round-$round-$tree.csv"
+      if [ "${AB_CHAINS_SIZE:-1000000}" != 0 ]; then
+        "$bench" "${common[@]}" --precision single --scene chains --n "${AB_CHAINS_SIZE:-1000000}" \
+          --csv "$work/chains.csv" > /dev/null
+        tail -n +2 "$work/chains.csv" >> "$out/round-$round-$tree.csv"
+      fi
+      dpstokes_flags=()
+      for n in ${AB_DPSTOKES-1000 10000}; do dpstokes_flags+=(--n "$n"); done
+      # One benchmark script times both trees' libraries, each through its own binding. The error is
+      # measured against a double-precision run, where the trees have double.
+      reference_max=0
+      [[ " $precisions " == *" double "* ]] && reference_max=1000
+      if [ ${#dpstokes_flags[@]} -gt 0 ]; then
+        STRUCTMD_LIBRARY="$source_dir/build/src/libstructmd.so" \
+          PYTHONPATH="$source_dir/bindings/python:/tmp/site" \
+          python3 "$work/after/tests/benchmarks/hydrodynamics_benchmark.py" --backend "$backend" \
+          --seconds "${AB_HYDRO_SECONDS:-0.5}" --method dpstokes "${dpstokes_flags[@]}" --reference-max "$reference_max" \
+          --csv "$out/round-$round-$tree-hydro.csv" > /dev/null
+      fi
+    done
+    python3 - "$out" "$round" <<'EOF'
+import csv, sys
+out, round_ = sys.argv[1], sys.argv[2]
+def rows(tree, suffix, key, rate):
+    try:
+        with open(f"{out}/round-{round_}-{tree}{suffix}.csv") as f:
+            return {tuple(r[k] for k in key): float(r[rate]) for r in csv.DictReader(f) if r.get(rate)}
+    except FileNotFoundError:
+        return {}
+for suffix, key, rate in (("", ("scene", "n", "precision"), "particle_steps_per_second"),
+                          ("-hydro", ("method", "n", "precision"), "steps_per_second")):
+    before, after = rows("before", suffix, key, rate), rows("after", suffix, key, rate)
+    for k in before:
+        if k in after:
+            print(f"round {round_} {' '.join(k)}: {before[k]:.4g} -> {after[k]:.4g} ({100 * (after[k] / before[k] - 1):+.1f}%)")
+EOF
+    ;;
+  *)
+    sed -n '2,25p' "$0"
+    exit 2
+    ;;
+esac
