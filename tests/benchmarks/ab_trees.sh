@@ -27,9 +27,7 @@ cd "$(dirname "$0")/../.."
 
 backend=${AB_BACKEND:-cuda}
 precisions=${AB_PRECISIONS:-single mixed double}
-work=/tmp/ab
-
-tree_source() { [ "$1" = before ] && echo "$work/before" || echo "$work/after"; }
+work=/tmp/ab  # the trees' sources and builds: $work/before and $work/after
 
 # The carried wheels into /tmp/site, where python3 lacks what they hold (the device machine).
 install_wheels() {
@@ -61,7 +59,7 @@ case "${1:-}" in
     fi
     cuda=$([ "$backend" = cuda ] && echo ON || echo OFF)
     for tree in after before; do
-      source_dir=$(tree_source "$tree")
+      source_dir=$work/$tree
       targets=(structmd structmd_lj_benchmark)
       [ $tree = after ] && [ "$backend" = cuda ] && targets=(all)
       start=$SECONDS
@@ -91,8 +89,13 @@ case "${1:-}" in
     for p in $precisions; do [ "$p" = double ] || precision_flags+=(--precision "$p"); done
     size_flags=()
     for n in ${AB_LJ_SIZES:-4000 10976 62500 1000188 4000000}; do size_flags+=(--n "$n"); done
+    dpstokes_flags=()
+    for n in ${AB_DPSTOKES-1000 10000}; do dpstokes_flags+=(--n "$n"); done
+    # DPStokes's error is measured against a double-precision run, where the trees have double.
+    reference_max=0
+    [[ " $precisions " == *" double "* ]] && reference_max=1000
     for tree in $order; do
-      source_dir=$(tree_source "$tree")
+      source_dir=$work/$tree
       bench="$source_dir/build/tests/benchmarks/structmd_lj_benchmark"
       common=(--backend "$backend" --seconds "${AB_SECONDS:-0.3}" --repeats 2)
       "$bench" "${common[@]}" "${precision_flags[@]}" "${size_flags[@]}" --csv "$work/lj.csv" > /dev/null
@@ -102,12 +105,7 @@ case "${1:-}" in
           --csv "$work/chains.csv" > /dev/null
         tail -n +2 "$work/chains.csv" >> "$out/round-$round-$tree.csv"
       fi
-      dpstokes_flags=()
-      for n in ${AB_DPSTOKES-1000 10000}; do dpstokes_flags+=(--n "$n"); done
-      # One benchmark script times both trees' libraries, each through its own binding. The error is
-      # measured against a double-precision run, where the trees have double.
-      reference_max=0
-      [[ " $precisions " == *" double "* ]] && reference_max=1000
+      # One benchmark script times both trees' libraries, each through its own binding.
       if [ ${#dpstokes_flags[@]} -gt 0 ]; then
         STRUCTMD_LIBRARY="$source_dir/build/src/libstructmd.so" \
           PYTHONPATH="$source_dir/bindings/python:/tmp/site" \
@@ -134,7 +132,7 @@ for suffix, key, rate in (("", ("scene", "n", "precision"), "particle_steps_per_
 EOF
     ;;
   *)
-    sed -n '2,25p' "$0"
+    sed -n '2,/^set -euo/p' "$0" | grep '^#'
     exit 2
     ;;
 esac
