@@ -57,16 +57,16 @@ Compiled compile(const std::string& source, const std::vector<std::string>& kern
     return compiled;
 }
 
-// The blocks per multiprocessor that the PTX asks for the entry whose mangled name contains `functor`,
+// The blocks per multiprocessor that the PTX asks for the entry whose mangled name contains `name`,
 // or -1 where it names none.
-int resident_blocks(const std::string& ptx, const std::string& functor) {
+int resident_blocks(const std::string& ptx, const std::string& name) {
     size_t entry = ptx.find(".entry");
     while (entry != std::string::npos) {
         const size_t next = ptx.find(".entry", entry + 1);
         const std::string body = ptx.substr(entry, next == std::string::npos ? std::string::npos : next - entry);
         const size_t nameEnd = body.find('(');
         const size_t bound = body.find(".minnctapersm");
-        if (body.substr(0, nameEnd).find(functor) != std::string::npos && bound != std::string::npos)
+        if (body.substr(0, nameEnd).find(name) != std::string::npos && bound != std::string::npos)
             return std::atoi(body.c_str() + bound + std::string(".minnctapersm").size());
         entry = next;
     }
