@@ -58,7 +58,8 @@ Compiled compile(const std::string& source, const std::vector<std::string>& kern
 }
 
 // The blocks per multiprocessor that the PTX asks for the entry whose mangled name contains `name`,
-// or -1 where it names none.
+// or -1 where it names none. Only an entry's own name, up to its '(', is matched: the name is also in
+// the `// .globl` line ahead of the entry and in its parameters' names.
 int resident_blocks(const std::string& ptx, const std::string& name) {
     size_t entry = ptx.find(".entry");
     while (entry != std::string::npos) {
