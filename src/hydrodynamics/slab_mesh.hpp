@@ -140,7 +140,7 @@ public:
         backend_.resize(spectrum_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
         backend_.resize(solved_, static_cast<size_t>(3 * plan.grid.spectrum_points()));
         const int64_t waves = int64_t(plan.grid.half_x()) * plan.grid.ny;
-        backend_.resize(kernel_, static_cast<size_t>(4 * waves * plan.grid.nz));
+        backend_.resize(kernel_, static_cast<size_t>(waves * plan.grid.nz));
         backend_.for_each(waves * plan.grid.nz,
                           SlabKernelTable{plan.grid, plan.box[0], plan.box[1], spacing, kernel_.data()});
     }
@@ -196,7 +196,7 @@ private:
     typename B::template Buffer<R> weight_;
     typename B::template Buffer<R> field_;  // x, y, z grids: the density, then the velocity
     typename B::template Buffer<Complex<R>> spectrum_, solved_;
-    typename B::template Buffer<double> kernel_;  // SlabKernelTable's
+    typename B::template Buffer<SlabKernelEntry> kernel_;  // SlabKernelTable's
 };
 #endif
 

@@ -33,9 +33,10 @@ void run(structmd::FftGrid grid, int launches) {
     // The benchmark's slit: spacing 0.5 in the plane, walls (nz - 1) 0.5 apart, viscosity 1.
     const double spacing = 0.5, lengthX = grid.nx * spacing, lengthY = grid.ny * spacing;
     const int64_t waves = int64_t(grid.half_x()) * grid.ny, spectrum = 3 * waves * grid.nz;
-    double* table = nullptr;
+    // 32 bytes an entry in every tree; its type is the tree's (four doubles, or SlabKernelEntry).
+    decltype(SlabKernelTable::table) table = nullptr;
     Complex<R>*force = nullptr, *velocity = nullptr;
-    check(cudaMalloc(&table, sizeof(double) * 4 * waves * grid.nz), "table");
+    check(cudaMalloc(reinterpret_cast<void**>(&table), 32 * waves * grid.nz), "table");
     check(cudaMalloc(&force, sizeof(Complex<R>) * spectrum), "force");
     check(cudaMalloc(&velocity, sizeof(Complex<R>) * spectrum), "velocity");
     const int64_t entries = waves * grid.nz;

@@ -36,10 +36,10 @@ double gauss_legendre(const F& f, double band, int panels) {
     return sum * 0.5 * width / M_PI;
 }
 
-std::vector<double> kernel_table(const FftGrid& grid, double lengthX, double lengthY, double zSpacing) {
-    std::vector<double> table(4 * size_t(grid.half_x()) * grid.ny * grid.nz);
+std::vector<SlabKernelEntry> kernel_table(const FftGrid& grid, double lengthX, double lengthY, double zSpacing) {
+    std::vector<SlabKernelEntry> table(size_t(grid.half_x()) * grid.ny * grid.nz);
     const SlabKernelTable fill{grid, lengthX, lengthY, zSpacing, table.data()};
-    for (int64_t i = 0; i < int64_t(table.size() / 4); ++i) fill(i);
+    for (int64_t i = 0; i < int64_t(table.size()); ++i) fill(i);
     return table;
 }
 
@@ -47,7 +47,7 @@ TEST(SlabKernelTable, MatchesAnIndependentQuadratureOnATallGrid) {
     // 2001 nodes: at the largest separations cos(q s) turns 1000 times over the band.
     const FftGrid grid{8, 8, 2001};
     const double length = 8.0, hz = 0.5, band = M_PI / hz;
-    std::vector<double> table(4 * size_t(grid.half_x()) * grid.ny * grid.nz);
+    std::vector<SlabKernelEntry> table(size_t(grid.half_x()) * grid.ny * grid.nz);
     const SlabKernelTable fill{grid, length, length, hz, table.data()};
     double worst = 0.0;
     for (int64_t at : {1, 3, 2 + 2 * grid.half_x()}) {  // k = (1, 0), (3, 0) and (2, 2) times 2 pi / 8
@@ -57,7 +57,8 @@ TEST(SlabKernelTable, MatchesAnIndependentQuadratureOnATallGrid) {
         double size = 0.0;
         for (int n : {0, 1, 7, 400, 1999, 2000}) {
             fill(at * grid.nz + n);
-            const double* out = table.data() + 4 * (at * grid.nz + n);
+            const SlabKernelEntry& entry = table[at * grid.nz + n];
+            const double out[4] = {entry.tt, entry.ll, entry.zz, entry.lz};
             const double s = n * hz;
             const int panels = 4 * n + 400;
             const double reference[4] = {
@@ -83,7 +84,7 @@ TEST(SlabKernelTable, MatchesAnIndependentQuadratureOnATallGrid) {
 template <class R>
 std::vector<std::complex<double>> slit_velocity(const FftGrid& grid, double length, double hz,
                                                 const std::vector<std::complex<double>>& force) {
-    const std::vector<double> table = kernel_table(grid, length, length, hz);
+    const std::vector<SlabKernelEntry> table = kernel_table(grid, length, length, hz);
     std::vector<Complex<R>> f(force.size()), u(force.size());
     for (size_t i = 0; i < force.size(); ++i) f[i] = {R(force[i].real()), R(force[i].imag())};
     const int64_t plane = int64_t(grid.half_x()) * grid.ny;
