@@ -50,9 +50,17 @@ struct NeighbourView {
     SMD_HD SMD_INLINE void for_each_neighbour(int k, Visit&& visit, Lanes lanes = {}) const {
         const int n = count[k];
         if (n <= capacity) {
+            // The next entry is loaded before this one's visit, so that a neighbour's position is
+            // one load away from its visit rather than two dependent loads.
             const int* entries = entries_of(k);
+            int m = lanes.lane;
+            int s = m < n ? entries[m * entryStride] : 0;
             SMD_UNROLL4
-            for (int m = lanes.lane; m < n; m += lanes.count) visit(entries[m * entryStride]);
+            for (; m < n; m += lanes.count) {
+                const int next = m + lanes.count < n ? entries[(m + lanes.count) * entryStride] : 0;
+                visit(s);
+                s = next;
+            }
             return;
         }
         int candidate = 0;
