@@ -224,10 +224,10 @@ struct SlabStokesSolve {
     const Complex<R>* force;
     Complex<R>* velocity;
     const SlabKernelEntry* kernel;  // SlabKernelTable's
-    FftGrid grid;              // nz: the z nodes
-    double lengthX, lengthY;   // the periodic box
-    double zSpacing;           // hz = H / (nz - 1)
-    double scale;              // hz / (nx ny eta): the quadrature weight, the transforms' norm, the viscosity
+    FftGrid grid;                   // nz: the z nodes
+    double lengthX, lengthY;        // the periodic box
+    double zSpacing;                // hz = H / (nz - 1)
+    double scale;                   // hz / (nx ny eta): the quadrature weight, the transforms' norm, the viscosity
     SlabWalls walls;
 
     // Its doubles need more than the default launch's 64 registers: under that cap 35% of its memory
