@@ -70,6 +70,28 @@ TEST(VerletList, FindsEveryPairAfterABuild) {
     EXPECT_EQ(list.builds(), 1);
 }
 
+// Several lanes share out a slot's entries as a GPU warp's do: lane l visits entries l, l + count,
+// ... of the one-lane order, each once, also where a slot has fewer entries than lanes.
+TEST(VerletList, LanesShareOutASlotsEntriesInTheOneLaneOrder) {
+    System s(800, 12.0, 13.0, 14.0, 1);
+    List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
+    const auto [order, lists] = s.slots_and_lists(list);
+    const NeighbourView<double> view = list.view();
+    int fewerThanLanes = 0;
+    for (int count : {2, 4, 8, 32})
+        for (int k = 0; k < s.n; ++k) {
+            const std::vector<int>& all = lists[k];
+            if (int(all.size()) < count) ++fewerThanLanes;
+            for (int lane = 0; lane < count; ++lane) {
+                std::vector<int> wanted, seen;
+                for (size_t m = lane; m < all.size(); m += count) wanted.push_back(all[m]);
+                view.for_each_neighbour(k, [&](int t) { seen.push_back(view.order[t]); }, Lanes{lane, count});
+                EXPECT_EQ(seen, wanted) << "slot " << k << ", lane " << lane << " of " << count;
+            }
+        }
+    EXPECT_GT(fewerThanLanes, 0) << "no slot had fewer entries than lanes";
+}
+
 TEST(VerletList, StillCompleteAfterMovesBelowHalfTheSkin) {
     System s(800, 12.0, 12.0, 12.0, 2);
     List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);  // skin 0.3
