@@ -6,7 +6,9 @@
 #   tests/benchmarks/ab_trees.sh prepare REV     here: the tree at REV into .deps/ab/before, the headers
 #                                                the device lacks into .deps/include, wheels into .whl
 #   tests/benchmarks/ab_trees.sh build           device: both trees built under /tmp/ab; a call cut
-#                                                short by its time limit goes on where it stopped
+#                                                short by its time limit goes on where it stopped. The
+#                                                trees are copied there by a lease's first call only:
+#                                                to build a tree edited since, rm -rf /tmp/ab first
 #   tests/benchmarks/ab_trees.sh label           device: ctest -L gpu in the working tree's build
 #   tests/benchmarks/ab_trees.sh round K OUT     device: both trees' benchmarks, before first on odd K
 #
