@@ -20,10 +20,12 @@ typedef unsigned long long uint64_t;
 #define SMD_HD __host__ __device__
 #define SMD_INLINE __forceinline__
 #define SMD_UNROLL4 _Pragma("unroll 4")
+#define SMD_UNROLL _Pragma("unroll")
 #else
 #define SMD_HD
 #define SMD_INLINE inline
 #define SMD_UNROLL4
+#define SMD_UNROLL
 #endif
 
 // The CPU backend's own loops (host_rows of the pair kernel and the list build): every call inlined,

@@ -14,33 +14,38 @@
 
 namespace structmd {
 
-// Which bonds each particle takes part in, in backend memory, as BondKernel reads them.
-template <class B>
+// Which bonds of N particles each particle takes part in, in backend memory, as BondKernel reads them.
+template <class B, int N>
 struct BondIndex {
-    typename B::template Buffer<int> firstEntry, entries, members;
+    typename B::template Buffer<int> firstEntry;
+    typename B::template Buffer<BondEntry<N>> entries;
 
     // members: N particle indices per bond.
     BondIndex(const B& backend, int64_t particles, const std::vector<int>& bondMembers) {
         std::vector<int> first(particles + 1, 0);
         for (int m : bondMembers) ++first[m + 1];
         for (int64_t i = 0; i < particles; ++i) first[i + 1] += first[i];
-        std::vector<int> entryOf(bondMembers.size());
+        std::vector<BondEntry<N>> entryOf(bondMembers.size());
         std::vector<int> next(first.begin(), first.end() - 1);
-        for (size_t k = 0; k < bondMembers.size(); ++k) entryOf[next[bondMembers[k]]++] = static_cast<int>(k);
+        for (size_t k = 0; k < bondMembers.size(); ++k) {
+            BondEntry<N>& entry = entryOf[next[bondMembers[k]]++];
+            entry.bondSlot = static_cast<int>(k);
+            const size_t bond = k / N;
+            for (int m = 0; m < N; ++m) entry.member[m] = bondMembers[bond * N + m];
+        }
         backend.upload(firstEntry, first.data(), first.size());
         backend.upload(entries, entryOf.data(), entryOf.size());
-        backend.upload(members, bondMembers.data(), bondMembers.size());
     }
 
     template <class Kernel, class R>
     Kernel kernel(const Particles<B, R>& particles, const typename Kernel::Params* params,
                   const ForceOutputs<R>& out) const {
-        return Kernel{particles.pos.data(), particles.box, firstEntry.data(), entries.data(), members.data(), params, out};
+        return Kernel{particles.pos.data(), particles.box, firstEntry.data(), entries.data(), params, out};
     }
 
-    template <int N, class R, class Params>
+    template <class R, class Params>
     BondsAroundSeed<N, R, Params> around(const Particles<B, R>& particles, const Params* params, int seed) const {
-        return {particles.pos.data(), particles.box, firstEntry.data(), entries.data(), members.data(), params, seed};
+        return {particles.pos.data(), particles.box, firstEntry.data(), entries.data(), params, seed};
     }
 };
 
@@ -61,7 +66,7 @@ public:
     void add_pair_forces(Particles<B, R>& particles, int seed, Real4<R>* out) override {
         if constexpr (Potential::arity > 1)
             backend_.for_each(particles.count, BondForceOnSeedKernel<Potential, R>{
-                                                   index_.template around<arity>(particles, params_.data(), seed), out});
+                                                   index_.around(particles, params_.data(), seed), out});
     }
 
     // The parameters again in dual numbers (one per bond, as given to the constructor), for the Hessian.
@@ -73,7 +78,7 @@ public:
     void add_hessian(Particles<B, R>& particles, int seed, Tensor3<R>* blocks) override {
         backend_.for_each(particles.count,
                           BondHessianKernel<Potential, R>{
-                              index_.template around<arity>(particles, dualParams_.data(), seed), blocks});
+                              index_.around(particles, dualParams_.data(), seed), blocks});
     }
 
     bool couples_to_lambda() const override { return couples_to_lambda_v; }
@@ -98,7 +103,7 @@ private:
     static constexpr bool couples_to_lambda_v = structmd::couples_to_lambda<Potential>::value;
 
     const B& backend_;
-    BondIndex<B> index_;
+    BondIndex<B, arity> index_;
     typename B::template Buffer<Params> params_;
     typename B::template Buffer<typename Potential::template Params<Dual<R>>> dualParams_;
     bool hessian_ = false;

@@ -155,7 +155,7 @@ public:
 
 private:
     const B& backend_;
-    BondIndex<B> index_;
+    BondIndex<B, N> index_;
     typename B::template Buffer<R> params_;
     OutputKernels<B> kernels_;
 };

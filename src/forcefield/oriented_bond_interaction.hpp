@@ -27,8 +27,7 @@ struct OrientedBondKernel {
     const Real4<R>* dir;
     Box<R> box;
     const int* firstEntry;
-    const int* entries;
-    const int* members;
+    const BondEntry<2>* entries;
     const Params* params;
     ForceOutputs<R> out;
 
@@ -37,14 +36,13 @@ struct OrientedBondKernel {
         R e = 0;
         Tensor3<R> w = zero_tensor<R>();
         for (int k = firstEntry[i]; k < firstEntry[i + 1]; ++k) {
-            const int b = entries[k] / 2;
-            const int slot = entries[k] % 2;
-            const int* ids = members + 2 * b;
-            const Vec3<R> first = xyz(pos[ids[0]]);
-            const Vec3<R> r[2] = {first, first + box.minimum_image(xyz(pos[ids[1]]) - first)};
-            const Real4<R> q[2] = {dir[ids[0]], dir[ids[1]]};
+            const BondEntry<2> entry = entries[k];
+            const int slot = entry.bondSlot % 2;
+            Vec3<R> r[2];
+            bond_positions(pos, box, entry, r);
+            const Real4<R> q[2] = {dir[entry.member[0]], dir[entry.member[1]]};
             Vec3<R> force[2], torque[2];
-            const R energy = Potential::compute(r, q, params[b], force, torque);
+            const R energy = Potential::compute(r, q, params[entry.bondSlot / 2], force, torque);
             if (WantForce) f += force[slot];
             if (WantForce && out.torque) t += torque[slot];
             if (WantEnergy) e += R(0.5) * energy;
@@ -73,14 +71,14 @@ public:
                               OrientedBondKernel<Potential, R, decltype(force)::value, decltype(energy)::value,
                                                  decltype(virial)::value>{
                                   particles.pos.data(), particles.dir.data(), particles.box,
-                                  index_.firstEntry.data(), index_.entries.data(), index_.members.data(),
+                                  index_.firstEntry.data(), index_.entries.data(),
                                   params_.data(), out});
         });
     }
 
 private:
     const B& backend_;
-    BondIndex<B> index_;
+    BondIndex<B, 2> index_;
     typename B::template Buffer<Params> params_;
 };
 

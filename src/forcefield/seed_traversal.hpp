@@ -5,6 +5,7 @@
 #include "core/box.hpp"
 #include "core/hd.hpp"
 #include "core/vec.hpp"
+#include "forcefield/bond_kernel.hpp"
 #include "forcefield/pair_kernel.hpp"
 #include "neighbour/neighbour_view.hpp"
 
@@ -36,27 +37,24 @@ struct BondsAroundSeed {
     const Real4<R>* pos;
     Box<R> box;
     const int* firstEntry;
-    const int* entries;
-    const int* members;
+    const BondEntry<N>* entries;
     const Params* params;
     int seed;
 
     // For particle i: visit(params, slot, seedSlot, r) for each bond that holds both i (at `slot`)
-    // and the seed (at `seedSlot`), with r[0] the first particle's position and
-    // r[m] = r[m-1] + minimum_image(x_m - x_{m-1}), as the bond kernel gives them to the functor.
+    // and the seed (at `seedSlot`), with r the bond's positions made whole, as the bond kernel gives
+    // them to the functor.
     template <class Visit>
     SMD_HD SMD_INLINE void for_each_of(int64_t i, Visit&& visit) const {
         for (int k = firstEntry[i]; k < firstEntry[i + 1]; ++k) {
-            const int b = entries[k] / N;
-            const int* ids = members + N * b;
+            const BondEntry<N> entry = entries[k];
             int seedSlot = -1;
             for (int m = 0; m < N; ++m)
-                if (ids[m] == seed) seedSlot = m;
+                if (entry.member[m] == seed) seedSlot = m;
             if (seedSlot < 0) continue;
             Vec3<R> r[N];
-            r[0] = xyz(pos[ids[0]]);
-            for (int m = 1; m < N; ++m) r[m] = r[m - 1] + box.minimum_image(xyz(pos[ids[m]]) - xyz(pos[ids[m - 1]]));
-            visit(params[b], entries[k] % N, seedSlot, r);
+            bond_positions(pos, box, entry, r);
+            visit(params[entry.bondSlot / N], entry.bondSlot % N, seedSlot, r);
         }
     }
 };
