@@ -5,11 +5,14 @@
 #
 #   tests/benchmarks/ab_trees.sh prepare REV     here: the tree at REV into .deps/ab/before, the headers
 #                                                the device lacks into .deps/include, wheels into .whl
-#   tests/benchmarks/ab_trees.sh build           device: both trees built under /tmp/ab; a call cut
-#                                                short by its time limit goes on where it stopped. The
-#                                                trees are copied there by a lease's first call only:
-#                                                to build a tree edited since, rm -rf /tmp/ab first
-#   tests/benchmarks/ab_trees.sh label           device: ctest -L gpu in the working tree's build
+#   tests/benchmarks/ab_trees.sh build           device: both trees' library and LJ benchmark built under
+#                                                /tmp/ab; a call cut short by its time limit goes on
+#                                                where it stopped. The trees are copied there by a
+#                                                lease's first call only: to build a tree edited since,
+#                                                rm -rf /tmp/ab first
+#   tests/benchmarks/ab_trees.sh label           device: the rest of the working tree's targets (tests,
+#                                                other benchmarks; a call cut short goes on), then
+#                                                ctest -L gpu in its build
 #   tests/benchmarks/ab_trees.sh round K OUT     device: both trees' benchmarks, before first on odd K
 #
 # The device calls carry .deps and .whl (the device tool's `carry`). Environment (optional):
@@ -63,7 +66,6 @@ case "${1:-}" in
     for tree in after before; do
       source_dir=$work/$tree
       targets=(structmd structmd_lj_benchmark)
-      [ $tree = after ] && [ "$backend" = cuda ] && targets=(all)
       start=$SECONDS
       cmake -S "$source_dir" -B "$source_dir/build" -DCMAKE_BUILD_TYPE=Release -DSTRUCTMD_CUDA="$cuda" \
         "-DSTRUCTMD_PRECISIONS=${precisions// /;}" > "$work/$tree-configure.log" 2>&1
@@ -79,6 +81,12 @@ case "${1:-}" in
   label)
     export PYTHONPATH=/tmp/site
     install_wheels
+    start=$SECONDS
+    cmake --build "$work/after/build" -j"$(nproc)" > "$work/after-build-all.log" 2>&1 || {
+      grep -m 20 -B 2 -A 8 "error" "$work/after-build-all.log"
+      exit 1
+    }
+    echo "after: the rest of its targets built in $((SECONDS - start)) s"
     cd "$work/after/build" && ctest -L gpu -j12 --output-on-failure
     ;;
   round)
