@@ -35,8 +35,34 @@ struct PairFilter {
     // Whether every pair is accepted, so a caller need not look up which particles it has.
     SMD_HD SMD_INLINE bool trivial() const { return condition == PairCondition::all && !excludedStart; }
 
-    SMD_HD SMD_INLINE bool accepts(int i, int j) const {
-        if (excludedStart && is_excluded(i, j)) return false;
+    SMD_HD SMD_INLINE bool accepts(int i, int j) const { return !(excludedStart && is_excluded(i, j)) && meets_condition(i, j); }
+
+    // A particle's exclusions held in registers where it has few (a bead of a chain has two to four),
+    // so that a list build, which tests the same particle against each of its candidates, compares
+    // instead of searching memory for every one.
+    struct FewExclusions {
+        static constexpr int kMost = 4;
+        int id[kMost];  // the exclusions, the places past them -1 (no particle)
+        bool many;      // more than kMost: accepts() searches the list
+    };
+    SMD_HD SMD_INLINE FewExclusions few_exclusions_of(int i) const {
+        FewExclusions few{{-1, -1, -1, -1}, false};
+        if (!excludedStart) return few;
+        const int first = excludedStart[i], count = excludedStart[i + 1] - first;
+        few.many = count > FewExclusions::kMost;
+        if (!few.many)
+            for (int m = 0; m < count; ++m) few.id[m] = excluded[first + m];
+        return few;
+    }
+    // accepts(i, j) for the i whose exclusions `few` holds.
+    SMD_HD SMD_INLINE bool accepts(int i, int j, const FewExclusions& few) const {
+        const bool excluded = few.many ? is_excluded(i, j)
+                                       : (j == few.id[0]) | (j == few.id[1]) | (j == few.id[2]) | (j == few.id[3]);
+        return !excluded && meets_condition(i, j);
+    }
+
+private:
+    SMD_HD SMD_INLINE bool meets_condition(int i, int j) const {
         switch (condition) {
             case PairCondition::all: return true;
             case PairCondition::intra: return model[i] == model[j];
@@ -53,7 +79,6 @@ struct PairFilter {
         return true;
     }
 
-private:
     SMD_HD SMD_INLINE bool is_excluded(int i, int j) const {
         int lo = excludedStart[i], hi = excludedStart[i + 1];
         while (lo < hi) {

@@ -234,6 +234,8 @@ struct BuildLists {
         const NeighbourView<R>& v = view;
         const int self = static_cast<int>(k);
         const int particle = kAnyPair ? 0 : v.order[k];  // for the filter
+        const PairFilter::FewExclusions exclusions =
+            kAnyPair ? PairFilter::FewExclusions{{-1, -1, -1, -1}, false} : v.filter.few_exclusions_of(particle);
         const Vec3<R> rk = xyz(v.positions[k]);
         const Real4<float> localK = kHow == kCellLocal ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
         const float localRadius2 = static_cast<float>(listRadius2);
@@ -268,9 +270,10 @@ struct BuildLists {
                                                          : v.box.minimum_image(xyz(v.positions[s]) - rk);
                     accepted = dot(d, d) < listRadius2;
                 }
-                // The filter after the distance: it looks the partner up (its particle, a search of
-                // the exclusions), and about one candidate in six is within the list radius.
-                if (!kAnyPair && accepted) accepted = v.filter.accepts(particle, v.order[s]);
+                // The filter after the distance: it looks the partner up (its particle, compared
+                // with the slot's few exclusions or a search of many), and about one candidate in six
+                // is within the list radius.
+                if (!kAnyPair && accepted) accepted = v.filter.accepts(particle, v.order[s], exclusions);
                 int found = 0;
                 const int rank = lanes.rank_among(accepted, found);
                 if (accepted && n + rank < v.capacity) next[rank * v.entryStride] = s;

@@ -373,14 +373,46 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     EXPECT_LE(borderline, 2);
 }
 
-// Each particle excludes the three before and after it: a filter that is not trivial.
-PairFilterInputs exclusions_of_neighbours_in_id(int64_t n) {
+// Each particle excludes the `reach` before and after it: a filter that is not trivial. A reach of 1
+// or 2 leaves a particle few enough exclusions to hold in registers, 3 too many
+// (PairFilter::FewExclusions).
+PairFilterInputs exclusions_of_neighbours_in_id(int64_t n, int64_t reach = 3) {
     PairFilterInputs inputs;
     inputs.excluded.resize(n);
     for (int64_t i = 0; i < n; ++i)
-        for (int64_t j = i - 3; j <= i + 3; ++j)
+        for (int64_t j = i - reach; j <= i + reach; ++j)
             if (j != i && j >= 0 && j < n) inputs.excluded[i].push_back(static_cast<int>(j));
     return inputs;
+}
+
+// A particle's exclusions held in registers (up to four) or searched (more) judge every pair as the
+// search alone does, and the list's condition still applies.
+TEST(PairFilter, FewExclusionsJudgeAsTheSearchDoes) {
+    constexpr int n = 40;
+    std::vector<int> start{0}, excluded, model(n);
+    for (int i = 0; i < n; ++i) {
+        model[i] = i % 3;
+        for (int j = 0; j < i % 7; ++j) excluded.push_back((i + 5 * j + 1) % n);  // 0 to 6 exclusions, distinct
+        std::sort(excluded.begin() + start.back(), excluded.end());
+        start.push_back(static_cast<int>(excluded.size()));
+    }
+    for (const PairCondition condition : {PairCondition::all, PairCondition::intra}) {
+        PairFilter filter;
+        filter.condition = condition;
+        filter.model = model.data();
+        filter.excludedStart = start.data();
+        filter.excluded = excluded.data();
+        int rejected = 0;
+        for (int i = 0; i < n; ++i) {
+            const PairFilter::FewExclusions few = filter.few_exclusions_of(i);
+            EXPECT_EQ(few.many, i % 7 > PairFilter::FewExclusions::kMost) << "particle " << i;
+            for (int j = 0; j < n; ++j) {
+                EXPECT_EQ(filter.accepts(i, j, few), filter.accepts(i, j)) << "pair " << i << " " << j;
+                rejected += !filter.accepts(i, j, few);
+            }
+        }
+        if (condition == PairCondition::all) EXPECT_EQ(rejected, static_cast<int>(excluded.size()));
+    }
 }
 
 TEST(VerletList, GpuBuildLoopListsWhatTheCpuRowsList) {
@@ -393,6 +425,8 @@ TEST(VerletList, GpuBuildLoopListsWhatTheCpuRowsList) {
     expect_gpu_loop_lists_what_rows_list(wide, asIs, wideExclusions, false, true);
     expect_gpu_loop_lists_what_rows_list(wide, keepCellLocal, {}, true, true);
     expect_gpu_loop_lists_what_rows_list(wide, keepCellLocal, wideExclusions, true, true);
+    expect_gpu_loop_lists_what_rows_list(wide, asIs, exclusions_of_neighbours_in_id(wide.n, 1), false, true);
+    expect_gpu_loop_lists_what_rows_list(wide, keepCellLocal, exclusions_of_neighbours_in_id(wide.n, 2), true, true);
     // Five cells along each axis (reach 2): a cell across the boundary may be nearer than L / 2,
     // so the loop takes the minimum image.
     System narrow(430, 8.0, 8.0, 8.0, 13);
