@@ -1,6 +1,7 @@
 """Shared fixtures. STRUCTMD_TEST_BACKEND (default "cpu") picks the backend every test handle uses, so
 one test body runs on each backend; with "cuda" the session ends with exit code 77 (ctest's skip) when
-no GPU is usable."""
+no double-precision handle can be made on it: no usable GPU, or a build without double (the message
+says which)."""
 
 import ctypes
 import json
@@ -36,7 +37,7 @@ def pytest_sessionstart(session):
     handle = ctypes.c_void_p()
     if lib.structmd_create(json.dumps(engine_options()).encode(), ctypes.byref(handle)) != 0:
         reason = lib.structmd_last_error(None).decode()
-        pytest.exit(f"no usable GPU for the cuda backend: {reason}", returncode=SKIP_RETURN_CODE)
+        pytest.exit(f"no double-precision handle on the cuda backend: {reason}", returncode=SKIP_RETURN_CODE)
     lib.structmd_destroy(handle)
 
 
