@@ -24,7 +24,8 @@
 #   AB_BACKEND      cuda (default) or cpu (a smoke run on a machine without a GPU)
 #   AB_PRECISIONS   the precisions built and run (default "single mixed double"; the LJ liquid runs all
 #                   but double, and DPStokes's error, against a double-precision run, needs double).
-#                   The working tree is built in all three for the label
+#                   The working tree is built in all three for the label, and with the CPU
+#                   engines, which the other trees leave out (STRUCTMD_CPU_ENGINES=OFF)
 #   AB_LJ_SIZES     default "4000 10976 62500 1000188 4000000"
 #   AB_CHAINS_SIZE  default 1000000 (0: no chains)
 #   AB_DPSTOKES     DPStokes sizes, default "1000 10000" ("": none)
@@ -98,12 +99,14 @@ case "${1:-}" in
     # the other trees' units fill.
     build_tree() {
       local tree=$1 source_dir=$work/$1 start=$SECONDS
-      # The working tree has every precision, whatever AB_PRECISIONS says: the GPU label's Python
-      # tests and the precision comparison run in double.
-      local built=${precisions// /;}
-      [ "$tree" = after ] && built="single;mixed;double"
+      # The working tree has every precision and the CPU engines, whatever AB_PRECISIONS says: the
+      # GPU label's Python tests and the precision comparison run in double, and some tests set the
+      # backends side by side. The other trees are only timed on the GPU, so they leave the CPU
+      # engines out (a tree older than STRUCTMD_CPU_ENGINES ignores it).
+      local built=${precisions// /;} cpu_engines=$([ "$cuda" = ON ] && echo OFF || echo ON)
+      [ "$tree" = after ] && built="single;mixed;double" cpu_engines=ON
       cmake -S "$source_dir" -B "$source_dir/build" -DCMAKE_BUILD_TYPE=Release -DSTRUCTMD_CUDA="$cuda" \
-        "-DSTRUCTMD_PRECISIONS=$built" > "$work/$tree-configure.log" 2>&1
+        "-DSTRUCTMD_PRECISIONS=$built" -DSTRUCTMD_CPU_ENGINES="$cpu_engines" > "$work/$tree-configure.log" 2>&1
       if cmake --build "$source_dir/build" -j"$(nproc)" --target structmd structmd_lj_benchmark \
         > "$work/$tree-build.log" 2>&1; then
         echo "$tree built in $((SECONDS - start)) s"
