@@ -42,11 +42,11 @@ struct PairFilter {
     // instead of searching memory for every one.
     struct FewExclusions {
         static constexpr int kMost = 4;
-        int id[kMost];  // the exclusions, the places past them -1 (no particle)
-        bool many;      // more than kMost: accepts() searches the list
+        int id[kMost] = {-1, -1, -1, -1};  // the exclusions, the places past them -1 (no particle)
+        bool many = false;                  // more than kMost: accepts() searches the list
     };
     SMD_HD SMD_INLINE FewExclusions few_exclusions_of(int i) const {
-        FewExclusions few{{-1, -1, -1, -1}, false};
+        FewExclusions few;
         if (!excludedStart) return few;
         const int first = excludedStart[i], count = excludedStart[i + 1] - first;
         few.many = count > FewExclusions::kMost;

@@ -234,8 +234,7 @@ struct BuildLists {
         const NeighbourView<R>& v = view;
         const int self = static_cast<int>(k);
         const int particle = kAnyPair ? 0 : v.order[k];  // for the filter
-        const PairFilter::FewExclusions exclusions =
-            kAnyPair ? PairFilter::FewExclusions{{-1, -1, -1, -1}, false} : v.filter.few_exclusions_of(particle);
+        const PairFilter::FewExclusions exclusions = kAnyPair ? PairFilter::FewExclusions{} : v.filter.few_exclusions_of(particle);
         const Vec3<R> rk = xyz(v.positions[k]);
         const Real4<float> localK = kHow == kCellLocal ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
         const float localRadius2 = static_cast<float>(listRadius2);
