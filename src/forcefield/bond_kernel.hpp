@@ -34,6 +34,10 @@ SMD_HD SMD_INLINE void bond_positions(const Real4<R>* pos, const Box<R>& box, co
 template <class Potential, class R, bool WantForce, bool WantEnergy, bool WantVirial>
 struct BondKernel {
     static constexpr int N = Potential::arity;
+    // Entries a round: a pair bond takes both of an inner chain bead's at once; a bond of three or
+    // four takes one, since N rounds of N held N * N positions live (59 registers for an angle, where
+    // one entry takes 37) and cost the kernel its occupancy.
+    static constexpr int kRound = N <= 2 ? N : 1;
     using Params = typename Potential::template Params<R>;
     const Real4<R>* pos;
     Box<R> box;
@@ -47,23 +51,28 @@ struct BondKernel {
         R e = 0;
         Tensor3<R> w = zero_tensor<R>();
         const int first = firstEntry[i], last = firstEntry[i + 1];
-        // N entries at a time (as many as an inner particle of a linear chain has): all their
-        // records, then all their positions, loaded before any is used, so the loads of a round
-        // overlap. A round past the last entry repeats it and leaves it out of the sums.
-        for (int round = first; round < last; round += N) {
-            BondEntry<N> entry[N];
+        // kRound entries at a time: all their records, then all their positions, loaded before any
+        // is used, so the loads of a round overlap. A round past the last entry repeats it and
+        // leaves it out of the sums.
+        for (int round = first; round < last; round += kRound) {
+            BondEntry<N> entry[kRound];
             SMD_UNROLL
-            for (int g = 0; g < N; ++g) entry[g] = entries[round + g < last ? round + g : last - 1];
-            Vec3<R> r[N][N];
+            for (int g = 0; g < kRound; ++g) entry[g] = entries[round + g < last ? round + g : last - 1];
+            Vec3<R> r[kRound][N];
             SMD_UNROLL
-            for (int g = 0; g < N; ++g) bond_positions(pos, box, entry[g], r[g]);
+            for (int g = 0; g < kRound; ++g) bond_positions(pos, box, entry[g], r[g]);
             SMD_UNROLL
-            for (int g = 0; g < N; ++g) {
+            for (int g = 0; g < kRound; ++g) {
                 if (round + g >= last) break;
                 const int b = entry[g].bondSlot / N;
                 Vec3<R> force[N];
                 const R energy = Potential::compute(r[g], params[b], box, force);
-                if (WantForce) f += force[entry[g].bondSlot % N];
+                // The particle's own force picked by compares, not by an index, which would put
+                // force[] in local memory.
+                const int slot = entry[g].bondSlot % N;
+                SMD_UNROLL
+                for (int m = 0; m < N; ++m)
+                    if (WantForce && m == slot) f += force[m];
                 if (WantEnergy) e += energy / R(N);
                 if (WantVirial)
                     for (int m = 1; m < N; ++m) w += (R(1) / R(N)) * outer(r[g][m] - r[g][0], force[m]);

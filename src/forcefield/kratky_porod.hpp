@@ -4,7 +4,6 @@
 // U = 0 and no force. U is smooth in the positions, including at theta = 0 and pi. A zero-length
 // arm gives NaN (no angle exists).
 #include "forcefield/bond_potential.hpp"
-#include "forcefield/bonded_geometry.hpp"
 
 namespace structmd {
 
@@ -22,16 +21,21 @@ struct KratkyPorod {
         return {R(v["K"])};
     }
 
+    // U as a function of cos theta = a.b / (|a| |b|) alone (a = r[0] - r[1], b = r[2] - r[1]): its
+    // gradient, d cos/da = b / (|a| |b|) - cos a / |a|^2, needs no angle and so no trigonometry, and
+    // is exactly zero at theta = 0 and pi. A zero-length arm makes 1 / |a| infinite and cos NaN.
     template <class R>
     static SMD_HD SMD_INLINE R compute(const Vec3<R>* r, const Params<R>& p, const Box<R>&, Vec3<R>* force) {
-        const bonded_geometry::BondAngle<R> angle = bonded_geometry::bond_angle(r[0] - r[1], r[2] - r[1]);
-        // dU/dtheta = -K sin(theta) vanishes at 0 and pi, where the gradient of theta has its limit
-        // direction: the product is the exact (zero) gradient there.
-        const R dudtheta = -p.K * sin(angle.theta);
-        force[0] = (-dudtheta) * angle.dtheta_da;
-        force[2] = (-dudtheta) * angle.dtheta_db;
+        const Vec3<R> a = r[0] - r[1];
+        const Vec3<R> b = r[2] - r[1];
+        const R aa = dot(a, a);
+        const R bb = dot(b, b);
+        const R inverse_lengths = (R(1) / sqrt(aa)) * (R(1) / sqrt(bb));
+        const R cosine = dot(a, b) * inverse_lengths;
+        force[0] = (-p.K) * (inverse_lengths * b - (cosine / aa) * a);
+        force[2] = (-p.K) * (inverse_lengths * a - (cosine / bb) * b);
         force[1] = -(force[0] + force[2]);
-        return p.K * (R(1) + cos(angle.theta));
+        return p.K * (R(1) + cosine);
     }
 };
 

@@ -1,7 +1,7 @@
 // BondKernel, the traversal every bonded term of N particles runs: each particle's forces, energy
 // and virial against the bonds evaluated one at a time, over a branched topology where particles
-// take part in no bond, fewer bonds than N, exactly N and more than N (the kernel gathers its
-// entries N at a time, so the last round of a particle may be partial).
+// take part in no bond, fewer bonds than N, exactly N and more than N (the kernel gathers a pair
+// bond's entries two at a time, so the last round of a particle may be partial).
 #include <gtest/gtest.h>
 
 #include <cmath>
