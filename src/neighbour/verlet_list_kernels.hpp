@@ -283,18 +283,18 @@ struct BuildLists {
         return n;
     }
 
-    template <Separations kHow>
-    SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
-        return view.filter.trivial() ? collect<kHow, true>(k, lanes) : collect<kHow, false>(k, lanes);
+#if SMD_HOST_CODE
+    // How this view's separations are taken, chosen on the host for a whole build (BuildListsAlong).
+    Separations separations() const {
+        return view.cellLocal.local ? kCellLocal : view.grid.images_by_offset() ? kCellImage : kMinimumImage;
     }
+#endif
 
-    SMD_HD void operator()(int64_t k, Lanes lanes) const {
+    // Slot k's list, its separations taken as kHow says; kAnyPair where the filter is trivial().
+    template <Separations kHow, bool kAnyPair>
+    SMD_HD SMD_INLINE void build(int64_t k, Lanes lanes) const {
         if (!control[kRebuild]) return;
-        // How separations are taken, and the filter, are chosen once a slot, not once a candidate:
-        // the candidate loop is a build's time, and its branches were half of its instructions.
-        const int n = view.cellLocal.local ? collect<kCellLocal>(k, lanes)
-                      : view.grid.images_by_offset() ? collect<kCellImage>(k, lanes)
-                                                     : collect<kMinimumImage>(k, lanes);
+        const int n = collect<kHow, kAnyPair>(k, lanes);
         if (!lanes.leader()) return;
         const NeighbourView<R>& v = view;
         int* entries = v.entries_of(k);
@@ -323,7 +323,7 @@ struct BuildLists {
     static constexpr int kRankedListLimit = 256;
 
     // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
-    // one thread, the same lists as operator() with one lane. Each accepted candidate's slot is kept,
+    // one thread, the same lists as build() with one lane. Each accepted candidate's slot is kept,
     // then its particle looked up, and each goes to its place in particle order: the number
     // of smaller particles in the list (particles in a list are distinct). That count is a loop of
     // independent compares the compiler vectorises, where a comparison sort's branches, mispredicted
@@ -445,7 +445,7 @@ struct BuildLists {
                                        [&](int c) { scan(v.cellStart[c], v.cellStart[c + 1]); });
             }
             const int stored = n < capacity ? n : capacity;
-            // In particle order, as operator() leaves it (a list in cell order needs no sort).
+            // In particle order, as build() leaves it (a list in cell order needs no sort).
             int* entries = v.entries_of(k);
             if (!byParticle) {
                 for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = slot[m];
@@ -490,5 +490,35 @@ struct BuildLists {
     }
 #endif
 };
+
+// BuildLists with its separations and its filter fixed at launch (with_build_path): the path's own
+// GPU kernel, which holds no other path's registers. The six in one kernel, chosen per slot, spilled
+// 1,012/1,196 bytes a thread (stores/loads, double, the lone-lane kernel's register cap, sm_90); the
+// cell-local path for any pair alone 104/100. The CPU backend runs the inherited host_rows whatever
+// the path.
+template <class R, typename BuildLists<R>::Separations kHow, bool kAnyPair>
+struct BuildListsAlong : BuildLists<R> {
+    SMD_HD void operator()(int64_t k, Lanes lanes) const { this->template build<kHow, kAnyPair>(k, lanes); }
+};
+
+#if SMD_HOST_CODE
+// launch(along): `lists` as the BuildListsAlong of the path its view calls for.
+template <class R, class Launch>
+void with_build_path(const BuildLists<R>& lists, Launch&& launch) {
+    using L = BuildLists<R>;
+    const auto filtered = [&](auto how) {
+        constexpr typename L::Separations kHow = decltype(how)::value;
+        if (lists.view.filter.trivial())
+            launch(BuildListsAlong<R, kHow, true>{lists});
+        else
+            launch(BuildListsAlong<R, kHow, false>{lists});
+    };
+    switch (lists.separations()) {
+        case L::kCellLocal: return filtered(std::integral_constant<typename L::Separations, L::kCellLocal>{});
+        case L::kCellImage: return filtered(std::integral_constant<typename L::Separations, L::kCellImage>{});
+        case L::kMinimumImage: return filtered(std::integral_constant<typename L::Separations, L::kMinimumImage>{});
+    }
+}
+#endif
 
 }  // namespace structmd

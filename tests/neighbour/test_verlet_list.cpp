@@ -328,10 +328,10 @@ TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
     }
 }
 
-// The build loop a GPU runs (BuildLists::operator(), one slot at a time with one lane) against the
-// CPU's row pass that built the list: the same slots in every list, for each way of taking
-// separations it chooses once per slot (the minimum image, the image of the candidate's cell, or
-// cell-local positions) and each filter (any pair, or exclusions). A pair on which they differ may
+// The build loop a GPU runs (the BuildListsAlong with_build_path chooses, one slot at a time with
+// one lane) against the CPU's row pass that built the list: the same slots in every list, for each
+// way of taking separations (the minimum image, the image of the candidate's cell, or cell-local
+// positions) and each filter (any pair, or exclusions). A pair on which they differ may
 // only be one the two roundings put on either side of the list radius.
 template <class Configure>
 void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const PairFilterInputs& inputs,
@@ -351,10 +351,12 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     int control[kControlSlots] = {};
     control[kRebuild] = 1;
     const double radius = 2.5 + list.skin();
-    const BuildLists<double> loop{v, radius * radius, control, false};
+    const BuildLists<double> lists{v, radius * radius, control, false};
+    with_build_path(lists, [&](const auto& along) {
+        for (int64_t k = 0; k < s.n; ++k) along(k, Lanes{});
+    });
     int64_t listed = 0, borderline = 0;
     for (int64_t k = 0; k < s.n; ++k) {
-        loop(k, Lanes{});
         ASSERT_LE(counts[k], v.capacity) << "slot " << k << " overflowed";
         std::set<int> mine, theirs;
         for (int m = 0; m < counts[k]; ++m) mine.insert(entries[k * v.particleStride + m * v.entryStride]);
