@@ -226,9 +226,10 @@ struct BuildLists {
     enum Separations { kMinimumImage, kCellImage, kCellLocal };
 
     // Lists slot k's candidates within the list radius, returns how many, from the cells that
-    // come within the list radius of the slot's position. The shift of a candidate cell (its
-    // image, or its distance in cells) is the same for all its members, so it is taken once a
-    // cell, and a candidate costs a load, a difference and a distance.
+    // come within the list radius of the slot's position, a row's run of them at a time. The image
+    // of a run's cells is the same for all their members, so it is taken once a run, and a
+    // candidate costs a load, a difference and a distance (with cell-local positions, the cells'
+    // distance unpacked from the two codes, as the pair kernel takes it).
     template <Separations kHow, bool kAnyPair>
     SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = view;
@@ -245,9 +246,7 @@ struct BuildLists {
         v.grid.coordinates(rk, v.box, cx, cy, cz);
         const Vec3<R> u = v.grid.scaled(rk, v.box);
         const R prune2 = v.grid.pruning_radius2(listRadius2);
-        v.grid.for_each_cell_near(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int c, int dx, int dy, int dz) {
-            typename CellLocalPositions<R>::CellShift cells{};
-            if (kHow == kCellLocal) cells = v.cellLocal.shift(dx, dy, dz);
+        v.grid.for_each_run_near(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int first, int last, int dx, int dy, int dz) {
             Vec3<R> image{R(0), R(0), R(0)};
             if (kHow == kCellImage) {
                 const CellGrid<R>& g = v.grid;
@@ -255,12 +254,12 @@ struct BuildLists {
                          CellGrid<R>::image_shift(cy, dy, g.ny, v.box.length.y, g.openY),
                          CellGrid<R>::image_shift(cz, dz, g.nz, v.box.length.z, g.openZ)};
             }
-            const int end = v.cellStart[c + 1];
-            for (int base = v.cellStart[c]; base < end; base += lanes.count) {
+            const int end = v.cellStart[last + 1];
+            for (int base = v.cellStart[first]; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
                 bool accepted = s < end && s != self;
                 if (accepted && kHow == kCellLocal) {
-                    const Vec3<float> d = CellLocalPositions<R>::separation(localK, v.cellLocal.local[s], cells);
+                    const Vec3<float> d = v.cellLocal.separation(localK, v.cellLocal.local[s]);
                     accepted = dot(d, d) < localRadius2;
                 } else if (accepted) {
                     // (x_s - x_k) + shift rounds as the minimum image's (x_s - x_k) -+ L does.
