@@ -108,6 +108,23 @@ struct CellLocalPositions {
                 along(b.y - a.y, dy, cells.y, inverseCells.y, widthHi.y, widthLo.y),
                 along(b.z - a.z, dz, cells.z, inverseCells.z, widthHi.z, widthLo.z)};
     }
+
+    // The cells' distance that separation() adds for cells a given number apart along each axis,
+    // as its hi and lo parts (each product exact). A list build takes a whole cell's candidates at
+    // one such shift and unpacks no cell per candidate; the pair kernel, whose neighbours' cells
+    // differ, keeps separation() above (with the shift as a variable it spilled more registers).
+    struct CellShift {
+        Vec3<float> hi, lo;
+    };
+    SMD_HD SMD_INLINE CellShift shift(int cellsX, int cellsY, int cellsZ) const {
+        const float x = static_cast<float>(cellsX), y = static_cast<float>(cellsY), z = static_cast<float>(cellsZ);
+        return {{x * widthHi.x, y * widthHi.y, z * widthHi.z}, {x * widthLo.x, y * widthLo.y, z * widthLo.z}};
+    }
+    // separation(a, b) for local positions whose cells are `cells` apart: the same sums.
+    static SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const CellShift& cells) {
+        return {(cells.hi.x + (b.x - a.x)) + cells.lo.x, (cells.hi.y + (b.y - a.y)) + cells.lo.y,
+                (cells.hi.z + (b.z - a.z)) + cells.lo.z};
+    }
 };
 
 }  // namespace structmd
