@@ -37,7 +37,7 @@ struct BondKernel {
     using Params = typename Potential::template Params<R>;
     const Real4<R>* pos;
     Box<R> box;
-    const int* firstEntry;          // entries of particle i: entries[firstEntry[i] .. firstEntry[i+1])
+    const int* firstEntry;  // entries of particle i: entries[firstEntry[i] .. firstEntry[i+1])
     const BondEntry<N>* entries;
     const Params* params;
     ForceOutputs<R> out;

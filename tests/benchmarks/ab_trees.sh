@@ -3,9 +3,13 @@
 # device machine and their benchmarks alternated, so that a change's gain is not confused with the
 # spread between leases (docs/benchmarks.md quotes such pairs). Run from the repository root:
 #
-#   tests/benchmarks/ab_trees.sh prepare REV     here: the tree at REV into .deps/ab/before, the headers
-#                                                the device lacks into .deps/include, wheels into .whl
-#   tests/benchmarks/ab_trees.sh build           device: both trees' library and LJ benchmark built under
+#   tests/benchmarks/ab_trees.sh prepare REV [NAME=REV2 ...]
+#                                                here: the tree at REV into .deps/ab/before, and each
+#                                                NAME=REV2 into .deps/ab/NAME (further trees, each set
+#                                                against before too: two candidates in one lease), the
+#                                                headers the device lacks into .deps/include, wheels
+#                                                into .whl
+#   tests/benchmarks/ab_trees.sh build           device: every tree's library and LJ benchmark built under
 #                                                /tmp/ab; a call cut short by its time limit goes on
 #                                                where it stopped. The trees are copied there by a
 #                                                lease's first call only: to build a tree edited since,
@@ -13,7 +17,8 @@
 #   tests/benchmarks/ab_trees.sh label           device: the rest of the working tree's targets (tests,
 #                                                other benchmarks; a call cut short goes on), then
 #                                                ctest -L gpu in its build
-#   tests/benchmarks/ab_trees.sh round K OUT     device: both trees' benchmarks, before first on odd K
+#   tests/benchmarks/ab_trees.sh round K OUT     device: every tree's benchmarks, before first on odd K
+#                                                and last on even K
 #
 # The device calls carry .deps and .whl (the device tool's `carry`). Environment (optional):
 #   AB_BACKEND      cuda (default) or cpu (a smoke run on a machine without a GPU)
@@ -25,8 +30,8 @@
 #   AB_SECONDS      seconds a timed call of the LJ benchmark (default 0.3; DPStokes: AB_HYDRO_SECONDS, 0.5)
 #
 # Each round writes OUT/round-K-TREE.csv (structmd_lj_benchmark's rows, liquid and chains) and
-# OUT/round-K-TREE-hydro.csv (hydrodynamics_benchmark.py's), TREE being before or after, and prints the
-# after/before ratio of every row.
+# OUT/round-K-TREE-hydro.csv (hydrodynamics_benchmark.py's), TREE being before, after or a further
+# tree's name, and prints each tree's ratio to before for every row.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -40,11 +45,30 @@ install_wheels() {
   python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --upgrade --target /tmp/site .whl/*.whl
 }
 
+# The trees prepare made, before first: the device reads them from the carried .deps/ab, so the
+# working copy here and there name the same trees.
+prepared_trees() {
+  echo before
+  for dir in .deps/ab/*/; do
+    [ -d "$dir" ] || continue
+    name=$(basename "$dir")
+    [ "$name" = before ] || echo "$name"
+  done
+}
+
 case "${1:-}" in
   prepare)
     rev=${2:?prepare needs a commit}
     rm -rf .deps/ab && mkdir -p .deps/ab/before
     git archive "$rev" | tar -x -C .deps/ab/before
+    for named in "${@:3}"; do
+      name=${named%%=*}
+      [[ "$named" == *=* && "$name" =~ ^[a-z][a-z0-9-]*$ && "$name" != before && "$name" != after ]] || {
+        echo "prepare: a further tree is NAME=REV, NAME in lower case and neither before nor after (got $named)"
+        exit 2
+      }
+      mkdir -p ".deps/ab/$name" && git archive "${named#*=}" | tar -x -C ".deps/ab/$name"
+    done
     bash scripts/install-deps.sh build
     for header in Random123 CLI dlpack; do
       [ -d ".deps/include/$header" ] || cp -r "/usr/include/$header" .deps/include/
@@ -53,17 +77,17 @@ case "${1:-}" in
     python3 -m pip download -q --no-deps --only-binary=:all: --python-version 3.12 --implementation cp \
       --platform manylinux_2_28_x86_64 --platform manylinux_2_17_x86_64 --platform manylinux2014_x86_64 \
       -d .whl cffi==1.17.1 pycparser==2.22 ase==3.23.0
-    echo "prepared: .deps/ab/before at $(git rev-parse --short "$rev"), wheels in .whl"
+    echo "prepared: .deps/ab/before at $(git rev-parse --short "$rev")${3:+, further trees: ${*:3}}, wheels in .whl"
     ;;
   build)
     if [ ! -d "$work/after" ]; then
-      mkdir -p "$work/after" "$work/before"
+      mkdir -p "$work/after"
       tar --exclude=./.deps --exclude=./.whl --exclude='./build*' -cf - . | tar -xf - -C "$work/after"
-      cp -r .deps/ab/before/. "$work/before/"
-      for tree in after before; do mkdir -p "$work/$tree/.deps" && cp -r .deps/include "$work/$tree/.deps/"; done
+      for tree in $(prepared_trees); do mkdir -p "$work/$tree" && cp -r ".deps/ab/$tree/." "$work/$tree/"; done
+      for tree in after $(prepared_trees); do mkdir -p "$work/$tree/.deps" && cp -r .deps/include "$work/$tree/.deps/"; done
     fi
     cuda=$([ "$backend" = cuda ] && echo ON || echo OFF)
-    for tree in after before; do
+    for tree in after $(prepared_trees); do
       source_dir=$work/$tree
       targets=(structmd structmd_lj_benchmark)
       start=$SECONDS
@@ -93,8 +117,8 @@ case "${1:-}" in
     round=${2:?round needs its number} out=${3:?round needs an output folder}
     mkdir -p "$out"
     install_wheels
-    order="before after"
-    [ $((round % 2)) -eq 0 ] && order="after before"
+    order="before after $(prepared_trees | grep -vx before | tr '\n' ' ')"
+    [ $((round % 2)) -eq 0 ] && order=$(echo $order | tr ' ' '\n' | tac | tr '\n' ' ')
     precision_flags=()
     for p in $precisions; do [ "$p" = double ] || precision_flags+=(--precision "$p"); done
     size_flags=()
@@ -124,9 +148,9 @@ case "${1:-}" in
           --csv "$out/round-$round-$tree-hydro.csv" > /dev/null
       fi
     done
-    python3 - "$out" "$round" <<'EOF'
+    python3 - "$out" "$round" $order <<'EOF'
 import csv, sys
-out, round_ = sys.argv[1], sys.argv[2]
+out, round_, trees = sys.argv[1], sys.argv[2], [t for t in sys.argv[3:] if t != "before"]
 def rows(tree, suffix, key, rate):
     try:
         with open(f"{out}/round-{round_}-{tree}{suffix}.csv") as f:
@@ -135,10 +159,13 @@ def rows(tree, suffix, key, rate):
         return {}
 for suffix, key, rate in (("", ("scene", "n", "precision"), "particle_steps_per_second"),
                           ("-hydro", ("method", "n", "precision"), "steps_per_second")):
-    before, after = rows("before", suffix, key, rate), rows("after", suffix, key, rate)
-    for k in before:
-        if k in after:
-            print(f"round {round_} {' '.join(k)}: {before[k]:.4g} -> {after[k]:.4g} ({100 * (after[k] / before[k] - 1):+.1f}%)")
+    before = rows("before", suffix, key, rate)
+    for tree in sorted(trees):
+        after = rows(tree, suffix, key, rate)
+        for k in before:
+            if k in after:
+                print(f"round {round_} {tree} {' '.join(k)}: {before[k]:.4g} -> {after[k]:.4g} "
+                      f"({100 * (after[k] / before[k] - 1):+.1f}%)")
 EOF
     ;;
   *)
