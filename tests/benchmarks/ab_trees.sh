@@ -45,10 +45,11 @@ install_wheels() {
   python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --upgrade --target /tmp/site .whl/*.whl
 }
 
-# The trees prepare made, before first: the device reads them from the carried .deps/ab, so the
-# working copy here and there name the same trees.
-prepared_trees() {
+# The trees, one a line: before, after (the working tree), then the further ones prepare made. The
+# device reads them from the carried .deps/ab, so here and there they are the same.
+trees() {
   echo before
+  echo after
   for dir in .deps/ab/*/; do
     [ -d "$dir" ] || continue
     name=$(basename "$dir")
@@ -81,13 +82,18 @@ case "${1:-}" in
     ;;
   build)
     if [ ! -d "$work/after" ]; then
-      mkdir -p "$work/after"
-      tar --exclude=./.deps --exclude=./.whl --exclude='./build*' -cf - . | tar -xf - -C "$work/after"
-      for tree in $(prepared_trees); do mkdir -p "$work/$tree" && cp -r ".deps/ab/$tree/." "$work/$tree/"; done
-      for tree in after $(prepared_trees); do mkdir -p "$work/$tree/.deps" && cp -r .deps/include "$work/$tree/.deps/"; done
+      for tree in $(trees); do
+        mkdir -p "$work/$tree/.deps"
+        if [ "$tree" = after ]; then
+          tar --exclude=./.deps --exclude=./.whl --exclude='./build*' -cf - . | tar -xf - -C "$work/after"
+        else
+          cp -r ".deps/ab/$tree/." "$work/$tree/"
+        fi
+        cp -r .deps/include "$work/$tree/.deps/"
+      done
     fi
     cuda=$([ "$backend" = cuda ] && echo ON || echo OFF)
-    for tree in after $(prepared_trees); do
+    for tree in $(trees); do
       source_dir=$work/$tree
       targets=(structmd structmd_lj_benchmark)
       start=$SECONDS
@@ -117,8 +123,8 @@ case "${1:-}" in
     round=${2:?round needs its number} out=${3:?round needs an output folder}
     mkdir -p "$out"
     install_wheels
-    order="before after $(prepared_trees | grep -vx before | tr '\n' ' ')"
-    [ $((round % 2)) -eq 0 ] && order=$(echo $order | tr ' ' '\n' | tac | tr '\n' ' ')
+    order=$(trees | tr '\n' ' ')
+    [ $((round % 2)) -eq 0 ] && order=$(trees | tac | tr '\n' ' ')
     precision_flags=()
     for p in $precisions; do [ "$p" = double ] || precision_flags+=(--precision "$p"); done
     size_flags=()
