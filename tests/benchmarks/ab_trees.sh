@@ -10,10 +10,10 @@
 #                                                headers the device lacks into .deps/include, wheels
 #                                                into .whl
 #   tests/benchmarks/ab_trees.sh build           device: every tree's library and LJ benchmark built under
-#                                                /tmp/ab; a call cut short by its time limit goes on
-#                                                where it stopped. The trees are copied there by a
-#                                                lease's first call only: to build a tree edited since,
-#                                                rm -rf /tmp/ab first
+#                                                /tmp/ab, the trees side by side; a call cut short by
+#                                                its time limit goes on where it stopped. The trees
+#                                                are copied there by a lease's first call only: to
+#                                                build a tree edited since, rm -rf /tmp/ab first
 #   tests/benchmarks/ab_trees.sh label           device: the rest of the working tree's targets (tests,
 #                                                other benchmarks; a call cut short goes on), then
 #                                                ctest -L gpu in its build
@@ -93,20 +93,29 @@ case "${1:-}" in
       done
     fi
     cuda=$([ "$backend" = cuda ] && echo ON || echo OFF)
-    for tree in $(trees); do
-      source_dir=$work/$tree
-      targets=(structmd structmd_lj_benchmark)
-      start=$SECONDS
+    # The trees build side by side: each build's last few long units leave most cores idle, which
+    # the other trees' units fill.
+    build_tree() {
+      local tree=$1 source_dir=$work/$1 start=$SECONDS
       cmake -S "$source_dir" -B "$source_dir/build" -DCMAKE_BUILD_TYPE=Release -DSTRUCTMD_CUDA="$cuda" \
         "-DSTRUCTMD_PRECISIONS=${precisions// /;}" > "$work/$tree-configure.log" 2>&1
-      if cmake --build "$source_dir/build" -j"$(nproc)" --target "${targets[@]}" > "$work/$tree-build.log" 2>&1; then
+      if cmake --build "$source_dir/build" -j"$(nproc)" --target structmd structmd_lj_benchmark \
+        > "$work/$tree-build.log" 2>&1; then
         echo "$tree built in $((SECONDS - start)) s"
       else
         grep -m 20 -B 2 -A 8 "error" "$work/$tree-build.log"
         echo "$tree: build failed after $((SECONDS - start)) s ($work/$tree-build.log)"
-        exit 1
+        return 1
       fi
+    }
+    builds=()
+    for tree in $(trees); do
+      build_tree "$tree" &
+      builds+=($!)
     done
+    failed=0
+    for pid in "${builds[@]}"; do wait "$pid" || failed=1; done
+    exit $failed
     ;;
   label)
     export PYTHONPATH=/tmp/site
