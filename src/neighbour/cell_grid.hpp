@@ -226,14 +226,16 @@ struct CellGrid {
                         high = dx > high ? dx : high;
                     }
                 }
+                // One call of visit for both parts of a wrapped row: each call site inlines the
+                // caller's whole candidate loop.
                 const int row = index(0, periodic(cy + dy, ny), pz, batch);
-                if (cx + low < 0) {
-                    visit(row + cx + low + nx, row + nx - 1, low, dy, dz);
-                    low = -cx;
-                }
-                const int inside = cx + high < nx ? high : nx - 1 - cx;
-                visit(row + cx + low, row + cx + inside, low, dy, dz);
-                if (inside < high) visit(row, row + cx + high - nx, inside + 1, dy, dz);
+                int dx = low;
+                do {
+                    const int x = periodic(cx + dx, nx);
+                    const int more = high - dx < nx - 1 - x ? high - dx : nx - 1 - x;  // up to the row's end
+                    visit(row + x, row + x + more, dx, dy, dz);
+                    dx += more + 1;
+                } while (dx <= high);
             }
         }
     }
