@@ -228,9 +228,9 @@ struct BuildLists {
     // Lists slot k's candidates within the list radius, returns how many, from the cells that
     // come within the list radius of the slot's position, a row's run of them at a time. The image
     // of a run's cells is the same for all their members, so it is taken once a run, and a
-    // candidate costs a load, a difference and a distance; with cell-local positions the cells'
-    // distance is taken once a cell, whose candidates a run's loop would each have to unpack
-    // (measured 1-5% slower in mixed precision at 62,500 particles and below).
+    // candidate costs a load, a difference and a distance. With cell-local positions the cells'
+    // distance differs from cell to cell, so those builds take the cells one by one: runs taken
+    // cell by cell inside were 1-3% slower there (mixed precision, H200, docs/benchmarks.md).
     template <Separations kHow, bool kAnyPair>
     SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = view;
@@ -275,17 +275,11 @@ struct BuildLists {
                 next += found * v.entryStride;
             }
         };
-        v.grid.for_each_run_near(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int first, int last, int dx, int dy, int dz) {
+        constexpr bool kWholeRuns = kHow != kCellLocal;
+        v.grid.template for_each_run_near<kWholeRuns>(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int first, int last, int dx, int dy, int dz) {
             const Vec3<R> none{R(0), R(0), R(0)};
-            if (kHow == kCellLocal) {
-                // The cells' distance differs along the run: its cells one by one, their bounds
-                // still read once each.
-                int begin = v.cellStart[first];
-                for (int c = first; c <= last; ++c) {
-                    const int end = v.cellStart[c + 1];
-                    scan(begin, end, v.cellLocal.shift(dx + (c - first), dy, dz), none);
-                    begin = end;
-                }
+            if (kHow == kCellLocal) {  // one cell: first == last
+                scan(v.cellStart[first], v.cellStart[first + 1], v.cellLocal.shift(dx, dy, dz), none);
                 return;
             }
             Vec3<R> image = none;

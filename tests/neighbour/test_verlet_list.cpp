@@ -221,8 +221,10 @@ TEST(CellGrid, CoordinatesOfInvertsIndexInEveryBatch) {
 
 // for_each_run_near() visits a cell exactly where its nearest point lies within the radius of the
 // point (the distance measured from the cells' bounds, not through gap()), and each such cell once,
-// in runs of consecutive cells of a row (split where a row wraps) taken in the order of dz, dy, dx;
-// over the points a particle may take, about 21 of 27 cells at reach 1 and 84 of 125 at reach 2.
+// in runs of consecutive cells of a row (split where a row wraps; runs of one cell where whole runs
+// are not asked for) taken in the order of dz, dy, dx; over the points a particle may take, about 21
+// of 27 cells at reach 1 and 84 of 125 at reach 2.
+template <bool kWholeRuns>
 void expect_cells_near_a_point_are_the_ones_the_radius_reaches(int reach, double mostVisited) {
     const Box<double> box = Box<double>::make(14.0, 15.0, 16.0);
     const double radius = 2.8;
@@ -237,8 +239,9 @@ void expect_cells_near_a_point_are_the_ones_the_radius_reaches(int reach, double
         const int cx = static_cast<int>(u.x), cy = static_cast<int>(u.y), cz = static_cast<int>(u.z);
         std::map<int, int> visits;
         std::vector<std::array<int, 3>> offsets;  // of the cells in the order visited
-        grid.for_each_run_near(u, cx, cy, cz, 0, radius * radius, [&](int first, int last, int dx, int dy, int dz) {
+        grid.for_each_run_near<kWholeRuns>(u, cx, cy, cz, 0, radius * radius, [&](int first, int last, int dx, int dy, int dz) {
             ASSERT_LE(first, last);
+            if (!kWholeRuns) ASSERT_EQ(first, last) << "cells one by one";
             ASSERT_EQ(first / grid.nx, last / grid.nx) << "a run lies in one row";
             for (int c = first; c <= last; ++c) {
                 const int offset = dx + (c - first);
@@ -278,8 +281,13 @@ void expect_cells_near_a_point_are_the_ones_the_radius_reaches(int reach, double
 }
 
 TEST(CellGrid, CellsNearAPointAreTheOnesTheRadiusReaches) {
-    expect_cells_near_a_point_are_the_ones_the_radius_reaches(1, 0.85);
-    expect_cells_near_a_point_are_the_ones_the_radius_reaches(2, 0.75);
+    for (const bool wholeRuns : {true, false}) {
+        SCOPED_TRACE(wholeRuns ? "whole runs" : "cells one by one");
+        const auto expect = wholeRuns ? expect_cells_near_a_point_are_the_ones_the_radius_reaches<true>
+                                      : expect_cells_near_a_point_are_the_ones_the_radius_reaches<false>;
+        expect(1, 0.85);
+        expect(2, 0.75);
+    }
 }
 
 TEST(VerletList, SlotsAreAPermutationInCellOrder) {
