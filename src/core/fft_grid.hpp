@@ -8,6 +8,10 @@
 // (the doubly periodic slab's), with the same layout; then inverse(forward(g)) = nx ny g.
 #include "core/hd.hpp"
 
+#if SMD_HOST_CODE
+#include <cstdint>  // NVRTC takes the fixed-width integers from core/hd.hpp
+#endif
+
 namespace structmd {
 
 // Laid out as std::complex and cufft(Double)Complex, so a buffer of them is handed to either library;

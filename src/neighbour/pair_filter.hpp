@@ -7,6 +7,10 @@
 
 #include "core/hd.hpp"
 
+#if SMD_HOST_CODE
+#include <cstdint>  // NVRTC takes the fixed-width integers from core/hd.hpp
+#endif
+
 namespace structmd {
 
 // The sub-lists UAMMD-structured's VerletConditionalListSet entries offer, each a predicate on a pair
