@@ -2,10 +2,11 @@
 // tests/reference/make_lammps_reference.py (an LJ liquid, LJ with bonds) and
 // make_lammps_reference_forcefield.py (a Kremer-Grest FENE + WCA melt with bonded exclusions,
 // molecules with bonds, angles and dihedrals, the same molecules as C-alpha chains with
-// Best-Chen-Hummer angles and IDP_Fourier dihedrals, a Kob-Andersen mixture, the walls of the Surface
-// family): forces, per-particle energies, the energy of every forceField entry and the virial tensor,
-// in double, mixed and single precision. LAMMPS's fix walls give neither per-atom energies nor a pair
-// virial, so the Surface cases hold forces and entry energies only.
+// Best-Chen-Hummer angles and IDP_Fourier dihedrals, a Kob-Andersen mixture, semiflexible chains with
+// harmonic bonds, Kratky-Porod angles and WCA, the walls of the Surface family): forces, per-particle
+// energies, the energy of every forceField entry and the virial tensor, in double, mixed and single
+// precision. LAMMPS's fix walls give neither per-atom energies nor a pair virial, so the Surface cases
+// hold forces and entry energies only.
 #include "physics_support.hpp"
 
 #include <nlohmann/json.hpp>
@@ -135,6 +136,9 @@ INSTANTIATE_TEST_SUITE_P(Cases, LammpsReference,
                                            ReferenceCase{"ca_chains", "double", 1e-9},
                                            ReferenceCase{"ca_chains", "single", 1e-5},
                                            ReferenceCase{"ca_chains", "mixed", 2e-6},
+                                           ReferenceCase{"kp_chains", "double", 1e-9},
+                                           ReferenceCase{"kp_chains", "single", 1e-5},
+                                           ReferenceCase{"kp_chains", "mixed", 2e-6},
                                            ReferenceCase{"surfaces", "double", 1e-10},
                                            ReferenceCase{"surfaces", "single", 5e-5},
                                            ReferenceCase{"surfaces", "mixed", 1e-10},

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Builds the LAMMPS reference data that tests/physics/test_lammps_forcefield.cpp checks structmd against:
+"""Builds the LAMMPS reference data that tests/physics/test_lammps_reference.cpp checks structmd against:
 systems whose force fields go beyond plain LJ and harmonic bonds.
 
   kg_melt      Kremer-Grest bead-spring melt: FENE bonds (Bond2 FeneCommon_r0_K_R0) and WCA
@@ -9,6 +9,9 @@ systems whose force fields go beyond plain LJ and harmonic bonds.
   lj_mixture   Kob-Andersen 80:20 binary LJ mixture, per-pair epsilon, sigma and cutoff 2.5 sigma_ij.
   ca_chains    the molecules of `molecules` as C-alpha chains in KcalMol_A units at 300 K: harmonic
                bonds, Bond3 BestChenHummerAngular angles, Bond4 IDP_Fourier dihedrals, LJ beyond 1-4.
+  kp_chains    semiflexible bead chains: per-bond Bond2 Harmonic, per-angle Bond3 KratkyPorod with bond
+               angles from nearly straight (within about a degree of 180) to about 50 degrees, and WCA
+               between every pair except bonded ones, as in kg_melt.
   surfaces, plain_cylinder   the walls of the Surface family, through LAMMPS's fix wall/* (see the
                section "Surfaces" below for the conversions and what LAMMPS cannot express).
 
@@ -28,6 +31,8 @@ LAMMPS styles and parameter conversions (structmd -> LAMMPS):
                                  1-2, 1-3 and 1-4 pairs), which removes exactly those pairs.
   Harmonic K, r0                 bond_style harmonic K/2 r0 (LAMMPS: K_lmp (r - r0)^2).
   HarmonicAngular K, theta0      angle_style harmonic K/2 theta0_degrees (LAMMPS: K_lmp (theta - theta0)^2).
+  KratkyPorod K                  angle_style cosine K: LAMMPS's E = K[1 + cos theta], theta the angle at the
+                                 middle atom, is the same formula, so K passes through unchanged.
   Dihedral n, K, phi0            dihedral_style charmm K n d 0.0 with d = phi0 in degrees, weight 0 (no
                                  1-4 pair term). LAMMPS's charmm takes integer d only, so every phi0 here
                                  is a whole number of degrees. Its phi is the IUPAC angle: with
@@ -90,6 +95,14 @@ KG_BOND_LENGTH, KG_BOND_SPREAD = 0.97, 0.03
 KG_MIN_DISTANCE = 0.8
 FENE_K, FENE_R0 = 30.0, 1.5
 
+KP_CHAINS, KP_BEADS, KP_DENSITY = 40, 20, 0.7
+KP_MIN_DISTANCE = 0.85
+# Each bond is the previous one's direction plus a random vector of one of these lengths, so that the
+# angles range from within a degree of straight (0.02) to nearly random (3.0; the 1-3 pair's minimum
+# distance then bounds the angle from below). No length is 1, where the sum could vanish.
+KP_BEND_SPREADS = [0.02, 0.3, 0.7, 3.0]
+KRATKY_POROD_K = [2.0, 5.0, 12.0]  # cycling with period 3 against the spreads' 4, so each K meets each spread
+
 MOLECULES, MOLECULE_ATOMS, MOLECULE_DENSITY = 30, 6, 0.5
 MOLECULE_MIN_DISTANCE = 0.85
 MOLECULE_BOND_RANGE = (0.95, 1.05)
@@ -138,9 +151,9 @@ class System:
     pair: PairTerm
     bonds: list = dataclasses.field(default_factory=list)  # (i, j, K, r0)
     bond_entry: str = None  # "fene" (common K, R0, r0 = 0) or "bonds" (per-bond harmonic)
-    angles: list = dataclasses.field(default_factory=list)  # (i, j, k, K, theta0_degrees) or (i, j, k)
+    angles: list = dataclasses.field(default_factory=list)  # (i, j, k, K, theta0_degrees), (i, j, k, K) or (i, j, k)
     dihedrals: list = dataclasses.field(default_factory=list)  # (i, j, k, l, n, K, phi0_degrees) or (i, j, k, l)
-    angle_style: str = "harmonic"  # or "best_chen_hummer" (no parameters)
+    angle_style: str = "harmonic"  # or "kratky_porod" (K only), "best_chen_hummer" (no parameters)
     dihedral_style: str = "charmm"  # or "idp_fourier" (no parameters)
     units: str = "None"
     temperature: float = 1.0
@@ -231,6 +244,64 @@ def grow_chain(rng, positions, box_length):
                 ignored = (len(positions) - 1,)
             trial = wrap(trial, box_length)
             if far_from(positions, trial, box_length, KG_MIN_DISTANCE, ignored):
+                positions.append(trial)
+                break
+        else:
+            return False
+    return True
+
+
+def kp_chains():
+    """Chains grown like kg_melt's but with controlled bends (KP_BEND_SPREADS); bond lengths and
+    per-bond parameters as in molecules(), per-angle K cycling along the chain (offset by the chain
+    index); no non-bonded pair closer than 0.85."""
+    n = KP_CHAINS * KP_BEADS
+    box_length = (n / KP_DENSITY) ** (1.0 / 3.0)
+    rng = SplitMix64(20250301)
+    positions = []
+    for _ in range(KP_CHAINS):
+        while True:
+            chain_start = len(positions)
+            if grow_bent_chain(rng, positions, box_length):
+                break
+            del positions[chain_start:]
+    positions = np.array(positions)
+    bonds, angles = [], []
+    excluded = [[] for _ in range(n)]
+    for c in range(KP_CHAINS):
+        first = c * KP_BEADS
+        for k in range(KP_BEADS - 1):
+            bonds.append((first + k, first + k + 1, *BOND_PARAMETERS[(k + c) % len(BOND_PARAMETERS)]))
+            excluded[first + k].append(first + k + 1)
+            excluded[first + k + 1].append(first + k)
+        for k in range(KP_BEADS - 2):
+            angles.append((first + k, first + k + 1, first + k + 2, KRATKY_POROD_K[(k + c) % len(KRATKY_POROD_K)]))
+    pair = PairTerm("wca", "WCAType1", WCA_FACTOR, {("A", "A"): (1.0, 1.0)},
+                    [sorted(e) for e in excluded], "0.0 1.0 1.0")
+    return System("kp_chains", positions, box_length, ["A"] * n, ["A"],
+                  [i // KP_BEADS for i in range(n)], pair, bonds, "bonds", angles, angle_style="kratky_porod")
+
+
+def grow_bent_chain(rng, positions, box_length):
+    """Appends one chain to positions; False when a bead finds no room (the caller retries)."""
+    for bead in range(KP_BEADS):
+        for trial_index in range(MAX_TRIALS):
+            if bead == 0:
+                trial = np.array([rng.uniform(-0.5, 0.5) * box_length for _ in range(3)])
+            else:
+                direction = random_unit_vector(rng)
+                if bead >= 2:
+                    forward = minimum_image(positions[-1] - positions[-2], box_length)
+                    # Trials cycle through the spreads from the bead's own along the chain, so that
+                    # where the straight continuation is blocked (often, at this density) the chain
+                    # bends instead of failing.
+                    spread = KP_BEND_SPREADS[(bead + trial_index) % len(KP_BEND_SPREADS)]
+                    bent = forward / math.sqrt(float(forward @ forward)) + spread * direction
+                    direction = bent / math.sqrt(float(bent @ bent))
+                trial = positions[-1] + rng.uniform(*MOLECULE_BOND_RANGE) * direction
+            trial = wrap(trial, box_length)
+            ignored = (len(positions) - 1,) if bead > 0 else ()
+            if far_from(positions, trial, box_length, KP_MIN_DISTANCE, ignored):
                 positions.append(trial)
                 break
         else:
@@ -417,8 +488,9 @@ def best_chen_hummer(theta):
 
 
 def angle_term(r_vectors, row, style="harmonic"):
-    """U = 1/2 K (theta - theta0)^2 (or Best-Chen-Hummer's U), theta the angle at j between r_i - r_j
-    and r_k - r_j."""
+    """U = 1/2 K (theta - theta0)^2 (or Kratky-Porod's K (1 + cos theta), or Best-Chen-Hummer's U),
+    theta the angle at j between r_i - r_j and r_k - r_j. Kratky-Porod's forces go through theta here
+    too, a different path from the gradient of cos theta that structmd and LAMMPS take."""
     a = r_vectors[0] - r_vectors[1]
     c = r_vectors[2] - r_vectors[1]
     la, lc = np.linalg.norm(a), np.linalg.norm(c)
@@ -427,6 +499,9 @@ def angle_term(r_vectors, row, style="harmonic"):
     sin_theta = math.sin(theta)
     if style == "best_chen_hummer":
         energy, du_dtheta = best_chen_hummer(theta)
+    elif style == "kratky_porod":
+        K = row[3]
+        energy, du_dtheta = K * (1.0 + cos_theta), -K * sin_theta
     else:
         K, theta0 = row[3], radians(row[4])
         energy, du_dtheta = 0.5 * K * (theta - theta0) ** 2, K * (theta - theta0)
@@ -606,6 +681,9 @@ def lammps_script(system, type_tables):
             width = math.sqrt(2.0 / (BCH_GAMMA * k))
             wells += [width * math.sqrt(0.5 * math.pi) * math.exp(-BCH_GAMMA * eps), width, theta * 180.0 / math.pi]
         lines.append(f"angle_coeff 1 {1.0 / BCH_GAMMA!r} {len(BCH_WELLS)} " + " ".join(repr(v) for v in wells))
+    elif system.angles and system.angle_style == "kratky_porod":
+        lines.append("angle_style cosine")
+        lines += [f"angle_coeff {t} {K!r}" for (K,), t in type_tables["angles"].items()]
     elif system.angles:
         lines.append("angle_style harmonic")
         lines += [f"angle_coeff {t} {K / 2.0!r} {theta0}" for (K, theta0), t in type_tables["angles"].items()]
@@ -738,6 +816,9 @@ def forcefield_entries(system):
                                    [list(row) for row in system.bonds]))
     if system.angles and system.angle_style == "best_chen_hummer":
         entries.append(table_entry("angles", ["Bond3", "BestChenHummerAngular"], ["id_i", "id_j", "id_k"],
+                                   [list(row) for row in system.angles]))
+    elif system.angles and system.angle_style == "kratky_porod":
+        entries.append(table_entry("angles", ["Bond3", "KratkyPorod"], ["id_i", "id_j", "id_k", "K"],
                                    [list(row) for row in system.angles]))
     elif system.angles:
         entries.append(table_entry("angles", ["Bond3", "HarmonicAngular"], ["id_i", "id_j", "id_k", "K", "theta0"],
@@ -1195,7 +1276,7 @@ def write_surface_case(lmp, case):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--lmp", default="lmp", help="LAMMPS executable (default: lmp on PATH)")
-    builds = {build.__name__: build for build in (kg_melt, molecules, lj_mixture, ca_chains)}
+    builds = {build.__name__: build for build in (kg_melt, molecules, lj_mixture, ca_chains, kp_chains)}
     surfaces = ["surfaces", "plain_cylinder"]
     parser.add_argument("--cases", nargs="+", choices=sorted(builds) + surfaces, default=list(builds) + surfaces,
                         help="the cases to write (default: all; ca_chains needs LAMMPS's EXTRA-MOLECULE)")
