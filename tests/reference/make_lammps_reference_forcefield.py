@@ -210,15 +210,12 @@ def kg_melt():
     n = KG_CHAINS * KG_BEADS
     box_length = (n / KG_DENSITY) ** (1.0 / 3.0)
     rng = SplitMix64(20240611)
-    positions = []
-    for _ in range(KG_CHAINS):
-        while True:
-            chain_start = len(positions)
-            grown = grow_chain(rng, positions, box_length)
-            if grown:
-                break
-            del positions[chain_start:]
-    positions = np.array(positions)
+
+    def next_bead(positions, start, bead, trial_index):
+        length = rng.uniform(KG_BOND_LENGTH - KG_BOND_SPREAD, KG_BOND_LENGTH + KG_BOND_SPREAD)
+        return positions[-1] + length * random_unit_vector(rng), (len(positions) - 1,)
+
+    positions = grow_chains(rng, KG_CHAINS, KG_BEADS, box_length, KG_MIN_DISTANCE, next_bead)
     bonds = [(c * KG_BEADS + k, c * KG_BEADS + k + 1, FENE_K, FENE_R0)
              for c in range(KG_CHAINS) for k in range(KG_BEADS - 1)]
     excluded = [[] for _ in range(n)]
@@ -231,19 +228,33 @@ def kg_melt():
                   [i // KG_BEADS for i in range(n)], pair, bonds, "fene")
 
 
-def grow_chain(rng, positions, box_length):
-    """Appends one chain to positions; False when a bead finds no room (the caller retries)."""
-    for bead in range(KG_BEADS):
-        for _ in range(MAX_TRIALS):
+def grow_chains(rng, chains, beads, box_length, min_distance, next_bead):
+    """Positions of `chains` chains of `beads` beads grown bead by bead: a chain's first bead uniform in
+    the box, each further one next_bead(positions, start, bead, trial_index) -> (trial, ignored), or None
+    for a trial rejected before the distance test (start: the chain's first bead), kept where no bead
+    but the ignored lies within min_distance. A chain whose bead finds no room in MAX_TRIALS trials is
+    grown again from its first bead."""
+    positions = []
+    for _ in range(chains):
+        start = len(positions)
+        while not grow_one_chain(rng, positions, start, beads, box_length, min_distance, next_bead):
+            del positions[start:]
+    return np.array(positions)
+
+
+def grow_one_chain(rng, positions, start, beads, box_length, min_distance, next_bead):
+    """Appends one chain to positions (grow_chains); False when a bead finds no room."""
+    for bead in range(beads):
+        for trial_index in range(MAX_TRIALS):
             if bead == 0:
-                trial = np.array([rng.uniform(-0.5, 0.5) * box_length for _ in range(3)])
-                ignored = ()
+                trial, ignored = np.array([rng.uniform(-0.5, 0.5) * box_length for _ in range(3)]), ()
             else:
-                length = rng.uniform(KG_BOND_LENGTH - KG_BOND_SPREAD, KG_BOND_LENGTH + KG_BOND_SPREAD)
-                trial = positions[-1] + length * random_unit_vector(rng)
-                ignored = (len(positions) - 1,)
+                drawn = next_bead(positions, start, bead, trial_index)
+                if drawn is None:
+                    continue
+                trial, ignored = drawn
             trial = wrap(trial, box_length)
-            if far_from(positions, trial, box_length, KG_MIN_DISTANCE, ignored):
+            if far_from(positions, trial, box_length, min_distance, ignored):
                 positions.append(trial)
                 break
         else:
@@ -258,14 +269,19 @@ def kp_chains():
     n = KP_CHAINS * KP_BEADS
     box_length = (n / KP_DENSITY) ** (1.0 / 3.0)
     rng = SplitMix64(20250301)
-    positions = []
-    for _ in range(KP_CHAINS):
-        while True:
-            chain_start = len(positions)
-            if grow_bent_chain(rng, positions, box_length):
-                break
-            del positions[chain_start:]
-    positions = np.array(positions)
+
+    def next_bead(positions, start, bead, trial_index):
+        direction = random_unit_vector(rng)
+        if bead >= 2:
+            forward = minimum_image(positions[-1] - positions[-2], box_length)
+            # Trials cycle through the spreads from the bead's own along the chain, so that where the
+            # straight continuation is blocked (often, at this density) the chain bends instead of failing.
+            spread = KP_BEND_SPREADS[(bead + trial_index) % len(KP_BEND_SPREADS)]
+            bent = forward / math.sqrt(float(forward @ forward)) + spread * direction
+            direction = bent / math.sqrt(float(bent @ bent))
+        return positions[-1] + rng.uniform(*MOLECULE_BOND_RANGE) * direction, (len(positions) - 1,)
+
+    positions = grow_chains(rng, KP_CHAINS, KP_BEADS, box_length, KP_MIN_DISTANCE, next_bead)
     bonds, angles = [], []
     excluded = [[] for _ in range(n)]
     for c in range(KP_CHAINS):
@@ -282,33 +298,6 @@ def kp_chains():
                   [i // KP_BEADS for i in range(n)], pair, bonds, "bonds", angles, angle_style="kratky_porod")
 
 
-def grow_bent_chain(rng, positions, box_length):
-    """Appends one chain to positions; False when a bead finds no room (the caller retries)."""
-    for bead in range(KP_BEADS):
-        for trial_index in range(MAX_TRIALS):
-            if bead == 0:
-                trial = np.array([rng.uniform(-0.5, 0.5) * box_length for _ in range(3)])
-            else:
-                direction = random_unit_vector(rng)
-                if bead >= 2:
-                    forward = minimum_image(positions[-1] - positions[-2], box_length)
-                    # Trials cycle through the spreads from the bead's own along the chain, so that
-                    # where the straight continuation is blocked (often, at this density) the chain
-                    # bends instead of failing.
-                    spread = KP_BEND_SPREADS[(bead + trial_index) % len(KP_BEND_SPREADS)]
-                    bent = forward / math.sqrt(float(forward @ forward)) + spread * direction
-                    direction = bent / math.sqrt(float(bent @ bent))
-                trial = positions[-1] + rng.uniform(*MOLECULE_BOND_RANGE) * direction
-            trial = wrap(trial, box_length)
-            ignored = (len(positions) - 1,) if bead > 0 else ()
-            if far_from(positions, trial, box_length, KP_MIN_DISTANCE, ignored):
-                positions.append(trial)
-                break
-        else:
-            return False
-    return True
-
-
 def molecules():
     """Linear molecules with bond lengths in [0.95, 1.05], bond angles in [100, 130] degrees and random
     torsions; atoms further apart than 1-4 along a molecule, or in different molecules, keep 0.85."""
@@ -317,14 +306,18 @@ def molecules():
     cos_min_angle = math.cos(math.radians(MOLECULE_ANGLE_RANGE_DEGREES[0]))
     cos_max_angle = math.cos(math.radians(MOLECULE_ANGLE_RANGE_DEGREES[1]))
     rng = SplitMix64(20240612)
-    positions = []
-    for _ in range(MOLECULES):
-        while True:
-            start = len(positions)
-            if grow_molecule(rng, positions, box_length, cos_min_angle, cos_max_angle):
-                break
-            del positions[start:]
-    positions = np.array(positions)
+
+    def next_bead(positions, start, atom, trial_index):
+        direction = random_unit_vector(rng)
+        if atom >= 2:
+            previous = minimum_image(positions[-2] - positions[-1], box_length)
+            cos_angle = float(previous @ direction) / math.sqrt(float(previous @ previous))
+            if not cos_max_angle <= cos_angle <= cos_min_angle:
+                return None
+        trial = positions[-1] + rng.uniform(*MOLECULE_BOND_RANGE) * direction
+        return trial, tuple(range(max(start, len(positions) - 3), len(positions)))
+
+    positions = grow_chains(rng, MOLECULES, MOLECULE_ATOMS, box_length, MOLECULE_MIN_DISTANCE, next_bead)
     bonds, angles, dihedrals = [], [], []
     excluded = [set() for _ in range(n)]
     for m in range(MOLECULES):
@@ -359,30 +352,6 @@ def ca_chains():
     system.units = "KcalMol_A"
     system.temperature = CA_TEMPERATURE
     return system
-
-
-def grow_molecule(rng, positions, box_length, cos_min_angle, cos_max_angle):
-    start = len(positions)
-    for atom in range(MOLECULE_ATOMS):
-        for _ in range(MAX_TRIALS):
-            if atom == 0:
-                trial = np.array([rng.uniform(-0.5, 0.5) * box_length for _ in range(3)])
-            else:
-                direction = random_unit_vector(rng)
-                if atom >= 2:
-                    previous = minimum_image(positions[-2] - positions[-1], box_length)
-                    cos_angle = float(previous @ direction) / math.sqrt(float(previous @ previous))
-                    if not cos_max_angle <= cos_angle <= cos_min_angle:
-                        continue
-                trial = positions[-1] + rng.uniform(*MOLECULE_BOND_RANGE) * direction
-            trial = wrap(trial, box_length)
-            ignored = tuple(range(max(start, len(positions) - 3), len(positions)))
-            if far_from(positions, trial, box_length, MOLECULE_MIN_DISTANCE, ignored):
-                positions.append(trial)
-                break
-        else:
-            return False
-    return True
 
 
 def lj_mixture():
