@@ -251,9 +251,9 @@ private:
                                                   cell_local(), box_});
         }
         if (particleListsBuilt_)
-            backend_.for_each_lanes(n, BuildLists<R>{particle_view(), R(listRadius_ * listRadius_), control_.data(),
-                                                     B::ordered_neighbour_lists},
-                                    LaneSizing::kFillDevice);
+            with_build_path(BuildLists<R>{particle_view(), R(listRadius_ * listRadius_), control_.data(),
+                                          B::ordered_neighbour_lists},
+                            [&](const auto& along) { backend_.for_each_lanes(n, along, LaneSizing::kFillDevice); });
         backend_.write(control_, kRebuild, 0);
     }
 

@@ -226,9 +226,11 @@ struct BuildLists {
     enum Separations { kMinimumImage, kCellImage, kCellLocal };
 
     // Lists slot k's candidates within the list radius, returns how many, from the cells that
-    // come within the list radius of the slot's position. The shift of a candidate cell (its
-    // image, or its distance in cells) is the same for all its members, so it is taken once a
-    // cell, and a candidate costs a load, a difference and a distance.
+    // come within the list radius of the slot's position, a row's run of them at a time. The image
+    // of a run's cells is the same for all their members, so it is taken once a run, and a
+    // candidate costs a load, a difference and a distance. With cell-local positions the cells'
+    // distance differs from cell to cell, so those builds take the cells one by one: runs taken
+    // cell by cell inside were 1-3% slower there (mixed precision, H200, docs/benchmarks.md).
     template <Separations kHow, bool kAnyPair>
     SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = view;
@@ -246,18 +248,11 @@ struct BuildLists {
         v.grid.coordinates(rk, v.box, cx, cy, cz);
         const Vec3<R> u = v.grid.scaled(rk, v.box);
         const R prune2 = v.grid.pruning_radius2(listRadius2);
-        v.grid.for_each_cell_near(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int c, int dx, int dy, int dz) {
-            typename CellLocalPositions<R>::CellShift cells{};
-            if (kHow == kCellLocal) cells = v.cellLocal.shift(dx, dy, dz);
-            Vec3<R> image{R(0), R(0), R(0)};
-            if (kHow == kCellImage) {
-                const CellGrid<R>& g = v.grid;
-                image = {CellGrid<R>::image_shift(cx, dx, g.nx, v.box.length.x, g.openX),
-                         CellGrid<R>::image_shift(cy, dy, g.ny, v.box.length.y, g.openY),
-                         CellGrid<R>::image_shift(cz, dz, g.nz, v.box.length.z, g.openZ)};
-            }
-            const int end = v.cellStart[c + 1];
-            for (int base = v.cellStart[c]; base < end; base += lanes.count) {
+        // Candidates begin .. end - 1, each lane taking one a round; cells: their cells' distance
+        // from slot k's (cell-local positions), image: their image shift (kCellImage).
+        const auto scan = [&](int begin, int end, const typename CellLocalPositions<R>::CellShift& cells,
+                              const Vec3<R>& image) {
+            for (int base = begin; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
                 bool accepted = s < end && s != self;
                 if (accepted && kHow == kCellLocal) {
@@ -279,22 +274,38 @@ struct BuildLists {
                 n += found;
                 next += found * v.entryStride;
             }
+        };
+        constexpr bool kWholeRuns = kHow != kCellLocal;
+        v.grid.template for_each_run_near<kWholeRuns>(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int first, int last, int dx, int dy, int dz) {
+            const Vec3<R> none{R(0), R(0), R(0)};
+            if (kHow == kCellLocal) {  // one cell: first == last
+                scan(v.cellStart[first], v.cellStart[first + 1], v.cellLocal.shift(dx, dy, dz), none);
+                return;
+            }
+            Vec3<R> image = none;
+            if (kHow == kCellImage) {
+                const CellGrid<R>& g = v.grid;
+                image = {CellGrid<R>::image_shift(cx, dx, g.nx, v.box.length.x, g.openX),
+                         CellGrid<R>::image_shift(cy, dy, g.ny, v.box.length.y, g.openY),
+                         CellGrid<R>::image_shift(cz, dz, g.nz, v.box.length.z, g.openZ)};
+            }
+            scan(v.cellStart[first], v.cellStart[last + 1], {}, image);
         });
         return n;
     }
 
-    template <Separations kHow>
-    SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
-        return view.filter.trivial() ? collect<kHow, true>(k, lanes) : collect<kHow, false>(k, lanes);
+#if SMD_HOST_CODE
+    // How this view's separations are taken, chosen on the host for a whole build (BuildListsAlong).
+    Separations separations() const {
+        return view.cellLocal.local ? kCellLocal : view.grid.images_by_offset() ? kCellImage : kMinimumImage;
     }
+#endif
 
-    SMD_HD void operator()(int64_t k, Lanes lanes) const {
+    // Slot k's list, its separations taken as kHow says; kAnyPair where the filter is trivial().
+    template <Separations kHow, bool kAnyPair>
+    SMD_HD SMD_INLINE void build(int64_t k, Lanes lanes) const {
         if (!control[kRebuild]) return;
-        // How separations are taken, and the filter, are chosen once a slot, not once a candidate:
-        // the candidate loop is a build's time, and its branches were half of its instructions.
-        const int n = view.cellLocal.local ? collect<kCellLocal>(k, lanes)
-                      : view.grid.images_by_offset() ? collect<kCellImage>(k, lanes)
-                                                     : collect<kMinimumImage>(k, lanes);
+        const int n = collect<kHow, kAnyPair>(k, lanes);
         if (!lanes.leader()) return;
         const NeighbourView<R>& v = view;
         int* entries = v.entries_of(k);
@@ -323,7 +334,7 @@ struct BuildLists {
     static constexpr int kRankedListLimit = 256;
 
     // The CPU backend's loop (backends/cpu/cpu_backend.hpp, for_each_lanes): slots begin .. end - 1 on
-    // one thread, the same lists as operator() with one lane. Each accepted candidate's slot is kept,
+    // one thread, the same lists as build() with one lane. Each accepted candidate's slot is kept,
     // then its particle looked up, and each goes to its place in particle order: the number
     // of smaller particles in the list (particles in a list are distinct). That count is a loop of
     // independent compares the compiler vectorises, where a comparison sort's branches, mispredicted
@@ -445,7 +456,7 @@ struct BuildLists {
                                        [&](int c) { scan(v.cellStart[c], v.cellStart[c + 1]); });
             }
             const int stored = n < capacity ? n : capacity;
-            // In particle order, as operator() leaves it (a list in cell order needs no sort).
+            // In particle order, as build() leaves it (a list in cell order needs no sort).
             int* entries = v.entries_of(k);
             if (!byParticle) {
                 for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = slot[m];
@@ -490,5 +501,35 @@ struct BuildLists {
     }
 #endif
 };
+
+// BuildLists with its separations and its filter fixed at launch (with_build_path): the path's own
+// GPU kernel, which holds no other path's registers. The six in one kernel, chosen per slot, spilled
+// 1,012/1,196 bytes a thread (stores/loads, double, the lone-lane kernel's register cap, sm_90); the
+// cell-local path for any pair alone 104/100. The CPU backend runs the inherited host_rows whatever
+// the path.
+template <class R, typename BuildLists<R>::Separations kHow, bool kAnyPair>
+struct BuildListsAlong : BuildLists<R> {
+    SMD_HD void operator()(int64_t k, Lanes lanes) const { this->template build<kHow, kAnyPair>(k, lanes); }
+};
+
+#if SMD_HOST_CODE
+// launch(along): `lists` as the BuildListsAlong of the path its view calls for.
+template <class R, class Launch>
+void with_build_path(const BuildLists<R>& lists, Launch&& launch) {
+    using L = BuildLists<R>;
+    const auto filtered = [&](auto how) {
+        constexpr typename L::Separations kHow = decltype(how)::value;
+        if (lists.view.filter.trivial())
+            launch(BuildListsAlong<R, kHow, true>{lists});
+        else
+            launch(BuildListsAlong<R, kHow, false>{lists});
+    };
+    switch (lists.separations()) {
+        case L::kCellLocal: return filtered(std::integral_constant<typename L::Separations, L::kCellLocal>{});
+        case L::kCellImage: return filtered(std::integral_constant<typename L::Separations, L::kCellImage>{});
+        case L::kMinimumImage: return filtered(std::integral_constant<typename L::Separations, L::kMinimumImage>{});
+    }
+}
+#endif
 
 }  // namespace structmd

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <map>
@@ -218,9 +219,12 @@ TEST(CellGrid, CoordinatesOfInvertsIndexInEveryBatch) {
                 }
 }
 
-// for_each_cell_near() visits a cell exactly where its nearest point lies within the radius of the
-// point (the distance measured from the cells' bounds, not through gap()), and each such cell once;
-// over the points a particle may take, about 21 of 27 cells at reach 1 and 84 of 125 at reach 2.
+// for_each_run_near() visits a cell exactly where its nearest point lies within the radius of the
+// point (the distance measured from the cells' bounds, not through gap()), and each such cell once,
+// in runs of consecutive cells of a row (split where a row wraps; runs of one cell where whole runs
+// are not asked for) taken in the order of dz, dy, dx; over the points a particle may take, about 21
+// of 27 cells at reach 1 and 84 of 125 at reach 2.
+template <bool kWholeRuns>
 void expect_cells_near_a_point_are_the_ones_the_radius_reaches(int reach, double mostVisited) {
     const Box<double> box = Box<double>::make(14.0, 15.0, 16.0);
     const double radius = 2.8;
@@ -234,13 +238,22 @@ void expect_cells_near_a_point_are_the_ones_the_radius_reaches(int reach, double
         const Vec3<double> u{uniform(random) * grid.nx, uniform(random) * grid.ny, uniform(random) * grid.nz};
         const int cx = static_cast<int>(u.x), cy = static_cast<int>(u.y), cz = static_cast<int>(u.z);
         std::map<int, int> visits;
-        grid.for_each_cell_near(u, cx, cy, cz, 0, radius * radius, [&](int c, int dx, int dy, int dz) {
-            const int named = grid.index(CellGrid<double>::periodic(cx + dx, grid.nx),
-                                         CellGrid<double>::periodic(cy + dy, grid.ny),
-                                         CellGrid<double>::periodic(cz + dz, grid.nz));
-            EXPECT_EQ(c, named) << "the offsets name the cell";
-            ++visits[c];
+        std::vector<std::array<int, 3>> offsets;  // of the cells in the order visited
+        grid.for_each_run_near<kWholeRuns>(u, cx, cy, cz, 0, radius * radius, [&](int first, int last, int dx, int dy, int dz) {
+            ASSERT_LE(first, last);
+            if (!kWholeRuns) ASSERT_EQ(first, last) << "cells one by one";
+            ASSERT_EQ(first / grid.nx, last / grid.nx) << "a run lies in one row";
+            for (int c = first; c <= last; ++c) {
+                const int offset = dx + (c - first);
+                const int named = grid.index(CellGrid<double>::periodic(cx + offset, grid.nx),
+                                             CellGrid<double>::periodic(cy + dy, grid.ny),
+                                             CellGrid<double>::periodic(cz + dz, grid.nz));
+                EXPECT_EQ(c, named) << "the offsets name the cell";
+                ++visits[c];
+                offsets.push_back({dz, dy, offset});
+            }
         });
+        EXPECT_TRUE(std::is_sorted(offsets.begin(), offsets.end())) << "cells in the order of dz, dy, dx";
         for (int dz = -reach; dz <= reach; ++dz)
             for (int dy = -reach; dy <= reach; ++dy)
                 for (int dx = -reach; dx <= reach; ++dx) {
@@ -268,8 +281,13 @@ void expect_cells_near_a_point_are_the_ones_the_radius_reaches(int reach, double
 }
 
 TEST(CellGrid, CellsNearAPointAreTheOnesTheRadiusReaches) {
-    expect_cells_near_a_point_are_the_ones_the_radius_reaches(1, 0.85);
-    expect_cells_near_a_point_are_the_ones_the_radius_reaches(2, 0.75);
+    for (const bool wholeRuns : {true, false}) {
+        SCOPED_TRACE(wholeRuns ? "whole runs" : "cells one by one");
+        const auto expect = wholeRuns ? expect_cells_near_a_point_are_the_ones_the_radius_reaches<true>
+                                      : expect_cells_near_a_point_are_the_ones_the_radius_reaches<false>;
+        expect(1, 0.85);
+        expect(2, 0.75);
+    }
 }
 
 TEST(VerletList, SlotsAreAPermutationInCellOrder) {
@@ -328,10 +346,10 @@ TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
     }
 }
 
-// The build loop a GPU runs (BuildLists::operator(), one slot at a time with one lane) against the
-// CPU's row pass that built the list: the same slots in every list, for each way of taking
-// separations it chooses once per slot (the minimum image, the image of the candidate's cell, or
-// cell-local positions) and each filter (any pair, or exclusions). A pair on which they differ may
+// The build loop a GPU runs (the BuildListsAlong with_build_path chooses, one slot at a time with
+// one lane) against the CPU's row pass that built the list: the same slots in every list, for each
+// way of taking separations (the minimum image, the image of the candidate's cell, or cell-local
+// positions) and each filter (any pair, or exclusions). A pair on which they differ may
 // only be one the two roundings put on either side of the list radius.
 template <class Configure>
 void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const PairFilterInputs& inputs,
@@ -351,10 +369,12 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     int control[kControlSlots] = {};
     control[kRebuild] = 1;
     const double radius = 2.5 + list.skin();
-    const BuildLists<double> loop{v, radius * radius, control, false};
+    const BuildLists<double> lists{v, radius * radius, control, false};
+    with_build_path(lists, [&](const auto& along) {
+        for (int64_t k = 0; k < s.n; ++k) along(k, Lanes{});
+    });
     int64_t listed = 0, borderline = 0;
     for (int64_t k = 0; k < s.n; ++k) {
-        loop(k, Lanes{});
         ASSERT_LE(counts[k], v.capacity) << "slot " << k << " overflowed";
         std::set<int> mine, theirs;
         for (int m = 0; m < counts[k]; ++m) mine.insert(entries[k * v.particleStride + m * v.entryStride]);
