@@ -1,6 +1,7 @@
 #pragma once
 // The groups of the built-in force-field components (components.hpp): each engine compiles the
-// factories of a group in a translation unit of its own (src/CMakeLists.txt names them one by one),
+// factories of a group in a translation unit of its own (CMakeLists.txt names them one by one, in
+// this order, as STRUCTMD_ALL_COMPONENT_GROUPS),
 // so that no unit takes much longer to compile than the others. A pair term instantiates dozens of
 // kernels (lists, cluster pairs, all pairs, with and without energy and virial), so the pair terms
 // are spread over several groups.
@@ -27,7 +28,6 @@ enum class ComponentGroup {
 constexpr bool component_group_built(ComponentGroup g) {
     return ((STRUCTMD_COMPONENT_GROUPS_BUILT) >> static_cast<int>(g) & 1) != 0;
 }
-constexpr bool every_component_group_built() { return (STRUCTMD_COMPONENT_GROUPS_BUILT & 0x7f) == 0x7f; }
 
 // Calls f(std::integral_constant<ComponentGroup, G>{}) for each group built, in the order above.
 template <class F>
