@@ -1,10 +1,9 @@
 #pragma once
 // The groups of the built-in force-field components (components.hpp): each engine compiles the
 // factories of a group in a translation unit of its own (CMakeLists.txt names them one by one, in
-// this order, as STRUCTMD_ALL_COMPONENT_GROUPS),
-// so that no unit takes much longer to compile than the others. A pair term instantiates dozens of
-// kernels (lists, cluster pairs, all pairs, with and without energy and virial), so the pair terms
-// are spread over several groups.
+// this order, as STRUCTMD_ALL_COMPONENT_GROUPS), so that no unit takes much longer to compile than
+// the others. A pair term instantiates dozens of kernels (lists, cluster pairs, all pairs, with and
+// without energy and virial), so the pair terms are spread over several groups.
 #include <type_traits>
 
 namespace structmd {
