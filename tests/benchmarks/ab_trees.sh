@@ -102,11 +102,15 @@ case "${1:-}" in
       # The working tree has every precision and the CPU engines, whatever AB_PRECISIONS says: the
       # GPU label's Python tests and the precision comparison run in double, and some tests set the
       # backends side by side. The other trees are only timed on the GPU, so they leave the CPU
-      # engines out (a tree older than STRUCTMD_CPU_ENGINES ignores it).
+      # engines out, and the force-field components the benchmarks do not use: the liquid's
+      # LennardJonesType1, the chains' WCAType1, harmonic bonds and Kratky-Porod angles (a tree
+      # older than STRUCTMD_CPU_ENGINES or STRUCTMD_COMPONENT_GROUPS ignores it).
       local built=${precisions// /;} cpu_engines=$([ "$cuda" = ON ] && echo OFF || echo ON)
-      [ "$tree" = after ] && built="single;mixed;double" cpu_engines=ON
+      local groups="lennardJonesPairs;repulsivePairs;bondedTerms"
+      [ "$tree" = after ] && built="single;mixed;double" cpu_engines=ON groups=""
       cmake -S "$source_dir" -B "$source_dir/build" -DCMAKE_BUILD_TYPE=Release -DSTRUCTMD_CUDA="$cuda" \
-        "-DSTRUCTMD_PRECISIONS=$built" -DSTRUCTMD_CPU_ENGINES="$cpu_engines" > "$work/$tree-configure.log" 2>&1
+        "-DSTRUCTMD_PRECISIONS=$built" -DSTRUCTMD_CPU_ENGINES="$cpu_engines" \
+        ${groups:+"-DSTRUCTMD_COMPONENT_GROUPS=$groups"} > "$work/$tree-configure.log" 2>&1
       if cmake --build "$source_dir/build" -j"$(nproc)" --target structmd structmd_lj_benchmark \
         > "$work/$tree-build.log" 2>&1; then
         echo "$tree built in $((SECONDS - start)) s"
