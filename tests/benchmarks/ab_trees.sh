@@ -13,7 +13,10 @@
 #                                                /tmp/ab, the trees side by side; a call cut short by
 #                                                its time limit goes on where it stopped. The trees
 #                                                are copied there by a lease's first call only: to
-#                                                build a tree edited since, rm -rf /tmp/ab first
+#                                                build a tree edited since, rm -rf /tmp/ab first.
+#                                                Only the working tree is built whole (for the
+#                                                label); the others with the component groups the
+#                                                benchmarks use and no CPU engines
 #   tests/benchmarks/ab_trees.sh label           device: the rest of the working tree's targets (tests,
 #                                                other benchmarks; a call cut short goes on), then
 #                                                ctest -L gpu in its build
