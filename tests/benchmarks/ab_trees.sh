@@ -22,6 +22,11 @@
 #                                                ctest -L gpu in its build
 #   tests/benchmarks/ab_trees.sh round K OUT     device: every tree's benchmarks, before first on odd K
 #                                                and last on even K
+#   tests/benchmarks/ab_trees.sh profile OUT     device, after label: Nsight Compute's full report
+#                                                (ncu --set full) of the working tree's list build
+#                                                and pair kernel in the LJ liquid (AB_PROFILE_N,
+#                                                default 1000188; single precision), without step
+#                                                graphs so each kernel is seen: OUT/profile-*.csv
 #
 # The device calls carry .deps and .whl (the device tool's `carry`). Environment (optional):
 #   AB_BACKEND      cuda (default) or cpu (a smoke run on a machine without a GPU)
@@ -197,6 +202,24 @@ for suffix, key, rate in (("", ("scene", "n", "precision"), "particle_steps_per_
                 print(f"round {round_} {tree} {' '.join(k)}: {before[k]:.4g} -> {after[k]:.4g} "
                       f"({100 * (after[k] / before[k] - 1):+.1f}%)")
 EOF
+    ;;
+  profile)
+    out=${2:?profile needs an output folder}
+    mkdir -p "$out"
+    command -v ncu > /dev/null || { echo "profile: ncu (Nsight Compute) is not on PATH"; exit 1; }
+    build=$work/after/build
+    "$build/tests/benchmarks/structmd_lj_benchmark" --scene lj --n "${AB_PROFILE_N:-1000188}" \
+      --write-input "$work/profile-lj.json" > /dev/null
+    # Without step graphs the build's kernel runs every step and returns at once where no build is
+    # due: 16 of its launches hold two or three builds. Two pair kernels are enough.
+    for kernel in BuildLists:16 PairKernel:2; do
+      name=${kernel%%:*}
+      ncu --clock-control none --set full --kernel-name-base demangled --kernel-name "regex:$name" \
+        --launch-skip 20 --launch-count "${kernel##*:}" --csv --page details \
+        "$build/src/launcher/structmd" run "$work/profile-lj.json" --backend "$backend" --precision single \
+        --steps 60 --quiet --no-step-graphs > "$out/profile-$name.csv" 2> "$out/profile-$name.log"
+      echo "profile: $name, $(grep -c '"Duration"' "$out/profile-$name.csv") launches in $out/profile-$name.csv"
+    done
     ;;
   *)
     sed -n '2,/^set -euo/p' "$0" | grep '^#'
