@@ -26,7 +26,8 @@
 #                                                (ncu --set full) of the working tree's list build
 #                                                and pair kernel in the LJ liquid (AB_PROFILE_N,
 #                                                default 1000188; single precision), without step
-#                                                graphs so each kernel is seen: OUT/profile-*.csv
+#                                                graphs so each kernel is seen: OUT/profile-*.csv;
+#                                                AB_PROFILE_TREE names another tree (default after)
 #
 # The device calls carry .deps and .whl (the device tool's `carry`). Environment (optional):
 #   AB_BACKEND      cuda (default) or cpu (a smoke run on a machine without a GPU)
@@ -207,7 +208,10 @@ EOF
     out=${2:?profile needs an output folder}
     mkdir -p "$out"
     command -v ncu > /dev/null || { echo "profile: ncu (Nsight Compute) is not on PATH"; exit 1; }
-    build=$work/after/build
+    build=$work/${AB_PROFILE_TREE:-after}/build
+    # The trees other than after were built without the launcher.
+    [ -x "$build/src/launcher/structmd" ] ||
+      cmake --build "$build" -j"$(nproc)" --target structmd_launcher > "$work/profile-build.log" 2>&1
     "$build/tests/benchmarks/structmd_lj_benchmark" --scene lj --n "${AB_PROFILE_N:-1000188}" \
       --write-input "$work/profile-lj.json" > /dev/null
     # Without step graphs the build's kernel runs every step and returns at once where no build is
