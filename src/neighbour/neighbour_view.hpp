@@ -51,13 +51,17 @@ struct NeighbourView {
         const int n = count[k];
         if (n <= capacity) {
             // The next entry is loaded before this one's visit, so that a neighbour's position is
-            // one load away from its visit rather than two dependent loads.
-            const int* entries = entries_of(k);
+            // one load away from its visit rather than two dependent loads. A pointer stepped along
+            // the lane's entries, not the entry's index times the 64-bit stride each neighbour; its
+            // last step, past the lane's last entry, is not read.
             int m = lanes.lane;
-            int s = m < n ? entries[m * entryStride] : 0;
+            const int64_t step = lanes.count * entryStride;
+            const int* entry = entries_of(k) + m * entryStride;
+            int s = m < n ? *entry : 0;
             SMD_UNROLL4
             for (; m < n; m += lanes.count) {
-                const int next = m + lanes.count < n ? entries[(m + lanes.count) * entryStride] : 0;
+                entry += step;
+                const int next = m + lanes.count < n ? *entry : 0;
                 visit(s);
                 s = next;
             }
