@@ -38,6 +38,8 @@
 #   AB_LJ_SIZES     default "4000 10976 62500 1000188 4000000"
 #   AB_CHAINS_SIZE  default 1000000 (0: no chains)
 #   AB_DPSTOKES     DPStokes sizes, default "1000 10000" ("": none)
+#   AB_WHOLE_AFTER  0: the working tree built lean like the others (a lease too short for the label
+#                   measures alone; label then cannot run)
 #   AB_SECONDS      seconds a timed call of the LJ benchmark (default 0.3; DPStokes: AB_HYDRO_SECONDS, 0.5)
 #
 # Each round writes OUT/round-K-TREE.csv (structmd_lj_benchmark's rows, liquid and chains) and
@@ -116,7 +118,7 @@ case "${1:-}" in
       # older than STRUCTMD_CPU_ENGINES or STRUCTMD_COMPONENT_GROUPS ignores it).
       local built=${precisions// /;} cpu_engines=$([ "$cuda" = ON ] && echo OFF || echo ON)
       local groups="lennardJonesPairs;repulsivePairs;bondedTerms"
-      [ "$tree" = after ] && built="single;mixed;double" cpu_engines=ON groups=""
+      [ "$tree" = after ] && [ "${AB_WHOLE_AFTER:-1}" = 1 ] && built="single;mixed;double" cpu_engines=ON groups=""
       cmake -S "$source_dir" -B "$source_dir/build" -DCMAKE_BUILD_TYPE=Release -DSTRUCTMD_CUDA="$cuda" \
         "-DSTRUCTMD_PRECISIONS=$built" -DSTRUCTMD_CPU_ENGINES="$cpu_engines" \
         ${groups:+"-DSTRUCTMD_COMPONENT_GROUPS=$groups"} > "$work/$tree-configure.log" 2>&1
