@@ -256,7 +256,7 @@ struct PairRowsOnHost {
         const bool oneTable = table.ntypes == 1 && table.batch == nullptr;
         for (int64_t k = begin; k < end; ++k) {
             const int n = v.count[k];
-            if (group || n > v.capacity || v.entryStride != 1) {
+            if (group || n > v.capacity || !v.by_rows()) {
                 slotByOperator(kernel, k);
                 continue;
             }

@@ -240,10 +240,25 @@ struct BuildLists {
         const Vec3<R> rk = xyz(v.positions[k]);
         const Real4<float> localK = kHow == kCellLocal ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
         const float localRadius2 = static_cast<float>(listRadius2);
-        // Where this slot's next entry goes: a pointer moved along, not an index times the stride
-        // computed again for every candidate.
-        int* next = v.entries_of(k);
+        int* const entries = v.entries_of(k);
         int n = 0;
+        // One lane stages its entries and writes each four as one chunk at `chunk`: staged in
+        // shared memory on the GPU, where four more registers made the lone-lane kernels spill
+        // 3-4 times the bytes (sm_90), in a local array on the host.
+        constexpr int kChunk = NeighbourView<R>::kChunk;
+        int* chunk = entries;
+#if defined(__CUDA_ARCH__)
+        __shared__ int staged[kChunk * kBlockThreads];
+        int* const stage = staged + threadIdx.x;
+        constexpr int kStageStride = kBlockThreads;
+#else
+        int staged[kChunk] = {};
+        int* const stage = staged;
+        constexpr int kStageStride = 1;
+#endif
+        const auto staged_chunk = [&] {
+            return EntryChunk{{stage[0], stage[kStageStride], stage[2 * kStageStride], stage[3 * kStageStride]}};
+        };
         int cx, cy, cz;
         v.grid.coordinates(rk, v.box, cx, cy, cz);
         const Vec3<R> u = v.grid.scaled(rk, v.box);
@@ -268,11 +283,19 @@ struct BuildLists {
                 // with the slot's few exclusions or a search of many), and about one candidate in six
                 // is within the list radius.
                 if (!kAnyPair && accepted) accepted = v.filter.accepts(particle, v.order[s], exclusions);
+                if (lanes.count == 1) {
+                    if (!accepted) continue;
+                    stage[(n % kChunk) * kStageStride] = s;
+                    if (++n % kChunk == 0) {
+                        if (n <= v.capacity) NeighbourView<R>::store_chunk(chunk, staged_chunk());
+                        chunk += v.chunkStride;
+                    }
+                    continue;
+                }
                 int found = 0;
                 const int rank = lanes.rank_among(accepted, found);
-                if (accepted && n + rank < v.capacity) next[rank * v.entryStride] = s;
+                if (accepted && n + rank < v.capacity) entries[v.offset_of(n + rank)] = s;
                 n += found;
-                next += found * v.entryStride;
             }
         };
         constexpr bool kWholeRuns = kHow != kCellLocal;
@@ -291,6 +314,8 @@ struct BuildLists {
             }
             scan(v.cellStart[first], v.cellStart[last + 1], {}, image);
         });
+        // One lane's last, partial chunk (its other places hold what no reader visits).
+        if (lanes.count == 1 && n % kChunk != 0 && n <= v.capacity) NeighbourView<R>::store_chunk(chunk, staged_chunk());
         return n;
     }
 
@@ -313,13 +338,13 @@ struct BuildLists {
         // happened to be at this build: a restarted run repeats the same sums bit for bit.
         const int stored = !byParticle ? 0 : (n < v.capacity ? n : v.capacity);
         for (int m = 1; m < stored; ++m) {
-            const int value = entries[m * v.entryStride];
+            const int value = entries[v.offset_of(m)];
             int before = m - 1;
-            while (before >= 0 && v.order[entries[before * v.entryStride]] > v.order[value]) {
-                entries[(before + 1) * v.entryStride] = entries[before * v.entryStride];
+            while (before >= 0 && v.order[entries[v.offset_of(before)]] > v.order[value]) {
+                entries[v.offset_of(before + 1)] = entries[v.offset_of(before)];
                 --before;
             }
-            entries[(before + 1) * v.entryStride] = value;
+            entries[v.offset_of(before + 1)] = value;
         }
         v.count[k] = n;
         atomic_max(control + kMaxNeighbours, n);
@@ -463,7 +488,7 @@ struct BuildLists {
             // In particle order, as build() leaves it (a list in cell order needs no sort).
             int* entries = v.entries_of(k);
             if (!byParticle) {
-                for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = slot[m];
+                for (int m = 0; m < stored; ++m) entries[v.offset_of(m)] = slot[m];
             } else if (stored <= kRankedListLimit) {
                 int low = std::numeric_limits<int>::max(), high = std::numeric_limits<int>::min();
                 for (int m = 0; m < stored; ++m) {
@@ -479,7 +504,7 @@ struct BuildLists {
                         const Key id = key[m];
                         Key rank = 0;
                         for (int other = 0; other < stored; ++other) rank += key[other] < id;
-                        entries[rank * v.entryStride] = slot[m];
+                        entries[v.offset_of(rank)] = slot[m];
                     }
                 };
                 if (stored > 0 && high - low <= std::numeric_limits<int16_t>::max()) {
@@ -496,7 +521,7 @@ struct BuildLists {
                 for (int m = 0; m < stored; ++m)
                     keys[m] = static_cast<uint64_t>(static_cast<uint32_t>(order[slot[m]])) << 32 | static_cast<uint32_t>(slot[m]);
                 std::sort(keys.begin(), keys.begin() + stored);
-                for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = static_cast<int>(static_cast<uint32_t>(keys[m]));
+                for (int m = 0; m < stored; ++m) entries[v.offset_of(m)] = static_cast<int>(static_cast<uint32_t>(keys[m]));
             }
             v.count[k] = n;
             longest = n > longest ? n : longest;

@@ -347,10 +347,11 @@ TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
 }
 
 // The build loop a GPU runs (the BuildListsAlong with_build_path chooses, one slot at a time with
-// one lane) against the CPU's row pass that built the list: the same slots in every list, for each
-// way of taking separations (the minimum image, the image of the candidate's cell, or cell-local
-// positions) and each filter (any pair, or exclusions). A pair on which they differ may
-// only be one the two roundings put on either side of the list radius.
+// one lane, writing its lists by columns of chunks as a GPU thread per particle does) against the
+// CPU's row pass that built the list, both read through for_each_neighbour: the same slots in every
+// list, each once, for each way of taking separations (the minimum image, the image of the
+// candidate's cell, or cell-local positions) and each filter (any pair, or exclusions). A pair on
+// which they differ may only be one the two roundings put on either side of the list radius.
 template <class Configure>
 void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const PairFilterInputs& inputs,
                                           bool cellLocal, bool imagesByOffset) {
@@ -361,9 +362,13 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     ASSERT_EQ(v.cellLocal.local != nullptr, cellLocal);
     ASSERT_EQ(v.grid.images_by_offset(), imagesByOffset);
     ASSERT_EQ(v.filter.trivial(), inputs.excluded.empty());
+    ASSERT_EQ(v.capacity % NeighbourView<double>::kChunk, 0) << "a list holds whole chunks";
+    const NeighbourView<double> rows = v;
+    // The GPU loop's lists laid out by columns of chunks (one thread a particle), read back through
+    // the view's own traversal.
+    v.particleStride = NeighbourView<double>::kChunk;
+    v.chunkStride = NeighbourView<double>::kChunk * s.n;
     std::vector<int> entries(static_cast<size_t>(v.capacity) * s.n), counts(s.n);
-    const int* built = v.list;
-    const int* builtCount = v.count;
     v.list = entries.data();
     v.count = counts.data();
     int control[kControlSlots] = {};
@@ -377,8 +382,9 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     for (int64_t k = 0; k < s.n; ++k) {
         ASSERT_LE(counts[k], v.capacity) << "slot " << k << " overflowed";
         std::set<int> mine, theirs;
-        for (int m = 0; m < counts[k]; ++m) mine.insert(entries[k * v.particleStride + m * v.entryStride]);
-        for (int m = 0; m < builtCount[k]; ++m) theirs.insert(built[k * v.particleStride + m * v.entryStride]);
+        v.for_each_neighbour(static_cast<int>(k), [&](int t) { EXPECT_TRUE(mine.insert(t).second) << "slot " << k; });
+        EXPECT_EQ(static_cast<int>(mine.size()), counts[k]) << "slot " << k;
+        rows.for_each_neighbour(static_cast<int>(k), [&](int t) { theirs.insert(t); });
         listed += static_cast<int64_t>(theirs.size());
         std::vector<int> differing;
         std::set_symmetric_difference(mine.begin(), mine.end(), theirs.begin(), theirs.end(),
