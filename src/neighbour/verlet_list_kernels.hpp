@@ -229,8 +229,10 @@ struct BuildLists {
     // come within the list radius of the slot's position, a row's run of them at a time. The image
     // of a run's cells is the same for all their members, so it is taken once a run, and a
     // candidate costs a load, a difference and a distance. With cell-local positions the cells'
-    // distance differs from cell to cell, so those builds take the cells one by one: runs taken
-    // cell by cell inside were 1-3% slower there (mixed precision, H200, docs/benchmarks.md).
+    // distance along x differs from cell to cell of a run, and each candidate takes it from its own
+    // cell's code (CellLocalPositions::RowShift): one addition more a candidate, where taking the
+    // cells one by one cost the mixed-precision build half as many instructions again as single's
+    // (ncu, 1M, H200).
     template <Separations kHow, bool kAnyPair>
     SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = view;
@@ -265,13 +267,13 @@ struct BuildLists {
         const R prune2 = v.grid.pruning_radius2(listRadius2);
         // Candidates begin .. end - 1, each lane taking one a round; cells: their cells' distance
         // from slot k's (cell-local positions), image: their image shift (kCellImage).
-        const auto scan = [&](int begin, int end, const typename CellLocalPositions<R>::CellShift& cells,
+        const auto scan = [&](int begin, int end, const typename CellLocalPositions<R>::RowShift& cells,
                               const Vec3<R>& image) {
             for (int base = begin; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
                 bool accepted = s < end && s != self;
                 if (accepted && kHow == kCellLocal) {
-                    const Vec3<float> d = CellLocalPositions<R>::separation(localK, v.cellLocal.local[s], cells);
+                    const Vec3<float> d = v.cellLocal.separation(localK, v.cellLocal.local[s], cells);
                     accepted = dot(d, d) < localRadius2;
                 } else if (accepted) {
                     // (x_s - x_k) + shift rounds as the minimum image's (x_s - x_k) -+ L does.
@@ -298,21 +300,19 @@ struct BuildLists {
                 n += found;
             }
         };
-        constexpr bool kWholeRuns = kHow != kCellLocal;
-        v.grid.template for_each_run_near<kWholeRuns>(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int first, int last, int dx, int dy, int dz) {
-            const Vec3<R> none{R(0), R(0), R(0)};
-            if (kHow == kCellLocal) {  // one cell: first == last
-                scan(v.cellStart[first], v.cellStart[first + 1], v.cellLocal.shift(dx, dy, dz), none);
-                return;
-            }
-            Vec3<R> image = none;
-            if (kHow == kCellImage) {
-                const CellGrid<R>& g = v.grid;
+        v.grid.template for_each_run_near<true>(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int first, int last, int dx, int dy, int dz) {
+            const CellGrid<R>& g = v.grid;
+            Vec3<R> image{R(0), R(0), R(0)};
+            typename CellLocalPositions<R>::RowShift cells{};
+            if (kHow == kCellLocal) {
+                cells = v.cellLocal.row_shift(CellGrid<R>::periodic(cx + dx, g.nx), CellGrid<R>::periodic(cy + dy, g.ny),
+                                              CellGrid<R>::periodic(cz + dz, g.nz), dx, dy, dz);
+            } else if (kHow == kCellImage) {
                 image = {CellGrid<R>::image_shift(cx, dx, g.nx, v.box.length.x, g.openX),
                          CellGrid<R>::image_shift(cy, dy, g.ny, v.box.length.y, g.openY),
                          CellGrid<R>::image_shift(cz, dz, g.nz, v.box.length.z, g.openZ)};
             }
-            scan(v.cellStart[first], v.cellStart[last + 1], {}, image);
+            scan(v.cellStart[first], v.cellStart[last + 1], cells, image);
         });
         // One lane's last, partial chunk (its other places hold what no reader visits).
         if (lanes.count == 1 && n % kChunk != 0 && n <= v.capacity) NeighbourView<R>::store_chunk(chunk, staged_chunk());

@@ -110,9 +110,10 @@ struct CellLocalPositions {
     }
 
     // The cells' distance that separation() adds for cells a given number apart along each axis,
-    // as its hi and lo parts (each product exact). A list build takes a whole cell's candidates at
-    // one such shift and unpacks no cell per candidate; the pair kernel, whose neighbours' cells
-    // differ, keeps separation() above (with the shift as a variable it spilled more registers).
+    // as its hi and lo parts (each product exact). A list build takes a run of cells' candidates
+    // at one such shift along y and z (RowShift below) and unpacks no code but x's per candidate;
+    // the pair kernel, whose neighbours' cells differ, keeps separation() above (with the shift as
+    // a variable it spilled more registers).
     struct CellShift {
         Vec3<float> hi, lo;
     };
@@ -124,6 +125,25 @@ struct CellLocalPositions {
     static SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const CellShift& cells) {
         return {(cells.hi.x + (b.x - a.x)) + cells.lo.x, (cells.hi.y + (b.y - a.y)) + cells.lo.y,
                 (cells.hi.z + (b.z - a.z)) + cells.lo.z};
+    }
+    // The cells' distance over a run of cells consecutive along x (CellGrid::for_each_run_near):
+    // along y and z the run's, along x each candidate's own, the difference of its code from
+    // `origin` (the code of the cell at offset 0 in the run's row, which may lie outside the grid:
+    // exact in float all the same). A list build then takes a whole run at one shift.
+    struct RowShift {
+        CellShift yz;
+        float origin;
+    };
+    // For the run whose first cell, at x = firstX in row (py, pz), is dx cells from the slot's
+    // (before the periodic wrap) and the row dy and dz.
+    SMD_HD SMD_INLINE RowShift row_shift(int firstX, int py, int pz, int dx, int dy, int dz) const {
+        return {shift(0, dy, dz), pack(firstX, py, pz) - static_cast<float>(dx)};
+    }
+    // separation(a, b) for b in the run of `row`: the same sums (c times a width part is exact, |c| <= 2).
+    SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const RowShift& row) const {
+        const float c = b.w - row.origin;
+        return {(c * widthHi.x + (b.x - a.x)) + c * widthLo.x, (row.yz.hi.y + (b.y - a.y)) + row.yz.lo.y,
+                (row.yz.hi.z + (b.z - a.z)) + row.yz.lo.z};
     }
 };
 
