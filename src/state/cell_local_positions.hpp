@@ -15,6 +15,7 @@
 // Kept only where every axis is periodic and has more than 2 reach cells, and the codes fit in 24
 // bits (verlet_list.hpp).
 #include "core/box.hpp"
+#include "core/real_limits.hpp"
 
 namespace structmd {
 
@@ -80,13 +81,9 @@ struct CellLocalPositions {
     }
 #endif
 
-    // x rounded to the nearest integer, for |x| < 2^22: adding 1.5 2^23 leaves no fraction bits
-    // (two additions at the full rate, where a conversion runs at a quarter of it). No use here
-    // rounds a half: the codes' quotients are exact, and a fold's at least 1/10 from one.
-    static SMD_HD SMD_INLINE float nearest(float x) {
-        constexpr float kShifter = 12582912.0f;
-        return (x + kShifter) - kShifter;
-    }
+    // x rounded to the nearest integer (core/real_limits.hpp). No use here rounds a half: the
+    // codes' quotients are exact, and a fold's at least 1/10 from one.
+    static SMD_HD SMD_INLINE float nearest(float x) { return nearest_integer(x); }
 
     // b - a for two slots' local positions: their difference plus the cells' distance, each axis's
     // folded across the periodic boundary.
