@@ -1,7 +1,7 @@
 #pragma once
 // The machine epsilon and a quiet NaN of float and double, and a rounding to integers, in host and
-// device code alike. Kernels
-// compiled at run time (NVRTC) have no <limits>: there the NaN comes from CUDA's bit casts.
+// device code alike. Kernels compiled at run time (NVRTC) have no <limits>: there the NaN comes from
+// CUDA's bit casts.
 #include "core/hd.hpp"
 
 #if SMD_HOST_CODE
