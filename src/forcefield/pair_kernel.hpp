@@ -114,8 +114,10 @@ struct PairKernel {
         over_positions(k, lanes);
     }
 
+#if SMD_HOST_CODE
     // Whether a launch may take the kernels of one type and no group (the template's kPlain below).
     bool plain() const { return table.ntypes == 1 && !group; }
+#endif
 
     // Slot k's pairs with separations from the cell-local positions. The double positions only for
     // types: none read where there is one type. kPlain: plain() holds (every kernel below).
