@@ -118,11 +118,6 @@ struct CellLocalPositions {
         const float x = static_cast<float>(cellsX), y = static_cast<float>(cellsY), z = static_cast<float>(cellsZ);
         return {{x * widthHi.x, y * widthHi.y, z * widthHi.z}, {x * widthLo.x, y * widthLo.y, z * widthLo.z}};
     }
-    // separation(a, b) for local positions whose cells are `cells` apart: the same sums.
-    static SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const CellShift& cells) {
-        return {(cells.hi.x + (b.x - a.x)) + cells.lo.x, (cells.hi.y + (b.y - a.y)) + cells.lo.y,
-                (cells.hi.z + (b.z - a.z)) + cells.lo.z};
-    }
     // The cells' distance over a run of cells consecutive along x (CellGrid::for_each_run_near):
     // along y and z the run's, along x each candidate's own, the difference of its code from
     // `origin` (the code of the cell at offset 0 in the run's row, which may lie outside the grid:
