@@ -1,0 +1,100 @@
+// The GPU's neighbour lists in each of their layouts against the CPU's: a Lennard-Jones liquid's
+// forces and energy, CUDA against CPU in the same precision, at sizes where the CUDA backend lays a
+// list out by rows (several lanes a particle), by columns of chunks built with several lanes, and by
+// columns of chunks with one thread a particle (the last two from about 34,000 and 270,000
+// particles on a GPU of 132 multiprocessors; the sizes here clear both on the GPUs we know). One type
+// takes the pair kernels of one type (forces alone), the energy and two types the general ones.
+// Exits with 77 (skipped for CTest) when no CUDA backend is usable.
+#include "physics_support.hpp"
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace structmd_physics {
+namespace {
+
+// A jittered simple cubic lattice, side^3 particles at density ~0.8, types A (and B on every third
+// site where twoTypes): a liquid's neighbourhoods without an equilibration.
+std::string liquid(int side, bool twoTypes) {
+    SplitMix64 rng(31);
+    const double spacing = 1.0 / 0.93, box = side * spacing;
+    std::vector<Vec3> positions;
+    std::vector<std::string> types;
+    for (int a = 0; a < side; ++a)
+        for (int b = 0; b < side; ++b)
+            for (int c = 0; c < side; ++c) {
+                positions.push_back({(a + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box,
+                                     (b + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box,
+                                     (c + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box});
+                types.push_back(twoTypes && (a + b + c) % 3 == 0 ? "B" : "A");
+            }
+    const std::string pairs = twoTypes ? "[[\"A\", \"A\", 1.0, 1.0], [\"A\", \"B\", 1.2, 1.05], [\"B\", \"B\", 0.8, 1.1]]"
+                                       : "[[\"A\", \"A\", 1.0, 1.0]]";
+    const std::string forceField =
+        "\"nl\": {\"type\": [\"VerletConditionalListSet\", \"all\"], \"parameters\": {\"cutOffVerletFactor\": 1.12}},\n"
+        "\"lj\": {\"type\": [\"NonBonded\", \"LennardJonesType1\"],\n"
+        "       \"parameters\": {\"cutOffFactor\": 2.5, \"condition\": \"all\", \"shift\": true},\n"
+        "       \"labels\": [\"name_i\", \"name_j\", \"epsilon\", \"sigma\"], \"data\": " + pairs + "}";
+    return input_document(box, positions, types, {}, forceField, 0.004);
+}
+
+struct Evaluated {
+    std::vector<double> forces;
+    double energy = 0.0;
+};
+
+Evaluated evaluate(const std::string& input, const std::string& backend, const std::string& precision) {
+    Evaluated e;
+    structmd_sim* raw = nullptr;
+    if (structmd_create(create_options(backend, precision).c_str(), &raw) != STRUCTMD_OK) {
+        ADD_FAILURE() << backend << "/" << precision << ": " << structmd_last_error(nullptr);
+        return e;
+    }
+    SimHandle sim(raw);
+    if (structmd_load_string(sim.get(), input.c_str()) != STRUCTMD_OK) {
+        ADD_FAILURE() << backend << "/" << precision << ": " << structmd_last_error(sim.get());
+        return e;
+    }
+    std::int64_t n = 0;
+    EXPECT_EQ(structmd_get_num_particles(sim.get(), &n), STRUCTMD_OK);
+    e.forces.resize(3 * n);
+    // Forces first, alone: the kernels of forces alone; then the energy, through the general ones.
+    EXPECT_EQ(structmd_get_forces(sim.get(), e.forces.data(), n), STRUCTMD_OK) << structmd_last_error(sim.get());
+    EXPECT_EQ(structmd_get_energy(sim.get(), "potential", &e.energy), STRUCTMD_OK) << structmd_last_error(sim.get());
+    return e;
+}
+
+void expect_backends_agree(int side, bool twoTypes) {
+    const std::string input = liquid(side, twoTypes);
+    for (const std::string precision : {"single", "mixed", "double"}) {
+        SCOPED_TRACE(std::to_string(side * side * side) + " particles, " + (twoTypes ? "two types, " : "one type, ") +
+                     precision);
+        const Evaluated cpu = evaluate(input, "cpu", precision), cuda = evaluate(input, "cuda", precision);
+        ASSERT_EQ(cpu.forces.size(), cuda.forces.size());
+        const double tolerance = precision == "double" ? 1e-10 : 1e-5;
+        const double deviation = max_relative_deviation(cuda.forces, cpu.forces);
+        std::printf("[ deviation ] %d particles %s %s: forces %.3e, energy %.3e\n", side * side * side,
+                    twoTypes ? "two types" : "one type", precision.c_str(), deviation,
+                    relative_deviation(cuda.energy, cpu.energy));
+        EXPECT_LT(deviation, tolerance);
+        EXPECT_LT(relative_deviation(cuda.energy, cpu.energy), tolerance);
+    }
+}
+
+TEST(ListLayouts, ByRowsSeveralLanesAParticle) { expect_backends_agree(14, false); }
+
+TEST(ListLayouts, ByColumnsOfChunksBuiltWithSeveralLanes) {
+    expect_backends_agree(37, false);
+    expect_backends_agree(37, true);
+}
+
+TEST(ListLayouts, ByColumnsOfChunksOneThreadAParticle) {
+    expect_backends_agree(80, false);
+    expect_backends_agree(80, true);
+}
+
+}  // namespace
+}  // namespace structmd_physics
+
+int main(int argc, char** argv) { return structmd_physics::run_tests_if_cuda(argc, argv); }
