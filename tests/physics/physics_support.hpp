@@ -94,6 +94,24 @@ inline double tensor_relative_deviation(const std::array<double, 9>& a, const st
 
 using Vec3 = std::array<double, 3>;
 
+// A jittered simple cubic lattice at density ~0.8, a liquid's neighbourhoods within a few steps:
+// side^3 sites in a cubic box of edge side / 0.93 (returned), each moved by up to a tenth of the
+// spacing along each axis. site(a, b, c, position) is called for each site in order, after its
+// position's draws from rng, so that it may draw more (velocities) in the same sequence.
+template <class Site>
+double jittered_lattice(int side, SplitMix64& rng, Site&& site) {
+    const double spacing = 1.0 / 0.93, box = side * spacing;
+    for (int a = 0; a < side; ++a)
+        for (int b = 0; b < side; ++b)
+            for (int c = 0; c < side; ++c) {
+                const Vec3 position{(a + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box,
+                                    (b + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box,
+                                    (c + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box};
+                site(a, b, c, position);
+            }
+    return box;
+}
+
 inline std::string number(double x) {
     char text[32];
     std::snprintf(text, sizeof text, "%.17g", x);

@@ -14,21 +14,16 @@
 namespace structmd_physics {
 namespace {
 
-// A jittered simple cubic lattice, side^3 particles at density ~0.8, types A (and B on every third
-// site where twoTypes): a liquid's neighbourhoods without an equilibration.
+// A jittered lattice liquid (physics_support.hpp), side^3 particles of type A (and B on every third
+// site where twoTypes).
 std::string liquid(int side, bool twoTypes) {
     SplitMix64 rng(31);
-    const double spacing = 1.0 / 0.93, box = side * spacing;
     std::vector<Vec3> positions;
     std::vector<std::string> types;
-    for (int a = 0; a < side; ++a)
-        for (int b = 0; b < side; ++b)
-            for (int c = 0; c < side; ++c) {
-                positions.push_back({(a + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box,
-                                     (b + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box,
-                                     (c + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box});
-                types.push_back(twoTypes && (a + b + c) % 3 == 0 ? "B" : "A");
-            }
+    const double box = jittered_lattice(side, rng, [&](int a, int b, int c, const Vec3& position) {
+        positions.push_back(position);
+        types.push_back(twoTypes && (a + b + c) % 3 == 0 ? "B" : "A");
+    });
     const std::string pairs = twoTypes ? "[[\"A\", \"A\", 1.0, 1.0], [\"A\", \"B\", 1.2, 1.05], [\"B\", \"B\", 0.8, 1.1]]"
                                        : "[[\"A\", \"A\", 1.0, 1.0]]";
     const std::string forceField =

@@ -16,22 +16,16 @@ namespace {
 
 std::string g_backend = "cpu";
 
-// A jittered simple cubic lattice at density ~0.8 with velocities at T ~ 1.5: a liquid within a
-// few steps. side^3 particles in a box of side / 0.93.
+// A jittered lattice liquid (physics_support.hpp) with velocities at T ~ 1.5, two types.
 std::string liquid(int side, const std::string& list, const std::string& condition) {
     SplitMix64 rng(2024);
-    const double spacing = 1.0 / 0.93, box = side * spacing;
     std::vector<Vec3> positions, velocities;
     std::vector<std::string> types;
-    for (int a = 0; a < side; ++a)
-        for (int b = 0; b < side; ++b)
-            for (int c = 0; c < side; ++c) {
-                positions.push_back({(a + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box,
-                                     (b + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box,
-                                     (c + rng.uniform(-0.1, 0.1)) * spacing - 0.5 * box});
-                velocities.push_back({1.2 * rng.normal(), 1.2 * rng.normal(), 1.2 * rng.normal()});
-                types.push_back((a + b + c) % 3 == 0 ? "B" : "A");
-            }
+    const double box = jittered_lattice(side, rng, [&](int a, int b, int c, const Vec3& position) {
+        positions.push_back(position);
+        velocities.push_back({1.2 * rng.normal(), 1.2 * rng.normal(), 1.2 * rng.normal()});
+        types.push_back((a + b + c) % 3 == 0 ? "B" : "A");
+    });
     const std::string forceField =
         "\"nl\": {\"type\": [\"VerletConditionalListSet\", \"" + list + "\"], \"parameters\": {\"cutOffVerletFactor\": 1.12}},\n"
         "\"lj\": {\"type\": [\"NonBonded\", \"LennardJonesType1\"],\n"
