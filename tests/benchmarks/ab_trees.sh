@@ -22,7 +22,7 @@
 #                                                ctest -L gpu in its build
 #   tests/benchmarks/ab_trees.sh round K OUT     device: every tree's benchmarks, before first on odd K
 #                                                and last on even K
-#   tests/benchmarks/ab_trees.sh profile OUT     device, after label: Nsight Compute's full report
+#   tests/benchmarks/ab_trees.sh profile OUT     device, after build: Nsight Compute's full report
 #                                                (ncu --set full) of the working tree's list build
 #                                                and pair kernel in the LJ liquid (AB_PROFILE_N,
 #                                                default 1000188; single precision), without step
@@ -39,7 +39,7 @@
 #   AB_CHAINS_SIZE  default 1000000 (0: no chains)
 #   AB_DPSTOKES     DPStokes sizes, default "1000 10000" ("": none)
 #   AB_WHOLE_AFTER  0: the working tree built lean like the others (a lease too short for the label
-#                   measures alone; label then cannot run)
+#                   measures alone; label then refuses it)
 #   AB_SECONDS      seconds a timed call of the LJ benchmark (default 0.3; DPStokes: AB_HYDRO_SECONDS, 0.5)
 #
 # Each round writes OUT/round-K-TREE.csv (structmd_lj_benchmark's rows, liquid and chains) and
@@ -141,6 +141,11 @@ case "${1:-}" in
     exit $failed
     ;;
   label)
+    # A lean working tree (AB_WHOLE_AFTER=0) lacks components and precisions its tests need.
+    grep -q '^STRUCTMD_COMPONENT_GROUPS:STRING=.*externalTerms' "$work/after/build/CMakeCache.txt" || {
+      echo "label: the working tree was built lean (AB_WHOLE_AFTER=0); rm -rf $work/after/build and build it whole first"
+      exit 2
+    }
     export PYTHONPATH=/tmp/site
     install_wheels
     start=$SECONDS
