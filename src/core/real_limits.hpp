@@ -1,10 +1,11 @@
 #pragma once
-// The machine epsilon and a quiet NaN of float and double, a rounding to integers and a reciprocal,
-// in host and device code alike. Kernels compiled at run time (NVRTC) have no <limits>: there the NaN comes from
+// The machine epsilon and a quiet NaN of float and double, a rounding to integers, a reciprocal and
+// a float from its bits, in host and device code alike. Kernels compiled at run time (NVRTC) have no <limits>: there the NaN comes from
 // CUDA's bit casts.
 #include "core/hd.hpp"
 
 #if SMD_HOST_CODE
+#include <cstring>
 #include <limits>
 #endif
 
@@ -35,6 +36,17 @@ template <class R>
 SMD_HD SMD_INLINE R nearest_integer(R x) {
     constexpr R kShifter = sizeof(R) == sizeof(float) ? R(12582912.0f) : R(6755399441055744.0);
     return (x + kShifter) - kShifter;
+}
+
+// The float whose bits are `bits`.
+SMD_HD SMD_INLINE float float_of_bits(int bits) {
+#if defined(__CUDA_ARCH__)
+    return __int_as_float(bits);
+#else
+    float x;
+    std::memcpy(&x, &bits, sizeof x);
+    return x;
+#endif
 }
 
 // 1 / x. On a GPU in float, the multiprocessor's reciprocal instruction alone (PTX rcp.approx.ftz: within

@@ -39,6 +39,10 @@ struct NeighbourView {
     int capacity = 0;
     int64_t particleStride = 0;
     int64_t chunkStride = 0;
+    // 0: an entry is a slot. CellLocalPositions::kOffsetBits: an entry is a slot and its pair's
+    // cells' offset (CellLocalPositions::entry), the GPU's lists by columns with cell-local
+    // positions, whose pair kernels take the offset from it.
+    int entryShift = 0;
     const int* cellStart = nullptr;  // cell c holds slots cellStart[c] .. cellStart[c + 1] - 1
     CellGrid<R> grid;
     const int* batch = nullptr;  // batch by particle, numbered as the grid's batches; null: one batch
@@ -57,12 +61,21 @@ struct NeighbourView {
         return s != k && (filter.trivial() || filter.accepts(order[k], order[s]));
     }
 
+    SMD_HD SMD_INLINE int slot_of_entry(int entry) const { return static_cast<int>(static_cast<unsigned>(entry) >> entryShift); }
+
     // Calls visit(s) for every candidate neighbour slot s of slot k that the filter accepts, in an
     // order that does not depend on thread timing; with several lanes, each lane visits its share.
     // Candidates may lie beyond the cutoff; the caller checks the distance. Several lanes read a list
     // by rows (the GPU lays a list out by rows where its readers take several lanes a particle).
     template <class Visit>
     SMD_HD SMD_INLINE void for_each_neighbour(int k, Visit&& visit, Lanes lanes = {}) const {
+        for_each_entry(k, [&](int entry) { visit(slot_of_entry(entry)); }, visit, lanes);
+    }
+
+    // for_each_neighbour's traversal with the list's entries as they are: listed(entry) for each
+    // entry of the list, scanned(s) for each slot of a list that overflowed (its cells scanned).
+    template <class Listed, class Scanned>
+    SMD_HD SMD_INLINE void for_each_entry(int k, Listed&& listed, Scanned&& scanned, Lanes lanes = {}) const {
         const int n = count[k];
         if (n <= capacity && lanes.count == 1) {
             // A chunk at a time, the next loaded before this one's visits, so that a neighbour's
@@ -75,7 +88,7 @@ struct NeighbourView {
                 const EntryChunk next = m + kChunk < n ? load_chunk(chunk) : EntryChunk{};
                 SMD_UNROLL
                 for (int e = 0; e < kChunk; ++e)
-                    if (m + e < n) visit(four.entry[e]);
+                    if (m + e < n) listed(four.entry[e]);
                 four = next;
             }
             return;
@@ -89,14 +102,14 @@ struct NeighbourView {
             for (; m < n; m += lanes.count) {
                 entry += lanes.count;
                 const int next = m + lanes.count < n ? *entry : 0;
-                visit(s);
+                listed(s);
                 s = next;
             }
             return;
         }
         int candidate = 0;
         scan_cells(k, [&](int s) {
-            if (candidate++ % lanes.count == lanes.lane) visit(s);
+            if (candidate++ % lanes.count == lanes.lane) scanned(s);
         });
     }
 

@@ -266,9 +266,11 @@ struct BuildLists {
         const Vec3<R> u = v.grid.scaled(rk, v.box);
         const R prune2 = v.grid.pruning_radius2(listRadius2);
         // Candidates begin .. end - 1, each lane taking one a round; cells: their cells' distance
-        // from slot k's (cell-local positions), image: their image shift (kCellImage).
+        // from slot k's (cell-local positions), image: their image shift (kCellImage), rowOffset:
+        // the cells' offset along y and z as entry bits (lists whose entries carry it).
+        const bool offsetEntries = kHow == kCellLocal && v.entryShift != 0;
         const auto scan = [&](int begin, int end, const typename CellLocalPositions<R>::RowShift& cells,
-                              const Vec3<R>& image) {
+                              const Vec3<R>& image, int rowOffset) {
             for (int base = begin; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
                 bool accepted = s < end && s != self;
@@ -285,9 +287,15 @@ struct BuildLists {
                 // with the slot's few exclusions or a search of many), and about one candidate in six
                 // is within the list radius.
                 if (!kAnyPair && accepted) accepted = v.filter.accepts(particle, v.order[s], exclusions);
+                // The entry: the slot, or with its cells' offset, along x the difference of the
+                // candidate's cell code from the run's origin (an exact small integer in float).
+                const int entry = !offsetEntries || !accepted
+                                      ? s
+                                      : CellLocalPositions<R>::entry(
+                                            s, rowOffset | (static_cast<int>(v.cellLocal.local[s].w - cells.origin) + 2));
                 if (lanes.count == 1) {
                     if (!accepted) continue;
-                    stage[(n % kChunk) * kStageStride] = s;
+                    stage[(n % kChunk) * kStageStride] = entry;
                     if (++n % kChunk == 0) {
                         if (n <= v.capacity) NeighbourView<R>::store_chunk(chunk, staged_chunk());
                         chunk += v.chunkStride;
@@ -296,7 +304,7 @@ struct BuildLists {
                 }
                 int found = 0;
                 const int rank = lanes.rank_among(accepted, found);
-                if (accepted && n + rank < v.capacity) entries[v.offset_of(n + rank)] = s;
+                if (accepted && n + rank < v.capacity) entries[v.offset_of(n + rank)] = entry;
                 n += found;
             }
         };
@@ -304,6 +312,7 @@ struct BuildLists {
             const CellGrid<R>& g = v.grid;
             Vec3<R> image{R(0), R(0), R(0)};
             typename CellLocalPositions<R>::RowShift cells{};
+            const int rowOffset = offsetEntries ? CellLocalPositions<R>::offset_bits(-2, dy, dz) : 0;
             if (kHow == kCellLocal) {
                 cells = v.cellLocal.row_shift(CellGrid<R>::periodic(cx + dx, g.nx), CellGrid<R>::periodic(cy + dy, g.ny),
                                               CellGrid<R>::periodic(cz + dz, g.nz), dx, dy, dz);
@@ -312,7 +321,7 @@ struct BuildLists {
                          CellGrid<R>::image_shift(cy, dy, g.ny, v.box.length.y, g.openY),
                          CellGrid<R>::image_shift(cz, dz, g.nz, v.box.length.z, g.openZ)};
             }
-            scan(v.cellStart[first], v.cellStart[last + 1], cells, image);
+            scan(v.cellStart[first], v.cellStart[last + 1], cells, image, rowOffset);
         });
         // One lane's last, partial chunk (its other places hold what no reader visits).
         if (lanes.count == 1 && n % kChunk != 0 && n <= v.capacity) NeighbourView<R>::store_chunk(chunk, staged_chunk());
@@ -340,7 +349,7 @@ struct BuildLists {
         for (int m = 1; m < stored; ++m) {
             const int value = entries[v.offset_of(m)];
             int before = m - 1;
-            while (before >= 0 && v.order[entries[v.offset_of(before)]] > v.order[value]) {
+            while (before >= 0 && v.order[v.slot_of_entry(entries[v.offset_of(before)])] > v.order[v.slot_of_entry(value)]) {
                 entries[v.offset_of(before + 1)] = entries[v.offset_of(before)];
                 --before;
             }

@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "backends/cpu/cpu_backend.hpp"
+#include "forcefield/lennard_jones.hpp"
+#include "forcefield/pair_kernel.hpp"
 #include "neighbour/verlet_list.hpp"
 #include "neighbour/verlet_list_kernels.hpp"
 #include "random_particles.hpp"
@@ -368,6 +370,7 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     // the view's own traversal.
     v.particleStride = NeighbourView<double>::kChunk;
     v.chunkStride = NeighbourView<double>::kChunk * s.n;
+    if (cellLocal) v.entryShift = CellLocalPositions<double>::kOffsetBits;  // as the GPU's columns carry
     std::vector<int> entries(static_cast<size_t>(v.capacity) * s.n), counts(s.n);
     v.list = entries.data();
     v.count = counts.data();
@@ -383,6 +386,18 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
         ASSERT_LE(counts[k], v.capacity) << "slot " << k << " overflowed";
         std::set<int> mine, theirs;
         v.for_each_neighbour(static_cast<int>(k), [&](int t) { EXPECT_TRUE(mine.insert(t).second) << "slot " << k; });
+        if (cellLocal) {
+            // The cells' offset an entry carries gives the separation the cells' codes give, bit for bit.
+            const CellLocalPositions<double>& local = v.cellLocal;
+            v.for_each_entry(static_cast<int>(k), [&](int entry) {
+                const int t = CellLocalPositions<double>::slot_of_entry(entry);
+                const Vec3<float> byEntry = local.separation(local.local[k], local.local[t], entry);
+                const Vec3<float> byCodes = local.separation(local.local[k], local.local[t]);
+                EXPECT_EQ(byEntry.x, byCodes.x) << "slot " << k << " and " << t;
+                EXPECT_EQ(byEntry.y, byCodes.y) << "slot " << k << " and " << t;
+                EXPECT_EQ(byEntry.z, byCodes.z) << "slot " << k << " and " << t;
+            }, [&](int) { ADD_FAILURE() << "slot " << k << " overflowed"; });
+        }
         EXPECT_EQ(static_cast<int>(mine.size()), counts[k]) << "slot " << k;
         rows.for_each_neighbour(static_cast<int>(k), [&](int t) { theirs.insert(t); });
         listed += static_cast<int64_t>(theirs.size());
@@ -397,6 +412,27 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     }
     EXPECT_GT(listed, 20 * s.n) << "the lists were meant to hold a liquid's neighbours";
     EXPECT_LE(borderline, 2);
+    if (!cellLocal || !inputs.excluded.empty()) return;
+    // A mixed-precision pair kernel over the columns, whose entries carry the cells' offset, sums the
+    // forces it sums over the rows' slots (sigma 0.3: random positions come close).
+    using LJ = LennardJonesType1;
+    const LJ::Params<float> params = LJ::make_pair_params<float>(1.0, 0.3, 2.5, false);
+    const auto forces_over = [&](const NeighbourView<double>& view) {
+        std::vector<Real4<double>> force(s.n, Real4<double>{0, 0, 0, 0});
+        PairKernel<LJ, double, float, true, false, false> kernel{nullptr, nullptr, nullptr, view, {&params, 1, nullptr}, {}};
+        kernel.out.force = force.data();
+        for (int64_t k = 0; k < s.n; ++k) kernel(k, Lanes{});
+        return force;
+    };
+    const std::vector<Real4<double>> byEntries = forces_over(v), byCodes = forces_over(rows);
+    double largest = 0.0, deviation = 0.0;
+    for (int64_t k = 0; k < s.n; ++k) {
+        largest = std::max({largest, std::abs(byCodes[k].x), std::abs(byCodes[k].y), std::abs(byCodes[k].z)});
+        deviation = std::max({deviation, std::abs(byEntries[k].x - byCodes[k].x), std::abs(byEntries[k].y - byCodes[k].y),
+                              std::abs(byEntries[k].z - byCodes[k].z)});
+    }
+    ASSERT_GT(largest, 1.0) << "the configuration was meant to have forces";
+    EXPECT_LT(deviation, 1e-5 * largest);
 }
 
 // Each particle excludes the `reach` before and after it: a filter that is not trivial. A reach of 1
