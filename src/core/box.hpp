@@ -2,6 +2,7 @@
 // Orthorhombic box spanning [-L/2, L/2) along each periodic axis. An axis of length infinity is open
 // (not periodic, as UAMMD's Box takes a length of 0 or infinity): positions are never wrapped along it
 // and the nearest image of a particle is the particle itself.
+#include "core/real_limits.hpp"
 #include "core/vec.hpp"
 
 #if SMD_HOST_CODE
@@ -58,11 +59,16 @@ struct Box {
     static SMD_HD SMD_INLINE R image_offset(int image, R length) { return image == 0 ? R(0) : R(image) * length; }
 
     // The image of d closest to the origin, for d the difference of two wrapped positions (so
-    // |d| < L along each axis): one compare per axis instead of a rounding call.
+    // |d| < L along each axis): d less L times d / L rounded, -1, 0 or 1, the product exact, so d - L
+    // or d + L rounded once, as a compare would choose, except that d exactly +-L/2 (within a rounding
+    // of d / L) may fold either way; a cutoff is shorter. Four instructions an axis (a multiply, the
+    // rounding's two additions, a fused multiply-add) where a compare and a select of each side took
+    // six in a pair kernel's loop; its period, 0 along an open axis (whose d / L is 0, and L infinite),
+    // is the same for every pair and leaves the loop.
     SMD_HD SMD_INLINE Vec3<R> minimum_image(Vec3<R> d) const {
-        d.x = fold(d.x, length.x);
-        d.y = fold(d.y, length.y);
-        d.z = fold(d.z, length.z);
+        d.x = fold(d.x, inverse.x, period(length.x, inverse.x));
+        d.y = fold(d.y, inverse.y, period(length.y, inverse.y));
+        d.z = fold(d.z, inverse.z, period(length.z, inverse.z));
         return d;
     }
 
@@ -107,15 +113,10 @@ struct Box {
         return {image_added(image.x, shift.x), image_added(image.y, shift.y), image_added(image.z, shift.z)};
     }
 
-    // Selects, not branches (nvcc made the second compare a branch and a reconvergence point in
-    // every loop over neighbours), and 2 d against L rather than d against L / 2, which a kernel
-    // short of registers recomputed for every pair. 2 d and L / 2 are both exact, so the compares
-    // are those of d against L / 2.
-    static SMD_HD SMD_INLINE R fold(R d, R length) {
-        const R twice = d + d;
-        const R down = d - length, up = d + length;
-        return twice >= length ? down : (twice < -length ? up : d);
-    }
+    // No branch (nvcc made a compare's second side a branch and a reconvergence point in every loop
+    // over neighbours).
+    static SMD_HD SMD_INLINE R period(R length, R inverse) { return inverse == R(0) ? R(0) : length; }
+    static SMD_HD SMD_INLINE R fold(R d, R inverse, R period) { return d - nearest_integer(d * inverse) * period; }
 };
 
 }  // namespace structmd

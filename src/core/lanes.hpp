@@ -18,6 +18,10 @@ namespace structmd {
 // out the pairs of the clusters).
 enum class LaneSizing { kNeighbourSum, kFillDevice, kWarp };
 
+// Threads a block of the GPU's kernels over items: what their launch bounds assume, and what a
+// kernel sizing shared memory by thread counts on.
+constexpr int kBlockThreads = 128;
+
 struct Lanes {
     int lane = 0;        // this thread's rank within the item's lanes
     int count = 1;       // lanes per item: a power of two, at most 32

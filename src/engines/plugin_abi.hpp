@@ -8,7 +8,7 @@
 
 // A plugin built with another value (here by -DSTRUCTMD_PLUGIN_ABI_VERSION=...) is refused.
 #ifndef STRUCTMD_PLUGIN_ABI_VERSION
-#define STRUCTMD_PLUGIN_ABI_VERSION 9
+#define STRUCTMD_PLUGIN_ABI_VERSION 10
 #endif
 
 #define STRUCTMD_PLUGIN_STR2(x) #x

@@ -10,6 +10,7 @@
 // a full list (as pair_kernel.hpp does): no atomics; energy and virial split equally between the two.
 #include <memory>
 
+#include "core/real_limits.hpp"
 #include "core/lanes.hpp"
 #include "forcefield/bonded_geometry.hpp"
 #include "forcefield/forcefield_spec.hpp"
@@ -52,7 +53,7 @@ struct DipolarMagneticKernel {
             // the getters report as NUMERICAL, as for every pair term.
             if (!(r2 < cutoff2)) return;
             const Vec3<R> muj = magnetic_moment(magnetization, dir, j);
-            const R invR2 = R(1) / r2;
+            const R invR2 = reciprocal(r2);
             const R invR3 = sqrt(invR2) * invR2;
             const R invR5 = invR3 * invR2;
             const R miR = dot(mui, r), mjR = dot(muj, r);

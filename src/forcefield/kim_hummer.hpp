@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/real_limits.hpp"
 #include "forcefield/debye_huckel.hpp"
 #include "forcefield/lennard_jones.hpp"
 
@@ -88,7 +89,7 @@ private:
     // The contact term without its cutoff.
     template <class R>
     static SMD_HD SMD_INLINE PairTerm<R> contact(R r2, const Params<R>& p) {
-        const R inv_r2 = R(1) / r2;
+        const R inv_r2 = reciprocal(r2);
         const R sr2 = p.sigma2 * inv_r2;
         if (p.epsilon == R(0)) {
             const R sr6 = sr2 * sr2 * sr2;

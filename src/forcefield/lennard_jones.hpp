@@ -11,6 +11,7 @@
 // lennard_jones_general.hpp.
 #include <limits>
 
+#include "core/real_limits.hpp"
 #include "forcefield/pair_potential.hpp"
 
 namespace structmd {
@@ -82,7 +83,7 @@ template <class Shape, class R>
 SMD_HD SMD_INLINE PairTerm<R> evaluate_lennard_jones(R r2, const LennardJonesParams<R>& p) {
     PairTerm<R> term{R(0), R(0)};
     if (!(r2 < p.cutoff2)) return term;
-    const R inv_r2 = R(1) / r2;
+    const R inv_r2 = reciprocal(r2);
     const LennardJonesShapeTerm<R> s = Shape::at(p.sigma2 * inv_r2);
     term.dudr_over_r = p.epsilon * s.radial_derivative * inv_r2;
     term.energy = p.epsilon * s.value + p.offset;

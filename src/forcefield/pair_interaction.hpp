@@ -3,6 +3,7 @@
 // pair_kernel.hpp).
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "forcefield/cluster_pair_kernel.hpp"
@@ -92,14 +93,23 @@ public:
             using Kernel = PairKernel<Potential, R, PairR, decltype(force)::value, decltype(energy)::value,
                                       decltype(virial)::value>;
             const Kernel kernel{particles.charge.data(), radii(particles), this->group(), view, table_of(table_), out};
-            if constexpr (Kernel::kCellLocal) {
-                if (view.cellLocal.local)
-                    backend_.for_each_lanes(particles.count, PairKernelWithSeparations<Kernel, true>{kernel});
+            const auto launch = [&](auto plain) {
+                constexpr bool kPlain = decltype(plain)::value;
+                if (Kernel::kCellLocal && view.cellLocal.local)
+                    backend_.for_each_lanes(particles.count, PairKernelWithSeparations<Kernel, Kernel::kCellLocal, kPlain>{kernel});
                 else
-                    backend_.for_each_lanes(particles.count, PairKernelWithSeparations<Kernel, false>{kernel});
-            } else {
-                backend_.for_each_lanes(particles.count, kernel);
+                    backend_.for_each_lanes(particles.count, PairKernelWithSeparations<Kernel, false, kPlain>{kernel});
+            };
+            // Forces alone, a step's usual call, have kernels of their own for one type and no group;
+            // the energies and virials, read now and then, take the general ones.
+            constexpr bool kForcesAlone = decltype(force)::value && !decltype(energy)::value && !decltype(virial)::value;
+            if constexpr (kForcesAlone) {
+                if (kernel.plain()) {
+                    launch(std::true_type{});
+                    return;
+                }
             }
+            launch(std::false_type{});
         });
     }
 

@@ -114,51 +114,83 @@ struct PairKernel {
         over_positions(k, lanes);
     }
 
-    // Slot k's pairs with separations from the cell-local positions. The double positions only for
-    // types: none read where there is one type.
+#if SMD_HOST_CODE
+    // Whether a launch may take the kernels of one type and no group (the template's kPlain below),
+    // whose separations from the positions in R take the list's entries for slots.
+    bool plain() const {
+        const bool overCells = kCellLocal && neighbours.cellLocal.local;
+        return table.ntypes == 1 && !group && (overCells || neighbours.entryShift == 0);
+    }
+#endif
+
+    // Slot k's pairs with separations from the cell-local positions, the cells' offset taken from
+    // the entry where the list's entries carry it. The double positions only for types: none read
+    // where there is one type. kPlain: plain() holds (every kernel below).
+    template <bool kPlain = false>
     SMD_HD SMD_INLINE void over_cells(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = neighbours;
         const int i = v.order[k];
-        if (group && !group[i]) return;
+        if (!kPlain && group && !group[i]) return;
         const CellLocalPositions<R>& local = v.cellLocal;
         const Real4<float> li = local.local[k];
-        const bool oneType = table.ntypes == 1;
+        const bool oneType = kPlain || table.ntypes == 1;
         const Params* row = table.row_of(i, oneType ? 0 : static_cast<int>(v.positions[k].w));
-        sum_pairs<float>(k, i, row, lanes, [&](int s, int& typeJ) {
+        const auto by_codes = [&](int s, int& typeJ) {
             typeJ = oneType ? 0 : static_cast<int>(v.positions[s].w);
             return local.separation(li, local.local[s]);
-        });
+        };
+        if (v.entryShift) {
+            sum_pairs<float, kPlain>(k, i, row, lanes, [&](int entry, int& s, int& typeJ) {
+                s = CellLocalPositions<R>::slot_of_entry(entry);
+                typeJ = oneType ? 0 : static_cast<int>(v.positions[s].w);
+                return local.separation(li, local.local[s], entry);
+            }, by_codes);
+        } else {
+            sum_pairs<float, kPlain>(k, i, row, lanes, [&](int entry, int& s, int& typeJ) {
+                s = entry;
+                return by_codes(s, typeJ);
+            }, by_codes);
+        }
     }
 
     // Slot k's pairs with separations from the positions in R.
+    template <bool kPlain = false>
     SMD_HD SMD_INLINE void over_positions(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = neighbours;
         const int i = v.order[k];
-        if (group && !group[i]) return;
+        if (!kPlain && group && !group[i]) return;
         const Real4<R> pi = v.positions[k];
-        const Params* row = table.row_of(i, static_cast<int>(pi.w));
+        const Params* row = table.row_of(i, kPlain ? 0 : static_cast<int>(pi.w));
         const Vec3<R> ri = xyz(pi);
-        sum_pairs<R>(k, i, row, lanes, [&](int s, int& typeJ) {
+        const auto separation = [&](int s, int& typeJ) {
             const Real4<R> pj = v.positions[s];
-            typeJ = static_cast<int>(pj.w);
+            typeJ = kPlain ? 0 : static_cast<int>(pj.w);
             return v.box.minimum_image(xyz(pj) - ri);
-        });
+        };
+        sum_pairs<R, kPlain>(k, i, row, lanes, [&](int entry, int& s, int& typeJ) {
+            s = kPlain ? entry : v.slot_of_entry(entry);
+            return separation(s, typeJ);
+        }, separation);
     }
 
-    // Slot k's terms with its neighbours, separation(s, typeJ) giving the separation to slot s in S
-    // (R, or float from cell-local positions) and its particle's type; each lane's force runs in S.
-    template <class S, class Separation>
-    SMD_HD SMD_INLINE void sum_pairs(int64_t k, int i, const Params* row, Lanes lanes, Separation&& separation) const {
+    // Slot k's terms with its neighbours, each lane's force in S (R, or float from cell-local
+    // positions): listed(entry, s, typeJ) gives the separation of a list entry's pair, its slot s and
+    // its particle's type, scanned(s, typeJ) those of a slot of an overflowed list's cells.
+    // kPlain (one type, no group): the pair's parameters are read once, before the neighbours, and
+    // no neighbour's group is looked up; each neighbour is some 8 instructions fewer of the ~85 of
+    // a Lennard-Jones pair (sm_90).
+    template <class S, bool kPlain, class Listed, class Scanned>
+    SMD_HD SMD_INLINE void sum_pairs(int64_t k, int i, const Params* row, Lanes lanes, Listed&& listed,
+                                     Scanned&& scanned) const {
         const NeighbourView<R>& v = neighbours;
         Vec3<S> laneForce{0, 0, 0};
         R e = 0;
         Tensor3<R> w = zero_tensor<R>();
-        v.for_each_neighbour(static_cast<int>(k), [&](int s) {
-            int typeJ;
-            const Vec3<S> d = separation(s, typeJ);
+        const Params only = row[0];  // read where kPlain alone
+        const auto pair = [&](int s, int typeJ, const Vec3<S>& d) {
             const PairR r2 = PairR(dot(d, d));
-            const Params& p = row[typeJ];
-            if (!(r2 < p.cutoff2) || (group && !group[v.order[s]])) return;
+            const Params& p = kPlain ? only : row[typeJ];
+            if (!(r2 < p.cutoff2) || (!kPlain && group && !group[v.order[s]])) return;
             const PairTerm<PairR> t = evaluate_pair_of<Potential>(r2, p, charge, radius, i, v.order[s]);
             if (WantForce) laneForce += S(t.dudr_over_r) * d;
             if (WantEnergy) e += R(0.5) * R(t.energy);
@@ -166,6 +198,15 @@ struct PairKernel {
                 const Vec3<R> rij{R(d.x), R(d.y), R(d.z)};
                 w += (R(-0.5) * R(t.dudr_over_r)) * outer(rij, rij);
             }
+        };
+        v.for_each_entry(static_cast<int>(k), [&](int entry) {
+            int s, typeJ;
+            const Vec3<S> d = listed(entry, s, typeJ);
+            pair(s, typeJ, d);
+        }, [&](int s) {
+            int typeJ;
+            const Vec3<S> d = scanned(s, typeJ);
+            pair(s, typeJ, d);
         }, lanes);
         Vec3<R> f{R(laneForce.x), R(laneForce.y), R(laneForce.z)};
         if (WantForce) f = lanes.sum(f);
@@ -247,7 +288,7 @@ struct PairRowsOnHost {
         const bool oneTable = table.ntypes == 1 && table.batch == nullptr;
         for (int64_t k = begin; k < end; ++k) {
             const int n = v.count[k];
-            if (group || n > v.capacity || v.entryStride != 1) {
+            if (group || n > v.capacity || !v.by_rows()) {
                 slotByOperator(kernel, k);
                 continue;
             }
@@ -387,14 +428,15 @@ struct PairRowsOnHost {
 // mixed-precision kernel runs over them alone, else over the positions alone, so that neither GPU
 // kernel holds the other path's registers. Under the lone-lane kernel's register cap (one lane per
 // particle, a large system) the two paths together spilled 208/236 bytes a thread (stores/loads,
-// sm_90), the cell-local path alone 68/52, about single precision's 64/60.
-template <class Kernel, bool OverCells>
+// sm_90), the cell-local path alone 68/52, about single precision's 64/60. Plain: the kernel
+// where plain() holds, launched for forces alone (a step's usual call).
+template <class Kernel, bool OverCells, bool Plain = false>
 struct PairKernelWithSeparations : Kernel {
     SMD_HD void operator()(int64_t k, Lanes lanes) const {
         if constexpr (OverCells)
-            this->over_cells(k, lanes);
+            this->template over_cells<Plain>(k, lanes);
         else
-            this->over_positions(k, lanes);
+            this->template over_positions<Plain>(k, lanes);
     }
 };
 

@@ -8,6 +8,7 @@
 // r_min, so energy and force are continuous there. shift subtracts U(r_c).
 #include <cmath>
 
+#include "core/real_limits.hpp"
 #include "forcefield/lennard_jones.hpp"
 
 namespace structmd {
@@ -51,7 +52,7 @@ struct SplitLennardJones {
 private:
     template <class R>
     static SMD_HD SMD_INLINE PairTerm<R> uncut(R r2, const Params<R>& p) {
-        const R inv_r2 = R(1) / r2;
+        const R inv_r2 = reciprocal(r2);
         const LennardJonesShapeTerm<R> g = LennardJonesShape1::at(p.sigma2 * inv_r2);
         const bool core = r2 < p.minimum2;
         const R epsilon = core ? p.repulsive_epsilon : p.attractive_epsilon;

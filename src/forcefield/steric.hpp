@@ -3,6 +3,7 @@
 // at r_c (shift subtracts U(r_c)); as a Bond2 it has no cutoff.
 #include <limits>
 
+#include "core/real_limits.hpp"
 #include "forcefield/pair_potential.hpp"
 
 namespace structmd {
@@ -40,7 +41,7 @@ struct Steric : EpsilonSigmaPair<Steric<Exponent>> {
     static SMD_HD SMD_INLINE PairTerm<R> evaluate(R r2, const Params<R>& p) {
         PairTerm<R> term{R(0), R(0)};
         if (!(r2 < p.cutoff2)) return term;
-        const R inv_r2 = R(1) / r2;
+        const R inv_r2 = reciprocal(r2);
         const R sr2 = p.sigma2 * inv_r2;
         R srn = sr2;
         for (int k = 1; k < Exponent / 2; ++k) srn *= sr2;

@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/real_limits.hpp"
 #include "forcefield/forcefield_spec.hpp"
 #include "forcefield/interactor_build.hpp"
 #include "forcefield/interactor_tables.hpp"
@@ -53,7 +54,7 @@ struct StericInnerPotential {
         const R sigma = innerRadiusI + innerRadiusJ;
         const R sigma2 = sigma * sigma;
         if (!(r2 < p.cutOffFactor2 * sigma2)) return {R(0), R(0)};
-        const R inv_r2 = R(1) / r2;
+        const R inv_r2 = reciprocal(r2);
         const R sr2 = sigma2 * inv_r2;
         R srn = sr2;
         for (int k = 1; k < Exponent / 2; ++k) srn *= sr2;

@@ -229,8 +229,10 @@ struct BuildLists {
     // come within the list radius of the slot's position, a row's run of them at a time. The image
     // of a run's cells is the same for all their members, so it is taken once a run, and a
     // candidate costs a load, a difference and a distance. With cell-local positions the cells'
-    // distance differs from cell to cell, so those builds take the cells one by one: runs taken
-    // cell by cell inside were 1-3% slower there (mixed precision, H200, docs/benchmarks.md).
+    // distance along x differs from cell to cell of a run, and each candidate takes it from its own
+    // cell's code (CellLocalPositions::RowShift): one addition more a candidate, where taking the
+    // cells one by one cost the mixed-precision build half as many instructions again as single's
+    // (ncu, 1M, H200).
     template <Separations kHow, bool kAnyPair>
     SMD_HD SMD_INLINE int collect(int64_t k, Lanes lanes) const {
         const NeighbourView<R>& v = view;
@@ -240,23 +242,40 @@ struct BuildLists {
         const Vec3<R> rk = xyz(v.positions[k]);
         const Real4<float> localK = kHow == kCellLocal ? v.cellLocal.local[k] : Real4<float>{0.0f, 0.0f, 0.0f, 0.0f};
         const float localRadius2 = static_cast<float>(listRadius2);
-        // Where this slot's next entry goes: a pointer moved along, not an index times the stride
-        // computed again for every candidate.
-        int* next = v.entries_of(k);
+        int* const entries = v.entries_of(k);
         int n = 0;
+        // One lane stages its entries and writes each four as one chunk at `chunk`: staged in
+        // shared memory on the GPU, where four more registers made the lone-lane kernels spill
+        // 3-4 times the bytes (sm_90), in a local array on the host.
+        constexpr int kChunk = NeighbourView<R>::kChunk;
+        int* chunk = entries;
+#if defined(__CUDA_ARCH__)
+        __shared__ int staged[kChunk * kBlockThreads];
+        int* const stage = staged + threadIdx.x;
+        constexpr int kStageStride = kBlockThreads;
+#else
+        int staged[kChunk] = {};
+        int* const stage = staged;
+        constexpr int kStageStride = 1;
+#endif
+        const auto staged_chunk = [&] {
+            return EntryChunk{{stage[0], stage[kStageStride], stage[2 * kStageStride], stage[3 * kStageStride]}};
+        };
         int cx, cy, cz;
         v.grid.coordinates(rk, v.box, cx, cy, cz);
         const Vec3<R> u = v.grid.scaled(rk, v.box);
         const R prune2 = v.grid.pruning_radius2(listRadius2);
         // Candidates begin .. end - 1, each lane taking one a round; cells: their cells' distance
-        // from slot k's (cell-local positions), image: their image shift (kCellImage).
-        const auto scan = [&](int begin, int end, const typename CellLocalPositions<R>::CellShift& cells,
-                              const Vec3<R>& image) {
+        // from slot k's (cell-local positions), image: their image shift (kCellImage), rowOffset:
+        // the cells' offset along y and z as entry bits (lists whose entries carry it).
+        const bool offsetEntries = kHow == kCellLocal && v.entryShift != 0;
+        const auto scan = [&](int begin, int end, const typename CellLocalPositions<R>::RowShift& cells,
+                              const Vec3<R>& image, int rowOffset) {
             for (int base = begin; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
                 bool accepted = s < end && s != self;
                 if (accepted && kHow == kCellLocal) {
-                    const Vec3<float> d = CellLocalPositions<R>::separation(localK, v.cellLocal.local[s], cells);
+                    const Vec3<float> d = v.cellLocal.separation(localK, v.cellLocal.local[s], cells);
                     accepted = dot(d, d) < localRadius2;
                 } else if (accepted) {
                     // (x_s - x_k) + shift rounds as the minimum image's (x_s - x_k) -+ L does.
@@ -268,29 +287,44 @@ struct BuildLists {
                 // with the slot's few exclusions or a search of many), and about one candidate in six
                 // is within the list radius.
                 if (!kAnyPair && accepted) accepted = v.filter.accepts(particle, v.order[s], exclusions);
+                // The entry: the slot, or with its cells' offset, along x the difference of the
+                // candidate's cell code from the run's origin (an exact small integer in float).
+                const int entry = !offsetEntries || !accepted
+                                      ? s
+                                      : CellLocalPositions<R>::entry(
+                                            s, rowOffset | (static_cast<int>(v.cellLocal.local[s].w - cells.origin) + 2));
+                if (lanes.count == 1) {
+                    if (!accepted) continue;
+                    stage[(n % kChunk) * kStageStride] = entry;
+                    if (++n % kChunk == 0) {
+                        if (n <= v.capacity) NeighbourView<R>::store_chunk(chunk, staged_chunk());
+                        chunk += v.chunkStride;
+                    }
+                    continue;
+                }
                 int found = 0;
                 const int rank = lanes.rank_among(accepted, found);
-                if (accepted && n + rank < v.capacity) next[rank * v.entryStride] = s;
+                if (accepted && n + rank < v.capacity) entries[v.offset_of(n + rank)] = entry;
                 n += found;
-                next += found * v.entryStride;
             }
         };
-        constexpr bool kWholeRuns = kHow != kCellLocal;
-        v.grid.template for_each_run_near<kWholeRuns>(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int first, int last, int dx, int dy, int dz) {
-            const Vec3<R> none{R(0), R(0), R(0)};
-            if (kHow == kCellLocal) {  // one cell: first == last
-                scan(v.cellStart[first], v.cellStart[first + 1], v.cellLocal.shift(dx, dy, dz), none);
-                return;
-            }
-            Vec3<R> image = none;
-            if (kHow == kCellImage) {
-                const CellGrid<R>& g = v.grid;
+        v.grid.template for_each_run_near<true>(u, cx, cy, cz, v.batch_of_slot(k), prune2, [&](int first, int last, int dx, int dy, int dz) {
+            const CellGrid<R>& g = v.grid;
+            Vec3<R> image{R(0), R(0), R(0)};
+            typename CellLocalPositions<R>::RowShift cells{};
+            const int rowOffset = offsetEntries ? CellLocalPositions<R>::offset_bits(-2, dy, dz) : 0;
+            if (kHow == kCellLocal) {
+                cells = v.cellLocal.row_shift(CellGrid<R>::periodic(cx + dx, g.nx), CellGrid<R>::periodic(cy + dy, g.ny),
+                                              CellGrid<R>::periodic(cz + dz, g.nz), dx, dy, dz);
+            } else if (kHow == kCellImage) {
                 image = {CellGrid<R>::image_shift(cx, dx, g.nx, v.box.length.x, g.openX),
                          CellGrid<R>::image_shift(cy, dy, g.ny, v.box.length.y, g.openY),
                          CellGrid<R>::image_shift(cz, dz, g.nz, v.box.length.z, g.openZ)};
             }
-            scan(v.cellStart[first], v.cellStart[last + 1], {}, image);
+            scan(v.cellStart[first], v.cellStart[last + 1], cells, image, rowOffset);
         });
+        // One lane's last, partial chunk (its other places hold what no reader visits).
+        if (lanes.count == 1 && n % kChunk != 0 && n <= v.capacity) NeighbourView<R>::store_chunk(chunk, staged_chunk());
         return n;
     }
 
@@ -313,13 +347,13 @@ struct BuildLists {
         // happened to be at this build: a restarted run repeats the same sums bit for bit.
         const int stored = !byParticle ? 0 : (n < v.capacity ? n : v.capacity);
         for (int m = 1; m < stored; ++m) {
-            const int value = entries[m * v.entryStride];
+            const int value = entries[v.offset_of(m)];
             int before = m - 1;
-            while (before >= 0 && v.order[entries[before * v.entryStride]] > v.order[value]) {
-                entries[(before + 1) * v.entryStride] = entries[before * v.entryStride];
+            while (before >= 0 && v.order[v.slot_of_entry(entries[v.offset_of(before)])] > v.order[v.slot_of_entry(value)]) {
+                entries[v.offset_of(before + 1)] = entries[v.offset_of(before)];
                 --before;
             }
-            entries[(before + 1) * v.entryStride] = value;
+            entries[v.offset_of(before + 1)] = value;
         }
         v.count[k] = n;
         atomic_max(control + kMaxNeighbours, n);
@@ -463,7 +497,7 @@ struct BuildLists {
             // In particle order, as build() leaves it (a list in cell order needs no sort).
             int* entries = v.entries_of(k);
             if (!byParticle) {
-                for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = slot[m];
+                for (int m = 0; m < stored; ++m) entries[v.offset_of(m)] = slot[m];
             } else if (stored <= kRankedListLimit) {
                 int low = std::numeric_limits<int>::max(), high = std::numeric_limits<int>::min();
                 for (int m = 0; m < stored; ++m) {
@@ -479,7 +513,7 @@ struct BuildLists {
                         const Key id = key[m];
                         Key rank = 0;
                         for (int other = 0; other < stored; ++other) rank += key[other] < id;
-                        entries[rank * v.entryStride] = slot[m];
+                        entries[v.offset_of(rank)] = slot[m];
                     }
                 };
                 if (stored > 0 && high - low <= std::numeric_limits<int16_t>::max()) {
@@ -496,7 +530,7 @@ struct BuildLists {
                 for (int m = 0; m < stored; ++m)
                     keys[m] = static_cast<uint64_t>(static_cast<uint32_t>(order[slot[m]])) << 32 | static_cast<uint32_t>(slot[m]);
                 std::sort(keys.begin(), keys.begin() + stored);
-                for (int m = 0; m < stored; ++m) entries[m * v.entryStride] = static_cast<int>(static_cast<uint32_t>(keys[m]));
+                for (int m = 0; m < stored; ++m) entries[v.offset_of(m)] = static_cast<int>(static_cast<uint32_t>(keys[m]));
             }
             v.count[k] = n;
             longest = n > longest ? n : longest;

@@ -15,6 +15,7 @@
 // Kept only where every axis is periodic and has more than 2 reach cells, and the codes fit in 24
 // bits (verlet_list.hpp).
 #include "core/box.hpp"
+#include "core/real_limits.hpp"
 
 namespace structmd {
 
@@ -27,6 +28,8 @@ struct CellLocalPositions {
     // the largest error of a separation. Kept here, where a GPU kernel reads them as operands of
     // its instructions without holding registers for them.
     Vec3<float> widthHi{0.0f, 0.0f, 0.0f}, widthLo{0.0f, 0.0f, 0.0f};
+    // The same along y and z in the units of a list entry's offset bits (separation(a, b, entry)).
+    Vec3<float> entryWidthHi{0.0f, 0.0f, 0.0f}, entryWidthLo{0.0f, 0.0f, 0.0f};
     Vec3<R> halfLength{R(0), R(0), R(0)};
     int bitsX = 1, bitsY = 1;  // the code's digits along x and y: bx = 2^bitsX, by = 2^bitsY
     // For separation(), as floats: the cells along each axis and their inverses, bx and bx by, and
@@ -57,6 +60,8 @@ struct CellLocalPositions {
         widthHi = {static_cast<float>(edge.x), static_cast<float>(edge.y), static_cast<float>(edge.z)};
         widthLo = {static_cast<float>(edge.x - R(widthHi.x)), static_cast<float>(edge.y - R(widthHi.y)),
                    static_cast<float>(edge.z - R(widthHi.z))};
+        entryWidthHi = {widthHi.x, widthHi.y / 8.0f, widthHi.z / 64.0f};
+        entryWidthLo = {widthLo.x, widthLo.y / 8.0f, widthLo.z / 64.0f};
     }
     // The digits for a grid of these cells (each difference of cells below half its digit).
     static int digit_bits(int cellsAlong) {
@@ -80,13 +85,9 @@ struct CellLocalPositions {
     }
 #endif
 
-    // x rounded to the nearest integer, for |x| < 2^22: adding 1.5 2^23 leaves no fraction bits
-    // (two additions at the full rate, where a conversion runs at a quarter of it). No use here
-    // rounds a half: the codes' quotients are exact, and a fold's at least 1/10 from one.
-    static SMD_HD SMD_INLINE float nearest(float x) {
-        constexpr float kShifter = 12582912.0f;
-        return (x + kShifter) - kShifter;
-    }
+    // x rounded to the nearest integer (core/real_limits.hpp). No use here rounds a half: the
+    // codes' quotients are exact, and a fold's at least 1/10 from one.
+    static SMD_HD SMD_INLINE float nearest(float x) { return nearest_integer(x); }
 
     // b - a for two slots' local positions: their difference plus the cells' distance, each axis's
     // folded across the periodic boundary.
@@ -109,10 +110,41 @@ struct CellLocalPositions {
                 along(b.z - a.z, dz, cells.z, inverseCells.z, widthHi.z, widthLo.z)};
     }
 
+    // A GPU list by columns of chunks (NeighbourView::entryShift) writes each entry with the cells'
+    // offset of its pair at the build, each axis's in [-2, 2] (the reach), stored plus 2 in three
+    // bits below the slot: separation(a, b, entry) then takes the cells' distance from the entry
+    // as exact floats, six instructions, where separation() above unpacks the codes and folds
+    // them (sixteen). Both positions stay relative to the cells of that build, so the offset holds
+    // until the next. Slots below 2^23.
+    static constexpr int kOffsetBits = 9;
+    static constexpr int64_t kMostEntrySlots = int64_t(1) << (32 - kOffsetBits);
+    static SMD_HD SMD_INLINE int entry(int slot, int offsetBits) {
+        return static_cast<int>(static_cast<unsigned>(slot) << kOffsetBits) | offsetBits;
+    }
+    // The offset bits of cells dx, dy, dz apart (each in [-2, 2]).
+    static SMD_HD SMD_INLINE int offset_bits(int dx, int dy, int dz) { return (dx + 2) | (dy + 2) << 3 | (dz + 2) << 6; }
+    static SMD_HD SMD_INLINE int slot_of_entry(int entry) { return static_cast<int>(static_cast<unsigned>(entry) >> kOffsetBits); }
+
+    // separation(a, b) for the pair of a list entry that carries its cells' offset: each axis's
+    // bits, where they lie in the entry, become the mantissa of a float of exponent 23, whose units
+    // are then the bits' own (1, 8 and 64 along x, y and z); less its bias (2^23 and the 2 added)
+    // it is the offset in those units, an exact integer, and the widths along y and z come divided
+    // by 8 and 64 to match (exactly: powers of two). Every sum rounds as separation()'s.
+    SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, int entry) const {
+        constexpr int kExponent23 = 0x4b000000;  // the bits of 2^23
+        const float cx = float_of_bits((entry & 0x7) | kExponent23) - (0x1p23f + 2.0f);
+        const float cy = float_of_bits((entry & 0x38) | kExponent23) - (0x1p23f + 16.0f);
+        const float cz = float_of_bits((entry & 0x1c0) | kExponent23) - (0x1p23f + 128.0f);
+        return {(cx * entryWidthHi.x + (b.x - a.x)) + cx * entryWidthLo.x,
+                (cy * entryWidthHi.y + (b.y - a.y)) + cy * entryWidthLo.y,
+                (cz * entryWidthHi.z + (b.z - a.z)) + cz * entryWidthLo.z};
+    }
+
     // The cells' distance that separation() adds for cells a given number apart along each axis,
-    // as its hi and lo parts (each product exact). A list build takes a whole cell's candidates at
-    // one such shift and unpacks no cell per candidate; the pair kernel, whose neighbours' cells
-    // differ, keeps separation() above (with the shift as a variable it spilled more registers).
+    // as its hi and lo parts (each product exact). A list build takes a run of cells' candidates
+    // at one such shift along y and z (RowShift below) and unpacks no code but x's per candidate;
+    // the pair kernel, whose neighbours' cells differ, keeps separation() above (with the shift as
+    // a variable it spilled more registers).
     struct CellShift {
         Vec3<float> hi, lo;
     };
@@ -120,10 +152,24 @@ struct CellLocalPositions {
         const float x = static_cast<float>(cellsX), y = static_cast<float>(cellsY), z = static_cast<float>(cellsZ);
         return {{x * widthHi.x, y * widthHi.y, z * widthHi.z}, {x * widthLo.x, y * widthLo.y, z * widthLo.z}};
     }
-    // separation(a, b) for local positions whose cells are `cells` apart: the same sums.
-    static SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const CellShift& cells) {
-        return {(cells.hi.x + (b.x - a.x)) + cells.lo.x, (cells.hi.y + (b.y - a.y)) + cells.lo.y,
-                (cells.hi.z + (b.z - a.z)) + cells.lo.z};
+    // The cells' distance over a run of cells consecutive along x (CellGrid::for_each_run_near):
+    // along y and z the run's, along x each candidate's own, the difference of its code from
+    // `origin` (the code of the cell at offset 0 in the run's row, which may lie outside the grid:
+    // exact in float all the same). A list build then takes a whole run at one shift.
+    struct RowShift {
+        CellShift yz;
+        float origin;
+    };
+    // For the run whose first cell, at x = firstX in row (py, pz), is dx cells from the slot's
+    // (before the periodic wrap) and the row dy and dz.
+    SMD_HD SMD_INLINE RowShift row_shift(int firstX, int py, int pz, int dx, int dy, int dz) const {
+        return {shift(0, dy, dz), pack(firstX, py, pz) - static_cast<float>(dx)};
+    }
+    // separation(a, b) for b in the run of `row`: the same sums (c times a width part is exact, |c| <= 2).
+    SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const RowShift& row) const {
+        const float c = b.w - row.origin;
+        return {(c * widthHi.x + (b.x - a.x)) + c * widthLo.x, (row.yz.hi.y + (b.y - a.y)) + row.yz.lo.y,
+                (row.yz.hi.z + (b.z - a.z)) + row.yz.lo.z};
     }
 };
 

@@ -535,15 +535,25 @@ void run(int cellsPerEdge, bool morton) {
     const structmd::LennardJonesParams<float> ljParams =
         LennardJonesType1::make_pair_params<float>(1.0, 1.0, 2.5, false);
     structmd::LennardJonesParams<float>* ljTable = device_copy(std::vector<structmd::LennardJonesParams<float>>{ljParams});
+    // The engine reads a list by columns of chunks (neighbour/neighbour_view.hpp): the study's list,
+    // by columns of single entries, laid out so.
+    constexpr int kChunk = structmd::NeighbourView<float>::kChunk;
+    const int engineCapacity = (full.capacity + kChunk - 1) / kChunk * kChunk;
+    std::vector<int> columns(static_cast<size_t>(full.capacity) * n), chunked(static_cast<size_t>(engineCapacity) * n);
+    check(cudaMemcpy(columns.data(), full.list, sizeof(int) * columns.size(), cudaMemcpyDeviceToHost), "list to host");
+    for (int64_t i = 0; i < n; ++i)
+        for (int64_t m = 0; m < full.capacity; ++m)
+            chunked[(m / kChunk) * kChunk * n + i * kChunk + m % kChunk] = columns[m * n + i];
+    int* engineList = device_copy(chunked);
     EnginePair engine{};
     engine.neighbours.positions = reinterpret_cast<const structmd::Real4<float>*>(pos);
     engine.neighbours.binned = engine.neighbours.positions;
     engine.neighbours.order = order;
-    engine.neighbours.list = full.list;
+    engine.neighbours.list = engineList;
     engine.neighbours.count = full.count;
-    engine.neighbours.capacity = full.capacity;
-    engine.neighbours.particleStride = 1;
-    engine.neighbours.entryStride = n;
+    engine.neighbours.capacity = engineCapacity;
+    engine.neighbours.particleStride = kChunk;
+    engine.neighbours.chunkStride = static_cast<int64_t>(kChunk) * n;
     engine.neighbours.box = structmd::Box<float>::make(liquid.length, liquid.length, liquid.length);
     engine.table = {ljTable, 1, nullptr};
     engine.out.force = reinterpret_cast<structmd::Real4<float>*>(scattered);
@@ -574,6 +584,7 @@ void run(int cellsPerEdge, bool morton) {
     }
     cudaFree(order);
     cudaFree(ljTable);
+    cudaFree(engineList);
     cudaFree(table);
     cudaFree(scattered);
     time_builds(n, pos, liquid.length, cells, rank, start, full, morton);

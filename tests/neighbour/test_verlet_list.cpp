@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "backends/cpu/cpu_backend.hpp"
+#include "forcefield/lennard_jones.hpp"
+#include "forcefield/pair_kernel.hpp"
 #include "neighbour/verlet_list.hpp"
 #include "neighbour/verlet_list_kernels.hpp"
 #include "random_particles.hpp"
@@ -347,13 +349,17 @@ TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
 }
 
 // The build loop a GPU runs (the BuildListsAlong with_build_path chooses, one slot at a time with
-// one lane) against the CPU's row pass that built the list: the same slots in every list, for each
-// way of taking separations (the minimum image, the image of the candidate's cell, or cell-local
-// positions) and each filter (any pair, or exclusions). A pair on which they differ may
-// only be one the two roundings put on either side of the list radius.
+// one lane, writing its lists by columns of chunks as a GPU thread per particle does) against the
+// CPU's row pass that built the list, both read through for_each_neighbour: the same slots in every
+// list, each once, for each way of taking separations (the minimum image, the image of the
+// candidate's cell, or cell-local positions) and each filter (any pair, or exclusions). A pair on
+// which they differ may only be one the two roundings put on either side of the list radius.
+// With `forcesOfSigma` (cell-local positions only), a mixed-precision pair kernel over the columns,
+// whose entries carry the cells' offset, also sums the forces it sums over the rows' slots: LJ of
+// that sigma, for a configuration without overlaps (its forces bounded).
 template <class Configure>
 void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const PairFilterInputs& inputs,
-                                          bool cellLocal, bool imagesByOffset) {
+                                          bool cellLocal, bool imagesByOffset, double forcesOfSigma = 0.0) {
     List list(s.backend, 2.5, 1.12, PairCondition::all, inputs, nullptr, 1, nullptr);
     configure(list);
     list.update(s.pos, s.n, s.box, ++s.version);
@@ -361,9 +367,14 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     ASSERT_EQ(v.cellLocal.local != nullptr, cellLocal);
     ASSERT_EQ(v.grid.images_by_offset(), imagesByOffset);
     ASSERT_EQ(v.filter.trivial(), inputs.excluded.empty());
+    ASSERT_EQ(v.capacity % NeighbourView<double>::kChunk, 0) << "a list holds whole chunks";
+    const NeighbourView<double> rows = v;
+    // The GPU loop's lists laid out by columns of chunks (one thread a particle), read back through
+    // the view's own traversal.
+    v.particleStride = NeighbourView<double>::kChunk;
+    v.chunkStride = NeighbourView<double>::kChunk * s.n;
+    if (cellLocal) v.entryShift = CellLocalPositions<double>::kOffsetBits;  // as the GPU's columns carry
     std::vector<int> entries(static_cast<size_t>(v.capacity) * s.n), counts(s.n);
-    const int* built = v.list;
-    const int* builtCount = v.count;
     v.list = entries.data();
     v.count = counts.data();
     int control[kControlSlots] = {};
@@ -377,8 +388,21 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     for (int64_t k = 0; k < s.n; ++k) {
         ASSERT_LE(counts[k], v.capacity) << "slot " << k << " overflowed";
         std::set<int> mine, theirs;
-        for (int m = 0; m < counts[k]; ++m) mine.insert(entries[k * v.particleStride + m * v.entryStride]);
-        for (int m = 0; m < builtCount[k]; ++m) theirs.insert(built[k * v.particleStride + m * v.entryStride]);
+        v.for_each_neighbour(static_cast<int>(k), [&](int t) { EXPECT_TRUE(mine.insert(t).second) << "slot " << k; });
+        if (cellLocal) {
+            // The cells' offset an entry carries gives the separation the cells' codes give, bit for bit.
+            const CellLocalPositions<double>& local = v.cellLocal;
+            v.for_each_entry(static_cast<int>(k), [&](int entry) {
+                const int t = CellLocalPositions<double>::slot_of_entry(entry);
+                const Vec3<float> byEntry = local.separation(local.local[k], local.local[t], entry);
+                const Vec3<float> byCodes = local.separation(local.local[k], local.local[t]);
+                EXPECT_EQ(byEntry.x, byCodes.x) << "slot " << k << " and " << t;
+                EXPECT_EQ(byEntry.y, byCodes.y) << "slot " << k << " and " << t;
+                EXPECT_EQ(byEntry.z, byCodes.z) << "slot " << k << " and " << t;
+            }, [&](int) { ADD_FAILURE() << "slot " << k << " overflowed"; });
+        }
+        EXPECT_EQ(static_cast<int>(mine.size()), counts[k]) << "slot " << k;
+        rows.for_each_neighbour(static_cast<int>(k), [&](int t) { theirs.insert(t); });
         listed += static_cast<int64_t>(theirs.size());
         std::vector<int> differing;
         std::set_symmetric_difference(mine.begin(), mine.end(), theirs.begin(), theirs.end(),
@@ -391,6 +415,27 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     }
     EXPECT_GT(listed, 20 * s.n) << "the lists were meant to hold a liquid's neighbours";
     EXPECT_LE(borderline, 2);
+    if (!(forcesOfSigma > 0.0)) return;
+    ASSERT_TRUE(cellLocal);
+    using LJ = LennardJonesType1;
+    const LJ::Params<float> params = LJ::make_pair_params<float>(1.0, forcesOfSigma, 2.5 * forcesOfSigma, false);
+    const auto forces_over = [&](const NeighbourView<double>& view) {
+        std::vector<Real4<double>> force(s.n, Real4<double>{0, 0, 0, 0});
+        PairKernel<LJ, double, float, true, false, false> kernel{nullptr, nullptr, nullptr, view, {&params, 1, nullptr}, {}};
+        kernel.out.force = force.data();
+        for (int64_t k = 0; k < s.n; ++k) kernel(k, Lanes{});
+        return force;
+    };
+    const std::vector<Real4<double>> byEntries = forces_over(v), byCodes = forces_over(rows);
+    double largest = 0.0, deviation = 0.0;
+    for (int64_t k = 0; k < s.n; ++k) {
+        largest = std::max({largest, std::abs(byCodes[k].x), std::abs(byCodes[k].y), std::abs(byCodes[k].z)});
+        deviation = std::max({deviation, std::abs(byEntries[k].x - byCodes[k].x), std::abs(byEntries[k].y - byCodes[k].y),
+                              std::abs(byEntries[k].z - byCodes[k].z)});
+    }
+    ASSERT_GT(largest, 10.0) << "the configuration was meant to have forces";
+    // The same separations bit for bit (above): the sums differ in order alone.
+    EXPECT_LT(deviation, 1e-5 * largest);
 }
 
 // Each particle excludes the `reach` before and after it: a filter that is not trivial. A reach of 1
@@ -454,6 +499,24 @@ TEST(VerletList, GpuBuildLoopListsWhatTheCpuRowsList) {
     expect_gpu_loop_lists_what_rows_list(narrow, asIs, {}, false, false);
     expect_gpu_loop_lists_what_rows_list(narrow, asIs, narrowExclusions, false, false);
     expect_gpu_loop_lists_what_rows_list(narrow, keepCellLocal, {}, true, false);
+}
+
+// The mixed-precision pair kernel over entries that carry their cells' offset, on a liquid of 27,000
+// on a jittered lattice (density 0.8, about 20 cells along each axis, some particles just outside
+// the box), against the same kernel over the rows' slots.
+TEST(VerletList, GpuBuildLoopEntriesGiveTheForcesOfTheCellCodes) {
+    constexpr int side = 30;
+    const double spacing = 1.0 / 0.93, length = side * spacing;
+    System lattice(int64_t(side) * side * side, length, length, length, 14);
+    std::mt19937 rng(14);
+    std::uniform_real_distribution<double> jitter(-0.1, 0.1);
+    int64_t i = 0;
+    for (int a = 0; a < side; ++a)
+        for (int b = 0; b < side; ++b)
+            for (int c = 0; c < side; ++c)
+                lattice.pos.data()[i++] = {(a + jitter(rng) - 0.5 * side) * spacing, (b + jitter(rng) - 0.5 * side) * spacing,
+                                           (c + jitter(rng) - 0.5 * side) * spacing, 0.0};
+    expect_gpu_loop_lists_what_rows_list(lattice, [](List& list) { list.keep_cell_local_positions(); }, {}, true, true, 1.0);
 }
 
 }  // namespace

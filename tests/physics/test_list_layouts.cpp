@@ -7,8 +7,11 @@
 // Exits with 77 (skipped for CTest) when no CUDA backend is usable.
 #include "physics_support.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace structmd_physics {
@@ -32,6 +35,19 @@ std::string liquid(int side, bool twoTypes) {
         "       \"parameters\": {\"cutOffFactor\": 2.5, \"condition\": \"all\", \"shift\": true},\n"
         "       \"labels\": [\"name_i\", \"name_j\", \"epsilon\", \"sigma\"], \"data\": " + pairs + "}";
     return input_document(box, positions, types, {}, forceField, 0.004);
+}
+
+// The largest |F(r_c)| of the liquid's type pairs (epsilon, sigma as liquid() gives them; r_c = 2.5 sigma).
+double cutoff_force(bool twoTypes) {
+    const std::vector<std::pair<double, double>> pairs =
+        twoTypes ? std::vector<std::pair<double, double>>{{1.0, 1.0}, {1.2, 1.05}, {0.8, 1.1}}
+                 : std::vector<std::pair<double, double>>{{1.0, 1.0}};
+    double largest = 0.0;
+    for (const auto& [epsilon, sigma] : pairs) {
+        const double rc = 2.5 * sigma, s6 = std::pow(sigma / rc, 6);
+        largest = std::max(largest, std::abs(24.0 * epsilon * (2.0 * s6 * s6 - s6) / rc));
+    }
+    return largest;
 }
 
 struct Evaluated {
@@ -68,11 +84,30 @@ void expect_backends_agree(int side, bool twoTypes) {
         const Evaluated cpu = evaluate(input, "cpu", precision), cuda = evaluate(input, "cuda", precision);
         ASSERT_EQ(cpu.forces.size(), cuda.forces.size());
         const double tolerance = precision == "double" ? 1e-10 : 1e-5;
-        const double deviation = max_relative_deviation(cuda.forces, cpu.forces);
-        std::printf("[ deviation ] %d particles %s %s: forces %.3e, energy %.3e\n", side * side * side,
-                    twoTypes ? "two types" : "one type", precision.c_str(), deviation,
-                    relative_deviation(cuda.energy, cpu.energy));
-        EXPECT_LT(deviation, tolerance);
+        // A pair whose distance the two backends round to either side of the cutoff adds the force
+        // there, |F(r_c)| (LJ's shift moves the energy alone), to its particles on one backend only:
+        // a few such pairs are expected among the 17 million of 512,000 particles in float, each
+        // 1.5e-4 of the largest force. Such particles are outliers; a list that lost or misread
+        // entries would make thousands, or miss pairs well inside the cutoff.
+        const double largest = max_abs(cpu.forces), tight = tolerance * largest;
+        const double jump = cutoff_force(twoTypes);
+        int outliers = 0;
+        double worst = 0.0;
+        for (std::size_t c = 0; c < cpu.forces.size(); c += 3) {
+            double d = 0.0;
+            for (int a = 0; a < 3; ++a) d = std::max(d, std::abs(cuda.forces[c + a] - cpu.forces[c + a]));
+            worst = std::max(worst, d);
+            if (d > tight) {
+                ++outliers;
+                EXPECT_LT(d, 2.0 * jump + tight) << "particle " << c / 3 << ": more than two pairs at the cutoff";
+            }
+        }
+        const int particles = side * side * side;
+        std::printf("[ deviation ] %d particles %s %s: forces %.3e of the largest (%d particles beyond %.0e, "
+                    "the cutoff's force %.2e), energy %.3e\n",
+                    particles, twoTypes ? "two types" : "one type", precision.c_str(), worst / largest, outliers,
+                    tolerance, jump / largest, relative_deviation(cuda.energy, cpu.energy));
+        EXPECT_LE(outliers, 4 + particles / 10000);
         EXPECT_LT(relative_deviation(cuda.energy, cpu.energy), tolerance);
     }
 }

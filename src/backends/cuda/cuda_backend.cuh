@@ -404,8 +404,7 @@ private:
         if (graphs_.recording()) graphs_.flush(stream_);
     }
 
-    // 128 threads a block: what the launch bounds of the lanes kernels assume.
-    static constexpr unsigned kThreads = 128;
+    static constexpr unsigned kThreads = kBlockThreads;
     struct Grid {
         unsigned blocks;
         int lanes;
