@@ -177,8 +177,7 @@ struct PairKernel {
     // positions): listed(entry, s, typeJ) gives the separation of a list entry's pair, its slot s and
     // its particle's type, scanned(s, typeJ) those of a slot of an overflowed list's cells.
     // kPlain (one type, no group): the pair's parameters are read once, before the neighbours, and
-    // no neighbour's group is looked up; each neighbour is some 8 instructions fewer of the ~85 of
-    // a Lennard-Jones pair (sm_90).
+    // no neighbour's group is looked up: some 8 instructions fewer a neighbour (sm_90).
     template <class S, bool kPlain, class Listed, class Scanned>
     SMD_HD SMD_INLINE void sum_pairs(int64_t k, int i, const Params* row, Lanes lanes, Listed&& listed,
                                      Scanned&& scanned) const {
