@@ -207,7 +207,7 @@ private:
         v.filter = filter_;
         v.cellLocal = cell_local();
         // The cells' offset in the entries of the GPU's columns (one thread a particle, whose pair
-        // kernels then skip unpacking the cells' codes: LJ 52 -> 44 SASS instructions a neighbour
+        // kernels then skip unpacking the cells' codes: LJ 52 -> 42 SASS instructions a neighbour
         // in mixed precision, sm_90).
         if (v.cellLocal.local && !v.by_rows() && particles_ <= CellLocalPositions<R>::kMostEntrySlots)
             v.entryShift = CellLocalPositions<R>::kOffsetBits;

@@ -60,8 +60,9 @@ struct CellLocalPositions {
         widthHi = {static_cast<float>(edge.x), static_cast<float>(edge.y), static_cast<float>(edge.z)};
         widthLo = {static_cast<float>(edge.x - R(widthHi.x)), static_cast<float>(edge.y - R(widthHi.y)),
                    static_cast<float>(edge.z - R(widthHi.z))};
-        entryWidthHi = {widthHi.x, widthHi.y / 8.0f, widthHi.z / 64.0f};
-        entryWidthLo = {widthLo.x, widthLo.y / 8.0f, widthLo.z / 64.0f};
+        constexpr float kUnitY = 1 << kAxisBits, kUnitZ = 1 << 2 * kAxisBits;  // separation(a, b, entry)
+        entryWidthHi = {widthHi.x, widthHi.y / kUnitY, widthHi.z / kUnitZ};
+        entryWidthLo = {widthLo.x, widthLo.y / kUnitY, widthLo.z / kUnitZ};
     }
     // The digits for a grid of these cells (each difference of cells below half its digit).
     static int digit_bits(int cellsAlong) {
@@ -112,29 +113,35 @@ struct CellLocalPositions {
 
     // A GPU list by columns of chunks (NeighbourView::entryShift) writes each entry with the cells'
     // offset of its pair at the build, each axis's in [-2, 2] (the reach), stored plus 2 in three
-    // bits below the slot: separation(a, b, entry) then takes the cells' distance from the entry
-    // as exact floats, six instructions, where separation() above unpacks the codes and folds
-    // them (sixteen). Both positions stay relative to the cells of that build, so the offset holds
-    // until the next. Slots below 2^23.
-    static constexpr int kOffsetBits = 9;
+    // bits below the slot (x lowest): separation(a, b, entry) then takes the cells' distance from the
+    // entry as exact floats, three instructions an axis, where separation() above unpacks the codes
+    // and folds them (sixteen in all). Both positions stay relative to the cells of that build, so
+    // the offset holds until the next. Slots below 2^23.
+    static constexpr int kAxisBits = 3, kOffsetBits = 3 * kAxisBits;
     static constexpr int64_t kMostEntrySlots = int64_t(1) << (32 - kOffsetBits);
     static SMD_HD SMD_INLINE int entry(int slot, int offsetBits) {
         return static_cast<int>(static_cast<unsigned>(slot) << kOffsetBits) | offsetBits;
     }
     // The offset bits of cells dx, dy, dz apart (each in [-2, 2]).
-    static SMD_HD SMD_INLINE int offset_bits(int dx, int dy, int dz) { return (dx + 2) | (dy + 2) << 3 | (dz + 2) << 6; }
+    static SMD_HD SMD_INLINE int offset_bits(int dx, int dy, int dz) {
+        return (dx + 2) | (dy + 2) << kAxisBits | (dz + 2) << 2 * kAxisBits;
+    }
     static SMD_HD SMD_INLINE int slot_of_entry(int entry) { return static_cast<int>(static_cast<unsigned>(entry) >> kOffsetBits); }
 
     // separation(a, b) for the pair of a list entry that carries its cells' offset: each axis's
     // bits, where they lie in the entry, become the mantissa of a float of exponent 23, whose units
-    // are then the bits' own (1, 8 and 64 along x, y and z); less its bias (2^23 and the 2 added)
-    // it is the offset in those units, an exact integer, and the widths along y and z come divided
-    // by 8 and 64 to match (exactly: powers of two). Every sum rounds as separation()'s.
+    // are then the bits' own (1, 8 and 64 along x, y and z); less its bias (2^23 and the 2 added, in
+    // those units) it is the offset in those units, an exact integer, and entryWidth along y and z
+    // is the width divided by 8 and 64 to match (exactly: powers of two). Every sum rounds as
+    // separation()'s.
     SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, int entry) const {
         constexpr int kExponent23 = 0x4b000000;  // the bits of 2^23
-        const float cx = float_of_bits((entry & 0x7) | kExponent23) - (0x1p23f + 2.0f);
-        const float cy = float_of_bits((entry & 0x38) | kExponent23) - (0x1p23f + 16.0f);
-        const float cz = float_of_bits((entry & 0x1c0) | kExponent23) - (0x1p23f + 128.0f);
+        const auto along = [&](int axis) {
+            const int shift = axis * kAxisBits;
+            return float_of_bits((entry & ((1 << kAxisBits) - 1) << shift) | kExponent23) -
+                   (0x1p23f + static_cast<float>(2 << shift));
+        };
+        const float cx = along(0), cy = along(1), cz = along(2);
         return {(cx * entryWidthHi.x + (b.x - a.x)) + cx * entryWidthLo.x,
                 (cy * entryWidthHi.y + (b.y - a.y)) + cy * entryWidthLo.y,
                 (cz * entryWidthHi.z + (b.z - a.z)) + cz * entryWidthLo.z};
