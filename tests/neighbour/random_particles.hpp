@@ -42,6 +42,21 @@ struct RandomParticles {
         }
     }
 
+    // A liquid-like configuration in place of the random one: a cubic lattice of the given spacing
+    // filling the box row by row, each site jittered by up to an eighth of it (from the random
+    // positions), two types (w 0 and 1); no pair closer than about 0.75 spacings.
+    void place_on_jittered_lattice(double spacing) {
+        const int nx = static_cast<int>(box.length.x / spacing), ny = static_cast<int>(box.length.y / spacing);
+        for (int64_t i = 0; i < n; ++i) {
+            Real4<double>& p = pos.data()[i];
+            const int64_t a = i % nx, b = (i / nx) % ny, c = i / (nx * ny);
+            const Vec3<double> r = box.wrap({(a + 0.25 * p.x / box.length.x) * spacing,
+                                             (b + 0.25 * p.y / box.length.y) * spacing,
+                                             (c + 0.25 * p.z / box.length.z) * spacing});
+            p = {r.x, r.y, r.z, static_cast<double>(i % 2)};
+        }
+    }
+
     // Every ordered pair (i, j), i != j, closer than cutoff.
     Pairs pairs_within(double cutoff) const {
         Pairs pairs;

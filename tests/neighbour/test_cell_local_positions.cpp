@@ -22,20 +22,6 @@ namespace {
 
 using List = VerletList<CpuBackend, double>;
 
-// A liquid-like configuration: a cubic lattice at about the LJ liquid's density, each site
-// jittered, two types; no pair closer than about 0.75.
-void place_on_jittered_lattice(RandomParticles& s, double spacing) {
-    const int nx = static_cast<int>(s.box.length.x / spacing), ny = static_cast<int>(s.box.length.y / spacing);
-    for (int64_t i = 0; i < s.n; ++i) {
-        Real4<double>& p = s.pos.data()[i];
-        const int64_t a = i % nx, b = (i / nx) % ny, c = i / (nx * ny);
-        const Vec3<double> r = s.box.wrap({(a + 0.25 * p.x / s.box.length.x) * spacing,
-                                           (b + 0.25 * p.y / s.box.length.y) * spacing,
-                                           (c + 0.25 * p.z / s.box.length.z) * spacing});
-        p = {r.x, r.y, r.z, static_cast<double>(i % 2)};
-    }
-}
-
 // The largest difference, over every listed pair, between the cell-local separation and the
 // minimum image of the double positions.
 double largest_separation_error(List& list, RandomParticles& s) {
@@ -62,7 +48,7 @@ double largest_separation_error(List& list, RandomParticles& s) {
 // cells) the rounding is a few 1e-8, and the cells' distances are exact multiples of a float width.
 TEST(CellLocalPositions, SeparationsMatchTheDoublePositionsAcrossTheBoundary) {
     RandomParticles s(120 * 12 * 12, 120.0, 12.0, 12.0, 3);
-    place_on_jittered_lattice(s, 1.0);
+    s.place_on_jittered_lattice(1.0);
     List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
     list.keep_cell_local_positions();
     EXPECT_LT(largest_separation_error(list, s), 4e-7);
@@ -84,7 +70,7 @@ TEST(CellLocalPositions, SeparationsMatchTheDoublePositionsAcrossTheBoundary) {
 // against the double kernel, in a box 100 long.
 TEST(CellLocalPositions, MixedPairKernelAgreesWithDouble) {
     RandomParticles s(100 * 11 * 11, 100.0, 11.0, 11.0, 4);
-    place_on_jittered_lattice(s, 1.0);
+    s.place_on_jittered_lattice(1.0);
     using LJ = LennardJonesType1;
     const auto table_in = [](auto real) {
         using T = decltype(real);
@@ -182,7 +168,7 @@ TEST(CellLocalPositions, MixedPairKernelAgreesWithDouble) {
 // from then on, also where that view() came between a drift's arming and its run.
 TEST(CellLocalPositions, SlotPositionsKeptOnlyOnceSomeCallerReadsThem) {
     RandomParticles s(20 * 12 * 12, 20.0, 12.0, 12.0, 6);
-    place_on_jittered_lattice(s, 1.0);
+    s.place_on_jittered_lattice(1.0);
     List list(s.backend, 2.5, 1.12, PairCondition::all, {}, nullptr, 1, nullptr);
     list.keep_cell_local_positions();
     const auto slots_hold_positions = [&](const NeighbourView<double>& v) {

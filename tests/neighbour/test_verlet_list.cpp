@@ -501,21 +501,11 @@ TEST(VerletList, GpuBuildLoopListsWhatTheCpuRowsList) {
     expect_gpu_loop_lists_what_rows_list(narrow, keepCellLocal, {}, true, false);
 }
 
-// The mixed-precision pair kernel over entries that carry their cells' offset, on a liquid of 27,000
-// on a jittered lattice (density 0.8, about 20 cells along each axis, some particles just outside
-// the box), against the same kernel over the rows' slots.
+// The mixed-precision pair kernel over entries that carry their cells' offset, on a liquid-like
+// lattice of 27,000 (about 21 cells along each axis), against the same kernel over the rows' slots.
 TEST(VerletList, GpuBuildLoopEntriesGiveTheForcesOfTheCellCodes) {
-    constexpr int side = 30;
-    const double spacing = 1.0 / 0.93, length = side * spacing;
-    System lattice(int64_t(side) * side * side, length, length, length, 14);
-    std::mt19937 rng(14);
-    std::uniform_real_distribution<double> jitter(-0.1, 0.1);
-    int64_t i = 0;
-    for (int a = 0; a < side; ++a)
-        for (int b = 0; b < side; ++b)
-            for (int c = 0; c < side; ++c)
-                lattice.pos.data()[i++] = {(a + jitter(rng) - 0.5 * side) * spacing, (b + jitter(rng) - 0.5 * side) * spacing,
-                                           (c + jitter(rng) - 0.5 * side) * spacing, 0.0};
+    System lattice(27000, 30.0, 30.0, 30.0, 14);
+    lattice.place_on_jittered_lattice(1.0);
     expect_gpu_loop_lists_what_rows_list(lattice, [](List& list) { list.keep_cell_local_positions(); }, {}, true, true, 1.0);
 }
 

@@ -11,11 +11,21 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace structmd_physics {
 namespace {
+
+// The liquid's LJ pairs: name_i, name_j, epsilon, sigma (r_c = 2.5 sigma, shifted).
+struct LjPair {
+    const char* a;
+    const char* b;
+    double epsilon, sigma;
+};
+std::vector<LjPair> lj_pairs(bool twoTypes) {
+    if (!twoTypes) return {{"A", "A", 1.0, 1.0}};
+    return {{"A", "A", 1.0, 1.0}, {"A", "B", 1.2, 1.05}, {"B", "B", 0.8, 1.1}};
+}
 
 // A jittered lattice liquid (physics_support.hpp), side^3 particles of type A (and B on every third
 // site where twoTypes).
@@ -27,25 +37,24 @@ std::string liquid(int side, bool twoTypes) {
         positions.push_back(position);
         types.push_back(twoTypes && (a + b + c) % 3 == 0 ? "B" : "A");
     });
-    const std::string pairs = twoTypes ? "[[\"A\", \"A\", 1.0, 1.0], [\"A\", \"B\", 1.2, 1.05], [\"B\", \"B\", 0.8, 1.1]]"
-                                       : "[[\"A\", \"A\", 1.0, 1.0]]";
+    std::string pairs;
+    for (const LjPair& p : lj_pairs(twoTypes))
+        pairs += std::string(pairs.empty() ? "" : ", ") + "[\"" + p.a + "\", \"" + p.b + "\", " + number(p.epsilon) + ", " +
+                 number(p.sigma) + "]";
     const std::string forceField =
         "\"nl\": {\"type\": [\"VerletConditionalListSet\", \"all\"], \"parameters\": {\"cutOffVerletFactor\": 1.12}},\n"
         "\"lj\": {\"type\": [\"NonBonded\", \"LennardJonesType1\"],\n"
         "       \"parameters\": {\"cutOffFactor\": 2.5, \"condition\": \"all\", \"shift\": true},\n"
-        "       \"labels\": [\"name_i\", \"name_j\", \"epsilon\", \"sigma\"], \"data\": " + pairs + "}";
+        "       \"labels\": [\"name_i\", \"name_j\", \"epsilon\", \"sigma\"], \"data\": [" + pairs + "]}";
     return input_document(box, positions, types, {}, forceField, 0.004);
 }
 
-// The largest |F(r_c)| of the liquid's type pairs (epsilon, sigma as liquid() gives them; r_c = 2.5 sigma).
+// The largest |F(r_c)| of the liquid's pairs.
 double cutoff_force(bool twoTypes) {
-    const std::vector<std::pair<double, double>> pairs =
-        twoTypes ? std::vector<std::pair<double, double>>{{1.0, 1.0}, {1.2, 1.05}, {0.8, 1.1}}
-                 : std::vector<std::pair<double, double>>{{1.0, 1.0}};
     double largest = 0.0;
-    for (const auto& [epsilon, sigma] : pairs) {
-        const double rc = 2.5 * sigma, s6 = std::pow(sigma / rc, 6);
-        largest = std::max(largest, std::abs(24.0 * epsilon * (2.0 * s6 * s6 - s6) / rc));
+    for (const LjPair& p : lj_pairs(twoTypes)) {
+        const double rc = 2.5 * p.sigma, s6 = std::pow(p.sigma / rc, 6);
+        largest = std::max(largest, std::abs(24.0 * p.epsilon * (2.0 * s6 * s6 - s6) / rc));
     }
     return largest;
 }
