@@ -258,8 +258,8 @@ struct PairRowsOnHost {
     // Their sums then run in an order fixed by the pairs within the cutoff: the same after a rebuild
     // at another step, a restart, or in a spatial domain's list, whatever pairs beyond the cutoff
     // the list happens to hold. flatten: every call inlined (the box's minimum image, the
-    // potential), which the inliner otherwise declines in a body this size. A slot of a group, or
-    // whose list overflowed, takes operator().
+    // potential), which the inliner otherwise declines in a body this size. A slot of a group,
+    // whose list overflowed, or of a list whose entries carry cells (not the CPU's) takes operator().
     SMD_HOST_LOOP void rows(int64_t begin, int64_t end) const {
         constexpr bool charges = uses_charges<Potential>(0), radii = uses_radii<Potential>(0);
         const NeighbourView<R>& v = neighbours;
@@ -287,7 +287,7 @@ struct PairRowsOnHost {
         const bool oneTable = table.ntypes == 1 && table.batch == nullptr;
         for (int64_t k = begin; k < end; ++k) {
             const int n = v.count[k];
-            if (group || n > v.capacity || !v.by_rows()) {
+            if (group || n > v.capacity || !v.by_rows() || v.entryShift) {
                 slotByOperator(kernel, k);
                 continue;
             }

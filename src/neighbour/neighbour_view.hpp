@@ -40,8 +40,8 @@ struct NeighbourView {
     int64_t particleStride = 0;
     int64_t chunkStride = 0;
     // 0: an entry is a slot. CellLocalPositions::kOffsetBits: an entry is a slot and its pair's
-    // cells' offset (CellLocalPositions::entry), the GPU's lists by columns with cell-local
-    // positions, whose pair kernels take the offset from it.
+    // cells' offset (CellLocalPositions::entry), the GPU's lists (by rows or columns) with
+    // cell-local positions, whose pair kernels take the offset from it.
     int entryShift = 0;
     const int* cellStart = nullptr;  // cell c holds slots cellStart[c] .. cellStart[c + 1] - 1
     CellGrid<R> grid;

@@ -206,10 +206,10 @@ private:
         v.box = box_;
         v.filter = filter_;
         v.cellLocal = cell_local();
-        // The cells' offset in the entries of the GPU's columns (one thread a particle, whose pair
-        // kernels then skip unpacking the cells' codes: LJ 52 -> 42 SASS instructions a neighbour
-        // in mixed precision, sm_90).
-        if (v.cellLocal.local && !v.by_rows() && particles_ <= CellLocalPositions<R>::kMostEntrySlots)
+        // The cells' offset in the entries of the GPU's lists, by columns or rows, whose pair kernels
+        // then skip unpacking the cells' codes: LJ 52 -> 42 SASS instructions a neighbour in mixed
+        // precision with one thread a particle, sm_90.
+        if (v.cellLocal.local && backend_.list_entries_carry_cells() && particles_ <= CellLocalPositions<R>::kMostEntrySlots)
             v.entryShift = CellLocalPositions<R>::kOffsetBits;
         return v;
     }

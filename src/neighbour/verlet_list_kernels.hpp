@@ -248,6 +248,7 @@ struct BuildLists {
         // shared memory on the GPU, where four more registers made the lone-lane kernels spill
         // 3-4 times the bytes (sm_90), in a local array on the host.
         constexpr int kChunk = NeighbourView<R>::kChunk;
+        static_assert((kChunk & (kChunk - 1)) == 0, "a chunk's place is taken by a mask");
         int* chunk = entries;
 #if defined(__CUDA_ARCH__)
         __shared__ int staged[kChunk * kBlockThreads];
@@ -273,9 +274,14 @@ struct BuildLists {
                               const Vec3<R>& image, int rowOffset) {
             for (int base = begin; base < end; base += lanes.count) {
                 const int s = base + lanes.lane;
-                bool accepted = s < end && s != self;
+                // The slot itself (one candidate of some two hundred) is dropped after the distance,
+                // which it passes, so the others take no branch for it.
+                bool accepted = s < end;
+                float cellsAlongX = 0.0f;  // the candidate's cells from the slot's along x (cell-local)
                 if (accepted && kHow == kCellLocal) {
-                    const Vec3<float> d = v.cellLocal.separation(localK, v.cellLocal.local[s], cells);
+                    const Real4<float> candidate = v.cellLocal.local[s];
+                    cellsAlongX = cells.along_x(candidate);
+                    const Vec3<float> d = v.cellLocal.separation(localK, candidate, cells, cellsAlongX);
                     accepted = dot(d, d) < localRadius2;
                 } else if (accepted) {
                     // (x_s - x_k) + shift rounds as the minimum image's (x_s - x_k) -+ L does.
@@ -283,20 +289,21 @@ struct BuildLists {
                                                          : v.box.minimum_image(xyz(v.positions[s]) - rk);
                     accepted = dot(d, d) < listRadius2;
                 }
+                accepted = accepted && s != self;
                 // The filter after the distance: it looks the partner up (its particle, compared
                 // with the slot's few exclusions or a search of many), and about one candidate in six
                 // is within the list radius.
                 if (!kAnyPair && accepted) accepted = v.filter.accepts(particle, v.order[s], exclusions);
-                // The entry: the slot, or with its cells' offset, along x the difference of the
-                // candidate's cell code from the run's origin (an exact small integer in float).
+                // The entry: the slot, or with its cells' offset (along x an exact small integer in
+                // float, kept from the distance: loading the candidate again cost the mixed build
+                // spills under its register cap).
                 const int entry = !offsetEntries || !accepted
                                       ? s
-                                      : CellLocalPositions<R>::entry(
-                                            s, rowOffset | (static_cast<int>(v.cellLocal.local[s].w - cells.origin) + 2));
+                                      : CellLocalPositions<R>::entry(s, rowOffset | (static_cast<int>(cellsAlongX) + 2));
                 if (lanes.count == 1) {
                     if (!accepted) continue;
-                    stage[(n % kChunk) * kStageStride] = entry;
-                    if (++n % kChunk == 0) {
+                    stage[(n & (kChunk - 1)) * kStageStride] = entry;  // n % kChunk, n not negative
+                    if ((++n & (kChunk - 1)) == 0) {
                         if (n <= v.capacity) NeighbourView<R>::store_chunk(chunk, staged_chunk());
                         chunk += v.chunkStride;
                     }

@@ -111,8 +111,8 @@ struct CellLocalPositions {
                 along(b.z - a.z, dz, cells.z, inverseCells.z, widthHi.z, widthLo.z)};
     }
 
-    // A GPU list by columns of chunks (NeighbourView::entryShift) writes each entry with the cells'
-    // offset of its pair at the build, each axis's in [-2, 2] (the reach), stored plus 2 in three
+    // A GPU list (NeighbourView::entryShift) writes each entry with the cells' offset of its pair
+    // at the build, each axis's in [-2, 2] (the reach), stored plus 2 in three
     // bits below the slot (x lowest): separation(a, b, entry) then takes the cells' distance from the
     // entry as exact floats, three instructions an axis, where separation() above unpacks the codes
     // and folds them (sixteen in all). Both positions stay relative to the cells of that build, so
@@ -166,15 +166,18 @@ struct CellLocalPositions {
     struct RowShift {
         CellShift yz;
         float origin;
+        // The cells from the slot's to b's along x, b in the run.
+        SMD_HD SMD_INLINE float along_x(const Real4<float>& b) const { return b.w - origin; }
     };
     // For the run whose first cell, at x = firstX in row (py, pz), is dx cells from the slot's
     // (before the periodic wrap) and the row dy and dz.
     SMD_HD SMD_INLINE RowShift row_shift(int firstX, int py, int pz, int dx, int dy, int dz) const {
         return {shift(0, dy, dz), pack(firstX, py, pz) - static_cast<float>(dx)};
     }
-    // separation(a, b) for b in the run of `row`: the same sums (c times a width part is exact, |c| <= 2).
-    SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const RowShift& row) const {
-        const float c = b.w - row.origin;
+    // separation(a, b) for b in the run of `row`, c its row.along_x(b): the same sums (c times a
+    // width part is exact, |c| <= 2).
+    SMD_HD SMD_INLINE Vec3<float> separation(const Real4<float>& a, const Real4<float>& b, const RowShift& row,
+                                             float c) const {
         return {(c * widthHi.x + (b.x - a.x)) + c * widthLo.x, (row.yz.hi.y + (b.y - a.y)) + row.yz.lo.y,
                 (row.yz.hi.z + (b.z - a.z)) + row.yz.lo.z};
     }

@@ -348,18 +348,23 @@ TEST(VerletList, SameSlotsAndListsOnOneThreadAndOnFour) {
     }
 }
 
+// How the GPU lays out a list: by columns of chunks (one thread a particle) or by rows (several
+// lanes a particle, below some 270,000 particles).
+enum class GpuLayout { kColumns, kRows };
+
 // The build loop a GPU runs (the BuildListsAlong with_build_path chooses, one slot at a time with
-// one lane, writing its lists by columns of chunks as a GPU thread per particle does) against the
-// CPU's row pass that built the list, both read through for_each_neighbour: the same slots in every
-// list, each once, for each way of taking separations (the minimum image, the image of the
-// candidate's cell, or cell-local positions) and each filter (any pair, or exclusions). A pair on
-// which they differ may only be one the two roundings put on either side of the list radius.
-// With `forcesOfSigma` (cell-local positions only), a mixed-precision pair kernel over the columns,
-// whose entries carry the cells' offset, also sums the forces it sums over the rows' slots: LJ of
-// that sigma, for a configuration without overlaps (its forces bounded).
+// one lane, writing its lists by columns of chunks as a GPU thread per particle does, or by rows)
+// against the CPU's row pass that built the list, both read through for_each_neighbour: the same
+// slots in every list, each once, for each way of taking separations (the minimum image, the image
+// of the candidate's cell, or cell-local positions) and each filter (any pair, or exclusions). A pair
+// on which they differ may only be one the two roundings put on either side of the list radius.
+// Where the list keeps cell-local positions its entries carry the cells' offset, as the GPU's do;
+// with `forcesOfSigma`, a mixed-precision pair kernel over them also sums the forces it sums over
+// the CPU rows' slots: LJ of that sigma, for a configuration without overlaps (its forces bounded).
 template <class Configure>
 void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const PairFilterInputs& inputs,
-                                          bool cellLocal, bool imagesByOffset, double forcesOfSigma = 0.0) {
+                                          bool cellLocal, bool imagesByOffset, double forcesOfSigma = 0.0,
+                                          GpuLayout layout = GpuLayout::kColumns) {
     List list(s.backend, 2.5, 1.12, PairCondition::all, inputs, nullptr, 1, nullptr);
     configure(list);
     list.update(s.pos, s.n, s.box, ++s.version);
@@ -368,12 +373,16 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
     ASSERT_EQ(v.grid.images_by_offset(), imagesByOffset);
     ASSERT_EQ(v.filter.trivial(), inputs.excluded.empty());
     ASSERT_EQ(v.capacity % NeighbourView<double>::kChunk, 0) << "a list holds whole chunks";
+    ASSERT_EQ(v.entryShift, 0) << "the CPU's lists carry slots alone";
+    ASSERT_TRUE(v.by_rows());
     const NeighbourView<double> rows = v;
-    // The GPU loop's lists laid out by columns of chunks (one thread a particle), read back through
+    // The GPU loop's lists in the layout asked for (rows: the CPU's own strides), read back through
     // the view's own traversal.
-    v.particleStride = NeighbourView<double>::kChunk;
-    v.chunkStride = NeighbourView<double>::kChunk * s.n;
-    if (cellLocal) v.entryShift = CellLocalPositions<double>::kOffsetBits;  // as the GPU's columns carry
+    if (layout == GpuLayout::kColumns) {
+        v.particleStride = NeighbourView<double>::kChunk;
+        v.chunkStride = NeighbourView<double>::kChunk * s.n;
+    }
+    if (cellLocal) v.entryShift = CellLocalPositions<double>::kOffsetBits;  // as the GPU's lists carry
     std::vector<int> entries(static_cast<size_t>(v.capacity) * s.n), counts(s.n);
     v.list = entries.data();
     v.count = counts.data();
@@ -400,6 +409,18 @@ void expect_gpu_loop_lists_what_rows_list(System& s, Configure configure, const 
                 EXPECT_EQ(byEntry.y, byCodes.y) << "slot " << k << " and " << t;
                 EXPECT_EQ(byEntry.z, byCodes.z) << "slot " << k << " and " << t;
             }, [&](int) { ADD_FAILURE() << "slot " << k << " overflowed"; });
+        }
+        if (layout == GpuLayout::kRows) {
+            // Shared out among four lanes, as the GPU's readers of rows take them: each entry once.
+            std::multiset<int> shared;
+            for (int lane = 0; lane < 4; ++lane) {
+                Lanes lanes;
+                lanes.count = 4;
+                lanes.lane = lane;
+                v.for_each_neighbour(static_cast<int>(k), [&](int t) { shared.insert(t); }, lanes);
+            }
+            EXPECT_EQ(std::set<int>(shared.begin(), shared.end()), mine) << "slot " << k;
+            EXPECT_EQ(shared.size(), mine.size()) << "slot " << k;
         }
         EXPECT_EQ(static_cast<int>(mine.size()), counts[k]) << "slot " << k;
         rows.for_each_neighbour(static_cast<int>(k), [&](int t) { theirs.insert(t); });
@@ -502,11 +523,17 @@ TEST(VerletList, GpuBuildLoopListsWhatTheCpuRowsList) {
 }
 
 // The mixed-precision pair kernel over entries that carry their cells' offset, on a liquid-like
-// lattice of 27,000 (about 21 cells along each axis), against the same kernel over the rows' slots.
+// lattice of 27,000 (about 21 cells along each axis), against the same kernel over the CPU rows'
+// slots: the GPU's columns, and its rows (several lanes a particle) with and without exclusions.
 TEST(VerletList, GpuBuildLoopEntriesGiveTheForcesOfTheCellCodes) {
     System lattice(27000, 30.0, 30.0, 30.0, 14);
     lattice.place_on_jittered_lattice(1.0);
-    expect_gpu_loop_lists_what_rows_list(lattice, [](List& list) { list.keep_cell_local_positions(); }, {}, true, true, 1.0);
+    const auto keepCellLocal = [](List& list) { list.keep_cell_local_positions(); };
+    expect_gpu_loop_lists_what_rows_list(lattice, keepCellLocal, {}, true, true, 1.0, GpuLayout::kColumns);
+    expect_gpu_loop_lists_what_rows_list(lattice, keepCellLocal, {}, true, true, 1.0, GpuLayout::kRows);
+    // With exclusions: the filter's path writes the offsets too.
+    expect_gpu_loop_lists_what_rows_list(lattice, keepCellLocal, exclusions_of_neighbours_in_id(lattice.n), true, true,
+                                         1.0, GpuLayout::kRows);
 }
 
 }  // namespace

@@ -186,6 +186,9 @@ public:
     // Lanes of one particle read its entries side by side; single threads of consecutive particles
     // read entry k of each side by side. The pair kernels read the lists, so their lanes decide.
     bool lists_by_rows(int64_t n) const { return lanes_for(n, LaneSizing::kNeighbourSum) > 1; }
+    // The list builds write each entry with its pair's cells' offset where the list keeps cell-local
+    // positions (NeighbourView::entryShift), so the mixed-precision pair kernels skip the cells' codes.
+    bool list_entries_carry_cells() const { return true; }
 
     int lanes_for(int64_t n, LaneSizing sizing) const {
         int lanes = 1;
