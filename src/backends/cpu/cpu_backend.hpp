@@ -121,8 +121,7 @@ public:
 
     // A thread reads a particle's neighbours one after the other: side by side suits its cache.
     bool lists_by_rows(int64_t) const { return true; }
-    // host_rows writes slots alone: its pair loop (PairRowsOnHost) reads the cells' codes, and a
-    // core has no float unit to spare that the offsets would relieve.
+    // host_rows writes slots alone, and its pair loop (PairRowsOnHost) reads the cells' codes.
     bool list_entries_carry_cells() const { return false; }
 
     // f(i, lanes) for i < n, one lane per item: a CPU thread works through a neighbour loop alone.
