@@ -4,8 +4,10 @@
 // would find out need a GPU; NVRTC itself needs none, so this runs wherever the CUDA toolkit is
 // (scripts/build_cuda_check.sh runs it on the CI machine). The expression transverser's kernels, as the
 // engine writes them (simulation/expression_transverser.hpp), are instantiated too: a template body
-// (the lanes' combine, the traversals) is checked only where it is instantiated. A functor's
-// kResidentBlocks reaches the launch bounds of the kernels compiled for it (launch_kernels.cuh).
+// (the lanes' combine, the traversals) is checked only where it is instantiated; so are the pair
+// kernels of an expression potential, as CompiledPairInteraction names them (compiled_interaction.hpp),
+// in every precision and choice of outputs. A functor's kResidentBlocks reaches the launch bounds of the
+// kernels compiled for it (launch_kernels.cuh).
 #include <nvrtc.h>
 
 #include <cstdio>
@@ -105,6 +107,33 @@ int check_resident_blocks() {
     return failed;
 }
 
+// The pair kernels of an expression potential (the engine's RuntimePotential over a Function of its
+// own: r^-12 - r^-6), each precision and each choice of outputs, compile under NVRTC.
+int check_pair_kernels() {
+    const std::string source =
+        "#include \"backends/cuda/launch_kernels.cuh\"\n#include \"forcefield/pair_kernel.hpp\"\n"
+        "#include \"forcefield/expression_terms.hpp\"\n"
+        "struct RuntimeExpression {\n"
+        "    template <class R> struct Params { R columns[1]; };\n"
+        "    template <class R> static SMD_HD SMD_INLINE void evaluate(const R* inputs, const Params<R>&, R* outputs) {\n"
+        "        const R s6 = R(1) / (inputs[0] * inputs[0] * inputs[0] * inputs[0] * inputs[0] * inputs[0]);\n"
+        "        outputs[0] = s6 * s6 - s6;\n"
+        "        outputs[1] = (R(-12) * s6 * s6 + R(6) * s6) / inputs[0];\n"
+        "    }\n"
+        "};\n"
+        "using RuntimePotential = structmd::ExpressionPair<RuntimeExpression>;\n";
+    std::vector<std::string> kernels;
+    for (const char* reals : {"float, float", "double, float", "double, double"})
+        for (const char* outputs : {"true, false, false", "true, true, true", "false, true, false"})
+            for (const char* launch : {"for_each_lanes_kernel", "for_each_lone_lane_kernel"})
+                kernels.push_back(std::string("&structmd::") + launch + "<structmd::PairKernel<RuntimePotential, " + reals +
+                                  ", " + outputs + ">>");
+    const Compiled compiled = compile(source, kernels);
+    if (compiled.log.empty()) return 0;
+    std::printf("the pair kernels of an expression potential do not compile under NVRTC:\n%s\n", compiled.log.c_str());
+    return 1;
+}
+
 }  // namespace
 
 int main() {
@@ -127,6 +156,7 @@ int main() {
         ++failed;
         std::printf("the expression transverser's kernels in %s do not compile under NVRTC:\n%s\n", real, log.c_str());
     }
+    failed += check_pair_kernels();
     failed += check_resident_blocks();
     return failed == 0 ? 0 : 1;
 }
